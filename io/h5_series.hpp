@@ -1,0 +1,149 @@
+// raceway HDF5 output: time series written at fixed output times, plus fixed arrays and attributes.
+//
+// H5SeriesWriter knows nothing of physics: it writes named double datasets whose first dimension
+// is the output index (time) and grows by one row per append(). The layout conventions of the
+// files it writes are in docs/output_layout.md.
+//
+// Crash safety (one file per run, written as "<final>.partial" then renamed):
+//   * create(final_path) writes to final_path + ".partial" (truncating a stale one); a file that
+//     already exists at final_path is never opened or touched by the writer.
+//   * commit() writes the buffered rows, flushes, closes the file and renames the .partial file
+//     over final_path (std::filesystem::rename: atomic on POSIX, same directory), so final_path is
+//     always either the old complete output or the new complete output.
+//   * Destroying the writer without commit() (an exception unwinding, an early return) writes
+//     the buffered rows as far as it can, closes the file and leaves "<final>.partial" in place, so
+//     a failed run leaves a readable partial file and the previous output intact.
+//   * After a hard kill (signal, abort) the .partial file is consistent as of the last flush():
+//     HDF5 1.10 gives no guarantee for changes after it. Callers that want a readable partial file
+//     after a hard kill call flush() now and then (e.g. every N outputs).
+//
+// Errors: every HDF5 failure throws std::runtime_error naming the file, the object and the
+// innermost HDF5 error message; misuse (unknown series, wrong row size, bad shape) throws
+// std::invalid_argument; using a writer after commit() or after a move throws std::logic_error.
+// HDF5's automatic error-stack printing is switched off while the writer's methods run (and
+// restored on exit), so failures are reported once, by the exception.
+//
+// Paths are absolute or relative to the root ("bodies/cage/position" == "/bodies/cage/position");
+// missing intermediate groups are created.
+//
+// Parallel output (later): the file access and data transfer property lists are each made in one
+// place (make_file_access_plist() and the constructor, see h5_series.cpp); switching to the MPI-IO
+// driver with collective transfers changes those two places only. All datasets are chunked and
+// extended by H5Dset_extent, which is valid collectively.
+#pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace raceway::io {
+
+class H5SeriesWriter {
+ public:
+  /// Creates (truncates) final_path + ".partial" and returns a writer for it. final_path itself is
+  /// only replaced by commit(). Throws std::runtime_error if the file cannot be created.
+  static H5SeriesWriter create(const std::string& final_path);
+
+  H5SeriesWriter(const H5SeriesWriter&) = delete;
+  H5SeriesWriter& operator=(const H5SeriesWriter&) = delete;
+  H5SeriesWriter(H5SeriesWriter&& other) noexcept;
+  H5SeriesWriter& operator=(H5SeriesWriter&& other) noexcept;
+  /// Without commit(): writes buffered rows (best effort, never throws), closes the file and leaves
+  /// the .partial file on disk.
+  ~H5SeriesWriter();
+
+  /// Defines a time series: an extendible chunked double dataset of shape [0 x row_shape...]
+  /// (row_shape empty: one scalar per output, dataset shape [0]). Attributes "units" and
+  /// "description" are written as variable-length UTF-8 strings. Throws std::invalid_argument if
+  /// the series is already defined or a row dimension is 0.
+  void define_series(const std::string& path, std::vector<std::size_t> row_shape,
+                     const std::string& units, const std::string& description);
+
+  /// Appends one row (row.size() must be the product of the series' row_shape, else
+  /// std::invalid_argument; unknown series: std::invalid_argument). Rows are buffered and written
+  /// in chunk-sized blocks; they are all in the file after flush() or commit().
+  void append(const std::string& path, std::span<const double> row);
+
+  /// Number of rows appended to a series so far (written or still buffered).
+  std::size_t rows(const std::string& path) const;
+
+  /// Attributes on a group or dataset ("/" is the root); missing groups are created. An existing
+  /// attribute of the same name is replaced. Strings are variable-length UTF-8 (h5py reads str).
+  void set_attribute(const std::string& object_path, const std::string& name, const std::string& value);
+  void set_attribute(const std::string& object_path, const std::string& name, const char* value);
+  void set_attribute(const std::string& object_path, const std::string& name, double value);
+  void set_attribute(const std::string& object_path, const std::string& name, long long value);
+  void set_attribute(const std::string& object_path, const std::string& name,
+                     const std::vector<double>& value);
+  void set_attribute(const std::string& object_path, const std::string& name,
+                     const std::vector<std::string>& value);
+  /// Any other integer type (int, std::size_t, ...) is stored as a 64-bit signed integer.
+  template <std::integral T>
+    requires(!std::same_as<T, bool> && !std::same_as<T, long long>)
+  void set_attribute(const std::string& object_path, const std::string& name, T value) {
+    if (!std::in_range<long long>(value)) {
+      throw std::invalid_argument("H5SeriesWriter: integer attribute '" + name + "' out of range");
+    }
+    set_attribute(object_path, name, static_cast<long long>(value));
+  }
+
+  /// A fixed (non-time) double dataset of the given shape (row-major data; empty shape: scalar),
+  /// with "units" and "description" attributes. data.size() must equal the product of shape.
+  void write_array(const std::string& path, std::vector<std::size_t> shape,
+                   std::span<const double> data, const std::string& units,
+                   const std::string& description);
+  /// A 1-D table of variable-length UTF-8 strings (e.g. segment or state names), with a
+  /// "description" attribute and an empty "units" attribute.
+  void write_array(const std::string& path, const std::vector<std::string>& values,
+                   const std::string& description);
+
+  /// Writes all buffered rows and flushes the file to disk (H5Fflush).
+  void flush();
+
+  /// Writes buffered rows, closes the file and renames the .partial file over the final path.
+  /// After commit() the writer is closed; any further call except the destructor throws
+  /// std::logic_error.
+  void commit();
+
+  bool is_open() const noexcept { return file_ >= 0; }
+  const std::string& final_path() const noexcept { return final_path_; }
+  const std::string& partial_path() const noexcept { return partial_path_; }
+
+ private:
+  using Hid = std::int64_t;           // hid_t of HDF5 >= 1.10 (checked in h5_series.cpp)
+  using Hsize = unsigned long long;   // hsize_t (checked in h5_series.cpp)
+
+  struct Series {
+    Hid dataset = -1;
+    std::vector<Hsize> row_shape;
+    std::size_t row_size = 1;              // product of row_shape
+    std::size_t chunk_rows = 1;            // rows per chunk = rows per block write
+    std::size_t rows_written = 0;          // rows in the file
+    std::vector<double> buffer;            // rows not yet written, row-major
+  };
+
+  explicit H5SeriesWriter(std::string final_path);
+  void require_open(const char* what) const;
+  void write_buffer(const std::string& path, Series& s);
+  void write_all_buffers();
+  void close_all() noexcept;
+  void close_uncommitted() noexcept;  // destructor body: best-effort write, close, keep .partial
+  void put_attribute(const std::string& object_path, const std::string& name, Hid file_type, Hid mem_type,
+                     Hid space, const void* buf);
+  [[noreturn]] void fail(const std::string& what, const std::string& object) const;
+
+  std::string final_path_;
+  std::string partial_path_;
+  Hid file_ = -1;
+  Hid dxpl_ = -1;  // data transfer property list for every H5Dwrite (collective later)
+  std::map<std::string, Series, std::less<>> series_;
+};
+
+}  // namespace raceway::io

@@ -1,0 +1,169 @@
+// raceway scene: the validated, SI-unit description of one simulation.
+//
+// Produced by io::load_scene (TOML file) or io::default_scene(); consumed by the model builder in
+// solver/. Every quantity here is in SI units (m, kg, s, N, Pa, rad, rad/s); units are converted at
+// the io boundary only. Every field has been validated when a Scene is returned.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace raceway::io {
+
+/// A scalar function of time: constant, or piecewise linear through (time, value) points and held
+/// constant outside them. SI units of whatever it describes.
+struct TimeFunction {
+  std::vector<double> times;   ///< strictly increasing [s]; empty for a constant
+  std::vector<double> values;  ///< same size as times, or one value for a constant
+
+  static TimeFunction constant(double v) { return TimeFunction{{}, {v}}; }
+  double operator()(double t) const;
+  /// Time derivative (piecewise constant; 0 outside the table).
+  double derivative(double t) const;
+  bool is_zero() const;
+};
+
+struct Material {
+  std::string name;
+  double density = 0;         ///< kg/m^3
+  double youngs_modulus = 0;  ///< Pa
+  double poisson_ratio = 0;   ///< -
+};
+
+enum class ModelKind { planar, spatial };
+
+struct SceneInfo {
+  std::string name;
+  ModelKind model = ModelKind::planar;
+  double end_time = 0;         ///< s
+  double output_interval = 0;  ///< s
+};
+
+enum class BearingType { cylindrical_roller };
+
+struct BearingGeometry {
+  BearingType type = BearingType::cylindrical_roller;
+  int rolling_elements = 0;
+  double roller_diameter = 0;    ///< m
+  double roller_length = 0;      ///< m (effective contact length)
+  double pitch_diameter = 0;     ///< m
+  double radial_clearance = 0;   ///< m, diametral clearance P_d: total radial play of one ring
+                                 ///< against the other (outer race radius - inner race radius - D = P_d/2)
+  double inner_bore_diameter = 0;       ///< m, bore of the inner ring (sets its mass unless given)
+  double outer_outside_diameter = 0;    ///< m, outside diameter of the outer ring
+  double ring_width = 0;                ///< m, width of both rings (default: roller_length)
+  std::string roller_material;          ///< key into Scene::materials
+  std::string ring_material;            ///< key into Scene::materials
+  double inner_race_diameter() const { return pitch_diameter - roller_diameter - 0.5 * radial_clearance; }
+  double outer_race_diameter() const { return pitch_diameter + roller_diameter + 0.5 * radial_clearance; }
+};
+
+enum class CageGuidance { inner_land, outer_land, rolling_element };
+
+struct CageSpec {
+  CageGuidance guidance = CageGuidance::inner_land;
+  double pocket_clearance = 0;  ///< m, pocket width minus roller diameter (circumferential play)
+  double land_clearance = 0;    ///< m, radial clearance between cage and the guiding land
+  double bar_width = 0;         ///< m, axial length of the roller-bar contact (default roller_length)
+  double land_width = 0;        ///< m, axial width of the guiding land contact
+  std::string material;         ///< key into Scene::materials
+  double mass = 0;              ///< kg; 0 = computed from geometry and material
+  double inertia = 0;           ///< kg m^2 about the bearing axis; 0 = computed
+};
+
+enum class RingMotion { fixed, driven, free };
+
+struct RingLoad {           ///< loads on a ring, in the bearing frame, functions of time
+  TimeFunction fx, fy;      ///< N
+  TimeFunction mz;          ///< N m (only meaningful for a free ring)
+};
+
+struct RingSupport {        ///< linear spring-damper to ground, per translational direction
+  double stiffness = 0;     ///< N/m; 0 = no support
+  double damping = 0;       ///< N s/m
+};
+
+struct RingSpec {
+  RingMotion motion = RingMotion::fixed;
+  TimeFunction speed;       ///< rad/s, for motion = driven
+  bool translation_free = true;  ///< driven/free rings: x, y integrated (false = centre held fixed)
+  RingLoad load;
+  RingSupport support;
+  double mass = 0;          ///< kg; 0 = computed from geometry and material
+  double inertia = 0;       ///< kg m^2; 0 = computed
+};
+
+/// Contact laws, chosen by name. Every name is validated against the registry in contact/.
+struct NormalLaw {
+  std::string name = "palmgren";  ///< "palmgren" (line contact, Q = K delta^(10/9)) | "hertz_line_linear"
+  int slices = 1;                 ///< slices along the roller length (planar: crowning only)
+  double crown_drop = 0;          ///< m, profile drop at the roller ends (circular crown); 0 = straight
+};
+struct DampingLaw {
+  std::string name = "hunt_crossley";  ///< "hunt_crossley" | "none"
+  double factor = 0;                   ///< s/m: F = K delta^n (1 + factor * d(delta)/dt)
+};
+struct TractionLaw {
+  std::string name = "tanh";       ///< "tanh" | "none"
+  double friction_coefficient = 0; ///< - (limit value)
+  double slip_velocity_scale = 0;  ///< m/s: mu = mu_max tanh(u / u_scale)
+};
+struct ContactSpec {
+  NormalLaw normal;
+  DampingLaw damping;
+  TractionLaw traction;
+};
+
+struct Lubricant {
+  std::string name;
+  double viscosity = 0;           ///< Pa s, dynamic viscosity at the bearing temperature
+  double pressure_viscosity = 0;  ///< 1/Pa
+};
+
+enum class IntegrationMethod { bdf, adams };
+enum class LinearSolverKind { bordered, dense };
+
+struct SolverSpec {
+  IntegrationMethod method = IntegrationMethod::bdf;
+  int max_order = 5;
+  double rtol = 1e-6;
+  /// Absolute tolerances per variable class (SI).
+  double atol_position = 0;          ///< m
+  double atol_angle = 0;             ///< rad
+  double atol_velocity = 0;          ///< m/s
+  double atol_angular_velocity = 0;  ///< rad/s
+  LinearSolverKind linear_solver = LinearSolverKind::bordered;
+  double max_step = 0;               ///< s; 0 = no limit
+  double initial_step = 0;           ///< s; 0 = CVODE's estimate
+  long max_steps = 500000000;        ///< total step budget for the run
+  double jacobian_perturbation = 1e-7;  ///< relative finite-difference increment
+};
+
+struct OutputSpec {
+  bool segments = true;   ///< per-segment diagnostics
+};
+
+/// Where a value came from, for error messages and `raceway check`.
+struct Scene {
+  std::string source;     ///< file path, or "<built-in default>"
+  std::string text;       ///< the scene text as read (stored in the output file)
+  SceneInfo scene;
+  BearingGeometry bearing;
+  std::map<std::string, Material> materials;
+  CageSpec cage;
+  RingSpec inner_ring;
+  RingSpec outer_ring;
+  Lubricant lubricant;
+  ContactSpec roller_race;
+  ContactSpec roller_cage;
+  ContactSpec cage_land;
+  SolverSpec solver;
+  OutputSpec output;
+  bool gravity = false;   ///< gravity along -y (9.80665 m/s^2)
+
+  const Material& material(const std::string& key) const { return materials.at(key); }
+};
+
+}  // namespace raceway::io

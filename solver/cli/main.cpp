@@ -1,0 +1,136 @@
+// The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
+// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`.
+//
+// Exit codes: 0 success; 2 bad input (scene); 3 integration failure (diagnosed); 1 other errors.
+#include <mpi.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "io/scene_parser.hpp"
+#include "io/summary_json.hpp"
+#include "solver/model.hpp"
+#include "solver/run.hpp"
+
+namespace {
+
+using namespace raceway;
+
+io::Scene load(const std::string& path) { return path.empty() ? io::default_scene() : io::load_scene(path); }
+
+std::string clock_text(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{:02}:{:02}", t / 60, t % 60);
+}
+
+/// A progress bar on a terminal; plain log lines (every 10 %) otherwise.
+class ProgressReporter {
+ public:
+  ProgressReporter() : tty_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(const solver::Progress& p) {
+    const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
+    const double eta = frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
+    if (tty_) {
+      const int width = 30, filled = static_cast<int>(frac * width);
+      std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
+                   p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta).c_str(), p.steps);
+      if (frac >= 1.0) std::fprintf(stderr, "\n");
+      std::fflush(stderr);
+    } else if (frac >= next_) {
+      spdlog::info("t {:.6g} s of {:.6g} s ({:.0f} %), {:.2f} revolutions, wall {:.2f} s, eta {}, steps {}", p.time,
+                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta), p.steps);
+      while (next_ <= frac) next_ += 0.1;
+    }
+  }
+
+ private:
+  bool tty_;
+  double next_ = 0.1;
+};
+
+int run_command(const std::string& scene_path, const std::string& output, const std::string& summary_json) {
+  const io::Scene scene = load(scene_path);
+  spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
+  solver::RunOptions options;
+  options.output_path = output;
+  ProgressReporter progress;
+  options.on_progress = [&](const solver::Progress& p) { progress(p); };
+  options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
+  const auto sum = solver::run_scene(scene, options);
+  const auto json = sum.to_json();
+  spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
+               "{} newton failures, {} error-test failures",
+               sum.simulated_time_s, sum.driven_ring_revolutions, sum.wall_time_s, sum.stats.steps,
+               sum.model_rhs_evaluations, sum.model_jacobian_evaluations, sum.stats.newton_failures,
+               sum.stats.error_test_failures);
+  spdlog::info("cage speed {:.3f} rpm (second half), epicyclic {:.3f} rpm, slip {:.3f} %", sum.cage_speed_rpm,
+               sum.epicyclic_cage_speed_rpm, 100 * sum.cage_slip);
+  spdlog::info("output written to {}", output);
+  if (!summary_json.empty()) {
+    io::write_json_file(summary_json, json);
+    spdlog::info("summary written to {}", summary_json);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  spdlog::set_pattern("[raceway] %v");
+
+  CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
+  app.require_subcommand(1);
+  std::string scene_path, output = "raceway.h5", summary_json;
+  auto* run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
+  run->add_option("scene", scene_path, "scene file (TOML)");
+  run->add_option("-o,--output", output, "HDF5 output file")->capture_default_str();
+  run->add_option("--summary-json", summary_json, "write the run summary as JSON");
+  auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
+  check->alias("plan");
+  check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
+  int code = 0;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    code = app.exit(e);
+    MPI_Finalize();
+    return code;
+  }
+  if (size > 1 && rank == 0)
+    spdlog::warn("{} ranks: this build evaluates contacts on rank 0 only (the MPI executor is issue 4)", size);
+  if (rank != 0) {
+    MPI_Finalize();
+    return 0;
+  }
+  try {
+    if (*check) {
+      const io::Scene scene = load(scene_path);
+      const solver::Model model = solver::build_model(scene);
+      std::fputs(model.describe().c_str(), stdout);
+      std::puts("scene OK");
+    } else {
+      code = run_command(scene_path, output, summary_json);
+    }
+  } catch (const io::SceneError& e) {
+    spdlog::error("{}", e.what());
+    code = 2;
+  } catch (const solver::IntegrationFailure& e) {
+    spdlog::error("{}", e.what());
+    code = 3;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    code = 1;
+  }
+  MPI_Finalize();
+  return code;
+}

@@ -1,0 +1,66 @@
+// Equations of motion of the planar bearing: dz/dt = f(t, z) (seed 000 eq. 2) and its Jacobian,
+// both assembled from contact segments evaluated as tasks through a scheduler::Executor.
+//
+// Newton for translation and Euler for rotation in an inertial bearing frame: centrifugal and
+// gyroscopic effects come out of the equations (Cartesian coordinates), not out of added terms.
+#pragma once
+
+#include <vector>
+
+#include "scheduler/executor.hpp"
+#include "solver/bordered_matrix.hpp"
+#include "solver/model.hpp"
+
+namespace raceway::solver {
+
+/// Layout of one segment's record in the right-hand-side phase.
+struct SegmentRecord {
+  static constexpr int on_a = 0;         // fx, fy, mz on body A
+  static constexpr int on_b = 3;         // fx, fy, mz on body B
+  static constexpr int diagnostics = 6;  // contact::SegmentDiagnostics, in declaration order
+  static constexpr int valid = diagnostics + contact::diagnostics_count;
+  static constexpr int size = valid + 1;
+};
+
+class Equations {
+ public:
+  Equations(const Model& model, scheduler::Executor& executor);
+
+  /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
+  int rhs(double t, const double* z, double* zdot);
+  /// J = df/dz by finite differences of one segment at a time, into the bordered matrix.
+  /// Returns 0, or 1 (recoverable).
+  int jacobian(double t, const double* z, BorderedMatrix& jac);
+
+  /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
+  const std::vector<double>& segment_records() const { return records_; }
+  /// Total mechanical energy: kinetic + elastic contact + support springs + potential of the
+  /// current external loads and gravity [J]. Uses the last rhs() records: call rhs(t, z) first.
+  double energy(double t, const double* z) const;
+  /// Net force/moment on each body from the last rhs() (contacts + loads + supports + gravity).
+  const std::vector<contact::PlanarWrench>& body_loads() const { return loads_; }
+  /// Index of the segment that most recently reported leaving its valid range, or -1.
+  int last_invalid_segment() const { return last_invalid_; }
+
+  long rhs_evaluations() const { return rhs_count_; }
+  long jacobian_evaluations() const { return jac_count_; }
+  long segment_evaluations() const { return segment_count_; }
+  const Model& model() const { return model_; }
+  scheduler::Executor& executor() { return executor_; }
+
+ private:
+  contact::SegmentResult evaluate_segment(int s, const contact::PlanarKinematics& a,
+                                          const contact::PlanarKinematics& b) const;
+  void add_external_loads(double t, const double* z);
+
+  const Model& model_;
+  scheduler::Executor& executor_;
+  std::vector<double> records_, jac_records_;
+  std::vector<contact::PlanarWrench> loads_;
+  std::vector<double> scale_;  ///< physical scale per state (finite-difference increments)
+  int last_invalid_ = -1;
+  long rhs_count_ = 0, jac_count_ = 0;
+  mutable long segment_count_ = 0;
+};
+
+}  // namespace raceway::solver

@@ -1,0 +1,298 @@
+#include "solver/integrator.hpp"
+
+#include <cvode/cvode.h>
+#include <fmt/format.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+namespace raceway::solver {
+
+// ---------------------------------------------------------------------------------------------
+// SUNMatrix holding a BorderedMatrix (content). CVODE uses: zero and the Jacobian function to form
+// J, copy to save it, scaleaddi to form M = I - gamma J when only gamma changed (jok).
+namespace {
+
+BorderedMatrix& bm(SUNMatrix a) { return *static_cast<BorderedMatrix*>(a->content); }
+
+SUNMatrix make_bordered_matrix(SUNContext ctx, const BorderedMatrix& prototype);
+
+SUNMatrix_ID bm_getid(SUNMatrix) { return SUNMATRIX_CUSTOM; }
+SUNMatrix bm_clone(SUNMatrix a) { return make_bordered_matrix(a->sunctx, bm(a)); }
+void bm_destroy(SUNMatrix a) {
+  if (!a) return;
+  delete static_cast<BorderedMatrix*>(a->content);
+  a->content = nullptr;
+  SUNMatFreeEmpty(a);
+}
+int bm_zero(SUNMatrix a) {
+  bm(a).set_zero();
+  return 0;
+}
+int bm_copy(SUNMatrix from, SUNMatrix to) {
+  bm(to) = bm(from);
+  return 0;
+}
+int bm_scaleaddi(sunrealtype c, SUNMatrix a) {
+  bm(a).scale_add_identity(c);
+  return 0;
+}
+int bm_matvec(SUNMatrix a, N_Vector x, N_Vector y) {
+  bm(a).multiply(N_VGetArrayPointer(x), N_VGetArrayPointer(y));
+  return 0;
+}
+
+SUNMatrix make_bordered_matrix(SUNContext ctx, const BorderedMatrix& prototype) {
+  SUNMatrix a = SUNMatNewEmpty(ctx);
+  a->ops->getid = bm_getid;
+  a->ops->clone = bm_clone;
+  a->ops->destroy = bm_destroy;
+  a->ops->zero = bm_zero;
+  a->ops->copy = bm_copy;
+  a->ops->scaleaddi = bm_scaleaddi;
+  a->ops->matvec = bm_matvec;
+  a->content = new BorderedMatrix(prototype);
+  return a;
+}
+
+// SUNLinearSolver by block elimination (Schur complement on the border).
+struct BorderedSolverContent {
+  BorderedFactorization factorization;
+  sunindextype last_flag = 0;
+};
+BorderedSolverContent& bs(SUNLinearSolver s) { return *static_cast<BorderedSolverContent*>(s->content); }
+
+SUNLinearSolver_Type bs_gettype(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+SUNLinearSolver_ID bs_getid(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
+int bs_initialize(SUNLinearSolver) { return 0; }
+int bs_setup(SUNLinearSolver s, SUNMatrix a) {
+  const bool ok = bs(s).factorization.factor(bm(a));
+  bs(s).last_flag = ok ? 0 : 1;
+  return ok ? 0 : SUNLS_LUFACT_FAIL;  // positive: recoverable, CVODE retries with a smaller step
+}
+int bs_solve(SUNLinearSolver s, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
+  bs(s).factorization.solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
+  return 0;
+}
+sunindextype bs_lastflag(SUNLinearSolver s) { return bs(s).last_flag; }
+int bs_free(SUNLinearSolver s) {
+  if (!s) return 0;
+  delete static_cast<BorderedSolverContent*>(s->content);
+  s->content = nullptr;
+  SUNLinSolFreeEmpty(s);
+  return 0;
+}
+
+SUNLinearSolver make_bordered_solver(SUNContext ctx) {
+  SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
+  s->ops->gettype = bs_gettype;
+  s->ops->getid = bs_getid;
+  s->ops->initialize = bs_initialize;
+  s->ops->setup = bs_setup;
+  s->ops->solve = bs_solve;
+  s->ops->lastflag = bs_lastflag;
+  s->ops->free = bs_free;
+  s->content = new BorderedSolverContent();
+  return s;
+}
+
+void check(int flag, const char* what) {
+  if (flag < 0) throw std::runtime_error(fmt::format("CVODE set-up failed in {} (flag {})", what, flag));
+}
+
+}  // namespace
+
+struct Integrator::Impl {
+  Equations& eq;
+  io::SolverSpec spec;
+  SUNContext ctx = nullptr;
+  void* cvode = nullptr;
+  N_Vector y = nullptr;
+  SUNMatrix matrix = nullptr;
+  SUNLinearSolver solver = nullptr;
+  BorderedMatrix scratch;  // dense path: the Jacobian is formed here, then copied
+  std::exception_ptr callback_error;
+  std::string last_cvode_message;
+  long steps_budget = 0;
+
+  Impl(Equations& e, const io::SolverSpec& s) : eq(e), spec(s) {}
+  ~Impl() {
+    if (cvode) CVodeFree(&cvode);
+    if (solver) SUNLinSolFree(solver);
+    if (matrix) SUNMatDestroy(matrix);
+    if (y) N_VDestroy(y);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+
+  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+    auto* self = static_cast<Impl*>(user);
+    try {
+      return self->eq.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    } catch (...) {
+      self->callback_error = std::current_exception();
+      return -1;
+    }
+  }
+  static int jac_bordered(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector,
+                          N_Vector, N_Vector) {
+    auto* self = static_cast<Impl*>(user);
+    try {
+      return self->eq.jacobian(t, N_VGetArrayPointer(y), bm(j));
+    } catch (...) {
+      self->callback_error = std::current_exception();
+      return -1;
+    }
+  }
+  static int jac_dense(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
+                       N_Vector) {
+    auto* self = static_cast<Impl*>(user);
+    try {
+      const int status = self->eq.jacobian(t, N_VGetArrayPointer(y), self->scratch);
+      const Eigen::MatrixXd d = self->scratch.to_dense();
+      const auto n = static_cast<sunindextype>(d.rows());
+      for (sunindextype c = 0; c < n; ++c) {
+        sunrealtype* col = SUNDenseMatrix_Column(j, c);
+        for (sunindextype r = 0; r < n; ++r) col[r] = d(r, c);
+      }
+      return status;
+    } catch (...) {
+      self->callback_error = std::current_exception();
+      return -1;
+    }
+  }
+  static void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
+    auto* self = static_cast<Impl*>(user);
+    self->last_cvode_message = fmt::format("{} {} (code {}): {}", module, function, code, msg);
+  }
+
+  std::string diagnose(int flag) const;
+};
+
+Integrator::Integrator(Equations& equations, const io::SolverSpec& spec, double t0,
+                       const std::vector<double>& z0)
+    : impl_(std::make_unique<Impl>(equations, spec)) {
+  Impl& s = *impl_;
+  const Model& model = equations.model();
+  const auto n = static_cast<sunindextype>(z0.size());
+  check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
+  s.y = N_VNew_Serial(n, s.ctx);
+  std::copy(z0.begin(), z0.end(), N_VGetArrayPointer(s.y));
+  s.cvode = CVodeCreate(spec.method == io::IntegrationMethod::bdf ? CV_BDF : CV_ADAMS, s.ctx);
+  if (!s.cvode) throw std::runtime_error("CVodeCreate failed");
+  check(CVodeSetErrHandlerFn(s.cvode, Impl::error_handler, &s), "CVodeSetErrHandlerFn");
+  check(CVodeInit(s.cvode, Impl::rhs, t0, s.y), "CVodeInit");
+  check(CVodeSetUserData(s.cvode, &s), "CVodeSetUserData");
+  N_Vector atol = N_VNew_Serial(n, s.ctx);
+  const auto abs_tol = model.absolute_tolerance();
+  std::copy(abs_tol.begin(), abs_tol.end(), N_VGetArrayPointer(atol));
+  check(CVodeSVtolerances(s.cvode, spec.rtol, atol), "CVodeSVtolerances");
+  N_VDestroy(atol);
+  check(CVodeSetMaxOrd(s.cvode, spec.max_order), "CVodeSetMaxOrd");
+  if (spec.max_step > 0) check(CVodeSetMaxStep(s.cvode, spec.max_step), "CVodeSetMaxStep");
+  if (spec.initial_step > 0) check(CVodeSetInitStep(s.cvode, spec.initial_step), "CVodeSetInitStep");
+  s.steps_budget = spec.max_steps;
+
+  BorderedMatrix prototype(model.border_size, model.roller_count,
+                           model.roller_count > 0 ? (model.state_size - model.border_size) / model.roller_count : 0);
+  if (spec.linear_solver == io::LinearSolverKind::bordered) {
+    s.matrix = make_bordered_matrix(s.ctx, prototype);
+    s.solver = make_bordered_solver(s.ctx);
+    check(CVodeSetLinearSolver(s.cvode, s.solver, s.matrix), "CVodeSetLinearSolver");
+    check(CVodeSetJacFn(s.cvode, Impl::jac_bordered), "CVodeSetJacFn");
+  } else {
+    s.scratch = prototype;
+    s.matrix = SUNDenseMatrix(n, n, s.ctx);
+    s.solver = SUNLinSol_Dense(s.y, s.matrix, s.ctx);
+    check(CVodeSetLinearSolver(s.cvode, s.solver, s.matrix), "CVodeSetLinearSolver");
+    check(CVodeSetJacFn(s.cvode, Impl::jac_dense), "CVodeSetJacFn");
+  }
+}
+
+Integrator::~Integrator() = default;
+
+void Integrator::advance_to(double t_out, std::vector<double>& z) {
+  Impl& s = *impl_;
+  long steps = 0;
+  CVodeGetNumSteps(s.cvode, &steps);
+  // Guard against a run that crawls: at most 200000 steps per output interval, and the scene's
+  // total budget. Either ends the run with a diagnosis, never a hang.
+  const long per_call = std::min<long>(200000, std::max<long>(1, s.steps_budget - steps));
+  CVodeSetMaxNumSteps(s.cvode, per_call);
+  sunrealtype t_reached = 0;
+  const int flag = CVode(s.cvode, t_out, s.y, &t_reached, CV_NORMAL);
+  if (s.callback_error) std::rethrow_exception(s.callback_error);
+  if (flag < 0) throw IntegrationFailure(s.diagnose(flag));
+  const sunrealtype* y = N_VGetArrayPointer(s.y);
+  z.assign(y, y + N_VGetLength(s.y));
+}
+
+std::string Integrator::Impl::diagnose(int flag) const {
+  sunrealtype t = 0, h_last = 0, h_cur = 0;
+  CVodeGetCurrentTime(cvode, &t);
+  CVodeGetLastStep(cvode, &h_last);
+  CVodeGetCurrentStep(cvode, &h_cur);
+  long steps = 0;
+  CVodeGetNumSteps(cvode, &steps);
+  const Model& m = eq.model();
+  std::string out = fmt::format("integration failed at t = {:.9g} s: {} after {} steps; last step {:.3g} s, "
+                                "attempted step {:.3g} s",
+                                t, CVodeGetReturnFlagName(flag), steps, h_last, h_cur);
+  if (flag == CV_TOO_MUCH_WORK)
+    out += fmt::format(" (step budget exhausted: max_steps = {} in the scene, or 200000 within one output "
+                       "interval)", steps_budget);
+  // The state with the largest weighted local error, and the contact loading that body the most.
+  const auto n = N_VGetLength(y);
+  N_Vector err = N_VClone(y), w = N_VClone(y);
+  if (CVodeGetEstLocalErrors(cvode, err) == CV_SUCCESS && CVodeGetErrWeights(cvode, w) == CV_SUCCESS) {
+    const double* e = N_VGetArrayPointer(err);
+    const double* wt = N_VGetArrayPointer(w);
+    sunindextype worst = 0;
+    for (sunindextype i = 1; i < n; ++i)
+      if (std::abs(e[i] * wt[i]) > std::abs(e[worst] * wt[worst])) worst = i;
+    out += fmt::format("; largest weighted local error in {} ({:.3g})", m.state_name[worst],
+                       std::abs(e[worst] * wt[worst]));
+    int body = -1;
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (worst >= m.bodies[b].offset && worst < m.bodies[b].offset + m.bodies[b].size) body = static_cast<int>(b);
+    const auto& rec = eq.segment_records();
+    int best = -1;
+    double best_force = -1;
+    for (std::size_t sidx = 0; sidx < m.segments.size() && !rec.empty(); ++sidx) {
+      const auto& seg = m.segments[sidx];
+      if (seg.body_a != body && seg.body_b != body) continue;
+      const double f = rec[sidx * SegmentRecord::size + SegmentRecord::diagnostics + 1];
+      if (f > best_force) best_force = f, best = static_cast<int>(sidx);
+    }
+    if (best >= 0)
+      out += fmt::format("; most loaded contact of that body: {} ({:.4g} N, approach {:.4g} um)",
+                         m.segments[best].name, best_force,
+                         1e6 * rec[best * SegmentRecord::size + SegmentRecord::diagnostics]);
+  }
+  N_VDestroy(err);
+  N_VDestroy(w);
+  if (eq.last_invalid_segment() >= 0)
+    out += fmt::format("; contact that last left its valid range: {}", m.segments[eq.last_invalid_segment()].name);
+  if (!last_cvode_message.empty()) out += "; CVODE: " + last_cvode_message;
+  return out;
+}
+
+IntegratorStatistics Integrator::statistics() const {
+  const Impl& s = *impl_;
+  IntegratorStatistics st;
+  CVodeGetNumSteps(s.cvode, &st.steps);
+  CVodeGetNumRhsEvals(s.cvode, &st.rhs_evaluations);
+  CVodeGetNumJacEvals(s.cvode, &st.jacobian_evaluations);
+  CVodeGetNumLinSolvSetups(s.cvode, &st.linear_setups);
+  CVodeGetNumNonlinSolvIters(s.cvode, &st.newton_iterations);
+  CVodeGetNumNonlinSolvConvFails(s.cvode, &st.newton_failures);
+  CVodeGetNumErrTestFails(s.cvode, &st.error_test_failures);
+  CVodeGetLastOrder(s.cvode, &st.last_order);
+  CVodeGetLastStep(s.cvode, &st.last_step);
+  return st;
+}
+
+}  // namespace raceway::solver

@@ -1,0 +1,48 @@
+// One simulation from a validated scene to an output file and a summary: model, start-up state,
+// CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/cli) owns it.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "io/scene.hpp"
+#include "io/summary_json.hpp"
+#include "solver/integrator.hpp"
+
+namespace raceway::solver {
+
+struct Progress {
+  double time = 0, end_time = 0;  ///< s
+  double revolutions = 0;         ///< of the driven ring
+  double wall_seconds = 0;
+  long steps = 0;
+};
+
+struct RunOptions {
+  std::string output_path = "raceway.h5";
+  std::function<void(const Progress&)> on_progress;  ///< called after every output time
+  std::function<void(const std::string&)> on_info;   ///< start-up and model messages
+};
+
+struct RunSummary {
+  double simulated_time_s = 0, wall_time_s = 0;
+  IntegratorStatistics stats;
+  long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
+  double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
+  double cage_speed_rpm = 0;            ///< mean over the second half of the run
+  double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
+  double cage_slip = 0;                 ///< 1 - cage / epicyclic
+  double driven_ring_revolutions = 0;
+  double inner_ring_contact_force_n[2] = {0, 0};  ///< mean over the second half, from the rollers
+  double inner_ring_load_n[2] = {0, 0};           ///< applied, mean over the same samples
+  double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
+  int output_samples = 0;
+  io::JsonObject to_json() const;
+};
+
+/// Runs the scene and writes `options.output_path` (via a .partial file: an existing output is
+/// replaced only when the run ends). On an integration failure the partial output is kept as
+/// OUT.h5.partial and IntegrationFailure is rethrown with its diagnosis.
+RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
+
+}  // namespace raceway::solver
