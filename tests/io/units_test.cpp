@@ -1,0 +1,134 @@
+// Units: conversions to SI, dimension checks, rejected garbage; TimeFunction evaluation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "io/scene.hpp"
+#include "io/units.hpp"
+
+namespace raceway::io {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+double si(const char* text, Dimension d) { return parse_quantity(std::string_view(text), d); }
+
+TEST(Units, ConvertsToSI) {
+  EXPECT_NEAR(si("17.462 mm", dim::length), 0.017462, 1e-15);
+  EXPECT_NEAR(si("3000 rpm", dim::angular_speed), 3000.0 * 2.0 * pi / 60.0, 1e-12);
+  EXPECT_NEAR(si("3000 rpm", dim::angular_speed), 314.159265358979, 1e-9);
+  EXPECT_DOUBLE_EQ(si("1 kN", dim::force), 1000.0);
+  EXPECT_DOUBLE_EQ(si("208 GPa", dim::pressure), 208e9);
+  EXPECT_NEAR(si("0.1 ms", dim::time), 1e-4, 1e-18);
+  EXPECT_NEAR(si("40 Hz", dim::angular_speed), 251.327412287183, 1e-9);  // Hz = rev/s
+  EXPECT_DOUBLE_EQ(si("5 N s/m", dim::damping), 5.0);
+  EXPECT_NEAR(si("0.02 1/GPa", dim::inverse_pressure), 2e-11, 1e-24);
+  EXPECT_NEAR(si("1/GPa", dim::inverse_pressure), 1e-9, 1e-22);
+  EXPECT_NEAR(si("2e-8 m^2/N", dim::inverse_pressure), 2e-8, 1e-22);
+  EXPECT_NEAR(si("40 mPa s", dim::viscosity), 0.04, 1e-15);
+  EXPECT_NEAR(si("40 cP", dim::viscosity), 0.04, 1e-15);
+  EXPECT_NEAR(si("0.4 P", dim::viscosity), 0.04, 1e-15);
+  EXPECT_DOUBLE_EQ(si("7850 kg/m^3", dim::density), 7850.0);
+  EXPECT_NEAR(si("7.85 g/cm^3", dim::density), 7850.0, 1e-9);
+  EXPECT_DOUBLE_EQ(si("2 N/mm", dim::stiffness), 2000.0);
+  EXPECT_NEAR(si("3 um", dim::length), 3e-6, 1e-20);
+  EXPECT_NEAR(si("3 \xC2\xB5m", dim::length), 3e-6, 1e-20);  // MICRO SIGN
+  EXPECT_NEAR(si("3 \xCE\xBCm", dim::length), 3e-6, 1e-20);  // GREEK SMALL LETTER MU
+  EXPECT_NEAR(si("90 deg", dim::angle), pi / 2, 1e-15);
+  EXPECT_NEAR(si("180 deg/s", dim::angular_speed), pi, 1e-15);
+  EXPECT_NEAR(si("1 rev/min", dim::angular_speed), si("1 rpm", dim::angular_speed), 1e-15);
+  EXPECT_NEAR(si("2 rad/s", dim::angular_speed), 2.0, 1e-15);
+  EXPECT_DOUBLE_EQ(si("3 N*m", dim::moment), 3.0);
+  EXPECT_DOUBLE_EQ(si("3 J", dim::moment), 3.0);
+  EXPECT_DOUBLE_EQ(si("2 kg m^2", dim::inertia), 2.0);
+  EXPECT_DOUBLE_EQ(si("  -4.5e3   N  ", dim::force), -4500.0);
+  EXPECT_DOUBLE_EQ(si("0.3", dim::none), 0.3);
+  EXPECT_DOUBLE_EQ(si("1 h", dim::time), 3600.0);
+  EXPECT_NEAR(si("1 W", dim::power), 1.0, 0);
+  EXPECT_NEAR(si("3 m s^-1", dim::speed), 3.0, 0);
+}
+
+TEST(Units, TomlNodes) {
+  const toml::value<double> f(2.5);
+  const toml::value<int64_t> i(3);
+  const toml::value<std::string> s(std::string("2.5 mm"));
+  const toml::value<bool> b(true);
+  EXPECT_DOUBLE_EQ(parse_quantity(f, dim::length), 2.5);  // bare number = SI
+  EXPECT_DOUBLE_EQ(parse_quantity(i, dim::angular_speed), 3.0);
+  EXPECT_DOUBLE_EQ(parse_quantity(s, dim::length), 2.5e-3);
+  EXPECT_THROW(parse_quantity(b, dim::length), UnitError);
+}
+
+std::string error_of(const char* text, Dimension d) {
+  try {
+    (void)parse_quantity(std::string_view(text), d);
+  } catch (const UnitError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Units, WrongDimensionSaysWhatWasFoundAndExpected) {
+  EXPECT_EQ(error_of("3000 mm", dim::angular_speed),
+            "'3000 mm' is a length; expected an angular speed (rpm, rad/s, Hz, deg/s)");
+  EXPECT_EQ(error_of("3000 rpm", dim::length), "'3000 rpm' is an angular speed; expected a length (m, mm, um)");
+  EXPECT_NE(error_of("5 N s", dim::damping).find("is a quantity in kg m s^-1; expected a damping coefficient"),
+            std::string::npos);
+  EXPECT_NE(error_of("40 Hz", Dimension{0, 0, -1, 0}).find("is an angular speed"), std::string::npos);
+  EXPECT_NE(error_of("3 mm", dim::none).find("expected a plain number"), std::string::npos);
+  EXPECT_NE(error_of("1", dim::length).find("is a plain number; expected a length"), std::string::npos);
+}
+
+TEST(Units, RejectsGarbage) {
+  for (const char* bad : {"12 parsecs", "mm", "", "   ", "1e3 m m/", "3 mm^", "3 m^x", "3 m2", "3 kg/m/s", "3 * m",
+                          "3 m**2", "abc", "nan m", "inf", "3 m^0", "+-3 m", "3 1 m 2"}) {
+    EXPECT_THROW(parse_quantity(std::string_view(bad)), UnitError) << "'" << bad << "'";
+  }
+  EXPECT_NE(error_of("12 parsecs", dim::length).find("unknown unit 'parsecs'"), std::string::npos);
+  EXPECT_NE(error_of("mm", dim::length).find("does not start with a number"), std::string::npos);
+  EXPECT_NE(error_of("", dim::length).find("empty"), std::string::npos);
+  EXPECT_NE(error_of("1e3 m m/", dim::length).find("ends with an operator"), std::string::npos);
+}
+
+TEST(Units, DimensionNames) {
+  EXPECT_EQ(si_unit(dim::pressure), "kg m^-1 s^-2");
+  EXPECT_EQ(si_unit(dim::angular_speed), "s^-1 rad");
+  EXPECT_EQ(si_unit(dim::none), "1");
+  EXPECT_EQ(dimension_name(dim::length), "a length");
+  EXPECT_EQ(dimension_description(dim::angular_speed), "an angular speed (rpm, rad/s, Hz, deg/s)");
+}
+
+TEST(TimeFunction, ConstantAndEmpty) {
+  const auto c = TimeFunction::constant(3.5);
+  EXPECT_DOUBLE_EQ(c(-1.0), 3.5);
+  EXPECT_DOUBLE_EQ(c(1e9), 3.5);
+  EXPECT_DOUBLE_EQ(c.derivative(0.3), 0.0);
+  EXPECT_FALSE(c.is_zero());
+  EXPECT_TRUE(TimeFunction::constant(0.0).is_zero());
+  EXPECT_TRUE(TimeFunction{}.is_zero());
+  EXPECT_DOUBLE_EQ(TimeFunction{}(1.0), 0.0);
+}
+
+TEST(TimeFunction, InterpolatesAndHolds) {
+  const TimeFunction f{{0.0, 0.05, 0.1}, {0.0, 100.0, 40.0}};
+  EXPECT_DOUBLE_EQ(f(-1.0), 0.0);        // held before the first point
+  EXPECT_DOUBLE_EQ(f(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(f(0.025), 50.0);
+  EXPECT_DOUBLE_EQ(f(0.05), 100.0);
+  EXPECT_NEAR(f(0.075), 70.0, 1e-12);
+  EXPECT_DOUBLE_EQ(f(0.1), 40.0);
+  EXPECT_DOUBLE_EQ(f(5.0), 40.0);         // held after the last point
+  EXPECT_DOUBLE_EQ(f.derivative(-1.0), 0.0);
+  EXPECT_DOUBLE_EQ(f.derivative(0.01), 2000.0);
+  EXPECT_DOUBLE_EQ(f.derivative(0.05), -1200.0);  // right-hand slope at a knot
+  EXPECT_DOUBLE_EQ(f.derivative(0.07), -1200.0);
+  EXPECT_DOUBLE_EQ(f.derivative(0.1), 0.0);
+  EXPECT_DOUBLE_EQ(f.derivative(2.0), 0.0);
+  EXPECT_FALSE(f.is_zero());
+  EXPECT_TRUE((TimeFunction{{0.0, 1.0}, {0.0, 0.0}}).is_zero());
+}
+
+}  // namespace
+}  // namespace raceway::io
