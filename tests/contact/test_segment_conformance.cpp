@@ -21,7 +21,7 @@ std::vector<std::pair<PlanarKinematics, PlanarKinematics>> motions() {
       {moving(0, 0, 0), moving(0, 0, 0)},
       {moving(0.02, -0.01, 3.0), moving(-0.25, 0.4, -40.0)},
       {moving(0.004, -0.003, 0.8), moving(-0.006, 0.005, -2.5)},
-      {moving(-0.3, 0.1, 104.7), moving(0.5, 0.2, 60.0)},
+      {moving(-0.3, 0.1, 30.0), moving(0.5, 0.2, 60.0)},
   };
 }
 constexpr double directions[] = {0.37, 2.1, -2.6};
@@ -249,8 +249,12 @@ TEST_P(SegmentConformance, HuntCrossleyDamping) {
         // Power of the damping force on the relative motion: (F - elastic) * rate; dissipated.
         EXPECT_NEAR(r.diagnostics.power_loss, (expected - elastic) * rate,
                     1e-10 * elastic * std::abs(rate));
-        if (rate > 0) EXPECT_NEAR(r.diagnostics.power_loss, elastic * c * rate * rate, 1e-10 * elastic * rate * rate);
-        if (1.0 + c * rate <= 0) EXPECT_EQ(wrench_norm(r), 0.0) << "fast separation must give no force";
+        if (rate > 0) {
+          EXPECT_NEAR(r.diagnostics.power_loss, elastic * c * rate * rate, 1e-10 * elastic * rate * rate);
+        }
+        if (1.0 + c * rate <= 0) {
+          EXPECT_EQ(wrench_norm(r), 0.0) << "fast separation must give no force";
+        }
       }
     }
   }

@@ -1,0 +1,85 @@
+// Micro-benchmarks of the planar model on seed 002 (13 rollers, 40 Hz, 1 kN): one contact segment,
+// one right-hand side, one Jacobian, one bordered factorisation + solve (against dense LU).
+// Run: perf/run_benchmarks.sh (records perf/results/bench_planar.txt).
+#include <benchmark/benchmark.h>
+
+#include "contact/planar_segments.hpp"
+#include "io/scene_parser.hpp"
+#include "solver/equations.hpp"
+#include "solver/startup.hpp"
+
+namespace {
+
+using namespace raceway;
+
+struct Fixture {
+  io::Scene scene = io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  solver::Model model = solver::build_model(scene);
+  scheduler::SerialExecutor executor;
+  solver::Equations eq{model, executor};
+  std::vector<double> z = solver::consistent_initial_state(model, 0.0).state;
+  std::vector<double> zdot = std::vector<double>(z.size());
+};
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+void BM_RollerRaceSegment(benchmark::State& state) {
+  auto& f = fixture();
+  const auto& seg = f.model.segments[0];  // roller 0 (most loaded) on the inner race
+  const auto a = f.model.kinematics(seg.body_a, 0, f.z.data());
+  const auto b = f.model.kinematics(seg.body_b, 0, f.z.data());
+  for (auto _ : state) benchmark::DoNotOptimize(contact::evaluate(f.model.race_segments[0], a, b));
+}
+BENCHMARK(BM_RollerRaceSegment);
+
+void BM_RightHandSide(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) benchmark::DoNotOptimize(f.eq.rhs(0.0, f.z.data(), f.zdot.data()));
+  state.counters["segments"] = static_cast<double>(f.model.segments.size());
+}
+BENCHMARK(BM_RightHandSide);
+
+void BM_Jacobian(benchmark::State& state) {
+  auto& f = fixture();
+  const int nb = f.model.border_size, n = f.model.roller_count;
+  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
+  for (auto _ : state) benchmark::DoNotOptimize(f.eq.jacobian(0.0, f.z.data(), j));
+}
+BENCHMARK(BM_Jacobian);
+
+void BM_BorderedFactorSolve(benchmark::State& state) {
+  auto& f = fixture();
+  const int nb = f.model.border_size, n = f.model.roller_count;
+  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
+  f.eq.jacobian(0.0, f.z.data(), j);
+  j.scale_add_identity(-1e-6);
+  solver::BorderedFactorization lu;
+  std::vector<double> b(j.size(), 1.0), x(j.size());
+  for (auto _ : state) {
+    lu.factor(j);
+    lu.solve(b.data(), x.data());
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+BENCHMARK(BM_BorderedFactorSolve);
+
+void BM_DenseFactorSolve(benchmark::State& state) {
+  auto& f = fixture();
+  const int nb = f.model.border_size, n = f.model.roller_count;
+  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
+  f.eq.jacobian(0.0, f.z.data(), j);
+  j.scale_add_identity(-1e-6);
+  const Eigen::MatrixXd d = j.to_dense();
+  Eigen::VectorXd b = Eigen::VectorXd::Ones(d.rows());
+  for (auto _ : state) {
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(d);
+    benchmark::DoNotOptimize(lu.solve(b).eval());
+  }
+}
+BENCHMARK(BM_DenseFactorSolve);
+
+}  // namespace
+
+BENCHMARK_MAIN();
