@@ -151,6 +151,11 @@ Vec expected_normal_on_b(const SegmentCase& c, const Placement& p) {
   return {0, 0};
 }
 
+double surface_radius_b(const SegmentCase& c) {
+  if (c.kind == Kind::land) return c.internal ? seed002::outer_land_radius : seed002::inner_land_radius;
+  return seed002::roller_radius;
+}
+
 namespace {
 void rotate_in_place(double& x, double& y, double c, double s) {
   const double rx = c * x - s * y;

@@ -40,12 +40,13 @@ inline constexpr double land_clearance = 0.3e-3;    // radial
 inline constexpr double damping_factor = 0.5;       // s/m
 inline constexpr double friction_coefficient = 0.1;
 inline constexpr double slip_velocity_scale = 0.05;  // m/s
-// Not in the paper (test assumptions): land radii on the ring shoulders, land contact length equal to
-// the roller length, the validity limit of the laws, the pocket used for the bar segments (pocket 3 of 13).
-inline constexpr double inner_land_radius = 20.5e-3;
-inline constexpr double outer_land_radius = 25.2e-3;
-inline constexpr double land_length = roller_length;
-inline constexpr double max_approach = 50e-6;
+// Not in the paper: taken as solver/model.cpp builds them (a land rib half a roller radius high,
+// land width half the roller length, validity limit 2 % of the roller radius); the bar segments use
+// pocket 3 of 13.
+inline constexpr double inner_land_radius = inner_race_radius + 0.5 * roller_radius;  // 20.57 mm
+inline constexpr double outer_land_radius = outer_race_radius - 0.5 * roller_radius;  // 25.17 mm
+inline constexpr double land_length = 0.5 * roller_length;
+inline constexpr double max_approach = 0.02 * roller_radius;  // 92 um
 inline constexpr double pocket_angle = 3.0 * 2.0 * std::numbers::pi / 13.0;
 }  // namespace seed002
 
@@ -116,6 +117,9 @@ Placement place(const SegmentCase& c, const AnySegment& s, PlanarKinematics a,
 /// out, outer race in, a bar pushes the roller back into the pocket, a land pushes the cage back, so
 /// the ring along the cage's eccentricity).
 Vec expected_normal_on_b(const SegmentCase& c, const Placement& p);
+
+/// Radius of B's surface at the contact: the roller radius (race, bar) or the ring's land radius.
+double surface_radius_b(const SegmentCase& c);
 
 /// The whole configuration rotated by `angle` about the bearing axis through the origin.
 Placement rotated(const Placement& p, double angle);

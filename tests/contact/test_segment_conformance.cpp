@@ -14,8 +14,9 @@ namespace {
 
 constexpr double n_exp = 10.0 / 9.0;
 
-/// Motions of (A, B) used across the checks: at rest, a running bearing (A slow, B fast, arbitrary
-/// directions), a slow creep in the linear part of the traction curve.
+/// Motions of (A, B) used across the checks: at rest; running (A slow, B fast, arbitrary directions);
+/// a slow creep in the linear part of the traction curve; both spinning fast. Approach rates stay
+/// below 2 m/s, so that Hunt-Crossley damping (0.5 s/m) never clips the force in contact.
 std::vector<std::pair<PlanarKinematics, PlanarKinematics>> motions() {
   return {
       {moving(0, 0, 0), moving(0, 0, 0)},
@@ -354,19 +355,31 @@ TEST_P(SegmentConformance, TractionOpposesSlip) {
   EXPECT_EQ(rs.diagnostics.traction_force, 0.0);
 }
 
-// The normal force acts through B's centre (roller or ring): B's moment is friction only, and friction
-// opposes B's spin when A is at rest.
-TEST_P(SegmentConformance, FrictionMomentOpposesSpin) {
+// The normal force acts through B's centre (roller or ring): B's moment is friction only, friction
+// opposes B's spin when A is at rest, and it acts at B's surface: |M_b| = |T| * (B's radius) within the
+// approach. For the land, the cage's friction moment has the lever of the cage's guided surface (bore
+// on an inner land, outside on an outer land), which fixes on which side of the cage the contact is.
+TEST_P(SegmentConformance, FrictionActsAtTheSurfaces) {
   const AnySegment without = segment({.traction = false});
   const AnySegment with = segment({.traction = true});
+  const double approach = 4e-6;
   for (const double dir : directions) {
     for (const double spin : {-300.0, -2.0, 0.5, 104.7}) {
-      const Placement p = place(seg_case(), with, moving(0, 0, 0), moving(0, 0, spin), 4e-6, dir, 2e-5);
+      const Placement p = place(seg_case(), with, moving(0, 0, 0), moving(0, 0, spin), approach, dir, 2e-5);
       const SegmentResult r0 = evaluate_any(without, p.a, p.b);
       const double f = r0.diagnostics.normal_force;
       EXPECT_NEAR(r0.on_b.mz, 0.0, 1e-12 * f * 0.03);
       const SegmentResult r = evaluate_any(with, p.a, p.b);
       EXPECT_LT(r.on_b.mz * spin, 0.0) << "spin " << spin;
+      const double t = std::abs(r.diagnostics.traction_force);
+      ASSERT_GT(t, 0.0);
+      // Anywhere across the overlap is a fair contact point; B's centre or A's surface far off is not.
+      EXPECT_NEAR(std::abs(r.on_b.mz) / t, surface_radius_b(seg_case()), 1.5 * approach) << "spin " << spin;
+      if (seg_case().kind == Kind::land) {
+        const double cage_surface = seg_case().internal ? surface_radius_b(seg_case()) - seed002::land_clearance
+                                                        : surface_radius_b(seg_case()) + seed002::land_clearance;
+        EXPECT_NEAR(std::abs(r.on_a.mz - r0.on_a.mz) / t, cage_surface, 1.5 * approach) << "spin " << spin;
+      }
     }
   }
 }

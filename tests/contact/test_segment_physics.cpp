@@ -124,6 +124,14 @@ TEST(PhysicalSense, FasterLandDrivesCageForward) {
       const SegmentResult r = evaluate_any(seg, fast.a, fast.b);
       EXPECT_GT(r.on_a.mz, 0.0) << name << " phi " << phi;
       EXPECT_LT(r.on_b.mz, 0.0) << name << ": the cage brakes the ring";
+      // The friction force on the cage follows the land's surface where they touch: an inner land
+      // touches the cage bore opposite to the cage's eccentricity, where the land moves along
+      // -perp(e); an outer land touches the cage outside on the side of the eccentricity, moving along
+      // +perp(e). (This is what drives the cage's whirl.)
+      const Vec e{fast.a.x - fast.b.x, fast.a.y - fast.b.y};
+      const double along = dot(force(r.on_a), perp(e)) / norm(e);
+      const double expected_sign = c.internal ? 1.0 : -1.0;
+      EXPECT_GT(expected_sign * along, 0.9 * seed002::friction_coefficient * r.diagnostics.normal_force) << name;
       const Placement slow = place(c, seg, moving(0, 0, 42), moving(0, 0, 0), 5e-6, phi);
       EXPECT_LT(evaluate_any(seg, slow.a, slow.b).on_a.mz, 0.0) << name << " phi " << phi;
       // With the ring much faster the traction saturates: |M| ~ mu N R.
