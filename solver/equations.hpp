@@ -57,7 +57,8 @@ class Equations {
   scheduler::Executor& executor_;
   std::vector<double> records_, jac_records_;
   std::vector<contact::PlanarWrench> loads_;
-  std::vector<double> scale_;  ///< physical scale per state (finite-difference increments)
+  std::vector<double> scale_;          ///< physical scale per state
+  std::vector<double> position_step_;  ///< absolute finite-difference step (positions, angles), else 0
   int last_invalid_ = -1;
   long rhs_count_ = 0, jac_count_ = 0;
   mutable long segment_count_ = 0;

@@ -19,6 +19,16 @@ struct Seating {
   double t0;
   double orbit;           // epicyclic cage speed [rad/s]
   double load_direction;  // azimuth of the load on the inner ring relative to the outer [rad]
+  double spin = 0;                 // roller spin of the returned state [rad/s]
+  double ring_speed[2] = {0, 0};   // inner, outer ring rotation speeds at t0 [rad/s]
+
+  /// The kinematics the returned state will have: rings at rest but for their drive speed, the
+  /// roller orbiting at the epicyclic speed with its rolling spin (so damping and traction are in
+  /// the balance, as they are in Equations::rhs).
+  PlanarKinematics ring_at(int r, double cx, double cy) const { return {cx, cy, 0, 0, 0, ring_speed[r]}; }
+  PlanarKinematics roller_at(double rho, double psi) const {
+    return {rho * std::cos(psi), rho * std::sin(psi), 0, -orbit * rho * std::sin(psi), orbit * rho * std::cos(psi), spin};
+  }
 
   double azimuth(int k) const { return load_direction + 2.0 * std::numbers::pi * k / m.roller_count; }
 
@@ -26,9 +36,7 @@ struct Seating {
   /// ring centre. Positive = along the outward radial direction e_psi.
   double race_force(int segment, double cx, double cy, double rho, double psi) const {
     const auto& seg = m.race_segments[segment];
-    PlanarKinematics ring{cx, cy, 0, 0, 0, 0};
-    PlanarKinematics roller{rho * std::cos(psi), rho * std::sin(psi), 0, 0, 0, 0};
-    const auto r = contact::evaluate(seg, ring, roller);
+    const auto r = contact::evaluate(seg, ring_at(segment, cx, cy), roller_at(rho, psi));
     return r.on_b.fx * std::cos(psi) + r.on_b.fy * std::sin(psi);
   }
 
@@ -39,7 +47,7 @@ struct Seating {
     const double mass = m.bodies[m.first_roller + k].mass;
     auto residual = [&](double rho) {
       return race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
-             mass * orbit * orbit * rho;
+             mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
     };
     // The outer race alone bounds rho from above (residual < 0 deep in the outer race); search down.
     double hi = m.outer_race_radius - m.roller_radius + 1e-2 * m.roller_radius;
@@ -65,10 +73,9 @@ struct Seating {
     for (int k = 0; k < m.roller_count; ++k) {
       const double rho = seat(k, centre[0], centre[1]);
       const double psi = azimuth(k);
-      PlanarKinematics roller{rho * std::cos(psi), rho * std::sin(psi), 0, 0, 0, 0};
+      const PlanarKinematics roller = roller_at(rho, psi);
       for (int r = 0; r < 2; ++r) {
-        PlanarKinematics ring{centre[r][0], centre[r][1], 0, 0, 0, 0};
-        const auto res = contact::evaluate(m.race_segments[r], ring, roller);
+        const auto res = contact::evaluate(m.race_segments[r], ring_at(r, centre[r][0], centre[r][1]), roller);
         force[r][0] += res.on_a.fx;
         force[r][1] += res.on_a.fy;
       }
@@ -102,6 +109,15 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
   Seating s{m, t0, m.epicyclic_cage_speed(t0),
             (lx == 0 && ly == 0) ? -0.5 * std::numbers::pi : std::atan2(ly, lx)};
 
+  {
+    auto speed = [&](int b) {
+      const auto* spec = m.bodies[b].ring;
+      return spec->motion == io::RingMotion::driven ? spec->speed(t0) : 0.0;
+    };
+    s.ring_speed[0] = speed(m.inner_ring);
+    s.ring_speed[1] = speed(m.outer_ring);
+    s.spin = s.orbit - (s.ring_speed[0] - s.orbit) * m.inner_race_radius / m.roller_radius;
+  }
   // Newton with finite differences and backtracking on the ring translations.
   const int n = 2 * static_cast<int>(free_rings.size());
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n);

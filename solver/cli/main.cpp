@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "io/scene_parser.hpp"
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
+  spdlog::set_default_logger(spdlog::stderr_color_mt("raceway"));  // messages on stderr, data on stdout
   spdlog::set_pattern("[raceway] %v");
 
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
