@@ -13,6 +13,9 @@ mkdir -p "$out"
   "$root/build/perf/bench_planar" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 } 2>&1 | tee "$out/bench_planar.txt"
 tmp="$(mktemp -d)"
-/usr/bin/time -f "wall %e s, max rss %M KB" "$root/build/raceway" run "$root/jobs/scenes/seed002_40hz.toml" \
-  -o "$tmp/seed002_40hz.h5" --summary-json "$out/seed002_40hz_20rev_summary.json" 2>&1 | tail -4 | tee "$out/seed002_40hz_20rev.txt"
+{
+  TIMEFORMAT="wall %R s (bash time)"
+  time "$root/build/raceway" run "$root/jobs/scenes/seed002_40hz.toml" \
+    -o "$tmp/seed002_40hz.h5" --summary-json "$out/seed002_40hz_20rev_summary.json"
+} 2>&1 | tail -5 | tee "$out/seed002_40hz_20rev.txt"
 rm -rf "$tmp"
