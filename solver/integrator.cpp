@@ -7,6 +7,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <exception>
 
@@ -238,9 +239,12 @@ std::string Integrator::Impl::diagnose(int flag) const {
   long steps = 0;
   CVodeGetNumSteps(cvode, &steps);
   const Model& m = eq.model();
+  char* flag_name = CVodeGetReturnFlagName(flag);  // allocated by CVODE
+  const std::string flag_text = flag_name ? flag_name : "unknown flag";
+  std::free(flag_name);
   std::string out = fmt::format("integration failed at t = {:.9g} s: {} after {} steps; last step {:.3g} s, "
                                 "attempted step {:.3g} s",
-                                t, CVodeGetReturnFlagName(flag), steps, h_last, h_cur);
+                                t, flag_text, steps, h_last, h_cur);
   if (flag == CV_TOO_MUCH_WORK)
     out += fmt::format(" (step budget exhausted: max_steps = {} in the scene, or 200000 within one output "
                        "interval)", steps_budget);

@@ -168,25 +168,20 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
     centre[free_rings[i]][1] = rep.state[b.slot[Component::py]] = x[2 * i + 1];
   }
   const double wc = s.orbit;
-  auto ring_speed = [&](int b) {
-    const auto* spec = m.bodies[b].ring;
-    return spec->motion == io::RingMotion::driven ? spec->speed(t0) : 0.0;
-  };
   for (int r : {m.inner_ring, m.outer_ring}) {
     const Body& b = m.bodies[r];
     if (b.slot[Component::omega] >= 0) rep.state[b.slot[Component::omega]] = 0.0;
   }
-  // Pure rolling on the inner race in the frame turning with the cage.
-  const double spin = wc - (ring_speed(m.inner_ring) - wc) * m.inner_race_radius / m.roller_radius;
+  // Rollers: the seated positions with the kinematics the seating balanced (epicyclic orbit, pure
+  // rolling spin on the inner race).
   for (int k = 0; k < m.roller_count; ++k) {
     const Body& b = m.bodies[m.first_roller + k];
-    const double rho = s.seat(k, centre[0], centre[1]);
-    const double psi = s.azimuth(k);
-    rep.state[b.slot[Component::px]] = rho * std::cos(psi);
-    rep.state[b.slot[Component::py]] = rho * std::sin(psi);
-    rep.state[b.slot[Component::vx]] = -wc * rho * std::sin(psi);
-    rep.state[b.slot[Component::vy]] = wc * rho * std::cos(psi);
-    rep.state[b.slot[Component::omega]] = spin;
+    const PlanarKinematics r = s.roller_at(s.seat(k, centre[0], centre[1]), s.azimuth(k));
+    rep.state[b.slot[Component::px]] = r.x;
+    rep.state[b.slot[Component::py]] = r.y;
+    rep.state[b.slot[Component::vx]] = r.vx;
+    rep.state[b.slot[Component::vy]] = r.vy;
+    rep.state[b.slot[Component::omega]] = r.omega;
   }
   // Cage: concentric with its guiding ring, pocket k centred on roller k, at the epicyclic speed.
   const Body& cage = m.bodies[m.cage];
@@ -202,7 +197,7 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",
       rep.newton_iterations, rep.residual, 1e6 * centre[0][0], 1e6 * centre[0][1], wc * 30 / std::numbers::pi,
-      spin);
+      s.spin);
   return rep;
 }
 
