@@ -41,7 +41,19 @@ struct SceneInfo {
   double output_interval = 0;  ///< s
 };
 
-enum class BearingType { cylindrical_roller };
+enum class BearingType { cylindrical_roller, deep_groove_ball, four_point_contact_ball };
+
+/// Ball-bearing geometry (spatial scenes). Groove radii are conformity * ball diameter. The contact
+/// angle is never an input: it comes out of the groove geometry, the clearance and the loads.
+struct BallGeometry {
+  double ball_diameter = 0;         ///< m
+  double inner_conformity = 0;      ///< f_i = inner groove radius / ball diameter (> 0.5)
+  double outer_conformity = 0;      ///< f_o = outer groove radius / ball diameter (> 0.5)
+  /// Four-point bearings only: the angle at which a centred ball touches each gothic arc when the
+  /// clearance is taken up symmetrically (sets the axial offset of the arcs' curvature centres:
+  /// e = (r_groove - D/2) sin(angle) measured from the groove's mid-plane). 0 for deep groove.
+  double arc_contact_angle = 0;     ///< rad
+};
 
 struct BearingGeometry {
   BearingType type = BearingType::cylindrical_roller;
@@ -54,23 +66,42 @@ struct BearingGeometry {
   double inner_bore_diameter = 0;       ///< m, bore of the inner ring (sets its mass unless given)
   double outer_outside_diameter = 0;    ///< m, outside diameter of the outer ring
   double ring_width = 0;                ///< m, width of both rings (default: roller_length)
-  std::string roller_material;          ///< key into Scene::materials
+  std::string roller_material;          ///< key into Scene::materials (rollers or balls)
   std::string ring_material;            ///< key into Scene::materials
-  double inner_race_diameter() const { return pitch_diameter - roller_diameter - 0.5 * radial_clearance; }
-  double outer_race_diameter() const { return pitch_diameter + roller_diameter + 0.5 * radial_clearance; }
+  BallGeometry ball;                    ///< ball bearings (type != cylindrical_roller)
+  bool is_ball_bearing() const { return type != BearingType::cylindrical_roller; }
+  /// Diameter of the rolling element: roller or ball.
+  double element_diameter() const { return is_ball_bearing() ? ball.ball_diameter : roller_diameter; }
+  /// Race (groove bottom) diameters: d_m -/+ D -/+ P_d/2.
+  double inner_race_diameter() const { return pitch_diameter - element_diameter() - 0.5 * radial_clearance; }
+  double outer_race_diameter() const { return pitch_diameter + element_diameter() + 0.5 * radial_clearance; }
 };
 
 enum class CageGuidance { inner_land, outer_land, rolling_element };
+enum class PocketShape { cylindrical, spherical };
+
+struct CageSupport {          ///< cage on a spindle (seed 000's aerostatic spindle); 0 = none
+  double radial_stiffness = 0, radial_damping = 0;  ///< N/m, N s/m (x and y)
+  double axial_stiffness = 0, axial_damping = 0;    ///< N/m, N s/m (z)
+  double tilt_stiffness = 0, tilt_damping = 0;      ///< N m/rad, N m s/rad (about x and y)
+  bool any() const { return radial_stiffness > 0 || axial_stiffness > 0 || tilt_stiffness > 0; }
+};
 
 struct CageSpec {
   CageGuidance guidance = CageGuidance::inner_land;
-  double pocket_clearance = 0;  ///< m, pocket width minus roller diameter (circumferential play)
+  PocketShape pocket_shape = PocketShape::cylindrical;  ///< ball bearings
+  double pocket_clearance = 0;  ///< m, pocket width (diameter) minus roller (ball) diameter
   double land_clearance = 0;    ///< m, radial clearance between cage and the guiding land
   double bar_width = 0;         ///< m, axial length of the roller-bar contact (default roller_length)
   double land_width = 0;        ///< m, axial width of the guiding land contact
   std::string material;         ///< key into Scene::materials
   double mass = 0;              ///< kg; 0 = computed from geometry and material
   double inertia = 0;           ///< kg m^2 about the bearing axis; 0 = computed
+  double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial); 0 = computed
+  double inner_diameter = 0;    ///< m, cage bore (spatial; 0 = d_m - 0.6 D)
+  double outer_diameter = 0;    ///< m, cage outside diameter (spatial; 0 = d_m + 0.6 D)
+  double width = 0;             ///< m, axial width of the cage (spatial; 0 = 0.8 ring width)
+  CageSupport support;          ///< spatial: spindle-mounted cage
 };
 
 enum class RingMotion { fixed, driven, free };
@@ -78,26 +109,38 @@ enum class RingMotion { fixed, driven, free };
 struct RingLoad {           ///< loads on a ring, in the bearing frame, functions of time
   TimeFunction fx, fy;      ///< N
   TimeFunction mz;          ///< N m (only meaningful for a free ring)
+  TimeFunction fz;          ///< N, axial (spatial)
+  TimeFunction mx, my;      ///< N m, tilting moments (spatial, ring tilt free)
 };
 
 struct RingSupport {        ///< linear spring-damper to ground, per translational direction
-  double stiffness = 0;     ///< N/m; 0 = no support
+  double stiffness = 0;     ///< N/m; 0 = no support (radial: x and y)
   double damping = 0;       ///< N s/m
+  double axial_stiffness = 0, axial_damping = 0;  ///< N/m, N s/m (spatial, z)
+  double tilt_stiffness = 0, tilt_damping = 0;    ///< N m/rad, N m s/rad (spatial, about x and y)
 };
+
+/// Tilt of a ring about x and y (spatial scenes): held aligned, free (integrated), or a prescribed
+/// misalignment given as functions of time (seed 000 case M24).
+enum class RingTilt { fixed, free, prescribed };
 
 struct RingSpec {
   RingMotion motion = RingMotion::fixed;
   TimeFunction speed;       ///< rad/s, for motion = driven
   bool translation_free = true;  ///< driven/free rings: x, y integrated (false = centre held fixed)
+  bool axial_free = true;        ///< spatial, driven/free rings: z integrated (false = held)
+  RingTilt tilt = RingTilt::fixed;  ///< spatial
+  TimeFunction misalignment_x, misalignment_y;  ///< rad, rotation about x and y (tilt = prescribed)
   RingLoad load;
   RingSupport support;
   double mass = 0;          ///< kg; 0 = computed from geometry and material
   double inertia = 0;       ///< kg m^2; 0 = computed
+  double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial); 0 = computed
 };
 
 /// Contact laws, chosen by name. Every name is validated against the registry in contact/.
 struct NormalLaw {
-  std::string name = "palmgren";  ///< "palmgren" (line contact, Q = K delta^(10/9)) | "hertz_line_linear"
+  std::string name = "palmgren";  ///< "palmgren" (line contact, Q = K delta^(10/9)) | "hertz" (point contact)
   int slices = 1;                 ///< slices along the roller length (planar: crowning only)
   double crown_drop = 0;          ///< m, profile drop at the roller ends (circular crown); 0 = straight
 };
@@ -106,9 +149,11 @@ struct DampingLaw {
   double factor = 0;                   ///< s/m: F = K delta^n (1 + factor * d(delta)/dt)
 };
 struct TractionLaw {
-  std::string name = "tanh";       ///< "tanh" | "none"
+  std::string name = "tanh";       ///< "tanh" | "none" | "limiting_shear" (point contacts, needs a lubricant)
   double friction_coefficient = 0; ///< - (limit value)
   double slip_velocity_scale = 0;  ///< m/s: mu = mu_max tanh(u / u_scale)
+  int grid_x = 5, grid_y = 5;      ///< point contacts: traction grid over the ellipse (rolling x transverse)
+  bool rolling_resistance = true;  ///< point contacts: EHL rolling resistance where there is a film
 };
 struct ContactSpec {
   NormalLaw normal;
@@ -120,6 +165,7 @@ struct Lubricant {
   std::string name;
   double viscosity = 0;           ///< Pa s, dynamic viscosity at the bearing temperature
   double pressure_viscosity = 0;  ///< 1/Pa
+  double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure
 };
 
 enum class IntegrationMethod { bdf, adams };
@@ -156,8 +202,10 @@ struct Scene {
   RingSpec inner_ring;
   RingSpec outer_ring;
   Lubricant lubricant;
-  ContactSpec roller_race;
-  ContactSpec roller_cage;
+  ContactSpec roller_race;  ///< planar: roller-race
+  ContactSpec roller_cage;  ///< planar: roller-cage bar
+  ContactSpec ball_race;    ///< spatial: ball-groove
+  ContactSpec ball_cage;    ///< spatial: ball-pocket
   ContactSpec cage_land;
   SolverSpec solver;
   OutputSpec output;

@@ -1,0 +1,131 @@
+// Point-contact laws for ball bearings (DESIGN.md 3.3): Hertz's elliptical contact with exact
+// ellipticity, Hamrock-Dowson EHL film, traction integrated over a grid on the contact ellipse from
+// the local sliding velocity (including spin), and EHL rolling resistance.
+//
+// Pure functions of their arguments, SI units throughout. Derived constants (ellipticity, elliptic
+// integrals, the load-deflection constant) are computed once when a segment is built and tabulated
+// over the one geometric parameter that changes during a run (the contact angle), never per call.
+#pragma once
+
+#include <vector>
+
+namespace raceway::contact {
+
+/// The exact Hertz solution for two bodies with principal relative curvatures kx (in the x plane,
+/// the rolling direction) and ky (transverse) [1/m], kx + ky > 0, and reduced modulus E* [Pa]
+/// (1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2, as in line_contact.hpp).
+///
+/// Contact ellipse semi-axes a (along the direction of smaller relative curvature) and b, approach
+/// delta and load Q are related by Q = stiffness * delta^(3/2),
+///   a = a_coefficient * Q^(1/3), b = b_coefficient * Q^(1/3), p_max = 3 Q / (2 pi a b).
+/// `a_along_x` tells along which direction a lies. The ellipticity k = a/b >= 1 solves the exact
+/// relation between curvature difference and complete elliptic integrals (std::comp_ellint_1/2).
+struct HertzPointContact {
+  double stiffness = 0;      ///< K [N/m^1.5]
+  double ellipticity = 1;    ///< k = a / b >= 1
+  double a_coefficient = 0;  ///< [m / N^(1/3)]
+  double b_coefficient = 0;  ///< [m / N^(1/3)]
+  bool a_along_x = false;    ///< semi-major axis along the rolling direction x
+};
+/// Exact solution (Newton on the ellipticity). Throws std::invalid_argument if kx + ky <= 0.
+HertzPointContact hertz_point_contact(double kx, double ky, double reduced_modulus);
+
+/// The Hertz constants tabulated once over a geometric parameter s in [s_min, s_max] (for a
+/// ball-race contact: cos of the contact angle, on which the rolling-direction curvature depends),
+/// interpolated by cubic Hermite splines; error in stiffness below 1e-4 of exact over the range.
+class HertzTable {
+ public:
+  HertzTable() = default;
+  /// curvatures(s, kx, ky) gives the relative curvatures at s. `points` >= 2 nodes, uniform in s.
+  template <class CurvatureFunction>
+  HertzTable(CurvatureFunction curvatures, double s_min, double s_max, int points, double reduced_modulus);
+  /// Constant (s-independent) contact, e.g. a ball in a spherical pocket.
+  explicit HertzTable(const HertzPointContact& constant);
+  /// Interpolated constants at s (clamped to the table's range).
+  HertzPointContact at(double s) const;
+  double s_min() const { return s_min_; }
+  double s_max() const { return s_max_; }
+
+ private:
+  void build(const std::vector<double>& kx, const std::vector<double>& ky, double reduced_modulus);
+  double s_min_ = 0, s_max_ = 0;
+  std::vector<HertzPointContact> nodes_;
+  std::vector<double> d_stiffness_, d_a_, d_b_;  ///< d/ds at the nodes (Hermite)
+};
+
+/// Lubricant properties a point contact needs. viscosity = 0 switches the film and rolling
+/// resistance off (dry contact; traction then follows the traction curve alone).
+struct PointLubricant {
+  double viscosity = 0;            ///< eta0 [Pa s] at the bearing temperature
+  double pressure_viscosity = 0;   ///< alpha [1/Pa] (Barus)
+  double limiting_shear_coefficient = 0;  ///< Lambda: limiting shear stress tau_L = Lambda p [-]
+};
+
+/// Hamrock-Dowson EHL film thicknesses for a point contact [m] (fully flooded, isothermal):
+///   H_c = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 e^(-0.73 k)),
+///   H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - e^(-0.68 k)),
+/// with U = eta0 u_e / (E' Rx), G = alpha E', W = Q / (E' Rx^2), E' = 2 E*, Rx the effective
+/// radius in the rolling (entrainment) direction, k the ellipticity (Hamrock-Dowson's k = a/b with
+/// a transverse to rolling). Zero when u_e <= 0, Q <= 0 or viscosity = 0.
+struct FilmThickness {
+  double central = 0, minimum = 0;
+};
+FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
+                                  double reduced_modulus, const PointLubricant& lubricant);
+
+/// How traction is computed on a point contact.
+///  - curve: mu(s) = mu_max tanh(s / s_scale) of the local sliding speed s (regularised Coulomb);
+///  - limiting_shear: Newtonian shear limited by tau_L = Lambda p (Eyring-like smooth limit):
+///      tau = tau_L tanh(eta(p) s / (h tau_L)),  eta(p) = eta0 exp(min(alpha p, alpha_p_cap)),
+///    with the central film h; falls back to the curve where the film is zero.
+enum class TractionModel { none, curve, limiting_shear };
+struct PointTraction {
+  TractionModel model = TractionModel::curve;
+  double friction_coefficient = 0;  ///< mu_max of the curve [-]
+  double slip_velocity_scale = 1;   ///< s_scale of the curve [m/s]
+  int grid_x = 5, grid_y = 5;       ///< grid cells over the ellipse (rolling x transverse)
+};
+
+/// Sliding at the contact centre and the spin about the common normal, in the contact frame
+/// (x rolling direction, y transverse, z = common normal pointing into body 1):
+///   sliding velocity of body 2's surface relative to body 1's at a point (x, y) of the contact
+///   plane is (slide_x - spin * y, slide_y + spin * x).
+struct ContactSliding {
+  double slide_x = 0, slide_y = 0;  ///< m/s at the contact centre
+  double spin = 0;                  ///< rad/s, relative spin of body 2 on body 1 about z
+};
+
+/// Traction integrated over the contact ellipse (semi-axes ax along x, ay along y) with Hertz
+/// pressure p(x, y) = p_max sqrt(1 - (x/ax)^2 - (y/ay)^2): force on body 2 in the contact plane
+/// (opposing its sliding), moment on body 2 about the normal through the contact centre, and the
+/// power dissipated (>= 0). Midpoint rule on grid_x x grid_y cells of the bounding rectangle, cells
+/// weighted by the ellipse area they cover.
+struct TractionResult {
+  double force_x = 0, force_y = 0;  ///< N, on body 2
+  double spin_moment = 0;           ///< N m, on body 2 about the normal
+  double power_loss = 0;            ///< W
+};
+TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
+                                  double normal_force, double ax, double ay, double film_thickness,
+                                  const ContactSliding& sliding);
+
+/// EHL rolling resistance force [N] (hydrodynamic, opposing the rolling direction):
+/// F_R = 2.86 E' Ry k^0.348 G^0.022 U^0.66 W^0.47 (Houpert's fit, as quoted by Harris & Kotzalas),
+/// E', U, G, W as in hamrock_dowson_film. Zero where the film is zero.
+double ehl_rolling_resistance(double entrainment_speed, double load, double rx, double ry,
+                              double reduced_modulus, const PointLubricant& lubricant);
+
+// ---- template definition ------------------------------------------------------------------------
+template <class CurvatureFunction>
+HertzTable::HertzTable(CurvatureFunction curvatures, double s_min, double s_max, int points,
+                       double reduced_modulus)
+    : s_min_(s_min), s_max_(s_max) {
+  std::vector<double> kx(static_cast<std::size_t>(points)), ky(static_cast<std::size_t>(points));
+  for (int i = 0; i < points; ++i) {
+    const double s = points > 1 ? s_min + (s_max - s_min) * i / (points - 1) : s_min;
+    curvatures(s, kx[static_cast<std::size_t>(i)], ky[static_cast<std::size_t>(i)]);
+  }
+  build(kx, ky, reduced_modulus);
+}
+
+}  // namespace raceway::contact
