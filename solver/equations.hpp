@@ -9,6 +9,7 @@
 
 #include "scheduler/executor.hpp"
 #include "solver/bordered_matrix.hpp"
+#include "solver/dynamic_system.hpp"
 #include "solver/model.hpp"
 
 namespace raceway::solver {
@@ -22,15 +23,23 @@ struct SegmentRecord {
   static constexpr int size = valid + 1;
 };
 
-class Equations {
+class Equations final : public DynamicSystem {
  public:
   Equations(const Model& model, scheduler::Executor& executor);
 
+  int state_size() const override { return model_.state_size; }
+  int border_size() const override { return model_.border_size; }
+  int block_count() const override { return model_.roller_count; }
+  int block_size() const override {
+    return model_.roller_count > 0 ? (model_.state_size - model_.border_size) / model_.roller_count : 0;
+  }
+  std::vector<double> absolute_tolerance() const override { return model_.absolute_tolerance(); }
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
-  int rhs(double t, const double* z, double* zdot);
+  int rhs(double t, const double* z, double* zdot) override;
   /// J = df/dz by finite differences of one segment at a time, into the bordered matrix.
   /// Returns 0, or 1 (recoverable).
-  int jacobian(double t, const double* z, BorderedMatrix& jac);
+  int jacobian(double t, const double* z, BorderedMatrix& jac) override;
+  std::string explain_state(int index) const override;
 
   /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
   const std::vector<double>& segment_records() const { return records_; }

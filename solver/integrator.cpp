@@ -108,7 +108,7 @@ void check(int flag, const char* what) {
 }  // namespace
 
 struct Integrator::Impl {
-  Equations& eq;
+  DynamicSystem& eq;
   io::SolverSpec spec;
   SUNContext ctx = nullptr;
   void* cvode = nullptr;
@@ -120,7 +120,7 @@ struct Integrator::Impl {
   std::string last_cvode_message;
   long steps_budget = 0;
 
-  Impl(Equations& e, const io::SolverSpec& s) : eq(e), spec(s) {}
+  Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
     if (cvode) CVodeFree(&cvode);
     if (solver) SUNLinSolFree(solver);
@@ -173,11 +173,10 @@ struct Integrator::Impl {
   std::string diagnose(int flag) const;
 };
 
-Integrator::Integrator(Equations& equations, const io::SolverSpec& spec, double t0,
+Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, double t0,
                        const std::vector<double>& z0)
     : impl_(std::make_unique<Impl>(equations, spec)) {
   Impl& s = *impl_;
-  const Model& model = equations.model();
   const auto n = static_cast<sunindextype>(z0.size());
   check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
   s.y = N_VNew_Serial(n, s.ctx);
@@ -188,7 +187,7 @@ Integrator::Integrator(Equations& equations, const io::SolverSpec& spec, double 
   check(CVodeInit(s.cvode, Impl::rhs, t0, s.y), "CVodeInit");
   check(CVodeSetUserData(s.cvode, &s), "CVodeSetUserData");
   N_Vector atol = N_VNew_Serial(n, s.ctx);
-  const auto abs_tol = model.absolute_tolerance();
+  const auto abs_tol = equations.absolute_tolerance();
   std::copy(abs_tol.begin(), abs_tol.end(), N_VGetArrayPointer(atol));
   check(CVodeSVtolerances(s.cvode, spec.rtol, atol), "CVodeSVtolerances");
   N_VDestroy(atol);
@@ -197,8 +196,7 @@ Integrator::Integrator(Equations& equations, const io::SolverSpec& spec, double 
   if (spec.initial_step > 0) check(CVodeSetInitStep(s.cvode, spec.initial_step), "CVodeSetInitStep");
   s.steps_budget = spec.max_steps;
 
-  BorderedMatrix prototype(model.border_size, model.roller_count,
-                           model.roller_count > 0 ? (model.state_size - model.border_size) / model.roller_count : 0);
+  BorderedMatrix prototype(equations.border_size(), equations.block_count(), equations.block_size());
   if (spec.linear_solver == io::LinearSolverKind::bordered) {
     s.matrix = make_bordered_matrix(s.ctx, prototype);
     s.solver = make_bordered_solver(s.ctx);
@@ -238,7 +236,6 @@ std::string Integrator::Impl::diagnose(int flag) const {
   CVodeGetCurrentStep(cvode, &h_cur);
   long steps = 0;
   CVodeGetNumSteps(cvode, &steps);
-  const Model& m = eq.model();
   char* flag_name = CVodeGetReturnFlagName(flag);  // allocated by CVODE
   const std::string flag_text = flag_name ? flag_name : "unknown flag";
   std::free(flag_name);
@@ -248,7 +245,7 @@ std::string Integrator::Impl::diagnose(int flag) const {
   if (flag == CV_TOO_MUCH_WORK)
     out += fmt::format(" (step budget exhausted: max_steps = {} in the scene, or 200000 within one output "
                        "interval)", steps_budget);
-  // The state with the largest weighted local error, and the contact loading that body the most.
+  // The state with the largest weighted local error, and the contact loading its body the most.
   const auto n = N_VGetLength(y);
   N_Vector err = N_VClone(y), w = N_VClone(y);
   if (CVodeGetEstLocalErrors(cvode, err) == CV_SUCCESS && CVodeGetErrWeights(cvode, w) == CV_SUCCESS) {
@@ -257,29 +254,11 @@ std::string Integrator::Impl::diagnose(int flag) const {
     sunindextype worst = 0;
     for (sunindextype i = 1; i < n; ++i)
       if (std::abs(e[i] * wt[i]) > std::abs(e[worst] * wt[worst])) worst = i;
-    out += fmt::format("; largest weighted local error in {} ({:.3g})", m.state_name[worst],
-                       std::abs(e[worst] * wt[worst]));
-    int body = -1;
-    for (std::size_t b = 0; b < m.bodies.size(); ++b)
-      if (worst >= m.bodies[b].offset && worst < m.bodies[b].offset + m.bodies[b].size) body = static_cast<int>(b);
-    const auto& rec = eq.segment_records();
-    int best = -1;
-    double best_force = -1;
-    for (std::size_t sidx = 0; sidx < m.segments.size() && !rec.empty(); ++sidx) {
-      const auto& seg = m.segments[sidx];
-      if (seg.body_a != body && seg.body_b != body) continue;
-      const double f = rec[sidx * SegmentRecord::size + SegmentRecord::diagnostics + 1];
-      if (f > best_force) best_force = f, best = static_cast<int>(sidx);
-    }
-    if (best >= 0)
-      out += fmt::format("; most loaded contact of that body: {} ({:.4g} N, approach {:.4g} um)",
-                         m.segments[best].name, best_force,
-                         1e6 * rec[best * SegmentRecord::size + SegmentRecord::diagnostics]);
+    out += fmt::format("; largest weighted local error ({:.3g}) in ", std::abs(e[worst] * wt[worst]));
+    out += eq.explain_state(static_cast<int>(worst));
   }
   N_VDestroy(err);
   N_VDestroy(w);
-  if (eq.last_invalid_segment() >= 0)
-    out += fmt::format("; contact that last left its valid range: {}", m.segments[eq.last_invalid_segment()].name);
   if (!last_cvode_message.empty()) out += "; CVODE: " + last_cvode_message;
   return out;
 }

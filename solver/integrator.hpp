@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/scene.hpp"
-#include "solver/equations.hpp"
+#include "solver/dynamic_system.hpp"
 
 namespace raceway::solver {
 
@@ -35,7 +35,7 @@ class IntegrationFailure : public std::runtime_error {
 
 class Integrator {
  public:
-  Integrator(Equations& equations, const io::SolverSpec& spec, double t0, const std::vector<double>& z0);
+  Integrator(DynamicSystem& equations, const io::SolverSpec& spec, double t0, const std::vector<double>& z0);
   ~Integrator();
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "io/h5_series.hpp"
+#include "solver/equations.hpp"
 #include "solver/startup.hpp"
 
 namespace raceway::solver {
@@ -139,8 +140,10 @@ io::JsonObject RunSummary::to_json() const {
   j.add("epicyclic_cage_speed_rpm", epicyclic_cage_speed_rpm);
   j.add("cage_slip", cage_slip);
   j.add("driven_ring_revolutions", driven_ring_revolutions);
-  j.add("inner_ring_contact_force_n", std::vector<double>{inner_ring_contact_force_n[0], inner_ring_contact_force_n[1]});
-  j.add("inner_ring_load_n", std::vector<double>{inner_ring_load_n[0], inner_ring_load_n[1]});
+  j.add("inner_ring_contact_force_n", inner_ring_contact_force_n);
+  j.add("inner_ring_load_n", inner_ring_load_n);
+  if (model_kind == "spatial") j.add("max_ball_load_n", max_ball_load_n);
+  j.add("model_kind", model_kind);
   j.add("energy_initial_j", energy_initial_j);
   j.add("energy_final_j", energy_final_j);
   j.add("energy_max_drift_j", energy_max_drift_j);
@@ -149,6 +152,7 @@ io::JsonObject RunSummary::to_json() const {
 }
 
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
+  if (scene.scene.model == io::ModelKind::spatial) return run_spatial_scene(scene, options);
   const auto wall_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
@@ -221,8 +225,8 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
       sum.epicyclic_cage_speed_rpm = epi_sum / half_count * rpm;
       sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
       for (int d = 0; d < 2; ++d) {
-        sum.inner_ring_contact_force_n[d] = force_sum[d] / half_count;
-        sum.inner_ring_load_n[d] = load_sum[d] / half_count;
+        sum.inner_ring_contact_force_n.push_back(force_sum[d] / half_count);
+        sum.inner_ring_load_n.push_back(load_sum[d] / half_count);
       }
     }
     file.set_attribute("/", "summary_json", sum.to_json().dump());

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "io/scene.hpp"
 #include "io/summary_json.hpp"
@@ -33,8 +34,10 @@ struct RunSummary {
   double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
   double cage_slip = 0;                 ///< 1 - cage / epicyclic
   double driven_ring_revolutions = 0;
-  double inner_ring_contact_force_n[2] = {0, 0};  ///< mean over the second half, from the rollers
-  double inner_ring_load_n[2] = {0, 0};           ///< applied, mean over the same samples
+  std::vector<double> inner_ring_contact_force_n;  ///< mean over the second half, from the rolling elements
+  std::vector<double> inner_ring_load_n;           ///< applied, mean over the same samples
+  double max_ball_load_n = 0;       ///< spatial: largest inner-groove ball load, second half
+  std::string model_kind = "planar";
   double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
   int output_samples = 0;
   io::JsonObject to_json() const;
@@ -44,5 +47,7 @@ struct RunSummary {
 /// replaced only when the run ends). On an integration failure the partial output is kept as
 /// OUT.h5.partial and IntegrationFailure is rethrown with its diagnosis.
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
+/// The same for a spatial (ball-bearing) scene; run_scene dispatches to it.
+RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options);
 
 }  // namespace raceway::solver

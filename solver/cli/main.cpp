@@ -1,7 +1,7 @@
 // The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
-// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`.
+// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`.
 //
-// Exit codes: 0 success; 2 bad input (scene); 3 integration failure (diagnosed); 1 other errors.
+// Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors.
 #include <mpi.h>
 #include <unistd.h>
 
@@ -12,6 +12,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "io/report.hpp"
 #include "io/scene_parser.hpp"
 #include "io/summary_json.hpp"
 #include "solver/model.hpp"
@@ -80,6 +81,17 @@ int run_command(const std::string& scene_path, const std::string& output, const 
   return 0;
 }
 
+/// `raceway report OUT.h5`: cage and ball metrics of a spatial run into <dir>/summary.json, plus PNGs.
+int report_command(const io::ReportOptions& options) {
+  const io::ReportResult res = io::make_report(options);
+  for (const auto& note : res.notes) spdlog::warn("{}", note);
+  for (const auto& line : res.headlines) spdlog::info("{}", line);
+  spdlog::info("summary written to {}", res.summary_path);
+  if (!res.plot_message.empty()) spdlog::warn("{}", res.plot_message);
+  if (!res.plots.empty()) spdlog::info("{} plots written to {}", res.plots.size(), res.output_dir);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,6 +112,16 @@ int main(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
   check->alias("plan");
   check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
+  io::ReportOptions report_options;
+  double window_start = NAN;
+  bool no_plots = false;
+  auto* report = app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
+  report->add_option("output_file", report_options.input, "HDF5 output of a spatial run")->required();
+  report->add_option("-o,--output-dir", report_options.output_dir, "folder for summary.json and the PNGs "
+                     "(default: <stem>_report beside the file)");
+  report->add_option("--window-start", window_start, "start of the analysis window in s (default: second half)");
+  report->add_option("--bin-width", report_options.bin_width_deg, "azimuth bin width in deg")->capture_default_str();
+  report->add_flag("--no-plots", no_plots, "write summary.json only");
   int code = 0;
   try {
     app.parse(argc, argv);
@@ -120,9 +142,16 @@ int main(int argc, char** argv) {
       const solver::Model model = solver::build_model(scene);
       std::fputs(model.describe().c_str(), stdout);
       std::puts("scene OK");
+    } else if (*report) {
+      if (!std::isnan(window_start)) report_options.window_start = window_start;
+      report_options.plots = !no_plots;
+      code = report_command(report_options);
     } else {
       code = run_command(scene_path, output, summary_json);
     }
+  } catch (const io::ReportInputError& e) {
+    spdlog::error("{}", e.what());
+    code = 2;
   } catch (const io::SceneError& e) {
     spdlog::error("{}", e.what());
     code = 2;

@@ -1,0 +1,33 @@
+// The seam between physics and numerics (STYLE.md habit 1): what the integrator sees of a bearing
+// model. A state vector laid out border first (rings, cage) then one equal-sized block per rolling
+// element, a right-hand side, a Jacobian into a bordered matrix, absolute tolerances, and a way to
+// explain a state when an integration fails. The planar (solver/equations.hpp) and the spatial
+// (solver/spatial_equations.hpp) models implement it; CVODE knows nothing of rollers or balls.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/bordered_matrix.hpp"
+
+namespace raceway::solver {
+
+class DynamicSystem {
+ public:
+  virtual ~DynamicSystem() = default;
+  virtual int state_size() const = 0;
+  virtual int border_size() const = 0;
+  virtual int block_count() const = 0;
+  virtual int block_size() const = 0;
+  /// Absolute tolerance per state (SI, by variable class).
+  virtual std::vector<double> absolute_tolerance() const = 0;
+  /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
+  virtual int rhs(double t, const double* z, double* zdot) = 0;
+  /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).
+  virtual int jacobian(double t, const double* z, BorderedMatrix& jac) = 0;
+  /// Diagnosis of state `index` for a failed integration: its name, the most loaded contact of the
+  /// body it belongs to (from the last rhs), and the contact that last left its valid range.
+  virtual std::string explain_state(int index) const = 0;
+};
+
+}  // namespace raceway::solver
