@@ -23,6 +23,7 @@ struct RunOptions {
   std::string output_path = "raceway.h5";
   std::function<void(const Progress&)> on_progress;  ///< called after every output time
   std::function<void(const std::string&)> on_info;   ///< start-up and model messages
+  double azimuth_offset = 0;  ///< spatial: ball set and cage turned about z at start (tests of frame invariance)
 };
 
 struct RunSummary {

@@ -145,7 +145,7 @@ RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) 
   scheduler::SerialExecutor executor;
   SpatialEquations eq(model, executor);
   const double t0 = 0.0;
-  const SpatialStartupReport start = spatial_initial_state(model, t0);
+  const SpatialStartupReport start = spatial_initial_state(model, t0, options.azimuth_offset);
   if (options.on_info) options.on_info(start.summary);
 
   auto file = io::H5SeriesWriter::create(options.output_path);

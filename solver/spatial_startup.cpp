@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <stdexcept>
 
@@ -29,6 +30,7 @@ struct Seating {
   // its clearance, a ring not yet seated). 1e3 N/m is about 1e-4 of a loaded ball contact's
   // stiffness: it shifts the equilibrium by about 1e-3 N per um of displacement.
   double regularization = 1e3;
+  double azimuth_offset = 0;  ///< rad, of ball 0 and the cage
 
   struct Unknown {
     int body = -1;       ///< ring body, or ball body
@@ -57,7 +59,7 @@ struct Seating {
     force_scale = std::max(load, 1.0);
   }
 
-  double azimuth(int ball) const { return 2.0 * pi * ball / m.ball_count; }
+  double azimuth(int ball) const { return azimuth_offset + 2.0 * pi * ball / m.ball_count; }
 
   /// The state for scaled unknowns u: positions set, velocities zero.
   std::vector<double> state(const Eigen::VectorXd& u) const {
@@ -154,18 +156,25 @@ void groove_contact(const contact::BallGrooveSegment& g, const SpatialKinematics
 
 }  // namespace
 
-SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0) {
+SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, double azimuth_offset) {
   Seating seat(m, t0);
+  seat.azimuth_offset = azimuth_offset;
   const auto n = static_cast<Eigen::Index>(seat.unknowns.size());
   Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd r = seat.residual(u);
+  Eigen::VectorXd r;
+  int iterations = 0;
+  // Continuation in the regularization spring: with every contact open, moving the ring and its
+  // balls together costs nothing but that spring, so a stiff spring first carries the load until
+  // the contacts close; each stage then starts next to its solution. Levenberg-Marquardt with a
+  // forward-difference Jacobian within each stage.
+  for (const double spring : {1e8, 1e7, 1e6, 1e5, 1e4, 1e3}) {
+  seat.regularization = spring;
+  r = seat.residual(u);
   double cost = r.squaredNorm();
   double lambda = 1e-3;
-  int iterations = 0;
-  const double tolerance = 1e-9;  // relative to the load scale
-  // Levenberg-Marquardt with a forward-difference Jacobian: robust from open contacts, where
-  // Newton's Jacobian is nearly singular.
-  for (; iterations < 400 && r.lpNorm<Eigen::Infinity>() > tolerance; ++iterations) {
+  const double tolerance = spring > 1e3 ? 1e-6 : 1e-9;  // relative to the load scale
+  for (int stage_iterations = 0; stage_iterations < 200 && r.lpNorm<Eigen::Infinity>() > tolerance;
+       ++stage_iterations, ++iterations) {
     Eigen::MatrixXd jac(n, n);
     for (Eigen::Index j = 0; j < n; ++j) {
       Eigen::VectorXd up = u;
@@ -178,8 +187,15 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0) {
     bool improved = false;
     for (int attempt = 0; attempt < 30 && !improved; ++attempt) {
       Eigen::MatrixXd damped = a;
-      for (Eigen::Index i = 0; i < n; ++i) damped(i, i) += lambda * (a(i, i) + 1e-12);
-      const Eigen::VectorXd step = damped.ldlt().solve(-g);
+      // Marquardt's scaling, floored: an unknown whose contacts are all open has a nearly zero
+      // diagonal and must still be damped, or its step is the load over the regularization spring.
+      const double floor = 1e-4 * a.diagonal().maxCoeff() + 1e-30;
+      for (Eigen::Index i = 0; i < n; ++i) damped(i, i) += lambda * std::max(a(i, i), floor);
+      Eigen::VectorXd step = damped.ldlt().solve(-g);
+      // Trust region: at most 5 um (or 5e-4 rad) per iteration, a fraction of a contact's
+      // deflection, so open contacts close gradually instead of the ring jumping through them.
+      const double largest = step.lpNorm<Eigen::Infinity>();
+      if (largest > 5.0) step *= 5.0 / largest;
       const Eigen::VectorXd trial = u + step;
       const Eigen::VectorXd rt = seat.residual(trial);
       if (rt.allFinite() && rt.squaredNorm() < cost) {
@@ -190,11 +206,29 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0) {
         lambda *= 8.0;
       }
     }
+    if (std::getenv("RACEWAY_DEBUG_STARTUP"))
+      fmt::print(stderr, "LM iteration {}: cost {:.6g} lambda {:.3g} improved {}\n", iterations, cost, lambda, improved);
     if (!improved) break;
+  }
   }
   SpatialStartupReport rep;
   rep.iterations = iterations;
   rep.residual = r.lpNorm<Eigen::Infinity>() * seat.force_scale;
+  if (std::getenv("RACEWAY_DEBUG_STARTUP")) {
+    for (std::size_t i = 0; i < seat.unknowns.size(); ++i)
+      fmt::print(stderr, "unknown {} body {} comp {} value {:.6g} residual {:.6g}\n", i, seat.unknowns[i].body,
+                 seat.unknowns[i].component, u[static_cast<Eigen::Index>(i)], r[static_cast<Eigen::Index>(i)] * seat.force_scale);
+  }
+  if (std::getenv("RACEWAY_DEBUG_STARTUP")) {
+    const auto zz = seat.state(u);
+    for (const auto& seg : m.segments) {
+      if (seg.kind == SpatialSegmentKind::ball_pocket || seg.kind == SpatialSegmentKind::cage_land) continue;
+      SpatialKinematics ring = m.kinematics(seg.body_a, t0, zz.data());
+      ring.velocity.setZero(); ring.angular_velocity.setZero();
+      const auto res = contact::evaluate(m.groove_segments[static_cast<std::size_t>(seg.parameters)], ring, m.kinematics(seg.body_b, t0, zz.data()));
+      fmt::print(stderr, "{} approach {:.4g} Q {:.4g} on ball ({:.4g} {:.4g} {:.4g}) valid {}\n", seg.name, res.diagnostics.approach, res.diagnostics.normal_force, res.on_b.force.x(), res.on_b.force.y(), res.on_b.force.z(), res.valid);
+    }
+  }
   if (!(rep.residual <= 1e-6 * seat.force_scale + 1e-6))
     throw std::runtime_error(fmt::format(
         "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
@@ -206,6 +240,7 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0) {
   std::vector<double> z = seat.state(u);
   const auto& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   z[static_cast<std::size_t>(cage.slot[swz])] = seat.orbit;
+  z[static_cast<std::size_t>(cage.slot[saz])] = azimuth_offset;
   rep.inner_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
   rep.outer_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
   for (int k = 0; k < m.ball_count; ++k) {

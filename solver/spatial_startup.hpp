@@ -25,6 +25,8 @@ struct SpatialStartupReport {
 /// contacts). The cage is centred with its pockets on the balls, turning at the epicyclic speed.
 /// Ball spin: least-squares rolling without sliding at its loaded contacts.
 /// Throws std::runtime_error when no equilibrium is found.
-SpatialStartupReport spatial_initial_state(const SpatialModel& model, double t0);
+/// `azimuth_offset` turns the whole ball set and the cage about z (ball k starts at
+/// offset + 2 pi k / Z): with the loads turned by the same angle, the same physical state.
+SpatialStartupReport spatial_initial_state(const SpatialModel& model, double t0, double azimuth_offset = 0.0);
 
 }  // namespace raceway::solver

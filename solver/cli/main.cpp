@@ -87,7 +87,10 @@ int report_command(const io::ReportOptions& options) {
   for (const auto& note : res.notes) spdlog::warn("{}", note);
   for (const auto& line : res.headlines) spdlog::info("{}", line);
   spdlog::info("summary written to {}", res.summary_path);
-  if (!res.plot_message.empty()) spdlog::warn("{}", res.plot_message);
+  if (!res.plot_message.empty()) {
+    if (options.plots) spdlog::warn("{}", res.plot_message);
+    else spdlog::info("{}", res.plot_message);
+  }
   if (!res.plots.empty()) spdlog::info("{} plots written to {}", res.plots.size(), res.output_dir);
   return 0;
 }
