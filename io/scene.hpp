@@ -166,6 +166,8 @@ struct Lubricant {
   double viscosity = 0;           ///< Pa s, dynamic viscosity at the bearing temperature
   double pressure_viscosity = 0;  ///< 1/Pa
   double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure
+  double viscosity_exponent_cap = 12;     ///< - : largest alpha p in the Barus law (contact/point_contact.hpp);
+                                          ///< 12 gives measured traction-curve shapes and practical steps
 };
 
 enum class IntegrationMethod { bdf, adams };

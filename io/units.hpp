@@ -59,6 +59,8 @@ inline constexpr Dimension stiffness{1, 0, -2, 0};       ///< N/m
 inline constexpr Dimension damping{1, 0, -1, 0};         ///< N s/m
 inline constexpr Dimension inertia{1, 2, 0, 0};          ///< kg m^2
 inline constexpr Dimension inverse_speed{0, -1, 1, 0};   ///< s/m
+inline constexpr Dimension angular_stiffness{1, 2, -2, -1};  ///< N m/rad (tilt stiffness)
+inline constexpr Dimension angular_damping{1, 2, -1, -1};    ///< N m s/rad (tilt damping)
 }  // namespace dim
 
 /// A value in SI units with its dimension.

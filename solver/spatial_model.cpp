@@ -186,6 +186,7 @@ SpatialModel build_spatial_model(const io::Scene& scene) {
   lube.viscosity = scene.lubricant.viscosity;
   lube.pressure_viscosity = scene.lubricant.pressure_viscosity;
   lube.limiting_shear_coefficient = scene.lubricant.limiting_shear_coefficient;
+  lube.viscosity_exponent_cap = scene.lubricant.viscosity_exponent_cap;
 
   // Groove arcs. u: unit vector from the ball centre to the design contact point in the (radial,
   // axial) plane; the arc centre lies at (R_b - r_groove) u from a centred ball, and the clearance

@@ -48,6 +48,11 @@ TEST(Units, ConvertsToSI) {
   EXPECT_DOUBLE_EQ(si("1 h", dim::time), 3600.0);
   EXPECT_NEAR(si("1 W", dim::power), 1.0, 0);
   EXPECT_NEAR(si("3 m s^-1", dim::speed), 3.0, 0);
+  EXPECT_NEAR(si("1.42 mrad", dim::angle), 1.42e-3, 1e-18);
+  EXPECT_NEAR(si("50 urad", dim::angle), 5e-5, 1e-19);
+  EXPECT_DOUBLE_EQ(si("5e4 N m/rad", dim::angular_stiffness), 5e4);
+  EXPECT_NEAR(si("5 N m/mrad", dim::angular_stiffness), 5e3, 1e-9);
+  EXPECT_DOUBLE_EQ(si("2.5 N m s/rad", dim::angular_damping), 2.5);
 }
 
 TEST(Units, TomlNodes) {
@@ -98,6 +103,10 @@ TEST(Units, DimensionNames) {
   EXPECT_EQ(si_unit(dim::none), "1");
   EXPECT_EQ(dimension_name(dim::length), "a length");
   EXPECT_EQ(dimension_description(dim::angular_speed), "an angular speed (rpm, rad/s, Hz, deg/s)");
+  EXPECT_EQ(dimension_description(dim::angular_stiffness), "a tilt stiffness (N m/rad)");
+  EXPECT_EQ(dimension_name(dim::angular_damping), "a tilt damping coefficient");
+  EXPECT_NE(error_of("5e4 N m", dim::angular_stiffness).find("is a moment; expected a tilt stiffness"),
+            std::string::npos);
 }
 
 TEST(TimeFunction, ConstantAndEmpty) {

@@ -1,0 +1,622 @@
+// Point-contact laws on their own (contact/point_contact.hpp): the exact Hertz solution against
+// independent formulations and closed forms, the Hertz table, the Hamrock-Dowson film, traction
+// integrated over the contact ellipse (equilibrium, symmetry, energy, limits, grid convergence) and
+// EHL rolling resistance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "contact/line_contact.hpp"
+#include "contact/point_contact.hpp"
+
+namespace raceway::contact {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// Steel on steel, E = 208 GPa, nu = 0.3.
+double steel_e_star() { return reduced_modulus(208e9, 0.3, 208e9, 0.3); }
+
+// The curvature-difference relation, evaluated directly from k (Harris & Kotzalas, ch. 6).
+double curvature_difference_of(double k) {
+  const double e = std::sqrt(1 - 1 / (k * k));
+  const double kk = std::comp_ellint_1(e), ee = std::comp_ellint_2(e);
+  return ((k * k + 1) * ee - 2 * kk) / ((k * k - 1) * ee);
+}
+
+// An independent route to the contact (Johnson, Contact Mechanics, ch. 3 and sec. 4.2): the
+// ratio B/A = ((1/(1-e^2)) E - K) / (K - E) solved by bisection on the eccentricity e, then a from
+// the A (smaller-curvature) equation alone, a^3 = 3 P (K - E) / (pi E* e^2 kmin), b = a sqrt(1-e^2)
+// and delta = 3 P K / (2 pi a E*). The implementation uses the (A + B) equation and Newton.
+struct JohnsonContact {
+  double a, b, delta;
+};
+JohnsonContact johnson_contact(double kmin, double kmax, double e_star, double load) {
+  const double target = kmax / kmin;
+  auto ratio = [](double e) {
+    const double kk = std::comp_ellint_1(e), ee = std::comp_ellint_2(e);
+    return (ee / (1 - e * e) - kk) / (kk - ee);
+  };
+  double lo = 1e-6, hi = 1 - 1e-15;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (ratio(mid) < target ? lo : hi) = mid;
+  }
+  const double e = 0.5 * (lo + hi);
+  const double kk = std::comp_ellint_1(e), ee = std::comp_ellint_2(e);
+  JohnsonContact c{};
+  c.a = std::cbrt(3 * load * (kk - ee) / (pi * e_star * e * e * kmin));
+  c.b = c.a * std::sqrt(1 - e * e);
+  c.delta = 3 * load * kk / (2 * pi * c.a * e_star);
+  return c;
+}
+
+// Deep-groove ball bearing 209 (Harris & Kotzalas, Essential Concepts of Bearing Technology, the
+// running example of ch. 2 and 6): ball D = 12.7 mm, pitch diameter 65 mm, groove conformity 0.52,
+// contact angle 0. Relative curvatures of the ball-race contact at s = cos(contact angle):
+// rolling direction 2/D +- 2 s / (d_m -+ D s) (inner: +, outer: -), transverse 2/D - 1/(f D).
+constexpr double ball_d = 12.7e-3, pitch_d = 65e-3, conformity = 0.52;
+void inner_race_curvatures(double s, double& kx, double& ky) {
+  kx = 2 / ball_d + 2 * s / (pitch_d - ball_d * s);
+  ky = 2 / ball_d - 1 / (conformity * ball_d);
+}
+void outer_race_curvatures(double s, double& kx, double& ky) {
+  kx = 2 / ball_d - 2 * s / (pitch_d + ball_d * s);
+  ky = 2 / ball_d - 1 / (conformity * ball_d);
+}
+
+// Hamrock & Brewe (1983) closed forms, with alpha_r = Ry / Rx >= 1 (Hamrock, Fundamentals of Fluid
+// Film Lubrication, ch. 4): k = 1.0339 alpha_r^0.636, E = 1.0003 + 0.5968 / alpha_r,
+// K = 1.5277 + 0.6023 ln(alpha_r); delta = K [9 / (2 E R) (Q / (pi k E'))^2]^(1/3), E' = 2 E*.
+struct HamrockBrewe {
+  double ellipticity, stiffness;
+};
+HamrockBrewe hamrock_brewe(double kmin, double kmax, double e_star) {
+  const double alpha_r = kmax / kmin, r = 1 / (kmin + kmax);
+  const double k = 1.0339 * std::pow(alpha_r, 0.636);
+  const double ee = 1.0003 + 0.5968 / alpha_r, kk = 1.5277 + 0.6023 * std::log(alpha_r);
+  const double delta_unit_load = kk * std::cbrt(9 / (2 * ee * r) * std::pow(1 / (pi * k * 2 * e_star), 2));
+  return {k, std::pow(delta_unit_load, -1.5)};
+}
+
+// ---- Hertz ---------------------------------------------------------------------------------------
+
+TEST(HertzPointContact, BallOnFlatIsCircular) {
+  const double e_star = steel_e_star(), r = 10e-3;
+  const HertzPointContact h = hertz_point_contact(1 / r, 1 / r, e_star);
+  EXPECT_EQ(h.ellipticity, 1.0);
+  const double k_exact = 4.0 / 3.0 * e_star * std::sqrt(r);
+  EXPECT_NEAR(h.stiffness, k_exact, 1e-12 * k_exact);
+  // a = b = (3 R Q / (4 E*))^(1/3)
+  const double c = std::cbrt(3 * r / (4 * e_star));
+  EXPECT_NEAR(h.a_coefficient, c, 1e-12 * c);
+  EXPECT_NEAR(h.b_coefficient, c, 1e-12 * c);
+  EXPECT_FALSE(h.a_along_x);
+  // Two equal balls: R = r/2.
+  const HertzPointContact two = hertz_point_contact(2 / r, 2 / r, e_star);
+  EXPECT_NEAR(two.stiffness, 4.0 / 3.0 * e_star * std::sqrt(r / 2), 1e-12 * k_exact);
+}
+
+TEST(HertzPointContact, SolvesTheEllipticIntegralRelation) {
+  const double e_star = steel_e_star();
+  for (const double ratio :
+       {1.0001, 1.001, 1.01, 1.1, 1.2, 1.235, 1.25, 1.5, 2.0, 3.0, 5.0, 10.0, 21.75, 32.31, 50.0, 100.0}) {
+    for (const bool x_major : {true, false}) {
+      const double kx = x_major ? 100.0 : 100.0 * ratio, ky = x_major ? 100.0 * ratio : 100.0;
+      const HertzPointContact h = hertz_point_contact(kx, ky, e_star);
+      const double target = (ratio - 1) / (ratio + 1);
+      EXPECT_NEAR(curvature_difference_of(h.ellipticity), target, 1e-10) << "ratio " << ratio;
+      EXPECT_GT(h.ellipticity, 1.0);
+      EXPECT_EQ(h.a_along_x, x_major) << "the longer axis lies along the smaller curvature";
+      EXPECT_NEAR(h.a_coefficient / h.b_coefficient, h.ellipticity, 1e-13 * h.ellipticity);
+    }
+    // Swapping x and y changes nothing but the orientation.
+    const HertzPointContact p = hertz_point_contact(100.0, 100.0 * ratio, e_star);
+    const HertzPointContact q = hertz_point_contact(100.0 * ratio, 100.0, e_star);
+    EXPECT_EQ(p.stiffness, q.stiffness);
+    EXPECT_EQ(p.ellipticity, q.ellipticity);
+  }
+}
+
+TEST(HertzPointContact, MatchesJohnsonsIndependentFormulation) {
+  const double e_star = steel_e_star(), load = 1000;
+  for (const double ratio : {1.05, 1.3, 2.0, 4.0, 10.0, 32.31, 100.0}) {
+    const double kmin = 80.0, kmax = 80.0 * ratio;
+    const HertzPointContact h = hertz_point_contact(kmin, kmax, e_star);
+    const JohnsonContact j = johnson_contact(kmin, kmax, e_star, load);
+    const double q13 = std::cbrt(load);
+    // c = sqrt(a b), the equivalent contact radius, and the approach.
+    const double c_impl = std::sqrt(h.a_coefficient * h.b_coefficient) * q13;
+    EXPECT_NEAR(c_impl, std::sqrt(j.a * j.b), 1e-9 * c_impl) << "ratio " << ratio;
+    EXPECT_NEAR(h.a_coefficient * q13, j.a, 1e-9 * j.a);
+    const double delta_impl = std::pow(load / h.stiffness, 2.0 / 3.0);
+    EXPECT_NEAR(delta_impl, j.delta, 1e-9 * j.delta) << "ratio " << ratio;
+  }
+}
+
+// The circular limit is approached smoothly: k - 1 ~ 2 eps / 3 and K changes by ~eps/4 for
+// ky = kx (1 + eps); no jump where the solver switches from series to direct evaluation.
+// The classical table of Hertz's coefficients m, n (Timoshenko & Goodier, Theory of Elasticity,
+// sec. 140: a = m [3 pi P (k1 + k2) / (4 (A + B))]^(1/3), b = n [...]^(1/3), k1 + k2 = 1/(pi E*),
+// cos(theta) = (B - A) / (A + B)), quoted to three digits; values as recalled from the book (the
+// stored corpora do not hold it), which the exact solution reproduces to the table's rounding.
+TEST(HertzPointContact, ReproducesTheClassicalCoefficientTable) {
+  struct Row {
+    double theta_deg, m, n;
+  };
+  const Row rows[] = {{30, 2.731, 0.493}, {35, 2.397, 0.530}, {40, 2.136, 0.567}, {45, 1.926, 0.604},
+                      {50, 1.754, 0.641}, {55, 1.611, 0.678}, {60, 1.486, 0.717}, {65, 1.378, 0.759},
+                      {70, 1.284, 0.802}, {75, 1.202, 0.846}, {80, 1.128, 0.893}, {85, 1.061, 0.944},
+                      {90, 1.000, 1.000}};
+  const double e_star = steel_e_star();
+  for (const Row& row : rows) {
+    const double c = std::cos(row.theta_deg * pi / 180);
+    const double big_a = 1.0, big_b = (1 + c) / (1 - c);  // A, B = half the relative curvatures
+    const HertzPointContact h = hertz_point_contact(2 * big_a, 2 * big_b, e_star);
+    const double scale = std::cbrt(3 * pi / (4 * pi * e_star * (big_a + big_b)));
+    EXPECT_NEAR(h.a_coefficient / scale, row.m, 2.5e-3) << row.theta_deg;
+    EXPECT_NEAR(h.b_coefficient / scale, row.n, 2.5e-3) << row.theta_deg;
+  }
+}
+
+TEST(HertzPointContact, SmoothThroughTheCircleAndTheSeriesSwitch) {
+  const double e_star = steel_e_star();
+  const HertzPointContact circle = hertz_point_contact(100, 100, e_star);
+  for (const double eps : {1e-14, 1e-11, 1e-8, 1e-6}) {
+    const HertzPointContact h = hertz_point_contact(100, 100 * (1 + eps), e_star);
+    EXPECT_NEAR(h.ellipticity - 1, 2 * eps / 3, 1e-3 * eps + 1e-15) << eps;
+    EXPECT_NEAR(h.stiffness / circle.stiffness - 1, -eps / 4, 1e-3 * eps + 1e-15) << eps;
+  }
+  // Across F(rho) ~ 0.105 (e^2 = 0.25, ratio ~ 1.235) k stays monotone and its third differences
+  // stay at round-off: no jump where the solver switches from series to direct evaluation.
+  std::vector<double> k;
+  for (int i = 0; i <= 400; ++i)
+    k.push_back(hertz_point_contact(100, 100 * (1.20 + 1e-4 * i), e_star).ellipticity);
+  for (std::size_t i = 1; i + 2 < k.size(); ++i) {
+    EXPECT_GT(k[i + 1], k[i]);
+    const double third = k[i + 2] - 3 * k[i + 1] + 3 * k[i] - k[i - 1];
+    EXPECT_LT(std::abs(third), 3e-13) << "at ratio " << 1.20 + 1e-4 * static_cast<double>(i);
+  }
+}
+
+TEST(HertzPointContact, RejectsDegenerateInput) {
+  EXPECT_THROW(hertz_point_contact(0, 0, 1e11), std::invalid_argument);
+  EXPECT_THROW(hertz_point_contact(-100, 50, 1e11), std::invalid_argument);
+  EXPECT_THROW(hertz_point_contact(100, 0, 1e11), std::invalid_argument);  // a line contact
+  EXPECT_THROW(hertz_point_contact(100, 100, 0), std::invalid_argument);
+  EXPECT_THROW(hertz_point_contact(100, std::nan(""), 1e11), std::invalid_argument);
+}
+
+// Harris & Kotzalas' 209 bearing. Their worked example gives, for the inner race, curvature sum
+// 0.2018 /mm and F(rho) = 0.9399, for the outer race 0.1378 /mm and 0.9121 (values recalled from
+// the book; the stored search corpora did not hold it, so these are cross-checked here only through
+// the geometry). Hamrock & Brewe's closed forms (k 1.5 % high here, 6 % at Ry/Rx = 100) are 1.6 %
+// stiff at the inner race: not good enough (DESIGN.md 3.3), while the table is within 1e-4 of exact.
+TEST(HertzPointContact, Bearing209AgainstClosedForms) {
+  const double e_star = steel_e_star();
+  double kx = 0, ky = 0;
+  inner_race_curvatures(1.0, kx, ky);
+  EXPECT_NEAR((kx + ky) * 1e-3, 0.2018, 1e-4);
+  EXPECT_NEAR((kx - ky) / (kx + ky), 0.9399, 2e-4);
+  const HertzPointContact inner = hertz_point_contact(kx, ky, e_star);
+  EXPECT_FALSE(inner.a_along_x) << "the long axis is transverse to rolling";
+  EXPECT_NEAR(inner.ellipticity, 9.2849, 1e-3);  // this implementation, for the record
+  const HamrockBrewe hb_inner = hamrock_brewe(ky, kx, e_star);
+  EXPECT_NEAR(hb_inner.ellipticity / inner.ellipticity, 1.0, 0.03);
+  const double hb_error = hb_inner.stiffness / inner.stiffness - 1;
+  EXPECT_GT(hb_error, 0.01) << "Hamrock-Brewe stiffness error " << hb_error;
+  EXPECT_LT(hb_error, 0.03);
+  // Brewe & Hamrock's earlier k = alpha_r^(2/pi) and Greenwood's asymptote (B/A)^(2/3) bracket it.
+  EXPECT_LT(std::pow(kx / ky, 2 / pi), inner.ellipticity);
+  EXPECT_GT(std::pow(kx / ky, 2.0 / 3.0), inner.ellipticity);
+
+  outer_race_curvatures(1.0, kx, ky);
+  EXPECT_NEAR((kx + ky) * 1e-3, 0.1378, 1e-4);
+  EXPECT_NEAR((kx - ky) / (kx + ky), 0.9121, 2e-4);
+  const HertzPointContact outer = hertz_point_contact(kx, ky, e_star);
+  const HamrockBrewe hb_outer = hamrock_brewe(ky, kx, e_star);
+  EXPECT_NEAR(hb_outer.ellipticity / outer.ellipticity, 1.0, 0.03);
+  EXPECT_GT(std::abs(hb_outer.stiffness / outer.stiffness - 1), 0.004);
+
+  // The table over the contact angle (s = cos alpha in [0.5, 1]) at the 209's s = 1.
+  const HertzTable table(inner_race_curvatures, 0.5, 1.0, 33, e_star);
+  EXPECT_NEAR(table.at(1.0).stiffness / inner.stiffness, 1.0, 1e-12);  // a node
+  const double s = 0.9137;                                             // between nodes
+  inner_race_curvatures(s, kx, ky);
+  EXPECT_NEAR(table.at(s).stiffness / hertz_point_contact(kx, ky, e_star).stiffness, 1.0, 1e-4);
+}
+
+// ---- Hertz table ---------------------------------------------------------------------------------
+
+TEST(HertzTable, InterpolationErrorOverContactAngle) {
+  const double e_star = steel_e_star();
+  for (const bool inner : {true, false}) {
+    auto curvatures = inner ? inner_race_curvatures : outer_race_curvatures;
+    const HertzTable table(curvatures, 0.5, 1.0, 33, e_star);
+    EXPECT_EQ(table.s_min(), 0.5);
+    EXPECT_EQ(table.s_max(), 1.0);
+    double worst_k = 0, worst_a = 0, worst_b = 0;
+    for (int i = 0; i <= 2000; ++i) {
+      const double s = 0.5 + 0.5 * i / 2000.0;
+      double kx = 0, ky = 0;
+      curvatures(s, kx, ky);
+      const HertzPointContact exact = hertz_point_contact(kx, ky, e_star);
+      const HertzPointContact t = table.at(s);
+      worst_k = std::max(worst_k, std::abs(t.stiffness / exact.stiffness - 1));
+      worst_a = std::max(worst_a, std::abs(t.a_coefficient / exact.a_coefficient - 1));
+      worst_b = std::max(worst_b, std::abs(t.b_coefficient / exact.b_coefficient - 1));
+      EXPECT_NEAR(t.ellipticity / exact.ellipticity, 1.0, 1e-4);
+      EXPECT_EQ(t.a_along_x, exact.a_along_x);
+    }
+    EXPECT_LT(worst_k, 1e-4) << (inner ? "inner" : "outer");
+    EXPECT_LT(worst_a, 1e-4);
+    EXPECT_LT(worst_b, 1e-4);
+    RecordProperty(inner ? "inner_worst_stiffness_error" : "outer_worst_stiffness_error",
+                   std::to_string(worst_k));
+    // Clamped outside the range; NaN propagates.
+    EXPECT_EQ(table.at(2.0).stiffness, table.at(1.0).stiffness);
+    EXPECT_EQ(table.at(-1.0).stiffness, table.at(0.5).stiffness);
+    EXPECT_TRUE(std::isnan(table.at(std::nan("")).stiffness));
+  }
+}
+
+TEST(HertzTable, FewNodesAndConstantTables) {
+  const double e_star = steel_e_star();
+  const HertzPointContact pocket = hertz_point_contact(50, 50, e_star);
+  const HertzTable constant(pocket);
+  for (const double s : {-3.0, 0.0, 0.7, 12.0}) {
+    EXPECT_EQ(constant.at(s).stiffness, pocket.stiffness);
+    EXPECT_EQ(constant.at(s).a_coefficient, pocket.a_coefficient);
+  }
+  // A contact longer in the rolling direction (kx < ky) keeps a_along_x between the nodes.
+  const HertzTable along_x(
+      [](double s, double& kx, double& ky) {
+        kx = 50 + 20 * s;
+        ky = 400;
+      },
+      0, 1, 9, e_star);
+  for (const double s : {0.0, 0.33, 0.5, 0.99}) {
+    EXPECT_TRUE(along_x.at(s).a_along_x);
+    EXPECT_NEAR(along_x.at(s).stiffness / hertz_point_contact(50 + 20 * s, 400, e_star).stiffness, 1, 1e-6);
+  }
+  // Two and three nodes still interpolate (less accurately) and hit the nodes exactly.
+  for (const int points : {2, 3, 5}) {
+    const HertzTable t(inner_race_curvatures, 0.5, 1.0, points, e_star);
+    double kx = 0, ky = 0;
+    inner_race_curvatures(0.5, kx, ky);
+    EXPECT_NEAR(t.at(0.5).stiffness / hertz_point_contact(kx, ky, e_star).stiffness, 1, 1e-14);
+    inner_race_curvatures(0.75, kx, ky);
+    EXPECT_NEAR(t.at(0.75).stiffness / hertz_point_contact(kx, ky, e_star).stiffness, 1, 2e-2);
+  }
+}
+
+// ---- film ----------------------------------------------------------------------------------------
+
+struct FilmCase {
+  double rx, ry;
+  PointLubricant lubricant;
+};
+FilmCase inner_race_film_case() {
+  double kx = 0, ky = 0;
+  inner_race_curvatures(1.0, kx, ky);
+  PointLubricant lub;
+  lub.viscosity = 0.04;
+  lub.pressure_viscosity = 2.3e-8;
+  lub.limiting_shear_coefficient = 0.08;
+  return {1 / kx, 1 / ky, lub};
+}
+
+TEST(HamrockDowsonFilm, Scaling) {
+  const double e_star = steel_e_star();
+  const FilmCase c = inner_race_film_case();
+  const FilmThickness base = hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, c.lubricant);
+  ASSERT_GT(base.central, 0);
+  EXPECT_GT(base.central, base.minimum);
+  EXPECT_LT(base.central, 1.5 * base.minimum);
+  const FilmThickness fast = hamrock_dowson_film(20, 1000, c.rx, c.ry, e_star, c.lubricant);
+  EXPECT_NEAR(fast.central / base.central, std::pow(2.0, 0.67), 1e-12);
+  EXPECT_NEAR(fast.minimum / base.minimum, std::pow(2.0, 0.68), 1e-12);
+  PointLubricant thick = c.lubricant;
+  thick.viscosity *= 3;
+  const FilmThickness viscous = hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, thick);
+  EXPECT_NEAR(viscous.central / base.central, std::pow(3.0, 0.67), 1e-12);
+  const FilmThickness loaded = hamrock_dowson_film(10, 4000, c.rx, c.ry, e_star, c.lubricant);
+  EXPECT_NEAR(loaded.central / base.central, std::pow(4.0, -0.067), 1e-12);
+  EXPECT_NEAR(loaded.minimum / base.minimum, std::pow(4.0, -0.073), 1e-12);
+  PointLubricant stiff_oil = c.lubricant;
+  stiff_oil.pressure_viscosity *= 2;
+  const FilmThickness piezo = hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, stiff_oil);
+  EXPECT_NEAR(piezo.central / base.central, std::pow(2.0, 0.53), 1e-12);
+}
+
+// Reference value: the 209 inner race (Rx = 5.109 mm, Ry = 165.1 mm, E = 200 GPa, nu = 0.3) with
+// eta0 = 0.04 Pa s, alpha = 2.3e-8 1/Pa (Hamrock's ball-bearing example lubricant), u = 10 m/s,
+// Q = 1000 N. No worked example with printed film values could be found in the stored corpora, so
+// the reference is Hamrock & Dowson's dimensionless formula evaluated separately (U = 3.5621e-10,
+// G = 5054.9, W = 1.7430e-4, k = 9.4286): h_c = 1.0527 um, h_min = 0.8549 um.
+TEST(HamrockDowsonFilm, ReferenceValue) {
+  const double e_star = reduced_modulus(200e9, 0.3, 200e9, 0.3);
+  const FilmCase c = inner_race_film_case();
+  const FilmThickness film = hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, c.lubricant);
+  EXPECT_NEAR(film.central, 1.0527e-6, 0.01 * 1.0527e-6);
+  EXPECT_NEAR(film.minimum, 0.8549e-6, 0.01 * 0.8549e-6);
+}
+
+TEST(HamrockDowsonFilm, ZeroWithoutSpeedLoadOrViscosity) {
+  const double e_star = steel_e_star();
+  const FilmCase c = inner_race_film_case();
+  PointLubricant dry = c.lubricant;
+  dry.viscosity = 0;
+  for (const FilmThickness f : {hamrock_dowson_film(0, 1000, c.rx, c.ry, e_star, c.lubricant),
+                                hamrock_dowson_film(-1, 1000, c.rx, c.ry, e_star, c.lubricant),
+                                hamrock_dowson_film(10, 0, c.rx, c.ry, e_star, c.lubricant),
+                                hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, dry)}) {
+    EXPECT_EQ(f.central, 0.0);
+    EXPECT_EQ(f.minimum, 0.0);
+  }
+}
+
+// ---- rolling resistance --------------------------------------------------------------------------
+
+TEST(EhlRollingResistance, PositiveScalesAndVanishesWithoutFilm) {
+  const double e_star = reduced_modulus(200e9, 0.3, 200e9, 0.3);
+  const FilmCase c = inner_race_film_case();
+  const double f = ehl_rolling_resistance(10, 1000, c.rx, c.ry, e_star, c.lubricant);
+  EXPECT_GT(f, 0);
+  // A few 1e-4 of the load at 10 m/s: the order of EHL rolling friction in ball bearings.
+  EXPECT_GT(f / 1000, 1e-5);
+  EXPECT_LT(f / 1000, 1e-2);
+  EXPECT_NEAR(f, 0.42974, 1e-3 * 0.42974);  // the formula evaluated separately
+  EXPECT_NEAR(ehl_rolling_resistance(20, 1000, c.rx, c.ry, e_star, c.lubricant) / f, std::pow(2.0, 0.66),
+              1e-12);
+  EXPECT_NEAR(ehl_rolling_resistance(10, 3000, c.rx, c.ry, e_star, c.lubricant) / f, std::pow(3.0, 0.47),
+              1e-12);
+  PointLubricant thick = c.lubricant;
+  thick.viscosity *= 2;
+  EXPECT_NEAR(ehl_rolling_resistance(10, 1000, c.rx, c.ry, e_star, thick) / f, std::pow(2.0, 0.66), 1e-12);
+  PointLubricant dry = c.lubricant;
+  dry.viscosity = 0;
+  EXPECT_EQ(ehl_rolling_resistance(10, 1000, c.rx, c.ry, e_star, dry), 0.0);
+  EXPECT_EQ(ehl_rolling_resistance(0, 1000, c.rx, c.ry, e_star, c.lubricant), 0.0);
+  EXPECT_EQ(ehl_rolling_resistance(10, 0, c.rx, c.ry, e_star, c.lubricant), 0.0);
+}
+
+// ---- traction ------------------------------------------------------------------------------------
+
+PointTraction curve_traction(int grid) {
+  PointTraction t;
+  t.model = TractionModel::curve;
+  t.friction_coefficient = 0.1;
+  t.slip_velocity_scale = 0.01;
+  t.grid_x = t.grid_y = grid;
+  return t;
+}
+PointLubricant oil() {
+  PointLubricant lub;
+  lub.viscosity = 0.04;
+  lub.pressure_viscosity = 2.0e-8;
+  lub.limiting_shear_coefficient = 0.08;
+  return lub;
+}
+constexpr double load = 1000, ax = 3e-4, ay = 1.2e-3;  // semi-axes: rolling, transverse
+
+TEST(PointTraction, PureSlideGivesCurveTimesLoad) {
+  const PointTraction t = curve_traction(10);
+  for (const double slide : {1e-4, 3e-3, 0.01, 0.5}) {
+    const ContactSliding s{slide * 0.6, -slide * 0.8, 0};
+    const TractionResult r = integrate_traction(t, oil(), load, ax, ay, 0, s);
+    const double expected = 0.1 * std::tanh(slide / 0.01) * load;
+    EXPECT_NEAR(std::hypot(r.force_x, r.force_y), expected, 1e-3 * expected) << slide;
+    // Opposing the slip, exactly antiparallel, and dissipating |F| s.
+    EXPECT_NEAR(r.force_x / expected, -0.6, 1e-12);
+    EXPECT_NEAR(r.force_y / expected, 0.8, 1e-12);
+    EXPECT_NEAR(r.power_loss, expected * slide, 1e-12 * expected * slide);
+    EXPECT_NEAR(r.spin_moment, 0, 1e-12 * expected * ay);
+  }
+}
+
+// Small slips, on both sides of where tanh(x)/x switches to its series (x = 2e-3): the slope
+// mu Q tanh(s / s_scale) / s to round-off.
+TEST(PointTraction, SmallSlipSlopeIsExact) {
+  const PointTraction t = curve_traction(5);
+  for (const double slide : {0.0, 1e-9, 1e-6, 1.9999e-5, 2.0001e-5, 1e-4}) {
+    const double f = -integrate_traction(t, oil(), load, ax, ay, 0, {slide, 0, 0}).force_x;
+    const double x = slide / 0.01;
+    const double expected = x == 0 ? 0.0 : 0.1 * load * std::tanh(x);
+    EXPECT_NEAR(f, expected, 1e-14 * expected) << slide;
+  }
+}
+
+// The summed pressure times area is the normal load: at full saturation the curve gives mu Q and
+// the limiting-shear model Lambda Q, whatever the grid.
+TEST(PointTraction, PressureIntegratesToTheNormalLoad) {
+  for (const int grid : {1, 2, 3, 5, 10, 17}) {
+    PointTraction t = curve_traction(grid);
+    const ContactSliding s{50.0, 0, 0};  // s / s_scale = 5000: tanh = 1
+    EXPECT_NEAR(-integrate_traction(t, oil(), load, ax, ay, 0, s).force_x, 0.1 * load, 1e-12 * load) << grid;
+    t.model = TractionModel::limiting_shear;
+    EXPECT_NEAR(-integrate_traction(t, oil(), load, ax, ay, 1e-7, s).force_x, 0.08 * load, 1e-9 * load)
+        << grid;
+  }
+}
+
+TEST(PointTraction, PureSpinHasNoNetForceAndAMomentOpposingIt) {
+  for (const TractionModel model : {TractionModel::curve, TractionModel::limiting_shear}) {
+    PointTraction t = curve_traction(10);
+    t.model = model;
+    for (const double spin : {-200.0, -1.0, 0.5, 300.0}) {
+      const TractionResult r = integrate_traction(t, oil(), load, ax, ay, 2e-7, {0, 0, spin});
+      EXPECT_NEAR(r.force_x, 0, 1e-12 * load);
+      EXPECT_NEAR(r.force_y, 0, 1e-12 * load);
+      EXPECT_LT(r.spin_moment * spin, 0) << "the moment opposes the spin";
+      EXPECT_NEAR(r.power_loss, -r.spin_moment * spin, 1e-12 * r.power_loss);
+    }
+  }
+}
+
+// Energy balance: the power dissipated equals the power the traction takes from the relative
+// motion, -(F . slide) - M spin, for any combination of slide and spin.
+TEST(PointTraction, PowerLossIsTheWorkOfTheTraction) {
+  for (const TractionModel model : {TractionModel::curve, TractionModel::limiting_shear}) {
+    PointTraction t = curve_traction(7);
+    t.model = model;
+    t.grid_y = 9;
+    for (const ContactSliding s : {ContactSliding{0.02, 0.001, 0}, ContactSliding{-0.003, 0.004, 40},
+                                   ContactSliding{1e-5, -2e-5, -3}, ContactSliding{0, 0, 0}}) {
+      const TractionResult r = integrate_traction(t, oil(), load, ax, ay, 2e-7, s);
+      const double work = -(r.force_x * s.slide_x + r.force_y * s.slide_y) - r.spin_moment * s.spin;
+      EXPECT_GE(r.power_loss, 0.0);
+      EXPECT_NEAR(r.power_loss, work, 1e-12 * std::max(r.power_loss, 1e-300));
+    }
+  }
+}
+
+TEST(PointTraction, ContinuousThroughZeroSlip) {
+  const PointTraction t = curve_traction(10);
+  const TractionResult plus = integrate_traction(t, oil(), load, ax, ay, 0, {1e-9, 0, 0});
+  const TractionResult minus = integrate_traction(t, oil(), load, ax, ay, 0, {-1e-9, 0, 0});
+  const TractionResult zero = integrate_traction(t, oil(), load, ax, ay, 0, {0, 0, 0});
+  // Slope at zero: mu Q / s_scale = 1e4 N s/m; the jump across +-1e-9 m/s is that times 2e-9.
+  EXPECT_NEAR(plus.force_x - minus.force_x, -2e-9 * 0.1 * load / 0.01, 1e-9 * 1e-5);
+  EXPECT_EQ(zero.force_x, 0.0);
+  EXPECT_EQ(zero.power_loss, 0.0);
+  // Spin and slide together, slip crossing zero inside the contact: still finite and continuous.
+  const TractionResult a = integrate_traction(t, oil(), load, ax, ay, 0, {1e-9, 0, 1e-6});
+  const TractionResult b = integrate_traction(t, oil(), load, ax, ay, 0, {-1e-9, 0, 1e-6});
+  EXPECT_TRUE(std::isfinite(a.force_x) && std::isfinite(a.spin_moment));
+  EXPECT_NEAR(a.force_x, b.force_x, 3e-5);
+}
+
+TEST(PointTraction, LimitingShearNewtonianAndSaturated) {
+  PointTraction t = curve_traction(10);
+  t.model = TractionModel::limiting_shear;
+  const double h = 2e-7;
+  // Small slip, isoviscous: tau = eta0 s / h everywhere, F = eta0 s / h * (pi ax ay).
+  PointLubricant iso = oil();
+  iso.pressure_viscosity = 0;
+  const double slide = 1e-6;
+  const TractionResult newtonian = integrate_traction(t, iso, load, ax, ay, h, {slide, 0, 0});
+  const double expected = iso.viscosity * slide / h * pi * ax * ay;
+  EXPECT_NEAR(-newtonian.force_x, expected, 1e-9 * expected);
+  // Piezoviscous: the same slip shears a stiffer oil.
+  const TractionResult piezo = integrate_traction(t, oil(), load, ax, ay, h, {slide, 0, 0});
+  EXPECT_GT(-piezo.force_x, 10 * expected);
+  // Large slip: saturated at Lambda p, net Lambda Q.
+  const TractionResult saturated = integrate_traction(t, oil(), load, ax, ay, h, {30.0, 0, 0});
+  EXPECT_NEAR(-saturated.force_x, 0.08 * load, 1e-6 * load);
+  // Monotone in slip between the two.
+  double previous = 0;
+  for (const double s : {1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0}) {
+    const double f = -integrate_traction(t, oil(), load, ax, ay, h, {s, 0, 0}).force_x;
+    EXPECT_GT(f, previous);
+    EXPECT_LE(f, 0.08 * load * (1 + 1e-12));
+    previous = f;
+  }
+}
+
+// Isoviscous Newtonian spin: tau = eta0 omega r / h, so M = -(eta0 omega / h) J with J the polar
+// moment of the ellipse, pi ax ay (ax^2 + ay^2) / 4; the midpoint rule over cell centroids
+// undercounts each cell's own second moment, O(cell size^2).
+TEST(PointTraction, NewtonianSpinMomentIsThePolarMoment) {
+  PointTraction t = curve_traction(64);
+  t.model = TractionModel::limiting_shear;
+  PointLubricant iso = oil();
+  iso.pressure_viscosity = 0;
+  const double h = 2e-7, spin = 1e-3;
+  const double polar = pi * ax * ay * (ax * ax + ay * ay) / 4;
+  const double expected = -iso.viscosity * spin / h * polar;
+  const TractionResult r = integrate_traction(t, iso, load, ax, ay, h, {0, 0, spin});
+  EXPECT_GT(r.spin_moment, expected) << "midpoint rule: below the exact magnitude";
+  // Interior cells miss area (dx^2 + dy^2) / 12 each: 3.3e-4 of J here; the rest (boundary cells)
+  // is an order smaller.
+  const double dx = 2 * ax / 64, dy = 2 * ay / 64;
+  const double midpoint = expected * (1 - pi * ax * ay * (dx * dx + dy * dy) / 12 / polar);
+  EXPECT_NEAR(r.spin_moment, midpoint, 5e-5 * std::abs(expected));
+}
+
+// The Barus exponent is capped at alpha p = 20: an extreme alpha gives a finite, Newtonian shear
+// with eta0 e^20 (instead of overflow) wherever alpha p > 20 -- here in every cell.
+TEST(PointTraction, ViscosityExponentIsCapped) {
+  PointTraction t = curve_traction(8);
+  t.model = TractionModel::limiting_shear;
+  PointLubricant extreme = oil();
+  extreme.pressure_viscosity = 1e-5;  // alpha p ~ 1e4 at Hertz pressures
+  const double h = 2e-7, slide = 1e-12;
+  const TractionResult r = integrate_traction(t, extreme, load, ax, ay, h, {slide, 0, 0});
+  const double expected = extreme.viscosity * std::exp(20.0) * slide / h * pi * ax * ay;
+  EXPECT_NEAR(-r.force_x, expected, 1e-6 * expected);
+  const TractionResult still = integrate_traction(t, extreme, load, ax, ay, h, {0, 0, 0});
+  EXPECT_EQ(still.force_x, 0.0);
+  EXPECT_TRUE(std::isfinite(still.power_loss));
+}
+
+TEST(PointTraction, FallsBackAndSwitchesOff) {
+  PointTraction limiting = curve_traction(6);
+  limiting.model = TractionModel::limiting_shear;
+  const PointTraction curve = curve_traction(6);
+  const ContactSliding s{0.004, 0.001, 20};
+  const TractionResult by_curve = integrate_traction(curve, oil(), load, ax, ay, 0, s);
+  for (const double h : {0.0, -1e-7}) {
+    const TractionResult r = integrate_traction(limiting, oil(), load, ax, ay, h, s);
+    EXPECT_EQ(r.force_x, by_curve.force_x);
+    EXPECT_EQ(r.spin_moment, by_curve.spin_moment);
+  }
+  PointLubricant dry = oil();
+  dry.viscosity = 0;
+  EXPECT_EQ(integrate_traction(limiting, dry, load, ax, ay, 1e-7, s).force_x, by_curve.force_x);
+  PointTraction none = curve;
+  none.model = TractionModel::none;
+  const TractionResult off = integrate_traction(none, oil(), load, ax, ay, 1e-7, s);
+  EXPECT_EQ(off.force_x, 0.0);
+  EXPECT_EQ(off.force_y, 0.0);
+  EXPECT_EQ(off.spin_moment, 0.0);
+  EXPECT_EQ(off.power_loss, 0.0);
+  EXPECT_EQ(integrate_traction(curve, oil(), 0, ax, ay, 0, s).power_loss, 0.0);
+  PointTraction bad = curve;
+  bad.grid_x = 0;
+  EXPECT_THROW(integrate_traction(bad, oil(), load, ax, ay, 0, s), std::invalid_argument);
+}
+
+// Coulomb spin on a circle: M = mu times the integral of p r dA = (3 pi / 16) mu Q a for the Hertz
+// pressure p0 sqrt(1 - r^2/a^2), p0 = 3 Q / (2 pi a^2). The grid converges to it.
+TEST(PointTraction, GridConvergesForSpin) {
+  const double a = 5e-4, mu = 0.1;
+  const double exact = 3 * pi / 16 * mu * load * a;
+  double previous_error = 1;
+  for (const int grid : {4, 8, 16, 32, 64}) {
+    PointTraction t = curve_traction(grid);
+    t.slip_velocity_scale = 1e-9;  // Coulomb
+    const double m = integrate_traction(t, oil(), load, a, a, 0, {0, 0, 100}).spin_moment;
+    const double error = std::abs(-m / exact - 1);
+    EXPECT_LT(error, previous_error) << grid;
+    previous_error = error;
+    if (grid == 16) {
+      EXPECT_LT(error, 1e-2);
+    }
+  }
+  EXPECT_LT(previous_error, 2e-3);
+  // Limiting shear with slide and spin (the net force is a small residue of opposing shears):
+  // refining the grid four times at a time approaches a 384 x 384 reference.
+  PointTraction t = curve_traction(384);
+  t.model = TractionModel::limiting_shear;
+  const ContactSliding s{0.002, 0.0, 15};
+  const TractionResult fine = integrate_traction(t, oil(), load, ax, ay, 2e-7, s);
+  double previous = 1e300;
+  for (const int grid : {6, 24, 96}) {
+    t.grid_x = t.grid_y = grid;
+    const TractionResult r = integrate_traction(t, oil(), load, ax, ay, 2e-7, s);
+    const double error = std::abs(r.force_x / fine.force_x - 1) +
+                         std::abs(r.spin_moment / fine.spin_moment - 1) +
+                         std::abs(r.power_loss / fine.power_loss - 1);
+    EXPECT_LT(error, 0.25 * previous) << grid;
+    previous = error;
+  }
+  EXPECT_LT(previous, 5e-3);
+}
+
+}  // namespace
+}  // namespace raceway::contact
