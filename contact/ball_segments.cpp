@@ -11,6 +11,10 @@ namespace {
 const Vec3 unit_z = Vec3::UnitZ();
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
+/// Length of (x, y). Contact coordinates are far from overflow, so no std::hypot (several times
+/// slower) in the hot path.
+inline double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
 /// Velocity of the material point of body k at the spatial point c.
 inline Vec3 point_velocity(const SpatialKinematics& k, const Vec3& c) {
   return k.velocity + k.angular_velocity.cross(c - k.position);
@@ -29,7 +33,7 @@ inline void apply_at_point(const SpatialKinematics& a, const SpatialKinematics& 
 /// Component of the force on B along the bearing's circumferential direction at B's centre
 /// (e_theta = e_z x e_r); 0 when B's centre lies on the bearing axis.
 inline double circumferential(const Vec3& b_position, const Vec3& f_b) {
-  const double r = std::hypot(b_position.x(), b_position.y());
+  const double r = length(b_position.x(), b_position.y());
   if (!(r > 0)) return 0.0;
   return (-b_position.y() * f_b.x() + b_position.x() * f_b.y()) / r;
 }
@@ -83,14 +87,14 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   const Mat3& rot = ring.rotation;
   const Vec3 rel = ball.position - ring.position;
   const Vec3 p = rot.transpose() * rel;  // ball centre, ring frame
-  const double rho_ball = std::hypot(p.x(), p.y());
+  const double rho_ball = length(p.x(), p.y());
   if (!(rho_ball > 0) || !std::isfinite(rho_ball) || !std::isfinite(p.z())) return invalid_result(not_a_number);
   const Vec3 e_r(p.x() / rho_ball, p.y() / rho_ball, 0.0);  // ring frame, at the ball's azimuth
   const Vec3 e_t(-e_r.y(), e_r.x(), 0.0);
   // d = ball centre - arc centre, in the (e_r, e_z) plane of the ball's azimuth.
   const double d_rad = rho_ball - s.centre_radius;
   const double d_ax = p.z() - s.centre_axial;
-  const double len = std::hypot(d_rad, d_ax);
+  const double len = length(d_rad, d_ax);
   const double approach = len - (s.groove_radius - s.ball_radius);
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) return invalid_result(approach);
@@ -166,9 +170,9 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   d.normal_force = q;
   d.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0;
   d.film_thickness = film.central;
-  d.slip_velocity = std::hypot(slide_x, slide_y);
+  d.slip_velocity = length(slide_x, slide_y);
   d.spin_velocity = sliding.spin;
-  d.traction_force = std::hypot(traction.force_x, traction.force_y);
+  d.traction_force = length(traction.force_x, traction.force_y);
   d.circumferential_force = circumferential(ball.position, f_ball);
   d.elastic_energy = normal.elastic_energy;
   d.power_loss = traction.power_loss + normal.damping_power + rolling_loss;
@@ -242,7 +246,7 @@ SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics
     const double zeta = s.axial_offset + (j + 0.5) * station_length - 0.5 * s.width;
     const Vec3 station = cage.position + zeta * cage_axis;
     const Vec3 q = rot.transpose() * (station - ring.position);  // ring frame
-    const double eccentricity = std::hypot(q.x(), q.y());
+    const double eccentricity = length(q.x(), q.y());
     const double approach = eccentricity - s.clearance;
     if (!std::isfinite(approach) || !std::isfinite(q.z())) return invalid_result(approach);
     max_approach = std::max(max_approach, approach);
@@ -267,20 +271,21 @@ SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics
     dg.normal_force += nf.force;
     dg.elastic_energy += nf.elastic_energy;
     dg.power_loss += per_speed * nf.force * speed * speed + nf.damping_power;
-    if (nf.force > max_force) {
+    if (nf.force > max_force) {  // the most loaded station gives slip, spin and pressure
       max_force = nf.force;
       dg.slip_velocity = speed;
       dg.spin_velocity = (ring.angular_velocity - cage.angular_velocity).dot(u);
-      // Line-contact Hertz estimate: p = sqrt(q E* / (pi R)), q the load per length, 1/R the
-      // relative curvature of the conforming cylinders, E* from Palmgren's K of the station.
-      const double e_reduced =
-          s.law.stiffness / (palmgren_coefficient * std::pow(station_length, 8.0 / 9.0));
-      const double curvature = std::abs(1.0 / s.land_radius - 1.0 / cage_radius);
-      const double line_load = nf.force / station_length;
-      dg.max_pressure = std::sqrt(line_load * e_reduced * curvature / std::numbers::pi);
     }
   }
   dg.approach = max_approach;
+  if (max_force > 0) {
+    // Line-contact Hertz estimate: p = sqrt(q E* / (pi R)), q the load per length, 1/R the relative
+    // curvature of the conforming cylinders, E* from Palmgren's K of a station (palmgren_stiffness).
+    const double e_reduced =
+        s.law.stiffness / (palmgren_coefficient * std::pow(station_length, 8.0 / 9.0));
+    const double curvature = std::abs(1.0 / s.land_radius - 1.0 / cage_radius);
+    dg.max_pressure = std::sqrt(max_force / station_length * e_reduced * curvature / std::numbers::pi);
+  }
   dg.traction_force = friction_sum.norm();
   check_finite(r);
   return r;

@@ -737,7 +737,7 @@ void parse_ring(const Section& s, RingSpec& r, bool spatial) {
 
 void parse_lubricant(const Section& s, Lubricant& lub) {
   if (!s.present()) return;
-  s.allow({"name", "viscosity", "pressure_viscosity", "limiting_shear_coefficient"});
+  s.allow({"name", "viscosity", "pressure_viscosity", "limiting_shear_coefficient", "viscosity_exponent_cap"});
   lub.name = s.string("name", "");
   lub.viscosity = s.quantity("viscosity", dim::viscosity, Bound::positive, std::nullopt);
   lub.pressure_viscosity = s.quantity("pressure_viscosity", dim::inverse_pressure, Bound::non_negative, 0.0);
@@ -748,6 +748,12 @@ void parse_lubricant(const Section& s, Lubricant& lub) {
             return fmt::format("must be between 0 and 0.5 (0.02 to 0.1 for mineral oils), found {}",
                                lub.limiting_shear_coefficient);
           });
+  // Largest alpha p in the Barus law (contact/point_contact.hpp): default 12.
+  lub.viscosity_exponent_cap = s.quantity("viscosity_exponent_cap", dim::none, Bound::positive, 12.0);
+  s.check(lub.viscosity_exponent_cap <= 40, "viscosity_exponent_cap", [&] {
+    return fmt::format("must be at most 40 (exp(40) times the viscosity is beyond any lubricant), found {}",
+                       lub.viscosity_exponent_cap);
+  });
 }
 
 /// A law name from a registry, for one kind of contact; names registered for other contacts get a hint.

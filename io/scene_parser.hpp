@@ -1,7 +1,8 @@
 // raceway scene parser: TOML scene file -> validated, SI-unit io::Scene.
 //
 // The schema (sections, keys, units, defaults and the physical checks) is documented in
-// jobs/scenes/default.toml; the parse_* functions in io/scene_parser.cpp are its definition.
+// jobs/scenes/default.toml (planar: cylindrical roller bearings) and jobs/scenes/6309_R3.toml
+// (spatial: ball bearings); the parse_* functions in io/scene_parser.cpp are its definition.
 // Every problem is a SceneError that names the file, the line, the dotted key and the reason.
 #pragma once
 

@@ -16,6 +16,7 @@
 #include "io/scene_parser.hpp"
 #include "io/summary_json.hpp"
 #include "solver/model.hpp"
+#include "solver/spatial_model.hpp"
 #include "solver/run.hpp"
 
 namespace {
@@ -142,8 +143,10 @@ int main(int argc, char** argv) {
   try {
     if (*check) {
       const io::Scene scene = load(scene_path);
-      const solver::Model model = solver::build_model(scene);
-      std::fputs(model.describe().c_str(), stdout);
+      if (scene.scene.model == io::ModelKind::spatial)
+        std::fputs(solver::build_spatial_model(scene).describe().c_str(), stdout);
+      else
+        std::fputs(solver::build_model(scene).describe().c_str(), stdout);
       std::puts("scene OK");
     } else if (*report) {
       if (!std::isnan(window_start)) report_options.window_start = window_start;
