@@ -285,11 +285,11 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
     if (a.rows() > 0) {
       // Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
       // equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
-      // instead of taking huge values from a near-singular fit.
-      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-      cod.setThreshold(1e-3);
-      cod.compute(a);
-      const Vec3 w = cod.solve(rhs);
+      // instead of taking huge values from a near-singular fit. Singular values (SVD), not the
+      // diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+      svd.setThreshold(1e-3);
+      const Vec3 w = svd.solve(rhs);
       for (int d = 0; d < 3; ++d) z[static_cast<std::size_t>(b.slot[swx + d])] = w[d];
     }
   }
