@@ -455,8 +455,9 @@ FrameRun run_turned(const test::TempDir& dir, double theta, const char* name) {
   o.gravity = false;  // fixed along -y: it would not turn with the problem
   o.end_time = 0.008;
   o.output_interval = 1e-4;
-  o.rtol = std::getenv("SP_RTOL") ? std::atof(std::getenv("SP_RTOL")) : 1e-6;
+  o.rtol = std::getenv("SP_RTOL") ? std::atof(std::getenv("SP_RTOL")) : 1e-9;
   io::Scene scene = test::deep_groove_scene(o);
+  if (std::getenv("SP_POCKET")) scene.cage.pocket_clearance = std::atof(std::getenv("SP_POCKET"));
   RunOptions options;
   options.output_path = dir.file(name);
   options.azimuth_offset = theta;
