@@ -1,7 +1,5 @@
 #include "solver/equations.hpp"
 
-#include <fmt/format.h>
-
 #include <cmath>
 
 #include "contact/segment_jacobian.hpp"
@@ -241,25 +239,7 @@ double Equations::energy(double t, const double* z) const {
 }
 
 std::string Equations::explain_state(int index) const {
-  const Model& m = model_;
-  std::string out = m.state_name[index];
-  int body = -1;
-  for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    if (index >= m.bodies[b].offset && index < m.bodies[b].offset + m.bodies[b].size) body = static_cast<int>(b);
-  int best = -1;
-  double best_force = -1;
-  for (std::size_t s = 0; s < m.segments.size() && !records_.empty(); ++s) {
-    const auto& seg = m.segments[s];
-    if (seg.body_a != body && seg.body_b != body) continue;
-    const double f = records_[s * SegmentRecord::size + SegmentRecord::diagnostics + 1];
-    if (f > best_force) best_force = f, best = static_cast<int>(s);
-  }
-  if (best >= 0)
-    out += fmt::format("; most loaded contact of that body: {} ({:.4g} N, approach {:.4g} um)", m.segments[best].name,
-                       best_force, 1e6 * records_[best * SegmentRecord::size + SegmentRecord::diagnostics]);
-  if (last_invalid_ >= 0)
-    out += fmt::format("; contact that last left its valid range: {}", m.segments[last_invalid_].name);
-  return out;
+  return explain_model_state(model_, index, records_, SegmentRecord::size, SegmentRecord::diagnostics, last_invalid_);
 }
 
 }  // namespace raceway::solver

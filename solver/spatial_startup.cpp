@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <numbers>
 #include <stdexcept>
 
@@ -206,29 +205,12 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
         lambda *= 8.0;
       }
     }
-    if (std::getenv("RACEWAY_DEBUG_STARTUP"))
-      fmt::print(stderr, "LM iteration {}: cost {:.6g} lambda {:.3g} improved {}\n", iterations, cost, lambda, improved);
     if (!improved) break;
   }
   }
   SpatialStartupReport rep;
   rep.iterations = iterations;
   rep.residual = r.lpNorm<Eigen::Infinity>() * seat.force_scale;
-  if (std::getenv("RACEWAY_DEBUG_STARTUP")) {
-    for (std::size_t i = 0; i < seat.unknowns.size(); ++i)
-      fmt::print(stderr, "unknown {} body {} comp {} value {:.6g} residual {:.6g}\n", i, seat.unknowns[i].body,
-                 seat.unknowns[i].component, u[static_cast<Eigen::Index>(i)], r[static_cast<Eigen::Index>(i)] * seat.force_scale);
-  }
-  if (std::getenv("RACEWAY_DEBUG_STARTUP")) {
-    const auto zz = seat.state(u);
-    for (const auto& seg : m.segments) {
-      if (seg.kind == SpatialSegmentKind::ball_pocket || seg.kind == SpatialSegmentKind::cage_land) continue;
-      SpatialKinematics ring = m.kinematics(seg.body_a, t0, zz.data());
-      ring.velocity.setZero(); ring.angular_velocity.setZero();
-      const auto res = contact::evaluate(m.groove_segments[static_cast<std::size_t>(seg.parameters)], ring, m.kinematics(seg.body_b, t0, zz.data()));
-      fmt::print(stderr, "{} approach {:.4g} Q {:.4g} on ball ({:.4g} {:.4g} {:.4g}) valid {}\n", seg.name, res.diagnostics.approach, res.diagnostics.normal_force, res.on_b.force.x(), res.on_b.force.y(), res.on_b.force.z(), res.valid);
-    }
-  }
   if (!(rep.residual <= 1e-6 * seat.force_scale + 1e-6))
     throw std::runtime_error(fmt::format(
         "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
