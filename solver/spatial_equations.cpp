@@ -105,9 +105,22 @@ SpatialWrench SpatialEquations::external_wrench(int b, double t, const double* z
   }
   if (k_axial > 0 || c_axial > 0) w.force.z() -= k_axial * state(sz) + c_axial * state(svz);
   if (k_tilt > 0 || c_tilt > 0) {
-    // Cage: body-frame rates are the tilt rates for small tilts.
-    w.moment.x() -= k_tilt * state(sax) + c_tilt * state(swx);
-    w.moment.y() -= k_tilt * state(say) + c_tilt * state(swy);
+    if (body.kind == SpatialBodyKind::cage) {
+      // The spindle holds the direction of the cage axis a = R e_z: a spring with the potential
+      // k (1 - a.e_z) (= k (1 - cos ax cos ay), k |tilt|^2 / 2 when small) and a damper on the
+      // angular velocity across the axis, w - (w.a) a. Both are independent of the cage's turning
+      // angle. (A damper on the body-frame rates wx, wy, which turn with the cage, rotates its
+      // moment by the cage angle and pumps energy in for half of every cage revolution: the tilt
+      // whirl that jammed the balls in 6309 case A12.)
+      const Mat3 r = cardan_rotation(state(sax), state(say), state(saz));
+      const Vec3 axis = r.col(2);
+      const Vec3 w_fixed = r * Vec3(state(swx), state(swy), state(swz));
+      w.moment += k_tilt * axis.cross(Vec3::UnitZ()) - c_tilt * (w_fixed - w_fixed.dot(axis) * axis);
+    } else {
+      // Rings: small-tilt rotor equations in the tilt angles themselves (states swx, swy are their rates).
+      w.moment.x() -= k_tilt * state(sax) + c_tilt * state(swx);
+      w.moment.y() -= k_tilt * state(say) + c_tilt * state(swy);
+    }
   }
   return w;
 }
@@ -155,13 +168,9 @@ void SpatialEquations::body_rates(int b, double t, const double* z, const Spatia
       break;
     case SpatialBodyKind::cage: {
       // Cardan x-y-z angle rates from the body-frame angular velocity, and Euler's equations.
-      const double ay = z[sl[say]], az = z[sl[saz]];
       const Vec3 wb(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
-      const double cb = std::cos(ay), sb = std::sin(ay), cc = std::cos(az), sc = std::sin(az);
-      const double ax_rate = (wb.x() * cc - wb.y() * sc) / cb;
-      zdot[sl[sax]] = ax_rate;
-      zdot[sl[say]] = wb.x() * sc + wb.y() * cc;
-      zdot[sl[saz]] = wb.z() - sb * ax_rate;
+      const Vec3 angle_rates = cardan_rates(z[sl[say]], z[sl[saz]], wb);
+      for (int d = 0; d < 3; ++d) zdot[sl[sax + d]] = angle_rates[d];
       const Vec3 inertia(body.transverse_inertia, body.transverse_inertia, body.axial_inertia);
       const Vec3 gyro = wb.cross(inertia.cwiseProduct(wb));
       zdot[sl[swx]] = rates[swx] - gyro.x() / inertia.x();
@@ -344,7 +353,10 @@ double SpatialEquations::energy(double t, const double* z) const {
       k_radial = s.radial_stiffness, k_axial = s.axial_stiffness, k_tilt = s.tilt_stiffness;
     }
     e += 0.5 * k_radial * (x.x() * x.x() + x.y() * x.y()) + 0.5 * k_axial * x.z() * x.z();
-    e += 0.5 * k_tilt * (state(sax) * state(sax) + state(say) * state(say));
+    if (body.kind == SpatialBodyKind::cage)
+      e += k_tilt * (1.0 - std::cos(state(sax)) * std::cos(state(say)));  // see external_wrench
+    else
+      e += 0.5 * k_tilt * (state(sax) * state(sax) + state(say) * state(say));
   }
   for (std::size_t s = 0; s < model_.segments.size(); ++s)
     e += records_[s * SpatialRecord::size + SpatialRecord::diagnostics + 9];

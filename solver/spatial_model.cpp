@@ -28,6 +28,12 @@ Mat3 cardan_rotation(double ax, double ay, double az) {
       .toRotationMatrix();
 }
 
+Vec3 cardan_rates(double ay, double az, const Vec3& w) {
+  const double cb = std::cos(ay), sb = std::sin(ay), cc = std::cos(az), sc = std::sin(az);
+  const double ax_rate = (w.x() * cc - w.y() * sc) / cb;
+  return {ax_rate, w.x() * sc + w.y() * cc, w.z() - sb * ax_rate};
+}
+
 namespace {
 
 constexpr double pi = std::numbers::pi;

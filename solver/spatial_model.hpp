@@ -101,5 +101,8 @@ SpatialModel build_spatial_model(const io::Scene& scene);
 
 /// R = Rx(ax) Ry(ay) Rz(az).
 contact::Mat3 cardan_rotation(double ax, double ay, double az);
+/// Rates of the Cardan x-y-z angles from a body-frame angular velocity (singular at ay = +-90 deg,
+/// far beyond any cage tilt).
+contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angular_velocity);
 
 }  // namespace raceway::solver
