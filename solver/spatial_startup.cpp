@@ -217,25 +217,38 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
         "check the loads, supports and clearance",
         iterations, rep.residual));
 
-  // Velocities: rings as prescribed (drive speeds come from the kinematics, not states), cage at
-  // the epicyclic speed with its pockets on the balls, balls orbiting with it.
+  // Velocities: rings as prescribed (drive speeds come from the kinematics, not states). Each ball
+  // rolls without sliding at its loaded contacts: a ball held between two or more contacts gets its
+  // orbital speed and spin from them (at the seated contact angle, not the nominal one, which for a
+  // deep groove bearing under axial load is 12 deg off); a ball on one contact (or none) orbits with
+  // the cage and spins to roll on that contact. The cage turns at the load-weighted mean orbital
+  // speed of the held balls (the epicyclic speed when none is held), its pockets on the balls.
   std::vector<double> z = seat.state(u);
   const auto& cage = m.bodies[static_cast<std::size_t>(m.cage)];
-  z[static_cast<std::size_t>(cage.slot[swz])] = seat.orbit;
   z[static_cast<std::size_t>(cage.slot[saz])] = azimuth_offset;
   rep.inner_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
   rep.outer_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
+
+  // Rolling equations of ball k: one row per loaded contact and tangent direction t,
+  //   (orbit e_z x x + w x lever - ring surface velocity) . t = 0,
+  // in the unknowns (orbit * r_p / R, w): the orbit column is scaled by R / r_p so that both kinds
+  // of unknown weigh alike in the singular values. Rows weighted by sqrt(load).
+  struct Rolling {
+    Eigen::MatrixXd a = Eigen::MatrixXd(0, 4);
+    Eigen::VectorXd rhs = Eigen::VectorXd(0);
+    int contacts = 0;
+    double load = 0;
+  };
+  const double orbit_column_scale = m.ball_radius / m.pitch_radius;
+  auto ball_position = [&](int k) {
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    return Vec3(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
+                z[static_cast<std::size_t>(b.slot[sz])]);
+  };
+  std::vector<Rolling> rolling(static_cast<std::size_t>(m.ball_count));
   for (int k = 0; k < m.ball_count; ++k) {
-    const int bi = m.first_ball + k;
-    const auto& b = m.bodies[static_cast<std::size_t>(bi)];
-    const Vec3 x(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
-                 z[static_cast<std::size_t>(b.slot[sz])]);
-    const Vec3 v = seat.orbit * Vec3::UnitZ().cross(x);
-    for (int d = 0; d < 3; ++d) z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
-    // Spin: rolling without sliding at the loaded contacts, in the least-squares sense (weighted
-    // by load; the minimum-norm solution where the contacts leave it undetermined).
-    Eigen::MatrixXd a(0, 3);
-    Eigen::VectorXd rhs(0);
+    const Vec3 x = ball_position(k);
+    Rolling& eqs = rolling[static_cast<std::size_t>(k)];
     for (const auto& seg : m.segments) {
       if (seg.ball != k || (seg.kind != SpatialSegmentKind::ball_inner_groove && seg.kind != SpatialSegmentKind::ball_outer_groove))
         continue;
@@ -250,29 +263,59 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
       (seg.kind == SpatialSegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
           [static_cast<std::size_t>(k)] += q;
       if (q <= 0) continue;
+      ++eqs.contacts, eqs.load += q;
       Vec3 point, normal;
       groove_contact(g, ring, x, point, normal);
       const Vec3 t1 = normal.cross(Vec3::UnitZ()).normalized(), t2 = normal.cross(t1);
       const Vec3 ring_surface = ring.velocity + ring.angular_velocity.cross(point - ring.position);
-      const Vec3 lever = point - x;
-      // slip = v + w x lever - ring_surface;  (w x lever) . t = w . (lever x t)
+      const Vec3 lever = point - x, orbit_direction = Vec3::UnitZ().cross(x);
       const double weight = std::sqrt(q);
       for (const Vec3& t : {t1, t2}) {
-        a.conservativeResize(a.rows() + 1, 3);
-        rhs.conservativeResize(rhs.size() + 1);
-        a.row(a.rows() - 1) = weight * lever.cross(t).transpose();
-        rhs[rhs.size() - 1] = weight * (ring_surface - v).dot(t);
+        eqs.a.conservativeResize(eqs.a.rows() + 1, 4);
+        eqs.rhs.conservativeResize(eqs.rhs.size() + 1);
+        eqs.a.row(eqs.a.rows() - 1) << weight * orbit_direction.dot(t) * orbit_column_scale,
+            weight * lever.cross(t).transpose();  // (w x lever) . t = w . (lever x t)
+        eqs.rhs[eqs.rhs.size() - 1] = weight * ring_surface.dot(t);
       }
     }
-    if (a.rows() > 0) {
-      // Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
-      // equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
-      // instead of taking huge values from a near-singular fit. Singular values (SVD), not the
-      // diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-      svd.setThreshold(1e-3);
-      const Vec3 w = svd.solve(rhs);
-      for (int d = 0; d < 3; ++d) z[static_cast<std::size_t>(b.slot[swx + d])] = w[d];
+  }
+  // Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
+  // equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
+  // instead of taking huge values from a near-singular fit. Singular values (SVD), not the
+  // diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
+  auto least_squares = [](const Eigen::MatrixXd& a, const Eigen::VectorXd& rhs) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    svd.setThreshold(1e-3);
+    return Eigen::VectorXd(svd.solve(rhs));
+  };
+  std::vector<double> orbit(static_cast<std::size_t>(m.ball_count), seat.orbit);
+  std::vector<Vec3> spin(static_cast<std::size_t>(m.ball_count), Vec3::Zero());
+  double held_load = 0, held_orbit = 0;
+  for (int k = 0; k < m.ball_count; ++k) {
+    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
+    if (eqs.contacts < 2) continue;
+    const Eigen::VectorXd sol = least_squares(eqs.a, eqs.rhs);
+    orbit[static_cast<std::size_t>(k)] = sol[0] * orbit_column_scale;
+    spin[static_cast<std::size_t>(k)] = sol.tail<3>();
+    held_load += eqs.load, held_orbit += eqs.load * orbit[static_cast<std::size_t>(k)];
+  }
+  const double cage_speed = held_load > 0 ? held_orbit / held_load : seat.orbit;
+  z[static_cast<std::size_t>(cage.slot[swz])] = cage_speed;
+  for (int k = 0; k < m.ball_count; ++k) {
+    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
+    if (eqs.contacts == 1) {
+      // Orbit with the cage; spin from the rolling rows with the orbit known.
+      orbit[static_cast<std::size_t>(k)] = cage_speed;
+      const Eigen::VectorXd rhs = eqs.rhs - eqs.a.col(0) * (cage_speed / orbit_column_scale);
+      spin[static_cast<std::size_t>(k)] = least_squares(eqs.a.rightCols<3>(), rhs);
+    } else if (eqs.contacts == 0) {
+      orbit[static_cast<std::size_t>(k)] = cage_speed;
+    }
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    const Vec3 v = orbit[static_cast<std::size_t>(k)] * Vec3::UnitZ().cross(ball_position(k));
+    for (int d = 0; d < 3; ++d) {
+      z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
+      z[static_cast<std::size_t>(b.slot[swx + d])] = spin[static_cast<std::size_t>(k)][d];
     }
   }
   rep.state = std::move(z);
@@ -280,8 +323,8 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
   for (int k = 0; k < m.ball_count; ++k) q_max = std::max(q_max, rep.inner_contact_force[static_cast<std::size_t>(k)]);
   rep.summary = fmt::format(
       "start-up: quasi-static seating in {} iterations (largest unbalanced force {:.3g} N); largest inner-groove "
-      "ball load {:.4g} N; cage and balls at the epicyclic speed {:.4g} rpm",
-      rep.iterations, rep.residual, q_max, seat.orbit * 30.0 / pi);
+      "ball load {:.4g} N; cage at {:.4g} rpm (rolling balls; epicyclic at the nominal contact angle {:.4g} rpm)",
+      rep.iterations, rep.residual, q_max, cage_speed * 30.0 / pi, seat.orbit * 30.0 / pi);
   return rep;
 }
 
