@@ -218,30 +218,29 @@ double Model::epicyclic_cage_speed(double t) const {
   return (speed(bodies[inner_ring]) * ri + speed(bodies[outer_ring]) * ro) / (ri + ro);
 }
 
-std::vector<double> Model::absolute_tolerance() const {
-  const auto& s = scene->solver;
-  // Physical scales where the scene is silent: positions to a fraction of a contact deflection
-  // relative to the pitch radius, velocities relative to the surface speed of the driven ring.
-  double drive = std::max(max_abs(scene->inner_ring.speed), max_abs(scene->outer_ring.speed));
+std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
+                                                double pitch_radius, double rolling_element_radius) {
+  const auto& s = scene.solver;
+  double drive = std::max(max_abs(scene.inner_ring.speed), max_abs(scene.outer_ring.speed));
   drive = std::max(drive, 1.0);
   const double surface_speed = drive * pitch_radius;
-  const double spin_scale = drive * pitch_radius / roller_radius;
-  std::vector<double> atol(state_size);
-  for (int i = 0; i < state_size; ++i) {
+  const double spin_scale = drive * pitch_radius / rolling_element_radius;
+  std::vector<double> atol(state_class.size());
+  for (std::size_t i = 0; i < state_class.size(); ++i) {
     switch (state_class[i]) {
-      case VariableClass::position:
-        atol[i] = s.atol_position > 0 ? s.atol_position : s.rtol * pitch_radius;
-        break;
+      case VariableClass::position: atol[i] = s.atol_position > 0 ? s.atol_position : s.rtol * pitch_radius; break;
       case VariableClass::angle: atol[i] = s.atol_angle > 0 ? s.atol_angle : s.rtol; break;
-      case VariableClass::velocity:
-        atol[i] = s.atol_velocity > 0 ? s.atol_velocity : s.rtol * surface_speed;
-        break;
+      case VariableClass::velocity: atol[i] = s.atol_velocity > 0 ? s.atol_velocity : s.rtol * surface_speed; break;
       case VariableClass::angular_velocity:
         atol[i] = s.atol_angular_velocity > 0 ? s.atol_angular_velocity : s.rtol * spin_scale;
         break;
     }
   }
   return atol;
+}
+
+std::vector<double> Model::absolute_tolerance() const {
+  return physical_absolute_tolerance(*scene, state_class, pitch_radius, roller_radius);
 }
 
 std::string Model::describe() const {

@@ -20,6 +20,13 @@ namespace raceway::solver {
 enum class BodyKind { inner_ring, outer_ring, cage, roller };
 enum class VariableClass { position, angle, velocity, angular_velocity };
 
+/// Absolute tolerances per state from physical scales, where the scene's [solver] section gives
+/// none: positions rtol times the pitch radius, angles rtol, velocities rtol times the driven ring's
+/// surface speed at the pitch radius, angular velocities rtol times a rolling element's rolling spin.
+/// Shared by the planar and the spatial model.
+std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
+                                                double pitch_radius, double rolling_element_radius);
+
 /// One rigid body. slot[c] is the state index of kinematic component c (contact::Component), or -1
 /// when that component is not a state (then it is prescribed: zero, or the drive speed).
 struct Body {

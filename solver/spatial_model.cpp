@@ -47,12 +47,6 @@ double annulus_transverse_inertia(double mass, double r_in, double r_out, double
   return mass * (3.0 * (r_in * r_in + r_out * r_out) + width * width) / 12.0;
 }
 
-double max_abs(const io::TimeFunction& f) {
-  double v = 0;
-  for (double x : f.values) v = std::max(v, std::abs(x));
-  return v;
-}
-
 struct StateAdder {
   SpatialModel& m;
   SpatialBody& b;
@@ -353,27 +347,7 @@ double SpatialModel::epicyclic_cage_speed(double t) const {
 }
 
 std::vector<double> SpatialModel::absolute_tolerance() const {
-  const auto& s = scene->solver;
-  // Physical scales where the scene is silent (as the planar model): positions relative to the
-  // pitch radius, angles absolute, velocities relative to the driven ring's surface speed, angular
-  // velocities relative to a ball's rolling spin.
-  double drive = std::max(max_abs(scene->inner_ring.speed), max_abs(scene->outer_ring.speed));
-  drive = std::max(drive, 1.0);
-  const double surface_speed = drive * pitch_radius;
-  const double spin_scale = drive * pitch_radius / ball_radius;
-  std::vector<double> atol(static_cast<std::size_t>(state_size));
-  for (int i = 0; i < state_size; ++i) {
-    double& a = atol[static_cast<std::size_t>(i)];
-    switch (state_class[static_cast<std::size_t>(i)]) {
-      case VariableClass::position: a = s.atol_position > 0 ? s.atol_position : s.rtol * pitch_radius; break;
-      case VariableClass::angle: a = s.atol_angle > 0 ? s.atol_angle : s.rtol; break;
-      case VariableClass::velocity: a = s.atol_velocity > 0 ? s.atol_velocity : s.rtol * surface_speed; break;
-      case VariableClass::angular_velocity:
-        a = s.atol_angular_velocity > 0 ? s.atol_angular_velocity : s.rtol * spin_scale;
-        break;
-    }
-  }
-  return atol;
+  return physical_absolute_tolerance(*scene, state_class, pitch_radius, ball_radius);
 }
 
 std::string SpatialModel::describe() const {
