@@ -20,17 +20,17 @@ namespace raceway::solver {
 // Backend names and the automatic choice
 // ---------------------------------------------------------------------------------------------
 
-// Crossover of `auto`. Measured per Newton setup + solve on the synthetic ball bearing (border 12
-// states, 9 per ball; perf/results/bordered_scaling.txt): see README "Newton linear solvers". Both
-// backends are O(N); PETSc carries a fixed cost per setup (sub-matrix extraction, the Schur
-// complement's explicit assembly through KSPMatSolve, object bookkeeping) that the hand-written
-// elimination on small dense Eigen blocks does not have.
-constexpr int kPetscMinBlocks = 64;
-
-io::LinearSolverKind resolve_linear_solver(io::LinearSolverKind kind, const BorderedLayout& layout) {
-  if (kind != io::LinearSolverKind::automatic) return kind;
-  return layout.blocks >= kPetscMinBlocks ? io::LinearSolverKind::petsc_bordered
-                                          : io::LinearSolverKind::block_elimination;
+// `auto` is the hand-written block elimination. Measured per Newton setup + solve (assembly, M =
+// I - gamma J, factorisation, one solve; perf/results/bordered_scaling.txt), both backends are O(N)
+// and exact, and the block elimination is 2.5 to 2.9 times cheaper at every N from 8 to 512 (real
+// bearings: 6309, 8 balls: 33 vs 88 us; QJ215, 15 balls: 35 vs 91 us; seed 002, 13 rollers: 11 vs
+// 32 us). PETSc's fixed and per-block costs: four sub-matrix extractions per setup, a sparse LU of
+// split 0 through the generic AIJ kernels (i-nodes of 5 or 9 rows) instead of dense 9x9 LAPACK-style
+// blocks, the Schur complement through KSPMatSolve on dense column blocks, and object bookkeeping.
+// PETSc earns its place where the hand-written path cannot go: run-time solver choices (MUMPS,
+// SuperLU_DIST, hypre, ILU) and, later, the distributed (MPIAIJ) Newton systems of multi-rank runs.
+io::LinearSolverKind resolve_linear_solver(io::LinearSolverKind kind, const BorderedLayout&) {
+  return kind == io::LinearSolverKind::automatic ? io::LinearSolverKind::block_elimination : kind;
 }
 
 const char* linear_solver_name(io::LinearSolverKind kind) {
@@ -299,7 +299,7 @@ class BlockEliminationSolver final : public SolverContent {
 };
 
 /// Sets up the KSP of the petsc-bordered solver on `a` from the options database.
-void configure_ksp(KSP ksp, const BorderedLayout& l, IS* blocks, IS* border) {
+void configure_ksp(KSP ksp, const BorderedLayout& l, IS* blocks, IS* border, Mat schur) {
   PC pc;
   petsc_check(KSPGetPC(ksp, &pc), "KSPGetPC");
   petsc_check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
@@ -315,9 +315,15 @@ void configure_ksp(KSP ksp, const BorderedLayout& l, IS* blocks, IS* border) {
     petsc_check(PCFieldSplitSetIS(pc, "1", *border), "PCFieldSplitSetIS");
     petsc_check(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR), "PCFieldSplitSetType");
     petsc_check(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_FULL), "PCFieldSplitSetSchurFactType");
-    // "full": S = A11 - A10 inv(A00) A01 formed explicitly (A00's exact LU applied to A01's columns),
-    // so LU of it makes the Schur solve exact.
-    petsc_check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_FULL, nullptr), "PCFieldSplitSetSchurPre");
+    // The Schur complement S = A11 - A10 inv(A00) A01 is formed explicitly by raceway (see
+    // PetscSolver::form_schur_complement) and given to PETSc as the matrix the Schur split's
+    // preconditioner is built from, so LU of it makes the Schur solve exact. PETSc's own
+    // "-pc_fieldsplit_schur_precondition full" is not used, for two reasons measured on PETSc 3.18:
+    // MatSchurComplementComputeExplicitOperator chops entries of inv(A00) A01 below 1e-10
+    // (MatChop(PETSC_SMALL)), which in SI units are real entries (the solve residual was 1e-6 to
+    // 1e-4 relative on the bearings' Newton matrices instead of 1e-12), and on a re-setup with the
+    // same nonzero pattern it keeps the Schur complement of the first matrix.
+    petsc_check(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, schur), "PCFieldSplitSetSchurPre");
   }
   petsc_check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
 }
@@ -327,7 +333,12 @@ class PetscSolver final : public SolverContent {
   explicit PetscSolver(const BorderedLayout& l) : layout_(l), work_(static_cast<std::size_t>(l.size())) {
     require_runtime();
     petsc_check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
-    configure_ksp(ksp_, l, &blocks_, &border_);
+    if (l.border > 0) {
+      // Identity until the first setup forms S (PETSc may factor it before that).
+      petsc_check(MatCreateSeqDense(PETSC_COMM_SELF, l.border, l.border, nullptr, &schur_), "MatCreateSeqDense");
+      petsc_check(MatShift(schur_, 1.0), "MatShift");
+    }
+    configure_ksp(ksp_, l, &blocks_, &border_, schur_);
     petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, l.size(), nullptr, &b_), "VecCreateSeqWithArray");
     petsc_check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, l.size(), nullptr, &x_), "VecCreateSeqWithArray");
   }
@@ -337,6 +348,8 @@ class PetscSolver final : public SolverContent {
     ISDestroy(&border_);
     VecDestroy(&b_);
     VecDestroy(&x_);
+    MatDestroy(&schur_);
+    MatDestroy(&a01_dense_), MatDestroy(&a00_inv_a01_), MatDestroy(&product_);
   }
   int setup(SUNMatrix a) override {
     Mat m = static_cast<PetscBordered&>(content(a)).a;
@@ -345,6 +358,7 @@ class PetscSolver final : public SolverContent {
     g_last_petsc_error.clear();
     PetscErrorCode code = KSPSetOperators(ksp_, m, m);
     if (code == 0) code = KSPSetUp(ksp_);
+    if (code == 0) code = form_schur_complement();
     if (code == 0) {
       PC pc;
       PCFailedReason reason = PC_NOERROR;
@@ -388,9 +402,56 @@ class PetscSolver final : public SolverContent {
   KSP ksp() const { return ksp_; }
 
  private:
+  /// S = A11 - A10 inv(A00) A01 into schur_, exactly: A00's factorisation (split 0's KSP, set up by
+  /// KSPSetUp) applied to the dense columns of A01, then the Schur split's KSP set up on it. Only
+  /// when the options keep the Schur preconditioner matrix raceway's (the default, "user").
+  PetscErrorCode form_schur_complement() {
+    if (!schur_) return 0;
+    PC pc;
+    PetscCall(KSPGetPC(ksp_, &pc));
+    PetscBool fieldsplit = PETSC_FALSE;
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &fieldsplit));
+    if (!fieldsplit) return 0;
+    PCCompositeType type;
+    PetscCall(PCFieldSplitGetType(pc, &type));
+    if (type != PC_COMPOSITE_SCHUR) return 0;
+    PCFieldSplitSchurPreType pre;
+    Mat pre_mat = nullptr;
+    PetscCall(PCFieldSplitGetSchurPre(pc, &pre, &pre_mat));
+    if (pre != PC_FIELDSPLIT_SCHUR_PRE_USER || pre_mat != schur_) return 0;
+    Mat s_op, a01, a10, a11;
+    PetscCall(PCFieldSplitSchurGetS(pc, &s_op));
+    PetscCall(MatSchurComplementGetSubMatrices(s_op, nullptr, nullptr, &a01, &a10, &a11));
+    PetscInt count = 0;
+    KSP* sub = nullptr;
+    PetscCall(PCFieldSplitGetSubKSP(pc, &count, &sub));
+    KSP ksp_a00 = sub[0], ksp_schur = sub[count - 1];
+    PetscCall(PetscFree(sub));
+    // Work matrices kept between setups (the sub-matrices keep their objects when PETSc reuses them).
+    const bool reuse = a01_dense_ && a01_source_ == a01 && a10_source_ == a10;
+    if (!reuse) {
+      MatDestroy(&a01_dense_), MatDestroy(&a00_inv_a01_), MatDestroy(&product_);
+      PetscCall(MatConvert(a01, MATDENSE, MAT_INITIAL_MATRIX, &a01_dense_));
+      PetscCall(MatDuplicate(a01_dense_, MAT_DO_NOT_COPY_VALUES, &a00_inv_a01_));
+      a01_source_ = a01, a10_source_ = a10;
+    } else {
+      PetscCall(MatConvert(a01, MATDENSE, MAT_REUSE_MATRIX, &a01_dense_));
+    }
+    PetscCall(KSPMatSolve(ksp_a00, a01_dense_, a00_inv_a01_));  // inv(A00) A01, no chopping
+    PetscCall(MatMatMult(a10, a00_inv_a01_, product_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT,
+                         &product_));
+    PetscCall(MatCopy(a11, schur_, DIFFERENT_NONZERO_PATTERN));
+    PetscCall(MatAXPY(schur_, -1.0, product_, SAME_NONZERO_PATTERN));
+    PetscCall(KSPSetUp(ksp_schur));  // LU of S now, so a singular S fails the setup, not the solve
+    return 0;
+  }
+
   BorderedLayout layout_;
   KSP ksp_ = nullptr;
   IS blocks_ = nullptr, border_ = nullptr;
+  Mat schur_ = nullptr;  ///< the explicit Schur complement, border x border, dense
+  Mat a01_dense_ = nullptr, a00_inv_a01_ = nullptr, product_ = nullptr;  ///< its work matrices
+  Mat a01_source_ = nullptr, a10_source_ = nullptr;  ///< PETSc's sub-matrices they were made for
   Vec b_ = nullptr, x_ = nullptr;
   std::vector<double> work_;
 };
@@ -686,7 +747,8 @@ std::string prepare_linear_solver(const io::SolverSpec& spec, const BorderedLayo
   const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
   std::string line = fmt::format("Newton linear solver: {}", linear_solver_name(kind));
   if (spec.linear_solver == io::LinearSolverKind::automatic)
-    line += fmt::format(" (auto: {} rolling elements, PETSc from {} on)", layout.blocks, kPetscMinBlocks);
+    line += " (auto: the block elimination is 2.5-2.9x cheaper per Newton setup + solve than petsc-bordered at "
+            "every size measured, 8 to 512 rolling elements, serial)";
   // PETSc options are validated whenever they are given, even if `auto` chose the other backend, so
   // that a typo shows at start-up and not in the first large run.
   const bool options_given = !spec.petsc_options.empty() || !g_command_line_options.empty();

@@ -33,9 +33,8 @@ struct BorderedLayout {
   int size() const { return border + blocks * block_size; }
 };
 
-/// The backend `linear_solver = "auto"` stands for at this size: block elimination below
-/// kPetscMinBlocks rolling elements, PETSc from there on (the crossover measured in
-/// perf/results/bordered_scaling.txt; see the comment at its definition). Any other kind is returned as is.
+/// The backend `linear_solver = "auto"` stands for: block elimination (the measured reason is at its
+/// definition and in README "Newton linear solvers"). Any other kind is returned as is.
 io::LinearSolverKind resolve_linear_solver(io::LinearSolverKind kind, const BorderedLayout& layout);
 /// "petsc-bordered", "block-elimination", "sundials-dense", "auto".
 const char* linear_solver_name(io::LinearSolverKind kind);
