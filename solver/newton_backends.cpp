@@ -358,7 +358,12 @@ class PetscSolver final : public SolverContent {
     g_last_petsc_error.clear();
     PetscErrorCode code = KSPSetOperators(ksp_, m, m);
     if (code == 0) code = KSPSetUp(ksp_);
-    if (code == 0) code = form_schur_complement();
+    std::string singular;
+    if (code == 0) code = form_schur_complement(&singular);
+    if (code == 0 && !singular.empty()) {
+      last_error = "PETSc factorisation failed: " + singular;
+      return SUNLS_LUFACT_FAIL;  // recoverable: CVODE retries with a smaller step
+    }
     if (code == 0) {
       PC pc;
       PCFailedReason reason = PC_NOERROR;
@@ -405,7 +410,7 @@ class PetscSolver final : public SolverContent {
   /// S = A11 - A10 inv(A00) A01 into schur_, exactly: A00's factorisation (split 0's KSP, set up by
   /// KSPSetUp) applied to the dense columns of A01, then the Schur split's KSP set up on it. Only
   /// when the options keep the Schur preconditioner matrix raceway's (the default, "user").
-  PetscErrorCode form_schur_complement() {
+  PetscErrorCode form_schur_complement(std::string* singular) {
     if (!schur_) return 0;
     PC pc;
     PetscCall(KSPGetPC(ksp_, &pc));
@@ -437,12 +442,26 @@ class PetscSolver final : public SolverContent {
     } else {
       PetscCall(MatConvert(a01, MATDENSE, MAT_REUSE_MATRIX, &a01_dense_));
     }
+    // A singular rolling-element block shows here first (PETSc records it as the PC's failed reason).
+    PetscCall(KSPSetUp(ksp_a00));
+    PC pc_a00;
+    PCFailedReason failed = PC_NOERROR;
+    PetscCall(KSPGetPC(ksp_a00, &pc_a00));
+    PetscCall(PCGetFailedReason(pc_a00, &failed));
+    if (failed != PC_NOERROR) {
+      *singular = fmt::format("rolling-element blocks: {}", PCFailedReasons[failed]);
+      return 0;
+    }
     PetscCall(KSPMatSolve(ksp_a00, a01_dense_, a00_inv_a01_));  // inv(A00) A01, no chopping
     PetscCall(MatMatMult(a10, a00_inv_a01_, product_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, PETSC_DEFAULT,
                          &product_));
     PetscCall(MatCopy(a11, schur_, DIFFERENT_NONZERO_PATTERN));
     PetscCall(MatAXPY(schur_, -1.0, product_, SAME_NONZERO_PATTERN));
     PetscCall(KSPSetUp(ksp_schur));  // LU of S now, so a singular S fails the setup, not the solve
+    PC pc_schur;
+    PetscCall(KSPGetPC(ksp_schur, &pc_schur));
+    PetscCall(PCGetFailedReason(pc_schur, &failed));
+    if (failed != PC_NOERROR) *singular = fmt::format("Schur complement: {}", PCFailedReasons[failed]);
     return 0;
   }
 
