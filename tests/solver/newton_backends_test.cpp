@@ -17,7 +17,16 @@
 #include <tuple>
 
 #include "io/scene_parser.hpp"
+#include "scheduler/executor.hpp"
+#include "solver/equations.hpp"
+#include "solver/integrator.hpp"
+#include "solver/model.hpp"
 #include "solver/newton_backends.hpp"
+#include "solver/spatial_equations.hpp"
+#include "solver/spatial_model.hpp"
+#include "solver/spatial_startup.hpp"
+#include "solver/startup.hpp"
+#include "spatial_scene_builder.hpp"
 
 namespace raceway::solver {
 namespace {
@@ -217,5 +226,85 @@ TEST(PetscOptions, BadCommandLineOptionsNameTheOption) {
   EXPECT_THROW(configure_petsc_options(spec_with(""), {12, 3, 9}), OptionsError);
 }
 
+
+// ---- whole runs: every backend against the SUNDIALS dense baseline ------------------------------
+// Named DenseVsBordered* so that it runs with the long solver tests (label solver_long).
+// Step counts within 2 % (issue 5) and trajectories within 3x the round-off baseline + 10 tolerance
+// units (a dense run from the start state scaled by 1 + 1e-15: two correct linear solvers differ by
+// round-off, and CVODE's step-size sequence forks on it; see dense_vs_bordered_test.cpp). Measured:
+// seed 002, 10 ms: dense 6335 steps, petsc-bordered 6301 (0.5 %), block-elimination 6231 (1.6 %),
+// but the perturbed dense run 6551 (3.4 %): the 2 % bound on this scene holds with little margin
+// (round-off alone can exceed it); trajectories 5.2e3 / 1.5e4 units against a baseline of 1.8e4 (the
+// rattling unloaded rollers). Ball bearing, 5 ms: 686 steps for all, 1.5 / 0.6 units, baseline 0.17.
+
+
+struct Run {
+  std::vector<std::vector<double>> states;  ///< at every output time
+  IntegratorStatistics stats;
+};
+
+/// Integrates `eq` from z0 through `samples` output times dt apart.
+Run integrate(DynamicSystem& eq, io::SolverSpec spec, Kind kind, std::vector<double> z0, double dt, int samples,
+              double perturbation = 0) {
+  spec.linear_solver = kind;
+  for (double& v : z0) v *= 1 + perturbation;
+  Integrator integrator(eq, spec, 0.0, z0);
+  Run r;
+  for (int i = 1; i <= samples; ++i) {
+    std::vector<double> z;
+    integrator.advance_to(i * dt, z);
+    r.states.push_back(z);
+  }
+  r.stats = integrator.statistics();
+  return r;
+}
+
+/// Largest |a - b| / (rtol max(|a|, |b|) + atol) over all states and output times.
+double units(const Run& a, const Run& b, double rtol, const std::vector<double>& atol) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.states.size(); ++i)
+    for (std::size_t j = 0; j < atol.size(); ++j) {
+      const double x = a.states[i][j], y = b.states[i][j];
+      worst = std::max(worst, std::abs(x - y) / (rtol * std::max(std::abs(x), std::abs(y)) + atol[j]));
+    }
+  return worst;
+}
+
+void compare_backends(const char* name, DynamicSystem& eq, const io::SolverSpec& spec, const std::vector<double>& z0,
+                      double dt, int samples) {
+  const auto atol = eq.absolute_tolerance();
+  const Run dense = integrate(eq, spec, Kind::sundials_dense, z0, dt, samples);
+  const Run baseline = integrate(eq, spec, Kind::sundials_dense, z0, dt, samples, 1e-15);
+  const double noise = units(dense, baseline, spec.rtol, atol);
+  for (Kind kind : {Kind::petsc_bordered, Kind::block_elimination}) {
+    const Run r = integrate(eq, spec, kind, z0, dt, samples);
+    const double d = units(dense, r, spec.rtol, atol);
+    const double step_ratio = static_cast<double>(r.stats.steps) / static_cast<double>(dense.stats.steps);
+    std::printf("[ backends ] %s: %s %ld steps, dense %ld (ratio %.4f), dense perturbed by 1e-15 %ld; trajectory "
+                "difference to dense %.3g tolerance units, round-off baseline %.3g\n",
+                name, linear_solver_name(kind), r.stats.steps, dense.stats.steps, step_ratio, baseline.stats.steps, d,
+                noise);
+    EXPECT_NEAR(step_ratio, 1.0, 0.02) << name << ", " << linear_solver_name(kind);
+    EXPECT_LT(d, 3 * noise + 10) << name << ", " << linear_solver_name(kind);
+  }
+}
+
+TEST(DenseVsBorderedBackends, Seed002RollerBearingRunsAgree) {
+  io::Scene scene = io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  const Model model = build_model(scene);
+  scheduler::SerialExecutor executor;
+  Equations eq(model, executor);
+  compare_backends("seed 002, 10 ms", eq, scene.solver, consistent_initial_state(model, 0.0).state, 1e-3, 10);
+}
+
+TEST(DenseVsBorderedBackends, BallBearingRunsAgree) {
+  test::BallSceneOptions o;
+  o.fx = 300, o.fy = -1000, o.fz = 500;
+  const io::Scene scene = test::deep_groove_scene(o);
+  const SpatialModel model = build_spatial_model(scene);
+  scheduler::SerialExecutor executor;
+  SpatialEquations eq(model, executor);
+  compare_backends("6309-size ball bearing, 5 ms", eq, scene.solver, spatial_initial_state(model, 0.0).state, 1e-4, 50);
+}
 }  // namespace
 }  // namespace raceway::solver
