@@ -22,9 +22,9 @@ namespace raceway::solver {
 
 // `auto` is the hand-written block elimination. Measured per Newton setup + solve (assembly, M =
 // I - gamma J, factorisation, one solve; perf/results/bordered_scaling.txt), both backends are O(N)
-// and exact, and the block elimination is 2.5 to 2.9 times cheaper at every N from 8 to 512 (real
-// bearings: 6309, 8 balls: 33 vs 88 us; QJ215, 15 balls: 35 vs 91 us; seed 002, 13 rollers: 11 vs
-// 32 us). PETSc's fixed and per-block costs: four sub-matrix extractions per setup, a sparse LU of
+// and exact, and the block elimination is 2.4 to 2.9 times cheaper at every N from 8 to 512 (real
+// bearings: 6309, 8 balls: 29 vs 85 us; QJ215, 15 balls: 36 vs 90 us; seed 002, 13 rollers: 11 vs
+// 31 us). PETSc's fixed and per-block costs: four sub-matrix extractions per setup, a sparse LU of
 // split 0 through the generic AIJ kernels (i-nodes of 5 or 9 rows) instead of dense 9x9 LAPACK-style
 // blocks, the Schur complement through KSPMatSolve on dense column blocks, and object bookkeeping.
 // PETSc earns its place where the hand-written path cannot go: run-time solver choices (MUMPS,
@@ -766,7 +766,7 @@ std::string prepare_linear_solver(const io::SolverSpec& spec, const BorderedLayo
   const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
   std::string line = fmt::format("Newton linear solver: {}", linear_solver_name(kind));
   if (spec.linear_solver == io::LinearSolverKind::automatic)
-    line += " (auto: the block elimination is 2.5-2.9x cheaper per Newton setup + solve than petsc-bordered at "
+    line += " (auto: the block elimination is 2.4-2.9x cheaper per Newton setup + solve than petsc-bordered at "
             "every size measured, 8 to 512 rolling elements, serial)";
   // PETSc options are validated whenever they are given, even if `auto` chose the other backend, so
   // that a typo shows at start-up and not in the first large run.
