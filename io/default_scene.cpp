@@ -93,7 +93,8 @@ method = "bdf"                 # "bdf" | "adams"
 rtol = 1e-6
 # atol = { position = "1e-9 m", angle = "1e-6 rad", velocity = "1e-6 m/s", angular_velocity = "1e-3 rad/s" }
 #   (unset: chosen from the physical scales)
-linear_solver = "bordered"     # "bordered" | "dense"
+linear_solver = "auto"         # "auto" | "petsc-bordered" | "block-elimination" | "sundials-dense"
+# petsc_options = "-fieldsplit_1_pc_factor_mat_solver_type mumps"   # for petsc-bordered
 
 # [output]: what is written besides the state.
 [output]

@@ -171,7 +171,9 @@ struct Lubricant {
 };
 
 enum class IntegrationMethod { bdf, adams };
-enum class LinearSolverKind { bordered, dense };
+/// Newton linear solver (solver/newton_backends.hpp). `automatic` picks block elimination or PETSc by
+/// the number of rolling elements (the measured crossover; README "Newton linear solvers").
+enum class LinearSolverKind { automatic, petsc_bordered, block_elimination, sundials_dense };
 
 struct SolverSpec {
   IntegrationMethod method = IntegrationMethod::bdf;
@@ -182,7 +184,12 @@ struct SolverSpec {
   double atol_angle = 0;             ///< rad
   double atol_velocity = 0;          ///< m/s
   double atol_angular_velocity = 0;  ///< rad/s
-  LinearSolverKind linear_solver = LinearSolverKind::bordered;
+  LinearSolverKind linear_solver = LinearSolverKind::automatic;
+  /// PETSc options for petsc-bordered ("-fieldsplit_1_pc_factor_mat_solver_type mumps ..."), and
+  /// where they were given (for errors: file, line of the value).
+  std::string petsc_options;
+  std::string petsc_options_file;
+  int petsc_options_line = 0;
   double max_step = 0;               ///< s; 0 = no limit
   double initial_step = 0;           ///< s; 0 = CVODE's estimate
   long max_steps = 500000000;        ///< total step budget for the run

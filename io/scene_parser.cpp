@@ -179,6 +179,7 @@ class Section {
   bool present() const { return table_ != nullptr; }
   const toml::table* table() const { return table_; }
   const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
   int header_line() const { return line_; }
   const toml::node* node(std::string_view key) const { return table_ ? table_->get(key) : nullptr; }
   bool has(std::string_view key) const { return node(key) != nullptr; }
@@ -853,8 +854,8 @@ ContactSpec parse_contact(const Section& s, unsigned kind, double default_mu, do
 }
 
 void parse_solver(const Section& s, SolverSpec& sv) {
-  s.allow({"method", "max_order", "rtol", "atol", "linear_solver", "max_step", "initial_step", "max_steps",
-           "jacobian_perturbation"});
+  s.allow({"method", "max_order", "rtol", "atol", "linear_solver", "petsc_options", "max_step", "initial_step",
+           "max_steps", "jacobian_perturbation"});
   sv.method = s.choice("method", {"bdf", "adams"}, "bdf", "method") == "bdf" ? IntegrationMethod::bdf
                                                                             : IntegrationMethod::adams;
   const long max_order = sv.method == IntegrationMethod::bdf ? 5 : 12;
@@ -868,9 +869,19 @@ void parse_solver(const Section& s, SolverSpec& sv) {
   sv.atol_angle = atol.quantity("angle", dim::angle, Bound::positive, 0.0);
   sv.atol_velocity = atol.quantity("velocity", dim::speed, Bound::positive, 0.0);
   sv.atol_angular_velocity = atol.quantity("angular_velocity", dim::angular_speed, Bound::positive, 0.0);
-  sv.linear_solver = s.choice("linear_solver", {"bordered", "dense"}, "bordered", "linear solver") == "bordered"
-                         ? LinearSolverKind::bordered
-                         : LinearSolverKind::dense;
+  // "bordered" and "dense" are the names of issue 2 (block elimination, SUNDIALS dense), still accepted.
+  const std::string ls = s.choice(
+      "linear_solver", {"auto", "petsc-bordered", "block-elimination", "sundials-dense", "bordered", "dense"}, "auto",
+      "linear solver");
+  sv.linear_solver = ls == "petsc-bordered"                         ? LinearSolverKind::petsc_bordered
+                     : ls == "block-elimination" || ls == "bordered" ? LinearSolverKind::block_elimination
+                     : ls == "sundials-dense" || ls == "dense"       ? LinearSolverKind::sundials_dense
+                                                                     : LinearSolverKind::automatic;
+  // PETSc options are checked when the solver is built (solver/newton_backends.hpp: a trial setup
+  // needs PETSc); here only their place, for the error message.
+  sv.petsc_options = s.string("petsc_options", "");
+  sv.petsc_options_file = s.file();
+  sv.petsc_options_line = s.line("petsc_options");
   sv.max_step = s.quantity("max_step", dim::time, Bound::non_negative, 0.0);
   sv.initial_step = s.quantity("initial_step", dim::time, Bound::non_negative, 0.0);
   sv.max_steps = s.integer("max_steps", 1, LONG_MAX, sv.max_steps);

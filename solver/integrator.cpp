@@ -3,8 +3,6 @@
 #include <cvode/cvode.h>
 #include <fmt/format.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,93 +11,7 @@
 
 namespace raceway::solver {
 
-// ---------------------------------------------------------------------------------------------
-// SUNMatrix holding a BorderedMatrix (content). CVODE uses: zero and the Jacobian function to form
-// J, copy to save it, scaleaddi to form M = I - gamma J when only gamma changed (jok).
 namespace {
-
-BorderedMatrix& bm(SUNMatrix a) { return *static_cast<BorderedMatrix*>(a->content); }
-
-SUNMatrix make_bordered_matrix(SUNContext ctx, const BorderedMatrix& prototype);
-
-SUNMatrix_ID bm_getid(SUNMatrix) { return SUNMATRIX_CUSTOM; }
-SUNMatrix bm_clone(SUNMatrix a) { return make_bordered_matrix(a->sunctx, bm(a)); }
-void bm_destroy(SUNMatrix a) {
-  if (!a) return;
-  delete static_cast<BorderedMatrix*>(a->content);
-  a->content = nullptr;
-  SUNMatFreeEmpty(a);
-}
-int bm_zero(SUNMatrix a) {
-  bm(a).set_zero();
-  return 0;
-}
-int bm_copy(SUNMatrix from, SUNMatrix to) {
-  bm(to) = bm(from);
-  return 0;
-}
-int bm_scaleaddi(sunrealtype c, SUNMatrix a) {
-  bm(a).scale_add_identity(c);
-  return 0;
-}
-int bm_matvec(SUNMatrix a, N_Vector x, N_Vector y) {
-  bm(a).multiply(N_VGetArrayPointer(x), N_VGetArrayPointer(y));
-  return 0;
-}
-
-SUNMatrix make_bordered_matrix(SUNContext ctx, const BorderedMatrix& prototype) {
-  SUNMatrix a = SUNMatNewEmpty(ctx);
-  a->ops->getid = bm_getid;
-  a->ops->clone = bm_clone;
-  a->ops->destroy = bm_destroy;
-  a->ops->zero = bm_zero;
-  a->ops->copy = bm_copy;
-  a->ops->scaleaddi = bm_scaleaddi;
-  a->ops->matvec = bm_matvec;
-  a->content = new BorderedMatrix(prototype);
-  return a;
-}
-
-// SUNLinearSolver by block elimination (Schur complement on the border).
-struct BorderedSolverContent {
-  BorderedFactorization factorization;
-  sunindextype last_flag = 0;
-};
-BorderedSolverContent& bs(SUNLinearSolver s) { return *static_cast<BorderedSolverContent*>(s->content); }
-
-SUNLinearSolver_Type bs_gettype(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID bs_getid(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-int bs_initialize(SUNLinearSolver) { return 0; }
-int bs_setup(SUNLinearSolver s, SUNMatrix a) {
-  const bool ok = bs(s).factorization.factor(bm(a));
-  bs(s).last_flag = ok ? 0 : 1;
-  return ok ? 0 : SUNLS_LUFACT_FAIL;  // positive: recoverable, CVODE retries with a smaller step
-}
-int bs_solve(SUNLinearSolver s, SUNMatrix, N_Vector x, N_Vector b, sunrealtype) {
-  bs(s).factorization.solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x));
-  return 0;
-}
-sunindextype bs_lastflag(SUNLinearSolver s) { return bs(s).last_flag; }
-int bs_free(SUNLinearSolver s) {
-  if (!s) return 0;
-  delete static_cast<BorderedSolverContent*>(s->content);
-  s->content = nullptr;
-  SUNLinSolFreeEmpty(s);
-  return 0;
-}
-
-SUNLinearSolver make_bordered_solver(SUNContext ctx) {
-  SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
-  s->ops->gettype = bs_gettype;
-  s->ops->getid = bs_getid;
-  s->ops->initialize = bs_initialize;
-  s->ops->setup = bs_setup;
-  s->ops->solve = bs_solve;
-  s->ops->lastflag = bs_lastflag;
-  s->ops->free = bs_free;
-  s->content = new BorderedSolverContent();
-  return s;
-}
 
 void check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(fmt::format("CVODE set-up failed in {} (flag {})", what, flag));
@@ -113,9 +25,8 @@ struct Integrator::Impl {
   SUNContext ctx = nullptr;
   void* cvode = nullptr;
   N_Vector y = nullptr;
-  SUNMatrix matrix = nullptr;
-  SUNLinearSolver solver = nullptr;
-  BorderedMatrix scratch;  // dense path: the Jacobian is formed here, then copied
+  std::unique_ptr<NewtonLinearSystem> linear;
+  BorderedMatrix scratch;  // the Jacobian is formed here, then loaded into the backend's matrix
   std::exception_ptr callback_error;
   std::string last_cvode_message;
   long steps_budget = 0;
@@ -123,8 +34,7 @@ struct Integrator::Impl {
   Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
     if (cvode) CVodeFree(&cvode);
-    if (solver) SUNLinSolFree(solver);
-    if (matrix) SUNMatDestroy(matrix);
+    linear.reset();
     if (y) N_VDestroy(y);
     if (ctx) SUNContext_Free(&ctx);
   }
@@ -138,27 +48,12 @@ struct Integrator::Impl {
       return -1;
     }
   }
-  static int jac_bordered(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector,
-                          N_Vector, N_Vector) {
-    auto* self = static_cast<Impl*>(user);
-    try {
-      return self->eq.jacobian(t, N_VGetArrayPointer(y), bm(j));
-    } catch (...) {
-      self->callback_error = std::current_exception();
-      return -1;
-    }
-  }
-  static int jac_dense(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
-                       N_Vector) {
+  static int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
+                      N_Vector) {
     auto* self = static_cast<Impl*>(user);
     try {
       const int status = self->eq.jacobian(t, N_VGetArrayPointer(y), self->scratch);
-      const Eigen::MatrixXd d = self->scratch.to_dense();
-      const auto n = static_cast<sunindextype>(d.rows());
-      for (sunindextype c = 0; c < n; ++c) {
-        sunrealtype* col = SUNDenseMatrix_Column(j, c);
-        for (sunindextype r = 0; r < n; ++r) col[r] = d(r, c);
-      }
+      NewtonLinearSystem::load_jacobian(self->scratch, j);
       return status;
     } catch (...) {
       self->callback_error = std::current_exception();
@@ -196,19 +91,14 @@ Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, dou
   if (spec.initial_step > 0) check(CVodeSetInitStep(s.cvode, spec.initial_step), "CVodeSetInitStep");
   s.steps_budget = spec.max_steps;
 
-  BorderedMatrix prototype(equations.border_size(), equations.block_count(), equations.block_size());
-  if (spec.linear_solver == io::LinearSolverKind::bordered) {
-    s.matrix = make_bordered_matrix(s.ctx, prototype);
-    s.solver = make_bordered_solver(s.ctx);
-    check(CVodeSetLinearSolver(s.cvode, s.solver, s.matrix), "CVodeSetLinearSolver");
-    check(CVodeSetJacFn(s.cvode, Impl::jac_bordered), "CVodeSetJacFn");
-  } else {
-    s.scratch = prototype;
-    s.matrix = SUNDenseMatrix(n, n, s.ctx);
-    s.solver = SUNLinSol_Dense(s.y, s.matrix, s.ctx);
-    check(CVodeSetLinearSolver(s.cvode, s.solver, s.matrix), "CVodeSetLinearSolver");
-    check(CVodeSetJacFn(s.cvode, Impl::jac_dense), "CVodeSetJacFn");
-  }
+  const BorderedLayout layout{equations.border_size(), equations.block_count(), equations.block_size()};
+  const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
+  // PETSc options are validated here at the latest (run_scene does it before opening the output).
+  if (kind == io::LinearSolverKind::petsc_bordered) configure_petsc_options(spec, layout);
+  s.scratch = BorderedMatrix(layout.border, layout.blocks, layout.block_size);
+  s.linear = std::make_unique<NewtonLinearSystem>(kind, s.ctx, s.y, layout);
+  check(CVodeSetLinearSolver(s.cvode, s.linear->solver(), s.linear->matrix()), "CVodeSetLinearSolver");
+  check(CVodeSetJacFn(s.cvode, Impl::jacobian), "CVodeSetJacFn");
 }
 
 Integrator::~Integrator() = default;
@@ -260,6 +150,7 @@ std::string Integrator::Impl::diagnose(int flag) const {
   N_VDestroy(err);
   N_VDestroy(w);
   if (!last_cvode_message.empty()) out += "; CVODE: " + last_cvode_message;
+  if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
   return out;
 }
 

@@ -1,7 +1,6 @@
 // Time integration with CVODE (DESIGN.md 4.1): BDF (or Adams) with Newton iteration, tolerances per
-// variable class, and the bordered-block Newton solve (a custom SUNMatrix holding the Jacobian's
-// blocks and a custom SUNLinearSolver factoring M = I - gamma J by block elimination). A dense
-// SUNDIALS solver stays selectable as a baseline. CVODE sees a state vector, a right-hand side, a
+// variable class, and the Newton solve through one of the backends of solver/newton_backends.hpp
+// (PETSc bordered, hand-written block elimination, SUNDIALS dense baseline). CVODE sees a state vector, a right-hand side, a
 // Jacobian and a linear solve; it knows nothing of rollers (STYLE.md habit 1).
 #pragma once
 
@@ -12,6 +11,7 @@
 
 #include "io/scene.hpp"
 #include "solver/dynamic_system.hpp"
+#include "solver/newton_backends.hpp"
 
 namespace raceway::solver {
 

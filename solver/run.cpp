@@ -162,6 +162,10 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   const StartupReport start = consistent_initial_state(model, t0);
   if (options.on_info) options.on_info(start.summary);
 
+  // The linear solver (and PETSc's options) is checked before the output file exists.
+  const std::string solver_line =
+      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
+  if (options.on_info) options.on_info(solver_line);
   auto file = io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -16,6 +17,7 @@
 #include "io/scene_parser.hpp"
 #include "io/summary_json.hpp"
 #include "solver/model.hpp"
+#include "solver/newton_backends.hpp"
 #include "solver/spatial_model.hpp"
 #include "solver/run.hpp"
 
@@ -108,14 +110,18 @@ int main(int argc, char** argv) {
 
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
   app.require_subcommand(1);
-  std::string scene_path, output = "raceway.h5", summary_json;
+  std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
   auto* run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
   run->add_option("scene", scene_path, "scene file (TOML)");
   run->add_option("-o,--output", output, "HDF5 output file")->capture_default_str();
   run->add_option("--summary-json", summary_json, "write the run summary as JSON");
+  run->add_option("--petsc-options", petsc_options,
+                  "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
+                  "mumps\"; override the scene's [solver] petsc_options");
   auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
   check->alias("plan");
   check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
+  check->add_option("--petsc-options", petsc_options, "PETSc options to validate with the scene's");
   io::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false;
@@ -140,13 +146,23 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return 0;
   }
+  // PETSc after MPI (so it leaves MPI_Finalize to us), on the master only: the linear algebra runs
+  // there (DESIGN.md 5). Destroyed before MPI_Finalize.
+  auto petsc = std::make_unique<solver::PetscRuntime>(petsc_options);
   try {
     if (*check) {
       const io::Scene scene = load(scene_path);
-      if (scene.scene.model == io::ModelKind::spatial)
-        std::fputs(solver::build_spatial_model(scene).describe().c_str(), stdout);
-      else
-        std::fputs(solver::build_model(scene).describe().c_str(), stdout);
+      solver::BorderedLayout layout;
+      if (scene.scene.model == io::ModelKind::spatial) {
+        const auto model = solver::build_spatial_model(scene);
+        std::fputs(model.describe().c_str(), stdout);
+        layout = {model.border_size, model.ball_count, solver::SpatialModel::ball_block_size};
+      } else {
+        const auto model = solver::build_model(scene);
+        std::fputs(model.describe().c_str(), stdout);
+        layout = {model.border_size, model.roller_count, (model.state_size - model.border_size) / model.roller_count};
+      }
+      std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
       std::puts("scene OK");
     } else if (*report) {
       if (!std::isnan(window_start)) report_options.window_start = window_start;
@@ -161,6 +177,9 @@ int main(int argc, char** argv) {
   } catch (const io::SceneError& e) {
     spdlog::error("{}", e.what());
     code = 2;
+  } catch (const solver::OptionsError& e) {
+    spdlog::error("{}", e.what());
+    code = 2;
   } catch (const solver::IntegrationFailure& e) {
     spdlog::error("{}", e.what());
     code = 3;
@@ -168,6 +187,7 @@ int main(int argc, char** argv) {
     spdlog::error("{}", e.what());
     code = 1;
   }
+  petsc.reset();
   MPI_Finalize();
   return code;
 }

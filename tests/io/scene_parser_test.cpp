@@ -105,7 +105,7 @@ TEST(DefaultScene, Parses) {
   EXPECT_EQ(s.solver.max_order, 5);
   EXPECT_DOUBLE_EQ(s.solver.rtol, 1e-6);
   EXPECT_EQ(s.solver.atol_position, 0.0);
-  EXPECT_EQ(s.solver.linear_solver, LinearSolverKind::bordered);
+  EXPECT_EQ(s.solver.linear_solver, LinearSolverKind::automatic);
   EXPECT_TRUE(s.output.segments);
 }
 

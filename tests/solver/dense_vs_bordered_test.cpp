@@ -117,10 +117,10 @@ TEST(DenseVsBordered, NewtonMatricesSolveLikeDenseLU) {
 }
 
 TEST(DenseVsBordered, DefaultSceneRunsAgree) {
-  const Result dense = integrate(io::LinearSolverKind::dense);
-  const Result bordered = integrate(io::LinearSolverKind::bordered);
-  const Result up = integrate(io::LinearSolverKind::bordered, 1e-15);
-  const Result down = integrate(io::LinearSolverKind::bordered, -1e-15);
+  const Result dense = integrate(io::LinearSolverKind::sundials_dense);
+  const Result bordered = integrate(io::LinearSolverKind::block_elimination);
+  const Result up = integrate(io::LinearSolverKind::block_elimination, 1e-15);
+  const Result down = integrate(io::LinearSolverKind::block_elimination, -1e-15);
   ASSERT_EQ(dense.z.size(), bordered.z.size());
   const double d = difference(dense, bordered);
   const double spread = std::max(difference(bordered, up), difference(bordered, down));

@@ -932,9 +932,9 @@ TrajectoryDifference difference(const SpatialModel& m, double rtol, const Trajec
 TEST(SpatialPhysics, DenseAndBorderedAgree) {
   const double end_time = 0.01;
   const auto wall = std::chrono::steady_clock::now();
-  const Trajectory dense = integrate(io::LinearSolverKind::dense, end_time);
-  const Trajectory bordered = integrate(io::LinearSolverKind::bordered, end_time);
-  const Trajectory perturbed = integrate(io::LinearSolverKind::bordered, end_time, 1e-15);
+  const Trajectory dense = integrate(io::LinearSolverKind::sundials_dense, end_time);
+  const Trajectory bordered = integrate(io::LinearSolverKind::block_elimination, end_time);
+  const Trajectory perturbed = integrate(io::LinearSolverKind::block_elimination, end_time, 1e-15);
   const double seconds = seconds_since(wall);
   EngagedBearing b;
   const double rtol = b.scene.solver.rtol;
