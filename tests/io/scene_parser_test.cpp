@@ -748,6 +748,13 @@ TEST_P(BadScene, IsRejectedWithFileLineKeyAndReason) {
   const std::string key = header(text, 2, "key");
   const int line = std::stoi(header(text, 3, "line"));
   ASSERT_FALSE(expect.empty());
+  // Scenes marked "# stage: startup" on line 4 are well-formed TOML whose error only the run's
+  // start-up can find (PETSc options are checked by a trial solve); the parser must accept them
+  // and tests/cli (bad_scenes) checks the run's rejection.
+  if (header(text, 4, "stage") == "startup") {
+    EXPECT_NO_THROW((void)load_scene(path.string()));
+    return;
+  }
   try {
     (void)load_scene(path.string());
     FAIL() << path << " was accepted";
