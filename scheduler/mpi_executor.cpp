@@ -122,6 +122,8 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   message_.assign(message_size_, 0.0);
   receive_.resize(static_cast<std::size_t>(size_));
   log_.task_group = catalogue.group;
+  log_.context_size = catalogue.context_size;
+  for (std::size_t p = 0; p < schedule_phase_count; ++p) log_.record_size[p] = catalogue.record_size[p];
   // Start plans: uniform costs (nothing measured yet).
   for (int p = 0; p < phase_count; ++p) {
     if (catalogue.record_size[static_cast<std::size_t>(p)] <= 0) continue;

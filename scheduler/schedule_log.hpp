@@ -54,6 +54,9 @@ struct ScheduleLog {
   std::vector<double> rank_task_seconds;  ///< per rank, all phases
   /// Smoothed cost per task at the end of the run, per phase (seconds).
   std::array<std::vector<double>, schedule_phase_count> task_cost;
+  /// Doubles per task record (per phase) and per context: the message sizes of the replay model.
+  std::array<int, schedule_phase_count> record_size{};
+  int context_size = 0;
   /// Per task: rolling element or -1 (border), as in the TaskCatalogue.
   std::vector<int> task_group;
 };

@@ -8,10 +8,12 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
   file.set_attribute(g, "policy", log.policy);
   file.set_attribute(g, "master_share", log.master_share);
   file.set_attribute(g, "sample_every", log.sample_every);
+  file.set_attribute(g, "context_size", log.context_size);
   const char* phase[2] = {"rhs", "jacobian"};
   for (std::size_t p = 0; p < 2; ++p) {
     const std::string ph = phase[p];
     file.set_attribute(g, "evaluations_" + ph, log.evaluations[p]);
+    file.set_attribute(g, "record_size_" + ph, log.record_size[p]);
     file.set_attribute(g, "time_averaged_imbalance_" + ph,
                        log.sum_mean_seconds[p] > 0 ? log.sum_max_seconds[p] / log.sum_mean_seconds[p] : 1.0);
     file.set_attribute(g, "wall_seconds_" + ph, log.wall_seconds[p]);
