@@ -190,8 +190,12 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   e.predicted_after = plan.predicted_imbalance;
   e.plan_seconds = now_seconds() - started;
   log_.plans.push_back(e);
-  // Re-plan cost estimate: the latest measured time to make and send a plan.
-  replan_seconds_[phase] = e.plan_seconds;
+  // Re-plan cost estimate: measured times to make and send a plan, smoothed and clipped like the
+  // task costs (one preempted plan must not block re-planning for the rest of the run).
+  replan_seconds_[phase] = first ? e.plan_seconds
+                                 : replan_seconds_[phase] +
+                                       cost_smoothing * (std::min(e.plan_seconds, cost_outlier_factor * replan_seconds_[phase]) -
+                                                         replan_seconds_[phase]);
   last_plan_run_[phase] = last_check_run_[phase] = runs_[phase];
   if (!first) smoothed_imbalance_[phase] = plan.predicted_imbalance;  // judge the new plan on its own
   const bool quiet = reason == PlanReason::forced && version_[phase] > 3;
