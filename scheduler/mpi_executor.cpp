@@ -30,15 +30,21 @@ constexpr double imbalance_smoothing = 0.1;
 constexpr long warmup_evaluations = 3;
 // Trigger: smoothed measured imbalance above replan_threshold (5 % of the evaluation time lost).
 constexpr double replan_threshold = 1.05;
-// Hysteresis: after a plan, no new plan for the same phase within cooldown_evaluations of that
-// phase; after a check that kept the plan, the next check comes check_interval evaluations later.
+// Hysteresis: after a plan, no new plan for the same phase within cooldown_evaluations; after a
+// check that kept the plan, the next check comes check_interval evaluations later. Both count
+// evaluations of all phases (Jacobians are ~100 times rarer than right-hand sides, and their
+// costs move with the same loaded zone). A phase's cost model changes only when that phase is
+// measured, so a plan is never rebuilt from the costs it was made from.
 constexpr long cooldown_evaluations = 20;
 constexpr long check_interval = 10;
 // Gain test: the candidate plan must lower the cost model's imbalance by at least
-// min_predicted_gain, and the task seconds it saves over the next cooldown_evaluations must exceed
-// replan_cost_factor times the measured cost of making and sending a plan.
+// min_predicted_gain, and the seconds it saves on the slowest rank over gain_horizon evaluations
+// must exceed replan_cost_factor times the measured cost of making and sending a plan. The
+// horizon is a plan's expected life: work moves with the balls' orbit and the load, over
+// thousands of right-hand sides (6309 R3: a ball crosses the loaded zone in ~10 ms, ~2000 rhs).
 constexpr double min_predicted_gain = 0.02;
 constexpr double replan_cost_factor = 2.0;
+constexpr long gain_horizon = 200;
 
 using clock_type = std::chrono::steady_clock;
 double now_seconds() { return std::chrono::duration<double>(clock_type::now().time_since_epoch()).count(); }
@@ -196,7 +202,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
                                  : replan_seconds_[phase] +
                                        cost_smoothing * (std::min(e.plan_seconds, cost_outlier_factor * replan_seconds_[phase]) -
                                                          replan_seconds_[phase]);
-  last_plan_run_[phase] = last_check_run_[phase] = runs_[phase];
+  last_plan_run_[phase] = last_check_run_[phase] = evaluation_;
   if (!first) smoothed_imbalance_[phase] = plan.predicted_imbalance;  // judge the new plan on its own
   const bool quiet = reason == PlanReason::forced && version_[phase] > 3;
   if (options_.on_event && !quiet && size_ > 1)
@@ -241,9 +247,10 @@ void MpiExecutor::maybe_replan(int phase) {
     return;
   }
   if (options_.policy != SchedulePolicy::adaptive) return;
-  if (runs - last_plan_run_[phase] < cooldown_evaluations || runs - last_check_run_[phase] < check_interval) return;
+  if (evaluation_ - last_plan_run_[phase] < cooldown_evaluations || evaluation_ - last_check_run_[phase] < check_interval)
+    return;
   if (smoothed_imbalance_[phase] <= replan_threshold) return;
-  last_check_run_[phase] = runs;
+  last_check_run_[phase] = evaluation_;
   Plan candidate = make_plan(cost_[phase], catalogue_, capacity_);
   const double now = predicted_imbalance(owner_[phase], cost_[phase], capacity_);
   double total = 0, cap_sum = 0;
@@ -251,7 +258,7 @@ void MpiExecutor::maybe_replan(int phase) {
   for (double c : capacity_) cap_sum += c;
   const double saved_per_evaluation = (now - candidate.predicted_imbalance) * total / cap_sum;
   if (now - candidate.predicted_imbalance >= min_predicted_gain &&
-      saved_per_evaluation * cooldown_evaluations > replan_cost_factor * replan_seconds_[phase])
+      saved_per_evaluation * gain_horizon > replan_cost_factor * replan_seconds_[phase])
     adopt_plan(phase, std::move(candidate), PlanReason::imbalance, started);
 }
 

@@ -110,7 +110,7 @@ class MpiExecutor final : public Executor {
   std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
   int version_[phase_count] = {};
-  long last_plan_run_[phase_count] = {}, last_check_run_[phase_count] = {};
+  long last_plan_run_[phase_count] = {}, last_check_run_[phase_count] = {};  ///< evaluation_ then
   double smoothed_imbalance_[phase_count] = {};
   double replan_seconds_[phase_count] = {};
   std::vector<std::vector<double>> receive_;

@@ -9,6 +9,9 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
   file.set_attribute(g, "master_share", log.master_share);
   file.set_attribute(g, "sample_every", log.sample_every);
   file.set_attribute(g, "context_size", log.context_size);
+  const double sum_max = log.sum_max_seconds[0] + log.sum_max_seconds[1];
+  const double sum_mean = log.sum_mean_seconds[0] + log.sum_mean_seconds[1];
+  file.set_attribute(g, "time_averaged_imbalance", sum_mean > 0 ? sum_max / sum_mean : 1.0);
   const char* phase[2] = {"rhs", "jacobian"};
   for (std::size_t p = 0; p < 2; ++p) {
     const std::string ph = phase[p];
