@@ -7,6 +7,7 @@ so they follow the physics of the full runs:
                        turning at -ROT Hz (against the cage): the loaded zone, and with it the
                        expensive contacts, moves round the bearing (work that moves), END2
   short_*.toml         6309 R3, QJ215, seed 002 as they are, shortened (replay-model inputs)
+  heavy_qj215_validation.toml  QJ215 with a 40 x 40 ball-race grid, 20 ms (replay-model input)
 
     make_parallel_scenes.py SOURCE_DIR OUT_DIR
 """
@@ -42,3 +43,4 @@ derive("6309_R3.toml", "moving_6309_R3.toml", f"{end * 1e3:g} ms", grid=30, load
 derive("6309_R3.toml", "short_6309_R3.toml", "40 ms")
 derive("qj215_validation.toml", "short_qj215_validation.toml", "40 ms")
 derive("seed002_40hz.toml", "short_seed002_40hz.toml", "50 ms")
+derive("qj215_validation.toml", "heavy_qj215_validation.toml", "20 ms", grid=40)
