@@ -242,8 +242,14 @@ void MpiExecutor::maybe_replan(int phase) {
   }
   if (size_ == 1) return;
   if (version_[phase] == 0) {
+    const auto& rhs_cost = cost_[static_cast<int>(Phase::rhs)];
     if (runs >= warmup_evaluations)
       adopt_plan(phase, make_plan(cost_[phase], catalogue_, capacity_), PlanReason::measured_costs, started);
+    else if (runs == 0 && phase != static_cast<int>(Phase::rhs) && !rhs_cost.empty())
+      // Before its own first measurement, a phase is planned on the right-hand side's costs: the
+      // same contacts are expensive in both (the Jacobian task evaluates its segment once per
+      // column), and Jacobians are rare, so waiting for their own warm-up costs real time.
+      adopt_plan(phase, make_plan(rhs_cost, catalogue_, capacity_), PlanReason::measured_costs, started);
     return;
   }
   if (options_.policy != SchedulePolicy::adaptive) return;

@@ -5,7 +5,8 @@
 #
 #   bitwise_planar, bitwise_spatial: every output dataset bitwise identical for np = 1, 2, 3, 4
 #     (3 and 4 oversubscribed: correctness, not speed) and with a new plan before every evaluation
-#     (--replan-every-step), on a short seed 002 run and a short 6309 R3 run; /scheduler and timing
+#     (--replan-every-step), and with rank 0 evaluating no tasks (--master-share 0), on a short
+#     seed 002 run and a short 6309 R3 run; /scheduler and timing
 #     fields of the summary are left out (tests/parallel/compare_outputs.py).
 #   worker_failure, master_failure: an exception inside a task on rank 1 (or 0) at evaluation 30
 #     (test-only --inject-failure): the job ends within the timeout, non-zero, with the rank's
@@ -63,6 +64,15 @@ with h5py.File(sys.argv[1], "r") as f:
     sys.exit(0 if plans >= evaluations and g.attrs["ranks"] > 1 else 1)
 PY
   done
+  # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
+  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0
+  if [[ $rc -eq 0 ]]; then
+    files+=("$work/share0.h5")
+    /usr/bin/python3 -c "import sys, h5py; sys.exit(0 if h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][0] == 0 else 1)" \
+      "$work/share0.h5" || fail "--master-share 0: rank 0 evaluated tasks"
+  else
+    fail "--master-share 0 np 3: exit code $rc: $(tail -3 "$work/log")"
+  fi
   "${compare[@]}" "$work/np1.h5" "${files[@]}" || fail "outputs differ (see above)"
 }
 
