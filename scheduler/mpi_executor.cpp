@@ -204,9 +204,13 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
                                                          replan_seconds_[phase]);
   last_plan_run_[phase] = last_check_run_[phase] = evaluation_;
   if (!first) smoothed_imbalance_[phase] = plan.predicted_imbalance;  // judge the new plan on its own
-  const bool quiet = reason == PlanReason::forced && version_[phase] > 3;
-  if (options_.on_event && !quiet && size_ > 1)
+  // The log gets the first plans and then every 100th (a long adaptive run makes thousands);
+  // all of them are in /scheduler/plans.
+  const std::size_t n = log_.plans.size();
+  if (options_.on_event && size_ > 1 && (n <= 20 || n % 100 == 0)) {
     options_.on_event(fmt_plan_line(e));
+    if (n == 20) options_.on_event("scheduler: further plans are logged every 100th; all are kept in /scheduler/plans");
+  }
 }
 
 void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
