@@ -137,6 +137,9 @@ def main():
         print(f"one-rank wall {run['wall']:.3f} s, serial part {serial:.3f} s ({100 * serial / run['wall']:.1f} %), "
               f"{len(run['group'])} tasks, task seconds per evaluation " +
               ", ".join(f"{k} {1e6 * v:.1f} us x {run['phases'][k]['n']}" for k, v in per_eval.items()))
+        print("largest possible speed-up of the task part (sum / largest task): " +
+              ", ".join(f"{k} {sum(v['cost']) / max(v['cost']):.1f}" for k, v in run["phases"].items()) +
+              f"; Amdahl bound from the serial part alone: {run['wall'] / serial:.1f}")
         for name, lat, bw in networks:
             print(f"network {name}: latency {lat * 1e6:.2f} us, bandwidth {bw / 1e9:.2f} GB/s")
             print("   P  predicted_wall_s  speedup  efficiency")

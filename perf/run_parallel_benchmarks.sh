@@ -53,8 +53,9 @@ if [[ " $parts " == *" a "* ]]; then
     "$py" - "$tmp/h2.h5" <<'PY'
 import sys, h5py
 g = h5py.File(sys.argv[1], "r")["scheduler"]
-print("last np=2 run: time-averaged imbalance rhs %.3f, jacobian %.3f; %d plans" % (
-    g.attrs["time_averaged_imbalance_rhs"], g.attrs["time_averaged_imbalance_jacobian"], g["plans"].shape[0]))
+print("last np=2 run: time-averaged imbalance %.3f (rhs %.3f, jacobian %.3f); %d plans" % (
+    g.attrs["time_averaged_imbalance"], g.attrs["time_averaged_imbalance_rhs"],
+    g.attrs["time_averaged_imbalance_jacobian"], g["plans"].shape[0]))
 PY
   } 2>&1 | tee "$out/parallel_speedup.txt"
   cp "$tmp/h1.h5" "$tmp/heavy_6309_R3.h5"  # a one-rank run of the heavy scene for (c)
