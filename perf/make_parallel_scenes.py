@@ -2,10 +2,10 @@
 """Scenes for the parallel benchmarks (perf/run_parallel_benchmarks.sh), derived from the job files
 so they follow the physics of the full runs:
 
-  heavy_6309_R3.toml   6309 R3 with a 40 x 40 ball-race traction grid (the heavy scene), END1
+  heavy_6309_R3.toml   6309 R3 with a 40 x 40 ball-race traction grid, 100 ms (5 revolutions; the heavy scene)
   moving_6309_R3.toml  the same with a 30 x 30 grid and the 1019.6 N radial load on the outer ring
-                       turning at -ROT Hz (against the cage): the loaded zone, and with it the
-                       expensive contacts, moves round the bearing (work that moves), END2
+                       turning at -50 Hz (against the cage): the loaded zone, and with it the
+                       expensive contacts, moves round the bearing (work that moves), 60 ms
   short_*.toml         6309 R3, QJ215, seed 002 as they are, shortened (replay-model inputs)
   heavy_qj215_validation.toml  QJ215 with a 40 x 40 ball-race grid, 20 ms (replay-model input)
 
@@ -30,7 +30,7 @@ def derive(name, new_name, end_time, grid=None, load=None):
     open(f"{out}/{new_name}", "w").write(text)
 
 
-derive("6309_R3.toml", "heavy_6309_R3.toml", "40 ms", grid=40)
+derive("6309_R3.toml", "heavy_6309_R3.toml", "100 ms", grid=40)
 # Rotating load: F (sin, cos) of the angle, tabulated every 5 degrees (piecewise linear between).
 force, hz, end = 1019.6, -50.0, 0.06
 times = [i * end / 240 for i in range(241)]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Parallel benchmarks of issue 4 (MPI master/worker executor), recorded in perf/results/:
-#   (a) parallel_speedup.txt: wall time np=1 and np=2 on the heavy scene (6309 R3, 40 x 40
+#   (a) parallel_speedup.txt: wall time np=1 and np=2 on the heavy scene (6309 R3, 100 ms, 40 x 40
 #       traction grid), RUNS runs each, alternating; speed-up = median(np1) / median(np2);
 #   (b) parallel_imbalance.txt: time-averaged imbalance (sum over evaluations of the slowest
 #       rank's task seconds / sum of the mean rank's) with --schedule adaptive and static, np=2, on
@@ -37,7 +37,7 @@ median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? 
 if [[ " $parts " == *" a "* ]]; then
   {
     header
-    echo "# (a) heavy scene: 6309 R3, 40 x 40 ball-race traction grid, 40 ms; wall = run summary's wall_time_s"
+    echo "# (a) heavy scene: 6309 R3, 40 x 40 ball-race traction grid, 100 ms; wall = run summary's wall_time_s"
     echo "# (model, start-up, integration, output; not mpirun's start-up)"
     w1=() w2=()
     for i in $(seq "$runs"); do
