@@ -155,8 +155,8 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
 }
 
 void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double started) {
-  const double before =
-      owner_[phase].empty() || cost_[phase].empty() ? 0.0 : predicted_imbalance(owner_[phase], cost_[phase], capacity_);
+  const std::vector<double> model = model_cost(phase);
+  const double before = owner_[phase].empty() || model.empty() ? 0.0 : predicted_imbalance(owner_[phase], model, capacity_);
   if (reason == PlanReason::forced && size_ > 1) {
     // Test only: turn the plan over the ranks by its version so every evaluation sees a different
     // assignment (the bitwise-identity tests need plans that really change).
@@ -170,7 +170,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     }
     plan.method = PlanMethod::rotated;
     plan.split_groups = count_split_groups(plan.owner, catalogue_.group);
-    if (!cost_[phase].empty()) plan.predicted_imbalance = predicted_imbalance(plan.owner, cost_[phase], capacity_);
+    if (!model.empty()) plan.predicted_imbalance = predicted_imbalance(plan.owner, model, capacity_);
   }
   const bool first = owner_[phase].empty();
   if (!first) ++version_[phase];
@@ -237,18 +237,27 @@ void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int r
   }
 }
 
+std::vector<double> MpiExecutor::model_cost(int phase) const {
+  const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
+  const auto& ratio = ratio_[phase];
+  if (phase == static_cast<int>(Phase::rhs) || ratio.empty() || rhs.size() != ratio.size()) return cost_[phase];
+  std::vector<double> c(rhs.size());
+  for (std::size_t t = 0; t < c.size(); ++t) c[t] = rhs[t] * ratio[t];
+  return c;
+}
+
 void MpiExecutor::maybe_replan(int phase) {
   const long runs = runs_[phase];
   const double started = now_seconds();
   if (options_.policy == SchedulePolicy::every_evaluation) {
-    if (runs > 0) adopt_plan(phase, make_plan(cost_[phase], catalogue_, capacity_), PlanReason::forced, started);
+    if (runs > 0) adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::forced, started);
     return;
   }
   if (size_ == 1) return;
   if (version_[phase] == 0) {
     const auto& rhs_cost = cost_[static_cast<int>(Phase::rhs)];
     if (runs >= warmup_evaluations)
-      adopt_plan(phase, make_plan(cost_[phase], catalogue_, capacity_), PlanReason::measured_costs, started);
+      adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::measured_costs, started);
     else if (runs == 0 && phase != static_cast<int>(Phase::rhs) && !rhs_cost.empty())
       // Before its own first measurement, a phase is planned on the right-hand side's costs: the
       // same contacts are expensive in both (the Jacobian task evaluates its segment once per
@@ -259,12 +268,15 @@ void MpiExecutor::maybe_replan(int phase) {
   if (options_.policy != SchedulePolicy::adaptive) return;
   if (evaluation_ - last_plan_run_[phase] < cooldown_evaluations || evaluation_ - last_check_run_[phase] < check_interval)
     return;
-  if (smoothed_imbalance_[phase] <= replan_threshold) return;
+  const std::vector<double> cost = model_cost(phase);
+  const double now = predicted_imbalance(owner_[phase], cost, capacity_);
+  // Trigger on what was measured, or on what the cost model predicts for the current plan (the
+  // Jacobian's model follows the right-hand side's costs between the rare Jacobians).
+  if (smoothed_imbalance_[phase] <= replan_threshold && now <= replan_threshold) return;
   last_check_run_[phase] = evaluation_;
-  Plan candidate = make_plan(cost_[phase], catalogue_, capacity_);
-  const double now = predicted_imbalance(owner_[phase], cost_[phase], capacity_);
+  Plan candidate = make_plan(cost, catalogue_, capacity_);
   double total = 0, cap_sum = 0;
-  for (double c : cost_[phase]) total += c;
+  for (double c : cost) total += c;
   for (double c : capacity_) cap_sum += c;
   const double saved_per_evaluation = (now - candidate.predicted_imbalance) * total / cap_sum;
   if (now - candidate.predicted_imbalance >= min_predicted_gain &&
@@ -334,6 +346,18 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   else
     for (std::size_t t = 0; t < cost.size(); ++t)
       cost[t] += cost_smoothing * (std::min(seconds[t], cost_outlier_factor * cost[t] + 1e-9) - cost[t]);
+  if (phase != static_cast<int>(Phase::rhs) && !cost_[static_cast<int>(Phase::rhs)].empty()) {
+    // Per task, this phase's cost relative to the right-hand side's at the same time: about the
+    // number of segment evaluations per task, steady while the costs themselves move.
+    const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
+    auto& ratio = ratio_[phase];
+    const bool first = ratio.empty();
+    ratio.resize(rhs.size());
+    for (std::size_t t = 0; t < rhs.size(); ++t) {
+      const double r = seconds[t] / std::max(rhs[t], 1e-9);
+      ratio[t] = first ? r : ratio[t] + cost_smoothing * (std::min(r, cost_outlier_factor * ratio[t]) - ratio[t]);
+    }
+  }
   double total = 0, cap_sum = 0, worst = 0;
   for (std::size_t r = 0; r < busy.size(); ++r) {
     total += busy[r];
@@ -352,7 +376,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   log_.sum_mean_seconds[static_cast<std::size_t>(phase)] += mean;
   log_.wall_seconds[static_cast<std::size_t>(phase)] += wall;
   ++log_.evaluations[static_cast<std::size_t>(phase)];
-  log_.task_cost[static_cast<std::size_t>(phase)] = cost;
+  log_.task_cost[static_cast<std::size_t>(phase)] = cost;  // measured (smoothed), not the rhs-based model
   if (evaluation_ % log_.sample_every == 0)
     log_.samples.push_back({evaluation_, phase, context.empty() ? 0.0 : context[0], imbalance, worst, mean, wall,
                             version_[phase]});

@@ -94,6 +94,9 @@ class MpiExecutor final : public Executor {
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds);
   void maybe_replan(int phase);
+  /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
+  /// cost times the measured per-task ratio (once measured), so they follow the moving work.
+  std::vector<double> model_cost(int phase) const;
   void adopt_plan(int phase, Plan plan, PlanReason reason, double started);
 
   MPI_Comm comm_;
@@ -109,6 +112,7 @@ class MpiExecutor final : public Executor {
   std::vector<int> owner_[phase_count];
   std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
+  std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)
   int version_[phase_count] = {};
   long last_plan_run_[phase_count] = {}, last_check_run_[phase_count] = {};  ///< evaluation_ then
   double smoothed_imbalance_[phase_count] = {};
