@@ -34,6 +34,14 @@ load() { uptime | sed 's/.*load average: /load /'; }
 wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
 median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
+# WAIT_QUIET=S: before (a), wait up to S seconds for the 1-minute load average to fall below 0.5
+# (the timing then starts on an idle machine; it says so either way).
+if [[ -n "${WAIT_QUIET:-}" ]]; then
+  waited=0
+  while awk '{exit !($1 >= 0.5)}' /proc/loadavg && ((waited < WAIT_QUIET)); do sleep 15; waited=$((waited + 15)); done
+  echo "waited ${waited} s for a quiet machine: $(load)"
+fi
+
 if [[ " $parts " == *" a "* ]]; then
   {
     header
