@@ -26,6 +26,9 @@ struct SegmentRecord {
 class Equations final : public DynamicSystem {
  public:
   Equations(const Model& model, scheduler::Executor& executor);
+  // The task functions capture `this` (they are handed to executors): no copies, no moves.
+  Equations(const Equations&) = delete;
+  Equations& operator=(const Equations&) = delete;
 
   int state_size() const override { return model_.state_size; }
   int border_size() const override { return model_.border_size; }

@@ -28,6 +28,9 @@ struct SpatialRecord {
 class SpatialEquations final : public DynamicSystem {
  public:
   SpatialEquations(const SpatialModel& model, scheduler::Executor& executor);
+  // The task functions capture `this` (they are handed to executors): no copies, no moves.
+  SpatialEquations(const SpatialEquations&) = delete;
+  SpatialEquations& operator=(const SpatialEquations&) = delete;
 
   int state_size() const override { return model_.state_size; }
   int border_size() const override { return model_.border_size; }
