@@ -377,9 +377,17 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   log_.wall_seconds[static_cast<std::size_t>(phase)] += wall;
   ++log_.evaluations[static_cast<std::size_t>(phase)];
   log_.task_cost[static_cast<std::size_t>(phase)] = cost;  // measured (smoothed), not the rhs-based model
-  if (evaluation_ % log_.sample_every == 0)
+  if (evaluation_ % log_.sample_every == 0) {
     log_.samples.push_back({evaluation_, phase, context.empty() ? 0.0 : context[0], imbalance, worst, mean, wall,
                             version_[phase]});
+    // Bounded memory over long runs (10^7 evaluations): past max_samples, keep every other sample
+    // and sample half as often.
+    constexpr std::size_t max_samples = std::size_t{1} << 17;
+    if (log_.samples.size() >= max_samples) {
+      log_.sample_every *= 2;
+      std::erase_if(log_.samples, [&](const ImbalanceSample& x) { return x.evaluation % log_.sample_every != 0; });
+    }
+  }
 }
 
 bool MpiExecutor::await_start() {
