@@ -34,13 +34,19 @@ load() { uptime | sed 's/.*load average: /load /'; }
 wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
 median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
-# WAIT_QUIET=S: before (a), wait up to S seconds for the 1-minute load average to fall below 0.5
-# (the timing then starts on an idle machine; it says so either way).
-if [[ -n "${WAIT_QUIET:-}" ]]; then
-  waited=0
-  while awk '{exit !($1 >= 0.5)}' /proc/loadavg && ((waited < WAIT_QUIET)); do sleep 15; waited=$((waited + 15)); done
-  echo "waited ${waited} s for a quiet machine: $(load)"
-fi
+# WAIT_QUIET=S: before every timed run of (a), wait up to S seconds until nothing else is runnable
+# (/proc/loadavg's running count is 1, the reader itself, for 5 checks 1 s apart). A run that
+# starts without that is marked "BUSY" in its line.
+quiet() {
+  [[ -z "${WAIT_QUIET:-}" ]] && { echo -n ""; return; }
+  local waited=0 calm=0
+  while ((calm < 5 && waited < WAIT_QUIET)); do
+    if [[ $(cut -d' ' -f4 /proc/loadavg | cut -d/ -f1) -le 1 ]]; then calm=$((calm + 1)); else calm=0; fi
+    sleep 1
+    waited=$((waited + 1))
+  done
+  ((calm >= 5)) && echo -n "quiet after ${waited} s; " || echo -n "BUSY after ${waited} s; "
+}
 
 if [[ " $parts " == *" a "* ]]; then
   {
@@ -49,12 +55,14 @@ if [[ " $parts " == *" a "* ]]; then
     echo "# (model, start-up, integration, output; not mpirun's start-up)"
     w1=() w2=()
     for i in $(seq "$runs"); do
+      state=$(quiet)
       "$raceway" run "$tmp/heavy_6309_R3.toml" -o "$tmp/h1.h5" --summary-json "$tmp/h1.json" 2>/dev/null
       w1+=("$(wall "$tmp/h1.json")")
-      echo "run $i np=1 wall ${w1[-1]} s  ($(load))"
+      echo "run $i np=1 wall ${w1[-1]} s  (${state}$(load))"
+      state=$(quiet)
       mpirun -np 2 "$raceway" run "$tmp/heavy_6309_R3.toml" -o "$tmp/h2.h5" --summary-json "$tmp/h2.json" 2>/dev/null
       w2+=("$(wall "$tmp/h2.json")")
-      echo "run $i np=2 wall ${w2[-1]} s  ($(load))"
+      echo "run $i np=2 wall ${w2[-1]} s  (${state}$(load))"
     done
     m1=$(median "${w1[@]}") m2=$(median "${w2[@]}")
     echo "median np=1 $m1 s, np=2 $m2 s, speed-up $(awk -v a="$m1" -v b="$m2" 'BEGIN {printf "%.3f", a / b}')"
