@@ -41,7 +41,9 @@ quiet() {
   [[ -z "${WAIT_QUIET:-}" ]] && { echo -n ""; return; }
   local waited=0 calm=0
   while ((calm < 5 && waited < WAIT_QUIET)); do
-    if [[ $(cut -d' ' -f4 /proc/loadavg | cut -d/ -f1) -le 1 ]]; then calm=$((calm + 1)); else calm=0; fi
+    # `read` is a builtin: this shell is the only runnable process it adds to the count.
+    read -r _ _ _ running _ </proc/loadavg
+    if [[ ${running%/*} -le 1 ]]; then calm=$((calm + 1)); else calm=0; fi
     sleep 1
     waited=$((waited + 1))
   done
