@@ -13,7 +13,7 @@
 //
 // Scheduling: per phase, a smoothed cost per task (exponential moving average of measured task
 // seconds) feeds scheduler/plan.hpp's two-level plan; the re-planning policy is stated in
-// mpi_executor.cpp (ReplanPolicy).
+// mpi_executor.cpp ("Re-planning policy", at the top).
 //
 // Faults: an exception inside a task, on any rank, prints "rank R: ..." with the message on that
 // rank's stderr and calls MPI_Abort (exit code 1): every rank ends within seconds, never a hang. An
