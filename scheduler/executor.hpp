@@ -3,33 +3,67 @@
 // the records back in task order (the canonical order in which the master sums them), with each
 // task's measured time.
 //
-// This file holds the interface and the serial executor; the MPI master/worker executor (issue 4)
-// implements the same interface.
+// A task depends only on a broadcast context (for the equations of motion: [t, z...]), so the
+// same task function can run on any rank: the master passes it to run(), the workers get it from
+// their own copy of the equations (TaskCatalogue) and evaluate it with the context the master sent.
+//
+// This file holds the interface and the serial executor; scheduler/mpi_executor.hpp holds the MPI
+// master/worker executor (issue 4).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <span>
 #include <vector>
 
+#include "scheduler/schedule_log.hpp"
+
 namespace raceway::scheduler {
 
-/// Kinds of work a command carries (they are costed separately).
+/// Kinds of work a command carries (they are costed and planned separately).
 enum class Phase { rhs = 0, jacobian = 1, output = 2 };
 inline constexpr int phase_count = 3;
 
-/// Evaluates task `task` and writes `record_size` doubles to `record`.
-using TaskFunction = std::function<void(int task, std::span<double> record)>;
+/// Evaluates task `task` with the broadcast `context` and writes the phase's record size of
+/// doubles to `record`. Must not depend on anything but the context and data every rank builds
+/// identically from the scene (the model): it runs on whichever rank the plan says.
+using TaskFunction = std::function<void(std::span<const double> context, int task, std::span<double> record)>;
+
+/// Task group of a task that belongs to no rolling element (cage-land and ring segments).
+inline constexpr int border_group = -1;
+
+/// What the equations tell the executor about their tasks, once, on every rank.
+struct TaskCatalogue {
+  int task_count = 0;
+  int context_size = 0;  ///< doubles in the context of every run() (equations: 1 + state size)
+  /// Per task: index of its rolling element (>= 0), or border_group. Level 1 of the plan keeps a
+  /// rolling element's tasks together.
+  std::vector<int> group;
+  /// Per task: bodies whose states the task reads (for the edge weights of the level-1 graph).
+  std::vector<std::array<int, 2>> bodies;
+  std::array<TaskFunction, phase_count> function;  ///< empty where a phase has no tasks
+  std::array<int, phase_count> record_size{};
+};
 
 class Executor {
  public:
   virtual ~Executor() = default;
-  /// Runs tasks 0..task_count-1 and fills records (task-major, record_size each).
-  /// Collective in the MPI executor.
-  virtual void run(Phase phase, int task_count, int record_size, const TaskFunction& task,
-                   std::vector<double>& records) = 0;
+  /// Master: announces the task catalogue (once, before the first run()). Collective in the MPI
+  /// executor: it releases the workers, which then build their own catalogue and serve().
+  virtual void attach(const TaskCatalogue& catalogue) { (void)catalogue; }
+  /// Runs tasks 0..task_count-1 with `context` and fills records (task-major, record_size each).
+  /// Collective in the MPI executor (master side; the workers are in serve()).
+  virtual void run(Phase phase, std::span<const double> context, int task_count, int record_size,
+                   const TaskFunction& task, std::vector<double>& records) = 0;
+  /// Master: tells the workers to leave serve(). Idempotent; also done by the MPI executor's
+  /// destructor so an exception on the master never leaves workers waiting.
+  virtual void stop() {}
+  /// Scheduler history (plans, imbalance, re-plans); nullptr for executors without a plan.
+  virtual const ScheduleLog* schedule_log() const { return nullptr; }
+
   /// Measured seconds of each task in the last run of `phase`.
   const std::vector<double>& task_seconds(Phase phase) const { return seconds_[static_cast<int>(phase)]; }
-  /// Total task seconds per phase since construction.
+  /// Total task seconds per phase since construction (summed over all ranks).
   double total_seconds(Phase phase) const { return totals_[static_cast<int>(phase)]; }
   long runs(Phase phase) const { return runs_[static_cast<int>(phase)]; }
 
@@ -42,8 +76,8 @@ class Executor {
 /// Runs every task on the calling process, timing each.
 class SerialExecutor final : public Executor {
  public:
-  void run(Phase phase, int task_count, int record_size, const TaskFunction& task,
-           std::vector<double>& records) override;
+  void run(Phase phase, std::span<const double> context, int task_count, int record_size,
+           const TaskFunction& task, std::vector<double>& records) override;
 };
 
 }  // namespace raceway::scheduler

@@ -4,15 +4,15 @@
 
 namespace raceway::scheduler {
 
-void SerialExecutor::run(Phase phase, int task_count, int record_size, const TaskFunction& task,
-                         std::vector<double>& records) {
+void SerialExecutor::run(Phase phase, std::span<const double> context, int task_count, int record_size,
+                         const TaskFunction& task, std::vector<double>& records) {
   const int p = static_cast<int>(phase);
   records.resize(static_cast<std::size_t>(task_count) * record_size);
   seconds_[p].resize(task_count);
   using clock = std::chrono::steady_clock;
   auto last = clock::now();
   for (int i = 0; i < task_count; ++i) {
-    task(i, std::span<double>(records.data() + static_cast<std::size_t>(i) * record_size, record_size));
+    task(context, i, std::span<double>(records.data() + static_cast<std::size_t>(i) * record_size, record_size));
     const auto now = clock::now();
     seconds_[p][i] = std::chrono::duration<double>(now - last).count();
     totals_[p] += seconds_[p][i];

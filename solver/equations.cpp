@@ -16,7 +16,12 @@ constexpr int jacobian_record = SegmentRecord::size + jacobian_entries;
 }  // namespace
 
 Equations::Equations(const Model& model, scheduler::Executor& executor)
-    : model_(model), executor_(executor), loads_(model.bodies.size()) {
+    : model_(model),
+      executor_(executor),
+      loads_(model.bodies.size()),
+      context_(1 + static_cast<std::size_t>(model.state_size)),
+      rhs_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { rhs_task(ctx, s, rec); }),
+      jacobian_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); }) {
   // Finite-difference increments per state. Positions and angles: a contact sees differences of
   // positions, not their size, and its approach may be a few nm (an outer contact carrying only the
   // centrifugal force), so the step is absolute: rel * 1e-3 * the tolerance scale (2.3e-12 m for a
@@ -36,7 +41,6 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
 SegmentResult Equations::evaluate_segment(int s, const PlanarKinematics& a,
                                           const PlanarKinematics& b) const {
   const Segment& seg = model_.segments[s];
-  ++segment_count_;
   switch (seg.kind) {
     case SegmentKind::roller_inner_race:
     case SegmentKind::roller_outer_race:
@@ -83,17 +87,42 @@ void Equations::add_external_loads(double t, const double* z) {
   }
 }
 
+void Equations::rhs_task(std::span<const double> context, int s, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context.data() + 1;
+  const Segment& seg = model_.segments[s];
+  write_result(evaluate_segment(s, model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)), rec);
+}
+
+scheduler::TaskCatalogue Equations::task_catalogue() const {
+  scheduler::TaskCatalogue c;
+  c.task_count = static_cast<int>(model_.segments.size());
+  c.context_size = 1 + model_.state_size;
+  for (const Segment& seg : model_.segments) {
+    int group = scheduler::border_group;
+    for (int b : {seg.body_a, seg.body_b})
+      if (model_.bodies[b].kind == BodyKind::roller) group = b - model_.first_roller;
+    c.group.push_back(group);
+    c.bodies.push_back({model_.bodies[seg.body_a].has_states() ? seg.body_a : -1,
+                        model_.bodies[seg.body_b].has_states() ? seg.body_b : -1});
+  }
+  c.function[static_cast<int>(scheduler::Phase::rhs)] = [this](std::span<const double> ctx, int s, std::span<double> rec) {
+    rhs_task(ctx, s, rec);
+  };
+  c.function[static_cast<int>(scheduler::Phase::jacobian)] =
+      [this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); };
+  c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
+  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
+  return c;
+}
+
 int Equations::rhs(double t, const double* z, double* zdot) {
   ++rhs_count_;
   const int nseg = static_cast<int>(model_.segments.size());
-  executor_.run(scheduler::Phase::rhs, nseg, SegmentRecord::size,
-                [&](int s, std::span<double> rec) {
-                  const Segment& seg = model_.segments[s];
-                  write_result(evaluate_segment(s, model_.kinematics(seg.body_a, t, z),
-                                                model_.kinematics(seg.body_b, t, z)),
-                               rec);
-                },
-                records_);
+  segment_count_ += nseg;
+  context_[0] = t;
+  std::copy(z, z + model_.state_size, context_.begin() + 1);
+  executor_.run(scheduler::Phase::rhs, context_, nseg, SegmentRecord::size, rhs_task_, records_);
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
   for (auto& w : loads_) w = {};
   int status = 0;
@@ -126,50 +155,54 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   return status;
 }
 
+void Equations::jacobian_task(std::span<const double> context, int s, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context.data() + 1;
+  const double rel = model_.scene->solver.jacobian_perturbation;
+  const Segment& seg = model_.segments[s];
+  const Body& ba = model_.bodies[seg.body_a];
+  const Body& bb = model_.bodies[seg.body_b];
+  const PlanarKinematics ka = model_.kinematics(seg.body_a, t, z);
+  const PlanarKinematics kb = model_.kinematics(seg.body_b, t, z);
+  const SegmentResult base = evaluate_segment(s, ka, kb);
+  std::array<double, 12> step{};
+  for (int j = 0; j < 12; ++j) {
+    const int slot = (j < 6 ? ba : bb).slot[j % 6];
+    if (slot >= 0)
+      step[j] = position_step_[slot] > 0 ? position_step_[slot]
+                                         : rel * std::max(std::abs(z[slot]), scale_[slot]);
+  }
+  std::array<std::array<double, 12>, 6> block{};
+  bool ok = base.valid;
+  switch (seg.kind) {
+    case SegmentKind::roller_inner_race:
+    case SegmentKind::roller_outer_race:
+      ok &= contact::segment_jacobian(model_.race_segments[seg.parameters], ka, kb,
+                                      base, step, block);
+      break;
+    case SegmentKind::cage_bar_front:
+    case SegmentKind::cage_bar_rear:
+      ok &= contact::segment_jacobian(model_.bar_segments[seg.parameters], ka, kb,
+                                      base, step, block);
+      break;
+    case SegmentKind::cage_land:
+      ok &= contact::segment_jacobian(model_.land_segments[seg.parameters], ka, kb,
+                                      base, step, block);
+      break;
+  }
+  write_result(base, rec);
+  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 12; ++j) rec[SegmentRecord::size + 12 * i + j] = block[i][j];
+}
+
 int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   ++jac_count_;
-  const double rel = model_.scene->solver.jacobian_perturbation;
   const int nseg = static_cast<int>(model_.segments.size());
-  executor_.run(scheduler::Phase::jacobian, nseg, jacobian_record,
-                [&](int s, std::span<double> rec) {
-                  const Segment& seg = model_.segments[s];
-                  const Body& ba = model_.bodies[seg.body_a];
-                  const Body& bb = model_.bodies[seg.body_b];
-                  const PlanarKinematics ka = model_.kinematics(seg.body_a, t, z);
-                  const PlanarKinematics kb = model_.kinematics(seg.body_b, t, z);
-                  const SegmentResult base = evaluate_segment(s, ka, kb);
-                  std::array<double, 12> step{};
-                  for (int j = 0; j < 12; ++j) {
-                    const int slot = (j < 6 ? ba : bb).slot[j % 6];
-                    if (slot >= 0)
-                      step[j] = position_step_[slot] > 0 ? position_step_[slot]
-                                                         : rel * std::max(std::abs(z[slot]), scale_[slot]);
-                  }
-                  std::array<std::array<double, 12>, 6> block{};
-                  bool ok = base.valid;
-                  switch (seg.kind) {
-                    case SegmentKind::roller_inner_race:
-                    case SegmentKind::roller_outer_race:
-                      ok &= contact::segment_jacobian(model_.race_segments[seg.parameters], ka, kb,
-                                                      base, step, block);
-                      break;
-                    case SegmentKind::cage_bar_front:
-                    case SegmentKind::cage_bar_rear:
-                      ok &= contact::segment_jacobian(model_.bar_segments[seg.parameters], ka, kb,
-                                                      base, step, block);
-                      break;
-                    case SegmentKind::cage_land:
-                      ok &= contact::segment_jacobian(model_.land_segments[seg.parameters], ka, kb,
-                                                      base, step, block);
-                      break;
-                  }
-                  segment_count_ += 12;
-                  write_result(base, rec);
-                  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
-                  for (int i = 0; i < 6; ++i)
-                    for (int j = 0; j < 12; ++j) rec[SegmentRecord::size + 12 * i + j] = block[i][j];
-                },
-                jac_records_);
+  segment_count_ += 13L * nseg;  // the base point and 12 perturbed columns per segment
+  context_[0] = t;
+  std::copy(z, z + model_.state_size, context_.begin() + 1);
+  executor_.run(scheduler::Phase::jacobian, context_, nseg, jacobian_record, jacobian_task_, jac_records_);
   jac.set_zero();
   int status = 0;
   for (int s = 0; s < nseg; ++s) {

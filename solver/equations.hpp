@@ -26,6 +26,9 @@ struct SegmentRecord {
 class Equations final : public DynamicSystem {
  public:
   Equations(const Model& model, scheduler::Executor& executor);
+  // The task functions capture `this` (they are handed to executors): no copies, no moves.
+  Equations(const Equations&) = delete;
+  Equations& operator=(const Equations&) = delete;
 
   int state_size() const override { return model_.state_size; }
   int border_size() const override { return model_.border_size; }
@@ -56,21 +59,29 @@ class Equations final : public DynamicSystem {
   long segment_evaluations() const { return segment_count_; }
   const Model& model() const { return model_; }
   scheduler::Executor& executor() { return executor_; }
+  /// The tasks (one per segment) with their grouping and task functions, for an executor's
+  /// attach() on the master and serve() on the workers: every rank evaluates the same code.
+  scheduler::TaskCatalogue task_catalogue() const;
 
  private:
   contact::SegmentResult evaluate_segment(int s, const contact::PlanarKinematics& a,
                                           const contact::PlanarKinematics& b) const;
   void add_external_loads(double t, const double* z);
+  /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
+  void rhs_task(std::span<const double> context, int s, std::span<double> rec) const;
+  void jacobian_task(std::span<const double> context, int s, std::span<double> rec) const;
 
   const Model& model_;
   scheduler::Executor& executor_;
   std::vector<double> records_, jac_records_;
   std::vector<contact::PlanarWrench> loads_;
+  std::vector<double> context_;  ///< [t, z...] sent with every evaluation
+  scheduler::TaskFunction rhs_task_, jacobian_task_;
   std::vector<double> scale_;          ///< physical scale per state
   std::vector<double> position_step_;  ///< absolute finite-difference step (positions, angles), else 0
   int last_invalid_ = -1;
   long rhs_count_ = 0, jac_count_ = 0;
-  mutable long segment_count_ = 0;
+  long segment_count_ = 0;
 };
 
 }  // namespace raceway::solver

@@ -96,6 +96,9 @@ PetscRuntime::PetscRuntime(std::string command_line_options) {
   if (g_runtime) throw std::logic_error("PetscRuntime: one per process");
   // raceway keeps the default crash behaviour (core dumps, sanitizers): no PETSc signal handler.
   PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr);
+  // The Newton systems live on the master alone (DESIGN.md 5), and only the master starts PETSc:
+  // PETSc's world is this process, so its collective start-up involves no other rank.
+  PETSC_COMM_WORLD = MPI_COMM_SELF;
   if (PetscInitialize(nullptr, nullptr, nullptr, nullptr) != 0) throw std::runtime_error("PetscInitialize failed");
   PetscPushErrorHandler(record_error, nullptr);
   g_runtime = true;

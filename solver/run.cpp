@@ -7,7 +7,9 @@
 #include <numbers>
 
 #include "io/h5_series.hpp"
+#include "solver/schedule_output.hpp"
 #include "solver/equations.hpp"
+#include "solver/spatial_equations.hpp"
 #include "solver/startup.hpp"
 
 namespace raceway::solver {
@@ -156,8 +158,10 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
-  scheduler::SerialExecutor executor;
+  scheduler::SerialExecutor serial;
+  scheduler::Executor& executor = options.executor ? *options.executor : serial;
   Equations eq(model, executor);
+  executor.attach(eq.task_catalogue());
   const double t0 = 0.0;
   const StartupReport start = consistent_initial_state(model, t0);
   if (options.on_info) options.on_info(start.summary);
@@ -234,6 +238,7 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
       }
     }
     file.set_attribute("/", "summary_json", sum.to_json().dump());
+    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
   };
   for (long i = 1; i <= samples; ++i) {
     const double t = t0 + static_cast<double>(i) * dt;
@@ -250,6 +255,21 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   finish(last_t);
   file.commit();
   return sum;
+}
+
+void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve) {
+  // The equations need an executor, but a worker's never call run(): their tasks are called by
+  // `serve` with the master's context.
+  scheduler::SerialExecutor unused;
+  if (scene.scene.model == io::ModelKind::spatial) {
+    const SpatialModel model = build_spatial_model(scene);
+    const SpatialEquations eq(model, unused);
+    serve(eq.task_catalogue());
+  } else {
+    const Model model = build_model(scene);
+    const Equations eq(model, unused);
+    serve(eq.task_catalogue());
+  }
 }
 
 }  // namespace raceway::solver

@@ -8,6 +8,7 @@
 
 #include "io/scene.hpp"
 #include "io/summary_json.hpp"
+#include "scheduler/executor.hpp"
 #include "solver/integrator.hpp"
 
 namespace raceway::solver {
@@ -24,6 +25,9 @@ struct RunOptions {
   std::function<void(const Progress&)> on_progress;  ///< called after every output time
   std::function<void(const std::string&)> on_info;   ///< start-up and model messages
   double azimuth_offset = 0;  ///< spatial: ball set and cage turned about z at start (tests of frame invariance)
+  /// Evaluates the contact tasks (not owned). nullptr: a serial executor on this process. The run
+  /// attach()es the equations' task catalogue to it and writes its schedule_log() to /scheduler.
+  scheduler::Executor* executor = nullptr;
 };
 
 struct RunSummary {
@@ -50,5 +54,10 @@ struct RunSummary {
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
 /// The same for a spatial (ball-bearing) scene; run_scene dispatches to it.
 RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options);
+
+/// The worker side of a run: builds the same model and equations as run_scene does on the
+/// master and hands their task catalogue to `serve` (which evaluates tasks until the master stops
+/// it, e.g. scheduler::MpiExecutor::serve). No integration, no output.
+void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve);
 
 }  // namespace raceway::solver

@@ -46,7 +46,20 @@ int body_states(const SpatialBody& b, int out[spatial_components]) {
 }  // namespace
 
 SpatialEquations::SpatialEquations(const SpatialModel& model, scheduler::Executor& executor)
-    : model_(model), executor_(executor), contact_(model.bodies.size()), net_(model.bodies.size()) {
+    : model_(model),
+      executor_(executor),
+      contact_(model.bodies.size()),
+      net_(model.bodies.size()),
+      context_(1 + static_cast<std::size_t>(model.state_size)),
+      rhs_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { rhs_task(ctx, s, rec); }),
+      jacobian_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); }) {
+  // Segment evaluations of one Jacobian: the base point and one per state of the segment's bodies
+  // (counted here, not in the tasks, which may run on other ranks).
+  for (const SpatialSegment& seg : model.segments) {
+    int states[spatial_components];
+    jacobian_segment_evaluations_ += 1 + body_states(model.bodies[static_cast<std::size_t>(seg.body_a)], states) +
+                                     body_states(model.bodies[static_cast<std::size_t>(seg.body_b)], states);
+  }
   // Finite-difference increments as in the planar model (solver/equations.cpp): positions and
   // angles absolute (rel * 1e-3 * tolerance scale: far below any closed contact's approach, far
   // above round-off), velocities relative with the tolerance scale as a floor.
@@ -70,7 +83,6 @@ double SpatialEquations::step_for(int state, const double* z) const {
 SpatialSegmentResult SpatialEquations::evaluate_segment(int s, const SpatialKinematics& a,
                                                         const SpatialKinematics& b) const {
   const SpatialSegment& seg = model_.segments[static_cast<std::size_t>(s)];
-  ++segment_count_;
   const auto p = static_cast<std::size_t>(seg.parameters);
   switch (seg.kind) {
     case SpatialSegmentKind::ball_inner_groove:
@@ -195,16 +207,39 @@ void SpatialEquations::body_rates(int b, double t, const double* z, const Spatia
   }
 }
 
+void SpatialEquations::rhs_task(std::span<const double> context, int s, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context.data() + 1;
+  const SpatialSegment& seg = model_.segments[static_cast<std::size_t>(s)];
+  write_result(evaluate_segment(s, model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)), rec);
+}
+
+scheduler::TaskCatalogue SpatialEquations::task_catalogue() const {
+  scheduler::TaskCatalogue c;
+  c.task_count = static_cast<int>(model_.segments.size());
+  c.context_size = 1 + model_.state_size;
+  for (const SpatialSegment& seg : model_.segments) {
+    c.group.push_back(seg.ball >= 0 ? seg.ball : scheduler::border_group);
+    c.bodies.push_back({model_.bodies[static_cast<std::size_t>(seg.body_a)].has_states() ? seg.body_a : -1,
+                        model_.bodies[static_cast<std::size_t>(seg.body_b)].has_states() ? seg.body_b : -1});
+  }
+  c.function[static_cast<int>(scheduler::Phase::rhs)] = [this](std::span<const double> ctx, int s, std::span<double> rec) {
+    rhs_task(ctx, s, rec);
+  };
+  c.function[static_cast<int>(scheduler::Phase::jacobian)] =
+      [this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); };
+  c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SpatialRecord::size;
+  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
+  return c;
+}
+
 int SpatialEquations::rhs(double t, const double* z, double* zdot) {
   ++rhs_count_;
   const int nseg = static_cast<int>(model_.segments.size());
-  executor_.run(scheduler::Phase::rhs, nseg, SpatialRecord::size,
-                [&](int s, std::span<double> rec) {
-                  const SpatialSegment& seg = model_.segments[static_cast<std::size_t>(s)];
-                  write_result(evaluate_segment(s, model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)),
-                               rec);
-                },
-                records_);
+  segment_count_ += nseg;
+  context_[0] = t;
+  std::copy(z, z + model_.state_size, context_.begin() + 1);
+  executor_.run(scheduler::Phase::rhs, context_, nseg, SpatialRecord::size, rhs_task_, records_);
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
   for (auto& w : contact_) w = {};
   int status = 0;
@@ -228,45 +263,51 @@ int SpatialEquations::rhs(double t, const double* z, double* zdot) {
   return status;
 }
 
+void SpatialEquations::jacobian_task(std::span<const double> context, int s, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context.data() + 1;
+  const std::size_t n = static_cast<std::size_t>(model_.state_size);
+  const SpatialSegment& seg = model_.segments[static_cast<std::size_t>(s)];
+  const SpatialKinematics ka = model_.kinematics(seg.body_a, t, z);
+  const SpatialKinematics kb = model_.kinematics(seg.body_b, t, z);
+  const SpatialSegmentResult base = evaluate_segment(s, ka, kb);
+  bool ok = base.valid;
+  std::vector<double> zp(z, z + n);
+  int column = 0;
+  for (int side = 0; side < 2; ++side) {
+    const int b = side == 0 ? seg.body_a : seg.body_b;
+    int states[spatial_components];
+    const int count = body_states(model_.bodies[static_cast<std::size_t>(b)], states);
+    for (int k = 0; k < count; ++k, ++column) {
+      const int j = states[k];
+      const double h = step_for(j, z);
+      zp[static_cast<std::size_t>(j)] = z[j] + h;
+      const SpatialKinematics kp = model_.kinematics(b, t, zp.data());
+      const SpatialSegmentResult r = side == 0 ? evaluate_segment(s, kp, kb) : evaluate_segment(s, ka, kp);
+      zp[static_cast<std::size_t>(j)] = z[j];
+      ok = ok && r.valid;
+      double* out = rec.data() + SpatialRecord::size + wrench_rows * column;
+      const double inv = 1.0 / h;
+      for (int i = 0; i < 3; ++i) {
+        out[i] = (r.on_a.force[i] - base.on_a.force[i]) * inv;
+        out[3 + i] = (r.on_a.moment[i] - base.on_a.moment[i]) * inv;
+        out[6 + i] = (r.on_b.force[i] - base.on_b.force[i]) * inv;
+        out[9 + i] = (r.on_b.moment[i] - base.on_b.moment[i]) * inv;
+      }
+    }
+  }
+  write_result(base, rec);
+  rec[SpatialRecord::valid] = ok ? 1.0 : 0.0;
+}
+
 int SpatialEquations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   ++jac_count_;
   const int nseg = static_cast<int>(model_.segments.size());
   const std::size_t n = static_cast<std::size_t>(model_.state_size);
-  executor_.run(scheduler::Phase::jacobian, nseg, jacobian_record,
-                [&](int s, std::span<double> rec) {
-                  const SpatialSegment& seg = model_.segments[static_cast<std::size_t>(s)];
-                  const SpatialKinematics ka = model_.kinematics(seg.body_a, t, z);
-                  const SpatialKinematics kb = model_.kinematics(seg.body_b, t, z);
-                  const SpatialSegmentResult base = evaluate_segment(s, ka, kb);
-                  bool ok = base.valid;
-                  std::vector<double> zp(z, z + n);
-                  int column = 0;
-                  for (int side = 0; side < 2; ++side) {
-                    const int b = side == 0 ? seg.body_a : seg.body_b;
-                    int states[spatial_components];
-                    const int count = body_states(model_.bodies[static_cast<std::size_t>(b)], states);
-                    for (int k = 0; k < count; ++k, ++column) {
-                      const int j = states[k];
-                      const double h = step_for(j, z);
-                      zp[static_cast<std::size_t>(j)] = z[j] + h;
-                      const SpatialKinematics kp = model_.kinematics(b, t, zp.data());
-                      const SpatialSegmentResult r = side == 0 ? evaluate_segment(s, kp, kb) : evaluate_segment(s, ka, kp);
-                      zp[static_cast<std::size_t>(j)] = z[j];
-                      ok = ok && r.valid;
-                      double* out = rec.data() + SpatialRecord::size + wrench_rows * column;
-                      const double inv = 1.0 / h;
-                      for (int i = 0; i < 3; ++i) {
-                        out[i] = (r.on_a.force[i] - base.on_a.force[i]) * inv;
-                        out[3 + i] = (r.on_a.moment[i] - base.on_a.moment[i]) * inv;
-                        out[6 + i] = (r.on_b.force[i] - base.on_b.force[i]) * inv;
-                        out[9 + i] = (r.on_b.moment[i] - base.on_b.moment[i]) * inv;
-                      }
-                    }
-                  }
-                  write_result(base, rec);
-                  rec[SpatialRecord::valid] = ok ? 1.0 : 0.0;
-                },
-                jac_records_);
+  segment_count_ += jacobian_segment_evaluations_;
+  context_[0] = t;
+  std::copy(z, z + model_.state_size, context_.begin() + 1);
+  executor_.run(scheduler::Phase::jacobian, context_, nseg, jacobian_record, jacobian_task_, jac_records_);
   jac.set_zero();
   int status = 0;
   std::vector<SpatialWrench> contacts(model_.bodies.size());

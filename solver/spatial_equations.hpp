@@ -28,6 +28,9 @@ struct SpatialRecord {
 class SpatialEquations final : public DynamicSystem {
  public:
   SpatialEquations(const SpatialModel& model, scheduler::Executor& executor);
+  // The task functions capture `this` (they are handed to executors): no copies, no moves.
+  SpatialEquations(const SpatialEquations&) = delete;
+  SpatialEquations& operator=(const SpatialEquations&) = delete;
 
   int state_size() const override { return model_.state_size; }
   int border_size() const override { return model_.border_size; }
@@ -57,6 +60,9 @@ class SpatialEquations final : public DynamicSystem {
   long segment_evaluations() const { return segment_count_; }
   const SpatialModel& model() const { return model_; }
   scheduler::Executor& executor() { return executor_; }
+  /// The tasks (one per segment) with their grouping (ball, or border for cage-land) and task
+  /// functions, for an executor's attach() on the master and serve() on the workers.
+  scheduler::TaskCatalogue task_catalogue() const;
 
   /// d(state)/dt of body b's states, given the wrench on it from its contacts (loads, supports,
   /// gravity and gyroscopic terms added here). Writes zdot at b's slots only.
@@ -71,15 +77,21 @@ class SpatialEquations final : public DynamicSystem {
   /// rates[c] for velocity components c = svx..swz.
   void wrench_rates(int b, const double* z, const contact::SpatialWrench& w, double rates[spatial_components]) const;
   double step_for(int state, const double* z) const;
+  /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
+  void rhs_task(std::span<const double> context, int s, std::span<double> rec) const;
+  void jacobian_task(std::span<const double> context, int s, std::span<double> rec) const;
 
   const SpatialModel& model_;
   scheduler::Executor& executor_;
   std::vector<double> records_, jac_records_;
   std::vector<contact::SpatialWrench> contact_, net_;
   std::vector<double> scale_, position_step_;
+  std::vector<double> context_;  ///< [t, z...] sent with every evaluation
+  scheduler::TaskFunction rhs_task_, jacobian_task_;
+  long jacobian_segment_evaluations_ = 0;
   int last_invalid_ = -1;
   long rhs_count_ = 0, jac_count_ = 0;
-  mutable long segment_count_ = 0;
+  long segment_count_ = 0;
 };
 
 }  // namespace raceway::solver

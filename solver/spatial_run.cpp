@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "io/h5_series.hpp"
+#include "solver/schedule_output.hpp"
 #include "solver/run.hpp"
 #include "solver/spatial_equations.hpp"
 #include "solver/spatial_startup.hpp"
@@ -142,8 +143,10 @@ RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) 
   const auto wall_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const SpatialModel model = build_spatial_model(scene);
-  scheduler::SerialExecutor executor;
+  scheduler::SerialExecutor serial;
+  scheduler::Executor& executor = options.executor ? *options.executor : serial;
   SpatialEquations eq(model, executor);
+  executor.attach(eq.task_catalogue());
   const double t0 = 0.0;
   const SpatialStartupReport start = spatial_initial_state(model, t0, options.azimuth_offset);
   if (options.on_info) options.on_info(start.summary);
@@ -230,6 +233,7 @@ RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) 
       }
     }
     file.set_attribute("/", "summary_json", sum.to_json().dump());
+    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
   };
   for (long i = 1; i <= samples; ++i) {
     const double t = t0 + static_cast<double>(i) * dt;

@@ -1,7 +1,12 @@
 // The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
 // lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`.
 //
-// Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors.
+// Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors
+// (including an error inside a contact task on any rank, which ends all ranks through MPI_Abort).
+//
+// `mpirun -np P raceway run SCENE`: every rank parses the scene rank 0 read (its text is broadcast);
+// rank 0 integrates and evaluates its share of the contact tasks, ranks 1.. evaluate theirs
+// (scheduler::MpiExecutor). check and report run on rank 0 only.
 #include <mpi.h>
 #include <unistd.h>
 
@@ -16,6 +21,7 @@
 #include "io/report.hpp"
 #include "io/scene_parser.hpp"
 #include "io/summary_json.hpp"
+#include "scheduler/mpi_executor.hpp"
 #include "solver/model.hpp"
 #include "solver/newton_backends.hpp"
 #include "solver/spatial_model.hpp"
@@ -59,15 +65,17 @@ class ProgressReporter {
   double next_ = 0.1;
 };
 
-int run_command(const std::string& scene_path, const std::string& output, const std::string& summary_json) {
-  const io::Scene scene = load(scene_path);
+int run_command(const io::Scene& scene, const std::string& output, const std::string& summary_json,
+                scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
   solver::RunOptions options;
+  options.executor = &executor;
   options.output_path = output;
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
   options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
   const auto sum = solver::run_scene(scene, options);
+  executor.stop();
   const auto json = sum.to_json();
   spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
                "{} newton failures, {} error-test failures",
@@ -76,6 +84,13 @@ int run_command(const std::string& scene_path, const std::string& output, const 
                sum.stats.error_test_failures);
   spdlog::info("cage speed {:.3f} rpm (second half), epicyclic {:.3f} rpm, slip {:.3f} %", sum.cage_speed_rpm,
                sum.epicyclic_cage_speed_rpm, 100 * sum.cage_slip);
+  if (const auto* log = executor.schedule_log(); log && log->ranks > 1) {
+    auto ratio = [&](int p) {
+      return log->sum_mean_seconds[p] > 0 ? log->sum_max_seconds[p] / log->sum_mean_seconds[p] : 1.0;
+    };
+    spdlog::info("scheduler: {} ranks, {} policy, {} plans; time-averaged imbalance rhs {:.3f}, jacobian {:.3f}",
+                 log->ranks, log->policy, log->plans.size(), ratio(0), ratio(1));
+  }
   spdlog::info("output written to {}", output);
   if (!summary_json.empty()) {
     io::write_json_file(summary_json, json);
@@ -98,6 +113,46 @@ int report_command(const io::ReportOptions& options) {
   return 0;
 }
 
+/// Rank 0's scene text and source name to every rank (every rank then parses the same text).
+/// Returns false on the workers when rank 0 could not read a scene (it reports why).
+bool broadcast_scene_text(int rank, std::string& text, std::string& source, bool ok) {
+  long long sizes[3] = {ok ? 1 : 0, static_cast<long long>(text.size()), static_cast<long long>(source.size())};
+  MPI_Bcast(sizes, 3, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  if (sizes[0] == 0) return false;
+  if (rank != 0) text.resize(static_cast<std::size_t>(sizes[1])), source.resize(static_cast<std::size_t>(sizes[2]));
+  MPI_Bcast(text.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, MPI_COMM_WORLD);
+  MPI_Bcast(source.data(), static_cast<int>(sizes[2]), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return true;
+}
+
+/// `--inject-failure RANK:EVALUATION` (test only).
+void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& options) {
+  const auto colon = spec.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    options.inject_failure_rank = std::stoi(spec.substr(0, colon));
+    options.inject_failure_evaluation = std::stol(spec.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--inject-failure expects RANK:EVALUATION (e.g. 1:40), got '" + spec + "'");
+  }
+}
+
+/// A worker rank of `raceway run`: builds the model and evaluates tasks until rank 0 stops it.
+/// Any error here ends the whole job (MPI_Abort) with this rank's message.
+int worker(const std::string& text, const std::string& source, scheduler::MpiExecutor& executor) {
+  try {
+    const io::Scene scene = io::parse_scene(text, source);
+    if (!executor.await_start()) return 0;  // rank 0 failed before it had a model and says why
+    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c) { executor.serve(c); });
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "[raceway] rank %d: error: %s\n", executor.rank(), e.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,6 +173,25 @@ int main(int argc, char** argv) {
   run->add_option("--petsc-options", petsc_options,
                   "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
                   "mumps\"; override the scene's [solver] petsc_options");
+  scheduler::MpiExecutorOptions exec_options;
+  std::string schedule = "adaptive", inject;
+  bool replan_every_evaluation = false;
+  run->add_option("--schedule", schedule, "task plan under mpirun: adaptive (re-planned from measured task times) "
+                  "or static (one plan from the first measured times)")
+      ->check(CLI::IsMember({"adaptive", "static"}))
+      ->capture_default_str();
+  run->add_option("--master-share", exec_options.master_share,
+                  "rank 0's share of the contact tasks relative to a worker's (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_option("--schedule-sample-every", exec_options.sample_every,
+                  "keep every n-th evaluation's imbalance in /scheduler/imbalance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // Test-only options (hidden: empty group).
+  run->add_flag("--replan-every-step", replan_every_evaluation, "test only: a new plan before every evaluation")
+      ->group("");
+  run->add_option("--inject-failure", inject, "test only: RANK:EVALUATION throws inside a task")->group("");
   auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
   check->alias("plan");
   check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
@@ -140,8 +214,64 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return code;
   }
-  if (size > 1 && rank == 0)
-    spdlog::warn("{} ranks: this build evaluates contacts on rank 0 only (the MPI executor is issue 4)", size);
+  if (*run) {
+    // Every rank takes part: rank 0 reads the scene and integrates, all ranks evaluate tasks.
+    std::string text, source;
+    io::Scene scene;
+    bool ok = true;
+    if (rank == 0) {
+      try {
+        scene = load(scene_path);
+        text = scene.text, source = scene.source;
+      } catch (const io::SceneError& e) {
+        spdlog::error("{}", e.what());
+        code = 2, ok = false;
+      }
+    }
+    if (!broadcast_scene_text(rank, text, source, ok)) {
+      MPI_Finalize();
+      return rank == 0 ? code : 0;
+    }
+    {
+      exec_options.policy = replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
+                            : schedule == "static"  ? scheduler::SchedulePolicy::static_plan
+                                                    : scheduler::SchedulePolicy::adaptive;
+      try {
+        if (!inject.empty()) parse_injection(inject, exec_options);
+      } catch (const std::exception& e) {
+        if (rank == 0) spdlog::error("{}", e.what());
+        MPI_Finalize();
+        return 2;
+      }
+      exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
+      scheduler::MpiExecutor executor(MPI_COMM_WORLD, exec_options);
+      if (rank != 0) {
+        code = worker(text, source, executor);
+      } else {
+        if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
+                                   scheduler::schedule_policy_name(exec_options.policy));
+        try {
+          // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
+          const solver::PetscRuntime petsc(petsc_options);
+          code = run_command(scene, output, summary_json, executor);
+        } catch (const io::SceneError& e) {
+          spdlog::error("{}", e.what());
+          code = 2;
+        } catch (const solver::OptionsError& e) {
+          spdlog::error("{}", e.what());
+          code = 2;
+        } catch (const solver::IntegrationFailure& e) {
+          spdlog::error("{}", e.what());
+          code = 3;
+        } catch (const std::exception& e) {
+          spdlog::error("{}", e.what());
+          code = 1;
+        }
+      }
+    }  // the executor's destructor releases the workers if rank 0 failed
+    MPI_Finalize();
+    return code;
+  }
   if (rank != 0) {
     MPI_Finalize();
     return 0;
@@ -168,8 +298,6 @@ int main(int argc, char** argv) {
       if (!std::isnan(window_start)) report_options.window_start = window_start;
       report_options.plots = !no_plots;
       code = report_command(report_options);
-    } else {
-      code = run_command(scene_path, output, summary_json);
     }
   } catch (const io::ReportInputError& e) {
     spdlog::error("{}", e.what());

@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""Replay model of raceway's master/worker execution (issue 4, DESIGN.md 5).
+
+Predicts the wall time and speed-up of a run at P = 1..64 ranks from a recorded one-rank run
+(its output file: /scheduler task costs, evaluation counts, message sizes; the summary's wall
+time) and a latency/bandwidth model of the network:
+
+  T(P)       = T_serial + sum over phases of N_phase * T_eval(phase, P)
+  T_serial   = measured one-rank wall time - measured task seconds (CVODE, linear algebra,
+               output, start-up on rank 0: does not shrink with P)
+  T_eval     = t_bcast + makespan + t_gather
+  t_bcast    = ceil(log2 P) * (L + m_cmd / B)          binomial-tree broadcast of the command
+                                                        (header + context, or task count)
+  makespan   = largest rank load of the two-level plan (scheduler/plan.cpp, ported below:
+               LPT over rolling elements and border tasks, then level-2 task moves) on the
+               per-task costs (smoothed costs at the end of the run, scaled to the run's
+               total task seconds)
+  t_gather   = sum over workers of (L + m_r / B)       records arrive at rank 0 one by one
+                                                        (conservative: no overlap)
+
+L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
+shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
+rank and the plan's balance for the time-averaged costs (the adaptive scheduler's job); what it
+leaves out (timer noise, other processes, cache effects) shows up in the check against measured
+np = 2.
+
+    replay_model.py [--latency-us L --bandwidth-gbs B] [--measured-np2 S] RUN_NP1.h5 [...]
+"""
+import argparse
+import json
+import math
+import sys
+
+import h5py
+import numpy as np
+
+BORDER = -1
+
+
+def lpt_level2(cost, group, ranks, tolerance=0.02):
+    """Port of scheduler/plan.cpp's greedy LPT + level-2 splitting (equal capacities)."""
+    units = {}
+    for t, g in enumerate(group):
+        key = ("b", t) if g == BORDER else ("g", g)
+        units.setdefault(key, []).append(t)
+    unit_list = sorted(units.values(), key=lambda ts: -sum(cost[t] for t in ts))
+    load = [0.0] * ranks
+    owner = [0] * len(cost)
+    for ts in unit_list:
+        c = sum(cost[t] for t in ts)
+        r = min(range(ranks), key=lambda q: load[q] + c)
+        load[r] += c
+        for t in ts:
+            owner[t] = r
+    mean = sum(load) / ranks
+    for _ in range(len(cost)):
+        hi = max(range(ranks), key=lambda q: load[q])
+        lo = min(range(ranks), key=lambda q: load[q])
+        if hi == lo or load[hi] <= mean * (1 + tolerance):
+            break
+        x = (load[hi] - load[lo]) / 2
+        gcost = {}
+        for t in range(len(cost)):
+            if owner[t] == hi:
+                gcost[group[t]] = gcost.get(group[t], 0.0) + cost[t]
+        best = None
+        for g in sorted(gcost, key=lambda k: -gcost[k]):
+            cands = [t for t in range(len(cost)) if owner[t] == hi and group[t] == g and cost[t] > 0
+                     and max(load[hi] - cost[t], load[lo] + cost[t]) < load[hi]]
+            if cands:
+                best = min(cands, key=lambda t: abs(cost[t] - x))
+                break
+        if best is None:
+            break
+        owner[best] = lo
+        load[hi] -= cost[best]
+        load[lo] += cost[best]
+    return owner, load
+
+
+def read_run(path):
+    with h5py.File(path, "r") as f:
+        g = f["scheduler"]
+        if g.attrs["ranks"] != 1:
+            sys.exit(f"{path}: recorded with {g.attrs['ranks']} ranks; the replay needs a one-rank run")
+        summary = json.loads(f.attrs["summary_json"])
+        run = {"path": path, "wall": summary["wall_time_s"], "group": [int(x) for x in g["task_group"][()]],
+               "context": int(g.attrs["context_size"]), "phases": {}}
+        for ph in ("rhs", "jacobian"):
+            n = int(g.attrs[f"evaluations_{ph}"])
+            if n == 0 or f"task_cost_{ph}" not in g:
+                continue
+            total = float(g.attrs[f"mean_rank_task_seconds_{ph}"])  # one rank: all task seconds
+            cost = np.asarray(g[f"task_cost_{ph}"][()], dtype=float)
+            cost = cost * (total / n / cost.sum()) if cost.sum() > 0 else np.full(len(cost), total / n / len(cost))
+            run["phases"][ph] = {"n": n, "total": total, "cost": list(cost),
+                                 "record": int(g.attrs[f"record_size_{ph}"])}
+    return run
+
+
+def predict(run, ranks, latency, bandwidth):
+    serial = run["wall"] - sum(p["total"] for p in run["phases"].values())
+    t = serial
+    for ph in run["phases"].values():
+        cost, group = ph["cost"], run["group"]
+        if ranks == 1:
+            t += ph["n"] * sum(cost)
+            continue
+        owner, load = lpt_level2(cost, group, ranks)
+        cmd_bytes = 8 * (6 + max(run["context"], len(cost)))
+        t_bcast = math.ceil(math.log2(ranks)) * (latency + cmd_bytes / bandwidth)
+        counts = [0] * ranks
+        for o in owner:
+            counts[o] += 1
+        t_gather = sum(latency + 8 * counts[r] * (ph["record"] + 1) / bandwidth for r in range(1, ranks))
+        t += ph["n"] * (t_bcast + max(load) + t_gather)
+    return t, serial
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--latency-us", type=float, default=None, help="measured one-way latency here (pingpong)")
+    ap.add_argument("--bandwidth-gbs", type=float, default=None, help="measured bandwidth here (pingpong)")
+    ap.add_argument("--measured-np2", type=float, action="append", default=[],
+                    help="measured np=2 speed-up of the i-th run (repeat per run; 0 = none)")
+    args = ap.parse_args()
+    networks = []
+    if args.latency_us is not None:
+        networks.append(("here", args.latency_us * 1e-6, args.bandwidth_gbs * 1e9))
+    networks.append(("infiniband", 1.5e-6, 10e9))
+    for i, path in enumerate(args.runs):
+        run = read_run(path)
+        t1, serial = predict(run, 1, 0, 1)
+        print(f"## {path}")
+        per_eval = {k: v["total"] / v["n"] for k, v in run["phases"].items()}
+        print(f"one-rank wall {run['wall']:.3f} s, serial part {serial:.3f} s ({100 * serial / run['wall']:.1f} %), "
+              f"{len(run['group'])} tasks, task seconds per evaluation " +
+              ", ".join(f"{k} {1e6 * v:.1f} us x {run['phases'][k]['n']}" for k, v in per_eval.items()))
+        print("largest possible speed-up of the task part (sum / largest task): " +
+              ", ".join(f"{k} {sum(v['cost']) / max(v['cost']):.1f}" for k, v in run["phases"].items()) +
+              f"; Amdahl bound from the serial part alone: {run['wall'] / serial:.1f}")
+        for name, lat, bw in networks:
+            print(f"network {name}: latency {lat * 1e6:.2f} us, bandwidth {bw / 1e9:.2f} GB/s")
+            print("   P  predicted_wall_s  speedup  efficiency")
+            for p in [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]:
+                tp, _ = predict(run, p, lat, bw)
+                print(f"{p:4d}  {tp:16.3f}  {t1 / tp:7.2f}  {t1 / tp / p:10.3f}")
+            effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
+            print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
+            if name == "here" and i < len(args.measured_np2) and args.measured_np2[i] > 0:
+                s2 = t1 / predict(run, 2, lat, bw)[0]
+                m = args.measured_np2[i]
+                print(f"check np=2: predicted speed-up {s2:.3f}, measured {m:.3f}, "
+                      f"difference {100 * (s2 - m) / m:+.1f} %")
+        print()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,443 @@
+#include "scheduler/mpi_executor.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace raceway::scheduler {
+
+namespace {
+
+// ---- Re-planning policy (DESIGN.md 5) -----------------------------------------------------------
+// Cost model: per phase and task, an exponential moving average of measured task seconds, weight
+// cost_smoothing on the newest evaluation (the first measurement is taken as it is). 0.2 follows a
+// load that moves over ~5 evaluations (a ball entering the loaded zone takes hundreds of
+// right-hand sides) while damping the timer noise of single microsecond-scale tasks.
+constexpr double cost_smoothing = 0.2;
+// A measurement enters the average clipped to cost_outlier_factor times the current estimate: a
+// task preempted for milliseconds (another process on the core) would otherwise dominate the
+// model of a microsecond task for dozens of evaluations. A real rise still gets through at up to
+// (1 + 0.2 * (3 - 1)) = 1.4x per evaluation.
+constexpr double cost_outlier_factor = 3.0;
+// Measured imbalance per evaluation (max over mean of the ranks' share-weighted task seconds),
+// smoothed with weight imbalance_smoothing: a single slow evaluation (an interrupt, another
+// process on the core) must not trigger a re-plan.
+constexpr double imbalance_smoothing = 0.1;
+// The first plan from measured costs replaces the uniform start plan after this many evaluations
+// of a phase (static and adaptive policies alike).
+constexpr long warmup_evaluations = 3;
+// Trigger: smoothed measured imbalance above replan_threshold (5 % of the evaluation time lost).
+constexpr double replan_threshold = 1.05;
+// Hysteresis: after a plan, no new plan for the same phase within cooldown_evaluations; after a
+// check that kept the plan, the next check comes check_interval evaluations later. Both count
+// evaluations of all phases (Jacobians are ~100 times rarer than right-hand sides, and their
+// costs move with the same loaded zone). A phase's cost model changes only when that phase is
+// measured, so a plan is never rebuilt from the costs it was made from.
+constexpr long cooldown_evaluations = 20;
+constexpr long check_interval = 10;
+// Gain test: the candidate plan must lower the cost model's imbalance by at least
+// min_predicted_gain, and the seconds it saves on the slowest rank over gain_horizon evaluations
+// must exceed replan_cost_factor times the measured cost of making and sending a plan. The
+// horizon is a plan's expected life: work moves with the balls' orbit and the load, over
+// thousands of right-hand sides (6309 R3: a ball crosses the loaded zone in ~10 ms, ~2000 rhs).
+constexpr double min_predicted_gain = 0.02;
+constexpr double replan_cost_factor = 2.0;
+constexpr long gain_horizon = 200;
+
+using clock_type = std::chrono::steady_clock;
+double now_seconds() { return std::chrono::duration<double>(clock_type::now().time_since_epoch()).count(); }
+
+const char* method_name(PlanMethod m) {
+  switch (m) {
+    case PlanMethod::single_rank: return "single rank";
+    case PlanMethod::greedy_lpt: return "greedy LPT";
+    case PlanMethod::metis_kway: return "METIS k-way";
+    case PlanMethod::rotated: return "rotated (forced)";
+  }
+  return "?";
+}
+const char* reason_name(PlanReason r) {
+  switch (r) {
+    case PlanReason::initial: return "initial (uniform costs)";
+    case PlanReason::measured_costs: return "first measured costs";
+    case PlanReason::imbalance: return "imbalance";
+    case PlanReason::forced: return "forced";
+  }
+  return "?";
+}
+const char* phase_name(int p) { return p == 0 ? "rhs" : p == 1 ? "jacobian" : "output"; }
+
+std::string fmt_plan_line(const PlanEvent& e) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "scheduler: %s plan v%d before evaluation %ld (%s, %s): predicted imbalance %.3f -> %.3f, "
+                "measured %.3f, %d rolling element(s) split, %.3g ms",
+                phase_name(e.phase), e.version, e.evaluation, reason_name(e.reason), method_name(e.method),
+                e.predicted_before, e.predicted_after, e.measured_imbalance, e.split_groups, 1e3 * e.plan_seconds);
+  return line;
+}
+
+}  // namespace
+
+const char* schedule_policy_name(SchedulePolicy p) {
+  switch (p) {
+    case SchedulePolicy::adaptive: return "adaptive";
+    case SchedulePolicy::static_plan: return "static";
+    case SchedulePolicy::every_evaluation: return "every-evaluation";
+  }
+  return "?";
+}
+
+MpiExecutor::MpiExecutor(MPI_Comm comm, MpiExecutorOptions options) : comm_(comm), options_(std::move(options)) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  if (!(options_.master_share >= 0)) throw std::invalid_argument("master share must be >= 0");
+  capacity_.assign(static_cast<std::size_t>(size_), 1.0);
+  // With workers, rank 0 takes master_share of a worker's work; alone it must take everything.
+  if (size_ > 1) capacity_[0] = options_.master_share;
+  log_.ranks = size_;
+  log_.policy = schedule_policy_name(options_.policy);
+  log_.master_share = options_.master_share;
+  log_.sample_every = std::max(1, options_.sample_every);
+  log_.rank_task_seconds.assign(static_cast<std::size_t>(size_), 0.0);
+}
+
+MpiExecutor::~MpiExecutor() {
+  if (is_master() && !stopped_) stop();
+}
+
+void MpiExecutor::fail(const std::string& what) const {
+  std::fprintf(stderr, "[raceway] rank %d of %d: error: %s\n", rank_, size_, what.c_str());
+  std::fflush(stderr);
+  MPI_Abort(comm_, 1);
+  std::abort();  // MPI_Abort does not return; this keeps [[noreturn]] honest
+}
+
+void MpiExecutor::attach(const TaskCatalogue& catalogue) {
+  if (!is_master()) throw std::logic_error("MpiExecutor::attach is for rank 0");
+  if (attached_) throw std::logic_error("MpiExecutor::attach called twice");
+  catalogue_ = catalogue;
+  catalogue_.function = {};  // the master runs the function run() is given; keep no references
+  double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
+                               static_cast<double>(catalogue.context_size), 0, 0};
+  MPI_Bcast(start, header_size, MPI_DOUBLE, 0, comm_);
+  attached_ = true;
+  message_size_ = header_size + static_cast<std::size_t>(std::max(catalogue.context_size, catalogue.task_count));
+  message_.assign(message_size_, 0.0);
+  receive_.resize(static_cast<std::size_t>(size_));
+  log_.task_group = catalogue.group;
+  log_.context_size = catalogue.context_size;
+  for (std::size_t p = 0; p < schedule_phase_count; ++p) log_.record_size[p] = catalogue.record_size[p];
+  // Start plans: uniform costs (nothing measured yet).
+  for (int p = 0; p < phase_count; ++p) {
+    if (catalogue.record_size[static_cast<std::size_t>(p)] <= 0) continue;
+    const double started = now_seconds();
+    const std::vector<double> uniform(static_cast<std::size_t>(catalogue.task_count), 1.0);
+    adopt_plan(p, make_plan(uniform, catalogue_, capacity_), PlanReason::initial, started);
+  }
+}
+
+void MpiExecutor::stop() {
+  if (!is_master() || stopped_) return;
+  stopped_ = true;
+  std::vector<double> msg(attached_ ? message_size_ : header_size, 0.0);
+  msg[0] = command_stop;
+  MPI_Bcast(msg.data(), static_cast<int>(msg.size()), MPI_DOUBLE, 0, comm_);
+}
+
+void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
+  owner_[phase] = owner;
+  auto& lists = tasks_of_[phase];
+  lists.assign(static_cast<std::size_t>(size_), {});
+  for (std::size_t t = 0; t < owner.size(); ++t) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+}
+
+void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double started) {
+  const std::vector<double> model = model_cost(phase);
+  const double before = owner_[phase].empty() || model.empty() ? 0.0 : predicted_imbalance(owner_[phase], model, capacity_);
+  if (reason == PlanReason::forced && size_ > 1) {
+    // Test only: turn the plan over the ranks by its version so every evaluation sees a different
+    // assignment (the bitwise-identity tests need plans that really change).
+    std::vector<int> active;
+    for (int r = 0; r < size_; ++r)
+      if (capacity_[static_cast<std::size_t>(r)] > 0) active.push_back(r);
+    const auto shift = static_cast<std::size_t>(version_[phase] + 1);
+    for (int& o : plan.owner) {
+      const auto at = static_cast<std::size_t>(std::find(active.begin(), active.end(), o) - active.begin());
+      o = active[(at + shift) % active.size()];
+    }
+    plan.method = PlanMethod::rotated;
+    plan.split_groups = count_split_groups(plan.owner, catalogue_.group);
+    if (!model.empty()) plan.predicted_imbalance = predicted_imbalance(plan.owner, model, capacity_);
+  }
+  const bool first = owner_[phase].empty();
+  if (!first) ++version_[phase];
+  set_owner(phase, plan.owner);
+  if (size_ > 1) {
+    std::fill(message_.begin(), message_.end(), 0.0);
+    message_[0] = command_plan;
+    message_[1] = phase;
+    message_[2] = catalogue_.task_count;
+    message_[4] = version_[phase];
+    for (std::size_t t = 0; t < plan.owner.size(); ++t) message_[header_size + t] = plan.owner[t];
+    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
+  }
+  PlanEvent e;
+  e.evaluation = evaluation_ + 1;
+  e.phase = phase;
+  e.version = version_[phase];
+  e.reason = reason;
+  e.method = plan.method;
+  e.split_groups = plan.split_groups;
+  e.measured_imbalance = smoothed_imbalance_[phase];
+  e.predicted_before = before;
+  e.predicted_after = plan.predicted_imbalance;
+  e.plan_seconds = now_seconds() - started;
+  log_.plans.push_back(e);
+  // Re-plan cost estimate: measured times to make and send a plan, smoothed and clipped like the
+  // task costs (one preempted plan must not block re-planning for the rest of the run).
+  replan_seconds_[phase] = first ? e.plan_seconds
+                                 : replan_seconds_[phase] +
+                                       cost_smoothing * (std::min(e.plan_seconds, cost_outlier_factor * replan_seconds_[phase]) -
+                                                         replan_seconds_[phase]);
+  last_plan_run_[phase] = last_check_run_[phase] = evaluation_;
+  if (!first) smoothed_imbalance_[phase] = plan.predicted_imbalance;  // judge the new plan on its own
+  // The log gets the first plans and then every 100th (a long adaptive run makes thousands);
+  // all of them are in /scheduler/plans.
+  const std::size_t n = log_.plans.size();
+  if (options_.on_event && size_ > 1 && (n <= 20 || n % 100 == 0)) {
+    options_.on_event(fmt_plan_line(e));
+    if (n == 20) options_.on_event("scheduler: further plans are logged every 100th; all are kept in /scheduler/plans");
+  }
+}
+
+void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
+                               double* records, double* seconds) {
+  // Everything a task can throw ends the job here, on whichever rank: the other ranks are inside
+  // a command and would otherwise wait for this rank's records for ever.
+  try {
+    if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
+      throw std::runtime_error("injected failure at evaluation " + std::to_string(evaluation_) +
+                               " (test-only option --inject-failure)");
+    const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+    auto last = clock_type::now();
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      task(context, mine[i], std::span<double>(records + i * static_cast<std::size_t>(record_size),
+                                                static_cast<std::size_t>(record_size)));
+      const auto now = clock_type::now();
+      seconds[i] = std::chrono::duration<double>(now - last).count();
+      last = now;
+    }
+  } catch (const std::exception& e) {
+    fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) + ": " + e.what());
+  } catch (...) {
+    fail(std::string("unknown exception in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_));
+  }
+}
+
+std::vector<double> MpiExecutor::model_cost(int phase) const {
+  const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
+  const auto& ratio = ratio_[phase];
+  if (phase == static_cast<int>(Phase::rhs) || ratio.empty() || rhs.size() != ratio.size()) return cost_[phase];
+  std::vector<double> c(rhs.size());
+  for (std::size_t t = 0; t < c.size(); ++t) c[t] = rhs[t] * ratio[t];
+  return c;
+}
+
+void MpiExecutor::maybe_replan(int phase) {
+  const long runs = runs_[phase];
+  const double started = now_seconds();
+  if (options_.policy == SchedulePolicy::every_evaluation) {
+    if (runs > 0) adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::forced, started);
+    return;
+  }
+  if (size_ == 1) return;
+  if (version_[phase] == 0) {
+    const auto& rhs_cost = cost_[static_cast<int>(Phase::rhs)];
+    if (runs >= warmup_evaluations)
+      adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::measured_costs, started);
+    else if (runs == 0 && phase != static_cast<int>(Phase::rhs) && !rhs_cost.empty())
+      // Before its own first measurement, a phase is planned on the right-hand side's costs: the
+      // same contacts are expensive in both (the Jacobian task evaluates its segment once per
+      // column), and Jacobians are rare, so waiting for their own warm-up costs real time.
+      adopt_plan(phase, make_plan(rhs_cost, catalogue_, capacity_), PlanReason::measured_costs, started);
+    return;
+  }
+  if (options_.policy != SchedulePolicy::adaptive) return;
+  if (evaluation_ - last_plan_run_[phase] < cooldown_evaluations || evaluation_ - last_check_run_[phase] < check_interval)
+    return;
+  const std::vector<double> cost = model_cost(phase);
+  const double now = predicted_imbalance(owner_[phase], cost, capacity_);
+  // Trigger on what was measured, or on what the cost model predicts for the current plan (the
+  // Jacobian's model follows the right-hand side's costs between the rare Jacobians).
+  if (smoothed_imbalance_[phase] <= replan_threshold && now <= replan_threshold) return;
+  last_check_run_[phase] = evaluation_;
+  Plan candidate = make_plan(cost, catalogue_, capacity_);
+  double total = 0, cap_sum = 0;
+  for (double c : cost) total += c;
+  for (double c : capacity_) cap_sum += c;
+  const double saved_per_evaluation = (now - candidate.predicted_imbalance) * total / cap_sum;
+  if (now - candidate.predicted_imbalance >= min_predicted_gain &&
+      saved_per_evaluation * gain_horizon > replan_cost_factor * replan_seconds_[phase])
+    adopt_plan(phase, std::move(candidate), PlanReason::imbalance, started);
+}
+
+void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int task_count, int record_size,
+                      const TaskFunction& task, std::vector<double>& records) {
+  const int phase = static_cast<int>(phase_enum);
+  if (!is_master()) throw std::logic_error("MpiExecutor::run is for rank 0; workers serve()");
+  if (!attached_ || stopped_) throw std::logic_error("MpiExecutor::run before attach() or after stop()");
+  if (task_count != catalogue_.task_count || record_size != catalogue_.record_size[static_cast<std::size_t>(phase)] ||
+      static_cast<int>(context.size()) != catalogue_.context_size)
+    throw std::invalid_argument("MpiExecutor::run: task count, record size or context size differ from the catalogue");
+  maybe_replan(phase);
+  ++evaluation_;
+  const double wall_start = now_seconds();
+  const auto rs = static_cast<std::size_t>(record_size);
+  if (size_ > 1) {
+    message_[0] = command_evaluate;
+    message_[1] = phase;
+    message_[2] = task_count;
+    message_[3] = record_size;
+    message_[4] = static_cast<double>(evaluation_);
+    std::copy(context.begin(), context.end(), message_.begin() + header_size);
+    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
+  }
+  // Receives posted before the master's own share, so worker records land while it computes.
+  std::vector<MPI_Request> requests;
+  for (int w = 1; w < size_; ++w) {
+    const auto n = tasks_of_[phase][static_cast<std::size_t>(w)].size();
+    auto& buf = receive_[static_cast<std::size_t>(w)];
+    buf.resize(n * (rs + 1));
+    requests.emplace_back();
+    MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, w, phase, comm_, &requests.back());
+  }
+  records.resize(static_cast<std::size_t>(task_count) * rs);
+  auto& seconds = seconds_[phase];
+  seconds.resize(static_cast<std::size_t>(task_count));
+  const auto& mine = tasks_of_[phase][0];
+  std::vector<double> own(mine.size() * rs), own_seconds(mine.size());
+  evaluate_own(phase, context, record_size, task, own.data(), own_seconds.data());
+  std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const auto t = static_cast<std::size_t>(mine[i]);
+    std::copy_n(own.data() + i * rs, rs, records.data() + t * rs);
+    seconds[t] = own_seconds[i];
+    busy[0] += own_seconds[i];
+  }
+  if (!requests.empty()) MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  for (int w = 1; w < size_; ++w) {
+    const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
+    const auto& buf = receive_[static_cast<std::size_t>(w)];
+    const double* secs = buf.data() + list.size() * rs;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const auto t = static_cast<std::size_t>(list[i]);
+      std::copy_n(buf.data() + i * rs, rs, records.data() + t * rs);
+      seconds[t] = secs[i];
+      busy[static_cast<std::size_t>(w)] += secs[i];
+    }
+  }
+  const double wall = now_seconds() - wall_start;
+  // Cost model and balance statistics.
+  auto& cost = cost_[phase];
+  if (cost.empty()) cost = seconds;
+  else
+    for (std::size_t t = 0; t < cost.size(); ++t)
+      cost[t] += cost_smoothing * (std::min(seconds[t], cost_outlier_factor * cost[t] + 1e-9) - cost[t]);
+  if (phase != static_cast<int>(Phase::rhs) && !cost_[static_cast<int>(Phase::rhs)].empty()) {
+    // Per task, this phase's cost relative to the right-hand side's at the same time: about the
+    // number of segment evaluations per task, steady while the costs themselves move.
+    const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
+    auto& ratio = ratio_[phase];
+    const bool first = ratio.empty();
+    ratio.resize(rhs.size());
+    for (std::size_t t = 0; t < rhs.size(); ++t) {
+      const double r = seconds[t] / std::max(rhs[t], 1e-9);
+      ratio[t] = first ? r : ratio[t] + cost_smoothing * (std::min(r, cost_outlier_factor * ratio[t]) - ratio[t]);
+    }
+  }
+  double total = 0, cap_sum = 0, worst = 0;
+  for (std::size_t r = 0; r < busy.size(); ++r) {
+    total += busy[r];
+    log_.rank_task_seconds[r] += busy[r];
+    if (capacity_[r] <= 0) continue;
+    cap_sum += capacity_[r];
+    worst = std::max(worst, busy[r] / capacity_[r]);
+  }
+  const double mean = total / cap_sum;
+  const double imbalance = total > 0 ? worst / mean : 1.0;
+  smoothed_imbalance_[phase] = runs_[phase] == 0 ? imbalance
+                                                 : smoothed_imbalance_[phase] + imbalance_smoothing * (imbalance - smoothed_imbalance_[phase]);
+  totals_[phase] += total;
+  ++runs_[phase];
+  log_.sum_max_seconds[static_cast<std::size_t>(phase)] += worst;
+  log_.sum_mean_seconds[static_cast<std::size_t>(phase)] += mean;
+  log_.wall_seconds[static_cast<std::size_t>(phase)] += wall;
+  ++log_.evaluations[static_cast<std::size_t>(phase)];
+  log_.task_cost[static_cast<std::size_t>(phase)] = cost;  // measured (smoothed), not the rhs-based model
+  if (evaluation_ % log_.sample_every == 0) {
+    log_.samples.push_back({evaluation_, phase, context.empty() ? 0.0 : context[0], imbalance, worst, mean, wall,
+                            version_[phase]});
+    // Bounded memory over long runs (10^7 evaluations): past max_samples, keep every other sample
+    // and sample half as often.
+    constexpr std::size_t max_samples = std::size_t{1} << 17;
+    if (log_.samples.size() >= max_samples) {
+      log_.sample_every *= 2;
+      std::erase_if(log_.samples, [&](const ImbalanceSample& x) { return x.evaluation % log_.sample_every != 0; });
+    }
+  }
+}
+
+bool MpiExecutor::await_start() {
+  if (is_master()) throw std::logic_error("MpiExecutor::await_start is for workers");
+  double start[header_size];
+  MPI_Bcast(start, header_size, MPI_DOUBLE, 0, comm_);
+  if (start[0] == command_stop) return false;
+  if (start[0] != command_start) fail("protocol error: expected start or stop from rank 0");
+  catalogue_.task_count = static_cast<int>(start[2]);
+  catalogue_.context_size = static_cast<int>(start[3]);
+  message_size_ = header_size + static_cast<std::size_t>(std::max(catalogue_.context_size, catalogue_.task_count));
+  message_.assign(message_size_, 0.0);
+  attached_ = true;
+  return true;
+}
+
+void MpiExecutor::serve(const TaskCatalogue& catalogue) {
+  if (is_master() || !attached_) throw std::logic_error("MpiExecutor::serve is for workers, after await_start()");
+  if (catalogue.task_count != catalogue_.task_count || catalogue.context_size != catalogue_.context_size)
+    fail("this rank's model has " + std::to_string(catalogue.task_count) + " tasks and context " +
+         std::to_string(catalogue.context_size) + ", rank 0's has " + std::to_string(catalogue_.task_count) + " and " +
+         std::to_string(catalogue_.context_size) + " (different scene or build?)");
+  std::vector<double> reply;
+  for (;;) {
+    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
+    const double command = message_[0];
+    const int phase = static_cast<int>(message_[1]);
+    if (command == command_stop) return;
+    if (phase < 0 || phase >= phase_count) fail("protocol error: bad phase from rank 0");
+    if (command == command_plan) {
+      std::vector<int> owner(static_cast<std::size_t>(catalogue_.task_count));
+      for (std::size_t t = 0; t < owner.size(); ++t) owner[t] = static_cast<int>(message_[header_size + t]);
+      version_[phase] = static_cast<int>(message_[4]);
+      set_owner(phase, owner);
+      continue;
+    }
+    if (command != command_evaluate) fail("protocol error: unknown command from rank 0");
+    const int record_size = static_cast<int>(message_[3]);
+    const auto& function = catalogue.function[static_cast<std::size_t>(phase)];
+    if (!function || record_size != catalogue.record_size[static_cast<std::size_t>(phase)] ||
+        static_cast<int>(message_[2]) != catalogue.task_count)
+      fail(std::string("rank 0 asks for ") + phase_name(phase) + " tasks this rank's catalogue does not have");
+    evaluation_ = static_cast<long>(message_[4]);
+    const auto n = tasks_of_[phase][static_cast<std::size_t>(rank_)].size();
+    const auto rs = static_cast<std::size_t>(record_size);
+    reply.resize(n * (rs + 1));
+    evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
+                 record_size, function, reply.data(), reply.data() + n * rs);
+    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, 0, phase, comm_);
+  }
+}
+
+}  // namespace raceway::scheduler

@@ -1,0 +1,124 @@
+// The MPI master/worker executor (DESIGN.md 5, issue 4).
+//
+// Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
+// other ranks (workers) loop in serve() on commands broadcast by the master:
+//   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, send back
+//                                 their records and measured seconds (one message);
+//   plan (phase, owner per task) -> adopt a new plan for that phase;
+//   stop                       -> leave serve().
+// Every command is one MPI_Bcast of a fixed-size buffer (header + max(context, task count)), so a
+// worker never needs to know in advance which command comes. The master places the records in
+// task order; the equations sum them in that order, so results are bitwise identical for any rank
+// count and any plan.
+//
+// Scheduling: per phase, a smoothed cost per task (exponential moving average of measured task
+// seconds) feeds scheduler/plan.hpp's two-level plan; the re-planning policy is stated in
+// mpi_executor.cpp ("Re-planning policy", at the top).
+//
+// Faults: an exception inside a task, on any rank, prints "rank R: ..." with the message on that
+// rank's stderr and calls MPI_Abort (exit code 1): every rank ends within seconds, never a hang. An
+// exception on the master outside tasks (integration failure, output error) unwinds normally; the
+// destructor then sends stop, so the workers leave serve() and the job ends with the master's exit
+// code.
+#pragma once
+
+#include <mpi.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scheduler/executor.hpp"
+#include "scheduler/plan.hpp"
+#include "scheduler/schedule_log.hpp"
+
+namespace raceway::scheduler {
+
+enum class SchedulePolicy {
+  adaptive,          ///< re-plan when measured imbalance and predicted gain say so (the default)
+  static_plan,       ///< one plan from the first measured costs, never changed (for comparison)
+  every_evaluation,  ///< test only: a different plan before every evaluation (bitwise-identity tests)
+};
+const char* schedule_policy_name(SchedulePolicy p);
+
+struct MpiExecutorOptions {
+  SchedulePolicy policy = SchedulePolicy::adaptive;
+  /// Rank 0's share of the tasks relative to one worker's (1: same as a worker; 0: none).
+  double master_share = 1.0;
+  /// Test only: throw inside the tasks of this rank at this evaluation (1-based; all phases).
+  int inject_failure_rank = -1;
+  long inject_failure_evaluation = 0;
+  /// Every n-th evaluation's balance goes into ScheduleLog::samples.
+  int sample_every = 1;
+  /// Master: called with one line per plan event (logging).
+  std::function<void(const std::string&)> on_event;
+};
+
+class MpiExecutor final : public Executor {
+ public:
+  /// Collective over comm only through later calls; construction does not communicate.
+  MpiExecutor(MPI_Comm comm, MpiExecutorOptions options);
+  /// Master: sends stop if not yet sent (also when no attach() happened: the workers are then
+  /// released from await_start()). Workers: nothing.
+  ~MpiExecutor() override;
+  MpiExecutor(const MpiExecutor&) = delete;
+  MpiExecutor& operator=(const MpiExecutor&) = delete;
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool is_master() const { return rank_ == 0; }
+
+  /// Master: announces the task catalogue to the workers (releases await_start()).
+  void attach(const TaskCatalogue& catalogue) override;
+  /// Master: evaluates the tasks over all ranks. Throws std::invalid_argument when the sizes do
+  /// not match the attached catalogue.
+  void run(Phase phase, std::span<const double> context, int task_count, int record_size,
+           const TaskFunction& task, std::vector<double>& records) override;
+  /// Master: releases the workers from serve(). Idempotent.
+  void stop() override;
+  const ScheduleLog* schedule_log() const override { return &log_; }
+
+  /// Worker: waits for the master's attach() (returns true) or stop (false: the master failed
+  /// before it had a model, and has reported why).
+  bool await_start();
+  /// Worker: evaluates tasks for the master until stop. The catalogue must be built from the
+  /// same scene as the master's (checked: task count and context size).
+  void serve(const TaskCatalogue& catalogue);
+
+ private:
+  static constexpr double command_start = 1, command_evaluate = 2, command_plan = 3, command_stop = 4;
+  static constexpr int header_size = 6;
+
+  [[noreturn]] void fail(const std::string& what) const;
+  void set_owner(int phase, const std::vector<int>& owner);
+  void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
+                    double* records, double* seconds);
+  void maybe_replan(int phase);
+  /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
+  /// cost times the measured per-task ratio (once measured), so they follow the moving work.
+  std::vector<double> model_cost(int phase) const;
+  void adopt_plan(int phase, Plan plan, PlanReason reason, double started);
+
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  MpiExecutorOptions options_;
+  bool attached_ = false, stopped_ = false;
+  TaskCatalogue catalogue_;                 ///< metadata only on the master (no functions)
+  std::size_t message_size_ = header_size;  ///< doubles per command after start
+  std::vector<double> message_;
+  std::vector<double> capacity_;
+  long evaluation_ = 0;  ///< evaluate commands so far (all phases)
+  // Per phase:
+  std::vector<int> owner_[phase_count];
+  std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending
+  std::vector<double> cost_[phase_count];                ///< smoothed task seconds
+  std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)
+  int version_[phase_count] = {};
+  long last_plan_run_[phase_count] = {}, last_check_run_[phase_count] = {};  ///< evaluation_ then
+  double smoothed_imbalance_[phase_count] = {};
+  double replan_seconds_[phase_count] = {};
+  std::vector<std::vector<double>> receive_;
+  ScheduleLog log_;
+};
+
+}  // namespace raceway::scheduler

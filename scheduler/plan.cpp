@@ -1,0 +1,234 @@
+#include "scheduler/plan.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+#include <stdexcept>
+
+namespace raceway::scheduler {
+
+namespace {
+
+/// A level-1 unit: a rolling element's tasks, or one border task.
+struct Unit {
+  std::vector<int> tasks;
+  double cost = 0;
+  std::set<int> bodies;
+};
+
+std::vector<Unit> make_units(std::span<const double> cost, const TaskCatalogue& cat) {
+  std::vector<Unit> units;
+  std::map<int, std::size_t> of_group;
+  for (int t = 0; t < cat.task_count; ++t) {
+    const int g = cat.group[static_cast<std::size_t>(t)];
+    std::size_t u;
+    if (g == border_group) {
+      u = units.size();
+      units.emplace_back();
+    } else {
+      auto [it, fresh] = of_group.try_emplace(g, units.size());
+      if (fresh) units.emplace_back();
+      u = it->second;
+    }
+    units[u].tasks.push_back(t);
+    units[u].cost += cost[static_cast<std::size_t>(t)];
+    if (!cat.bodies.empty())
+      for (int b : cat.bodies[static_cast<std::size_t>(t)])
+        if (b >= 0) units[u].bodies.insert(b);
+  }
+  return units;
+}
+
+std::vector<double> rank_loads(std::span<const int> owner, std::span<const double> cost, std::size_t ranks) {
+  std::vector<double> load(ranks, 0.0);
+  for (std::size_t t = 0; t < owner.size(); ++t) load[static_cast<std::size_t>(owner[t])] += cost[t];
+  return load;
+}
+
+/// Greedy LPT: units by decreasing cost, each to the rank whose weighted finish time is smallest.
+std::vector<int> lpt(const std::vector<Unit>& units, std::span<const double> capacity) {
+  std::vector<std::size_t> order(units.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return units[a].cost > units[b].cost; });
+  std::vector<double> load(capacity.size(), 0.0);
+  std::vector<int> unit_rank(units.size(), 0);
+  for (std::size_t u : order) {
+    std::size_t best = 0;
+    double best_finish = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < capacity.size(); ++r) {
+      if (capacity[r] <= 0) continue;
+      const double finish = (load[r] + units[u].cost) / capacity[r];
+      if (finish < best_finish) best_finish = finish, best = r;
+    }
+    load[best] += units[u].cost;
+    unit_rank[u] = static_cast<int>(best);
+  }
+  return unit_rank;
+}
+
+/// METIS k-way on the level-1 graph; empty when METIS cannot be used or fails.
+std::vector<int> metis_kway(const std::vector<Unit>& units, std::span<const double> capacity) {
+  // METIS needs every part to have positive target weight: map parts to ranks with capacity > 0.
+  std::vector<int> part_rank;
+  for (std::size_t r = 0; r < capacity.size(); ++r)
+    if (capacity[r] > 0) part_rank.push_back(static_cast<int>(r));
+  const auto nparts = static_cast<idx_t>(part_rank.size());
+  const auto nvtxs = static_cast<idx_t>(units.size());
+  if (nparts < 2 || nvtxs <= nparts) return {};
+  const double max_cost = std::max_element(units.begin(), units.end(), [](auto& a, auto& b) { return a.cost < b.cost; })->cost;
+  if (!(max_cost > 0)) return {};
+  std::vector<idx_t> xadj{0}, adjncy, adjwgt, vwgt;
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    // Integer vertex weights (idx_t is 32-bit): costs scaled so the heaviest unit weighs 10^6.
+    vwgt.push_back(std::max<idx_t>(1, static_cast<idx_t>(std::lround(units[u].cost / max_cost * 1e6))));
+    for (std::size_t v = 0; v < units.size(); ++v) {
+      if (u == v) continue;
+      idx_t shared = 0;
+      for (int b : units[u].bodies) shared += static_cast<idx_t>(units[v].bodies.count(b));
+      if (shared > 0) adjncy.push_back(static_cast<idx_t>(v)), adjwgt.push_back(shared);
+    }
+    xadj.push_back(static_cast<idx_t>(adjncy.size()));
+  }
+  double cap_sum = 0;
+  for (int r : part_rank) cap_sum += capacity[static_cast<std::size_t>(r)];
+  std::vector<real_t> tpwgts;
+  for (int r : part_rank) tpwgts.push_back(static_cast<real_t>(capacity[static_cast<std::size_t>(r)] / cap_sum));
+  idx_t ncon = 1, objval = 0, np = nparts, nv = nvtxs;
+  real_t ubvec = 1.03f;  // 3 % load tolerance, METIS's default for k-way
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_NUMBERING] = 0;
+  options[METIS_OPTION_SEED] = 1;  // reproducible plans for the same costs
+  std::vector<idx_t> part(units.size(), 0);
+  const int status = METIS_PartGraphKway(&nv, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr,
+                                         adjncy.empty() ? nullptr : adjwgt.data(), &np, tpwgts.data(), &ubvec, options,
+                                         &objval, part.data());
+  if (status != METIS_OK) return {};
+  std::vector<int> unit_rank(units.size());
+  for (std::size_t u = 0; u < units.size(); ++u) unit_rank[u] = part_rank[static_cast<std::size_t>(part[u])];
+  return unit_rank;
+}
+
+std::vector<int> owners_of(const std::vector<Unit>& units, const std::vector<int>& unit_rank, int task_count) {
+  std::vector<int> owner(static_cast<std::size_t>(task_count), 0);
+  for (std::size_t u = 0; u < units.size(); ++u)
+    for (int t : units[u].tasks) owner[static_cast<std::size_t>(t)] = unit_rank[u];
+  return owner;
+}
+
+/// Level 2: moves single tasks off the most loaded rank (heaviest rolling element first).
+void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const TaskCatalogue& cat,
+                    std::span<const double> capacity, double tolerance) {
+  const std::size_t ranks = capacity.size();
+  std::vector<double> load = rank_loads(owner, cost, ranks);
+  double total = 0, cap_sum = 0;
+  for (std::size_t r = 0; r < ranks; ++r) total += load[r], cap_sum += capacity[r];
+  const double mean = total / cap_sum;
+  for (int iteration = 0; iteration < cat.task_count; ++iteration) {
+    std::size_t hi = 0, lo = 0;
+    double hi_norm = -1, lo_norm = std::numeric_limits<double>::infinity();
+    for (std::size_t r = 0; r < ranks; ++r) {
+      if (capacity[r] <= 0) continue;
+      const double n = load[r] / capacity[r];
+      if (n > hi_norm) hi_norm = n, hi = r;
+      if (n < lo_norm) lo_norm = n, lo = r;
+    }
+    if (hi == lo || hi_norm <= mean * (1 + tolerance)) return;
+    // Amount x that equalises hi and lo: (load_hi - x)/cap_hi = (load_lo + x)/cap_lo.
+    const double x = (load[hi] * capacity[lo] - load[lo] * capacity[hi]) / (capacity[hi] + capacity[lo]);
+    // Group costs on hi, to try the heaviest rolling element's tasks first.
+    std::map<int, double> group_cost;
+    for (int t = 0; t < cat.task_count; ++t)
+      if (owner[static_cast<std::size_t>(t)] == static_cast<int>(hi))
+        group_cost[cat.group[static_cast<std::size_t>(t)]] += cost[static_cast<std::size_t>(t)];
+    std::vector<std::pair<double, int>> groups;
+    for (auto [g, c] : group_cost) groups.emplace_back(c, g);
+    std::sort(groups.rbegin(), groups.rend());
+    int best = -1;
+    for (auto [gc, g] : groups) {
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (int t = 0; t < cat.task_count; ++t) {
+        const auto ti = static_cast<std::size_t>(t);
+        if (owner[ti] != static_cast<int>(hi) || cat.group[ti] != g) continue;
+        const double c = cost[ti];
+        // The move must lower the larger of the two ranks' weighted times.
+        if (!(c > 0) || std::max((load[hi] - c) / capacity[hi], (load[lo] + c) / capacity[lo]) >= hi_norm) continue;
+        const double d = std::abs(c - x);
+        if (d < best_distance) best_distance = d, best = t;
+      }
+      if (best >= 0) break;
+    }
+    if (best < 0) return;
+    const auto bi = static_cast<std::size_t>(best);
+    owner[bi] = static_cast<int>(lo);
+    load[hi] -= cost[bi];
+    load[lo] += cost[bi];
+  }
+}
+
+}  // namespace
+
+double predicted_imbalance(std::span<const int> owner, std::span<const double> cost, std::span<const double> capacity) {
+  const std::vector<double> load = rank_loads(owner, cost, capacity.size());
+  double total = 0, cap_sum = 0, worst = 0;
+  for (std::size_t r = 0; r < capacity.size(); ++r) {
+    total += load[r];
+    if (capacity[r] <= 0) continue;
+    cap_sum += capacity[r];
+    worst = std::max(worst, load[r] / capacity[r]);
+  }
+  return total > 0 ? worst / (total / cap_sum) : 1.0;
+}
+
+int count_split_groups(std::span<const int> owner, std::span<const int> group) {
+  std::map<int, std::set<int>> ranks_of;
+  for (std::size_t t = 0; t < owner.size(); ++t)
+    if (group[t] != border_group) ranks_of[group[t]].insert(owner[t]);
+  int n = 0;
+  for (const auto& [g, r] : ranks_of) n += r.size() > 1 ? 1 : 0;
+  return n;
+}
+
+Plan make_plan(std::span<const double> cost, const TaskCatalogue& cat, std::span<const double> capacity,
+               const PlanOptions& options) {
+  if (cost.size() != static_cast<std::size_t>(cat.task_count) || cat.group.size() != cost.size())
+    throw std::invalid_argument("make_plan: one cost and one group per task are needed");
+  double cap_sum = 0;
+  for (double c : capacity) cap_sum += std::max(c, 0.0);
+  if (!(cap_sum > 0)) throw std::invalid_argument("make_plan: no rank has a positive capacity");
+  Plan plan;
+  std::size_t active = 0;
+  for (double c : capacity) active += c > 0 ? 1 : 0;
+  const std::vector<Unit> units = make_units(cost, cat);
+  if (active == 1) {
+    const auto r = static_cast<int>(std::find_if(capacity.begin(), capacity.end(), [](double c) { return c > 0; }) -
+                                    capacity.begin());
+    plan.owner.assign(cost.size(), r);
+    plan.method = PlanMethod::single_rank;
+    return plan;
+  }
+  std::vector<int> owner = owners_of(units, lpt(units, capacity), cat.task_count);
+  plan.method = PlanMethod::greedy_lpt;
+  split_heaviest(owner, cost, cat, capacity, options.level2_tolerance);
+  double best = predicted_imbalance(owner, cost, capacity);
+  if (options.try_metis) {
+    const std::vector<int> by_metis = metis_kway(units, capacity);
+    if (!by_metis.empty()) {
+      std::vector<int> metis_owner = owners_of(units, by_metis, cat.task_count);
+      split_heaviest(metis_owner, cost, cat, capacity, options.level2_tolerance);
+      const double m = predicted_imbalance(metis_owner, cost, capacity);
+      if (m <= best) best = m, owner = std::move(metis_owner), plan.method = PlanMethod::metis_kway;
+    }
+  }
+  plan.owner = std::move(owner);
+  plan.predicted_imbalance = best;
+  plan.split_groups = count_split_groups(plan.owner, cat.group);
+  return plan;
+}
+
+}  // namespace raceway::scheduler

@@ -1,0 +1,59 @@
+// Two-level plans (DESIGN.md 5, seed 000 2.6): which rank evaluates which task. Pure functions of
+// measured costs: no MPI, unit-tested in tests/scheduler.
+//
+// Level 1 gives whole rolling elements (all their tasks) to ranks; border tasks (cage-land, ring
+// segments) are units of their own. Two level-1 partitioners are tried and the one with the
+// smaller predicted makespan is kept:
+//   - greedy LPT (largest unit first to the rank that finishes it earliest, capacity-weighted):
+//     balance-only, within 4/3 of optimal, and exact enough with tens of units;
+//   - METIS k-way on the level-1 graph (vertex weight = smoothed cost, edge weight = bodies whose
+//     states two units both read, target part weights = rank capacities).
+// Why LPT usually wins here: every task receives the whole broadcast context [t, z], so the data
+// two units share costs nothing extra when they sit on different ranks; and every rolling element
+// reads the same rings and cage, so the level-1 graph is (nearly) complete with equal edge
+// weights: any k-way cut is about as good as any other, and the edge-cut objective only constrains
+// METIS's balance. METIS is kept where it balances as well (ties go to METIS: a smaller cut is
+// what would matter if the context were ever distributed by halo instead of broadcast).
+//
+// Level 2 then splits the heaviest rolling elements when level 1 cannot balance (more ranks than
+// rolling elements, or a narrow loaded zone): while the most loaded rank is above the mean by more
+// than level2_tolerance, it moves single tasks, from its heaviest rolling element first, to the
+// least loaded rank, choosing the task closest to the amount that would equalise the two.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "scheduler/executor.hpp"
+#include "scheduler/schedule_log.hpp"
+
+namespace raceway::scheduler {
+
+struct Plan {
+  std::vector<int> owner;   ///< per task: rank
+  PlanMethod method = PlanMethod::greedy_lpt;
+  int split_groups = 0;     ///< rolling elements with tasks on more than one rank
+  double predicted_imbalance = 1;
+};
+
+struct PlanOptions {
+  /// Level 2 stops when the most loaded rank is within this fraction of the capacity-weighted
+  /// mean: 2 % is below the measurement noise of one evaluation's task times.
+  double level2_tolerance = 0.02;
+  bool try_metis = true;
+};
+
+/// Capacity-weighted imbalance of an assignment: max_r(load_r / cap_r) / (sum load / sum cap),
+/// over ranks with capacity > 0. 1 is perfect balance.
+double predicted_imbalance(std::span<const int> owner, std::span<const double> cost,
+                           std::span<const double> capacity);
+
+/// Makes a plan for `capacity.size()` ranks (capacity = relative share of the work; 0: no tasks).
+/// cost and catalogue.group/bodies are per task.
+Plan make_plan(std::span<const double> cost, const TaskCatalogue& catalogue, std::span<const double> capacity,
+               const PlanOptions& options = {});
+
+/// Groups (rolling elements) whose tasks are on more than one rank.
+int count_split_groups(std::span<const int> owner, std::span<const int> group);
+
+}  // namespace raceway::scheduler

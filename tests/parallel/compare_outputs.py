@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Bitwise comparison of raceway output files (the reference first, then the others).
+
+Every dataset outside /scheduler must have the same shape, dtype and bytes; every attribute
+must be equal, except the ones that legitimately differ between runs: the root's summary_json
+is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s), and
+/scheduler (plans, imbalance, rank count) is skipped. Exit 0 when all files match, 1 otherwise.
+
+    compare_outputs.py REFERENCE.h5 OTHER.h5 [OTHER.h5 ...]
+"""
+import json
+import sys
+
+import h5py
+import numpy as np
+
+TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s"}
+SKIPPED_GROUPS = ("/scheduler",)
+
+
+def collect(path):
+    items = {}
+    with h5py.File(path, "r") as f:
+        def attrs_of(name, obj):
+            out = {}
+            for k, v in obj.attrs.items():
+                if name == "/" and k == "summary_json":
+                    d = json.loads(v)
+                    for key in TIMING_KEYS:
+                        d.pop(key, None)
+                    v = json.dumps(d, sort_keys=True)
+                if isinstance(v, np.ndarray):
+                    v = repr(v.tolist()) if v.dtype.kind == "O" else (str(v.dtype), v.shape, v.tobytes())
+                out[k] = v
+            return out
+
+        items["/"] = ("group", attrs_of("/", f))
+
+        def visit(name, obj):
+            full = "/" + name
+            if full.startswith(SKIPPED_GROUPS):
+                return
+            if isinstance(obj, h5py.Dataset):
+                data = obj[()]
+                raw = data.tobytes() if isinstance(data, np.ndarray) and data.dtype.kind != "O" else repr(data.tolist() if isinstance(data, np.ndarray) else data)
+                items[full] = ("dataset", str(obj.dtype), obj.shape, raw, attrs_of(full, obj))
+            else:
+                items[full] = ("group", attrs_of(full, obj))
+
+        f.visititems(visit)
+    return items
+
+
+def main(argv):
+    if len(argv) < 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    reference = collect(argv[1])
+    datasets = sum(1 for v in reference.values() if v[0] == "dataset")
+    if datasets == 0:
+        print(f"{argv[1]}: no datasets", file=sys.stderr)
+        return 1
+    failures = 0
+    for other_path in argv[2:]:
+        other = collect(other_path)
+        for name in sorted(set(reference) | set(other)):
+            if name not in other or name not in reference:
+                print(f"{other_path}: {name} only in {'the reference' if name in reference else 'this file'}")
+                failures += 1
+            elif reference[name] != other[name]:
+                print(f"{other_path}: {name} differs from {argv[1]}")
+                failures += 1
+    print(f"compared {datasets} datasets of {argv[1]} with {len(argv) - 2} file(s): "
+          f"{'identical' if failures == 0 else f'{failures} difference(s)'}")
+    return 0 if failures == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

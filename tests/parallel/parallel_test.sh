@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Tests of `mpirun -np P raceway run` (issue 4), one case per ctest:
+#
+#   parallel_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
+#
+#   bitwise_planar, bitwise_spatial: every output dataset bitwise identical for np = 1, 2, 3, 4
+#     (3 and 4 oversubscribed: correctness, not speed) and with a new plan before every evaluation
+#     (--replan-every-step), and with rank 0 evaluating no tasks (--master-share 0), on a short
+#     seed 002 run and a short 6309 R3 run; /scheduler and timing
+#     fields of the summary are left out (tests/parallel/compare_outputs.py).
+#   worker_failure, master_failure: an exception inside a task on rank 1 (or 0) at evaluation 30
+#     (test-only --inject-failure): the job ends within the timeout, non-zero, with the rank's
+#     message.
+#   integration_failure: rank 0's integration fails (step budget 50): exit 3, the workers leave too.
+set -u
+case_name=${1:?case}
+raceway=${2:?raceway}
+mpiexec=${3:?mpiexec}
+source_dir=${4:?source dir}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+compare=(/usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py")
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/raceway_parallel_${case_name}.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+# mpirun NP ARGS...: raceway under mpirun, output in $work/log.NP; sets $rc.
+mpi() {
+  local np=$1
+  shift
+  timeout 300 "$mpiexec" --oversubscribe -np "$np" "$raceway" "$@" >"$work/log" 2>&1
+  rc=$?
+}
+
+# Short scenes from the job files (the physics of the full runs, fewer revolutions).
+sed -e 's/^end_time = .*/end_time = "6 ms"/' "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/planar.toml"
+sed -e 's/^end_time = .*/end_time = "3 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
+
+bitwise() {
+  local scene=$1
+  "$raceway" run "$scene" -o "$work/np1.h5" >"$work/log" 2>&1 || { fail "np 1 run failed: $(tail -3 "$work/log")"; return; }
+  local files=()
+  for np in 2 3 4; do
+    mpi "$np" run "$scene" -o "$work/np$np.h5"
+    [[ $rc -eq 0 ]] || { fail "np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
+    grep -q "contact tasks on all ranks" "$work/log" || fail "np $np: no parallel run announced"
+    files+=("$work/np$np.h5")
+  done
+  for np in 2 3; do
+    mpi "$np" run "$scene" -o "$work/forced$np.h5" --replan-every-step
+    [[ $rc -eq 0 ]] || { fail "forced re-planning np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
+    files+=("$work/forced$np.h5")
+    # The plans must really have changed: at least one per evaluation.
+    /usr/bin/python3 - "$work/forced$np.h5" <<'PY' || fail "np $np --replan-every-step: too few plans"
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    g = f["scheduler"]
+    plans, evaluations = g["plans"].shape[0], g.attrs["evaluations_rhs"] + g.attrs["evaluations_jacobian"]
+    print(f"{plans} plans for {evaluations} evaluations, ranks {g.attrs['ranks']}")
+    sys.exit(0 if plans >= evaluations and g.attrs["ranks"] > 1 else 1)
+PY
+  done
+  # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
+  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0
+  if [[ $rc -eq 0 ]]; then
+    files+=("$work/share0.h5")
+    /usr/bin/python3 -c "import sys, h5py; sys.exit(0 if h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][0] == 0 else 1)" \
+      "$work/share0.h5" || fail "--master-share 0: rank 0 evaluated tasks"
+  else
+    fail "--master-share 0 np 3: exit code $rc: $(tail -3 "$work/log")"
+  fi
+  "${compare[@]}" "$work/np1.h5" "${files[@]}" || fail "outputs differ (see above)"
+}
+
+injected() {
+  local rank=$1
+  local start=$(date +%s)
+  mpi 2 run "$work/spatial.toml" -o "$work/f.h5" --inject-failure "$rank:30"
+  local elapsed=$(($(date +%s) - start))
+  [[ $rc -ne 0 ]] || fail "exit code 0 after an injected failure on rank $rank"
+  [[ $rc -ne 124 ]] || fail "the job hung (killed by timeout)"
+  grep -q "rank $rank of 2: error: in a .* task at evaluation 30: injected failure" "$work/log" ||
+    fail "no message from rank $rank: $(tail -5 "$work/log")"
+  echo "rank $rank failure: exit $rc after $elapsed s"
+  [[ $elapsed -le 60 ]] || fail "took $elapsed s to end"
+}
+
+case "$case_name" in
+bitwise_planar) bitwise "$work/planar.toml" ;;
+bitwise_spatial) bitwise "$work/spatial.toml" ;;
+worker_failure) injected 1 ;;
+master_failure) injected 0 ;;
+integration_failure)
+  sed 's/^\[solver\]/[solver]\nmax_steps = 50/' "$source_dir/jobs/scenes/default.toml" >"$work/fails.toml"
+  mpi 2 run "$work/fails.toml" -o "$work/f.h5"
+  [[ $rc -eq 3 ]] || fail "exit code $rc, expected 3: $(tail -5 "$work/log")"
+  grep -q "integration failed at t = " "$work/log" || fail "no diagnosis in the output"
+  ;;
+*) echo "unknown case $case_name" >&2; exit 2 ;;
+esac
+[[ $failures -eq 0 ]] && echo "PASS: $case_name" || echo "$failures failure(s) in $case_name"
+[[ $failures -eq 0 ]]

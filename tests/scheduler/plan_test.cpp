@@ -1,0 +1,113 @@
+// Two-level plans (scheduler/plan.hpp): balance, whole rolling elements at level 1, level-2
+// splits only when needed, capacities (rank 0's share), every task owned exactly once.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "scheduler/plan.hpp"
+
+using namespace raceway::scheduler;
+
+namespace {
+
+/// n rolling elements with k tasks each (bodies: ring 0, element 1+e, cage 1+n), plus border tasks.
+TaskCatalogue bearing(int elements, int tasks_per_element, int border_tasks) {
+  TaskCatalogue c;
+  for (int e = 0; e < elements; ++e)
+    for (int k = 0; k < tasks_per_element; ++k) {
+      c.group.push_back(e);
+      c.bodies.push_back({k % 2 == 0 ? 0 : 1 + elements, 1 + e});
+    }
+  for (int b = 0; b < border_tasks; ++b) {
+    c.group.push_back(border_group);
+    c.bodies.push_back({0, 1 + elements});
+  }
+  c.task_count = static_cast<int>(c.group.size());
+  return c;
+}
+
+std::vector<double> loads(const Plan& p, const std::vector<double>& cost, int ranks) {
+  std::vector<double> l(static_cast<std::size_t>(ranks), 0.0);
+  for (std::size_t t = 0; t < cost.size(); ++t) l[static_cast<std::size_t>(p.owner[t])] += cost[t];
+  return l;
+}
+
+}  // namespace
+
+TEST(Plan, EqualElementsSpreadEvenlyWithoutSplitting) {
+  const auto cat = bearing(12, 3, 2);
+  std::vector<double> cost(static_cast<std::size_t>(cat.task_count), 1.0);
+  cost[36] = cost[37] = 0.0;  // idle border tasks
+  const std::vector<double> cap(4, 1.0);
+  const Plan p = make_plan(cost, cat, cap);
+  EXPECT_NEAR(p.predicted_imbalance, 1.0, 1e-12);
+  EXPECT_EQ(p.split_groups, 0);
+  for (double l : loads(p, cost, 4)) EXPECT_DOUBLE_EQ(l, 9.0);
+}
+
+TEST(Plan, LoadedZoneIsBalancedBySplittingHeavyElements) {
+  // 8 elements, only 2 loaded (narrow loaded zone): level 1 alone gives 4 ranks max/mean ~ 2.
+  const auto cat = bearing(8, 4, 1);
+  std::vector<double> cost(static_cast<std::size_t>(cat.task_count), 0.1);
+  for (int k = 0; k < 4; ++k) cost[static_cast<std::size_t>(k)] = cost[static_cast<std::size_t>(4 + k)] = 10.0;
+  const std::vector<double> cap(4, 1.0);
+  const Plan p = make_plan(cost, cat, cap);
+  EXPECT_LT(p.predicted_imbalance, 1.05);
+  EXPECT_GE(p.split_groups, 2);
+  EXPECT_NEAR(predicted_imbalance(p.owner, cost, cap), p.predicted_imbalance, 1e-12);
+}
+
+TEST(Plan, MoreRanksThanElements) {
+  const auto cat = bearing(2, 6, 0);
+  const std::vector<double> cost(12, 1.0);
+  const std::vector<double> cap(6, 1.0);
+  const Plan p = make_plan(cost, cat, cap);
+  for (double l : loads(p, cost, 6)) EXPECT_DOUBLE_EQ(l, 2.0);
+}
+
+TEST(Plan, MasterShareIsRespected) {
+  const auto cat = bearing(16, 2, 0);
+  const std::vector<double> cost(32, 1.0);
+  const Plan none = make_plan(cost, cat, std::vector<double>{0.0, 1.0, 1.0});
+  EXPECT_DOUBLE_EQ(loads(none, cost, 3)[0], 0.0);
+  const Plan half = make_plan(cost, cat, std::vector<double>{0.5, 1.0, 1.0});
+  const auto l = loads(half, cost, 3);
+  EXPECT_NEAR(l[0], 6.4, 1.0);  // 32 * 0.5 / 2.5, within one element
+  EXPECT_LT(half.predicted_imbalance, 1.1);
+}
+
+TEST(Plan, OneRankTakesEverything) {
+  const auto cat = bearing(5, 3, 1);
+  const std::vector<double> cost(16, 1.0);
+  const Plan p = make_plan(cost, cat, std::vector<double>{1.0});
+  EXPECT_EQ(p.method, PlanMethod::single_rank);
+  for (int o : p.owner) EXPECT_EQ(o, 0);
+}
+
+TEST(Plan, EveryTaskOwnedByAnActiveRankAndMethodsCompared) {
+  const auto cat = bearing(13, 3, 2);
+  std::vector<double> cost(static_cast<std::size_t>(cat.task_count));
+  for (std::size_t t = 0; t < cost.size(); ++t) cost[t] = 1.0 + static_cast<double>((t * 7919) % 13);
+  const std::vector<double> cap{1.0, 1.0, 0.0, 1.0};
+  PlanOptions lpt_only;
+  lpt_only.try_metis = false;
+  const Plan with_metis = make_plan(cost, cat, cap);
+  const Plan lpt = make_plan(cost, cat, cap, lpt_only);
+  EXPECT_EQ(lpt.method, PlanMethod::greedy_lpt);
+  // METIS is kept only when it balances at least as well as LPT.
+  EXPECT_LE(with_metis.predicted_imbalance, lpt.predicted_imbalance);
+  for (const Plan* p : {&with_metis, &lpt}) {
+    ASSERT_EQ(p->owner.size(), cost.size());
+    for (int o : p->owner) {
+      EXPECT_GE(o, 0);
+      EXPECT_LT(o, 4);
+      EXPECT_NE(o, 2);
+    }
+  }
+}
+
+TEST(Plan, RejectsMismatchedInput) {
+  const auto cat = bearing(3, 2, 0);
+  EXPECT_THROW(make_plan(std::vector<double>(5, 1.0), cat, std::vector<double>{1.0, 1.0}), std::invalid_argument);
+  EXPECT_THROW(make_plan(std::vector<double>(6, 1.0), cat, std::vector<double>{0.0, 0.0}), std::invalid_argument);
+}
