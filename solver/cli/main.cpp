@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -153,6 +154,29 @@ int worker(const std::string& text, const std::string& source, scheduler::MpiExe
   return 1;
 }
 
+/// Runs a command and maps what it throws to the exit code (bad input 2, failed integration 3,
+/// anything else 1), logging the message.
+int exit_code_of(const std::function<int()>& command) {
+  try {
+    return command();
+  } catch (const io::ReportInputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const io::SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const solver::OptionsError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const solver::IntegrationFailure& e) {
+    spdlog::error("{}", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -250,23 +274,11 @@ int main(int argc, char** argv) {
       } else {
         if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
                                    scheduler::schedule_policy_name(exec_options.policy));
-        try {
+        code = exit_code_of([&] {
           // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
           const solver::PetscRuntime petsc(petsc_options);
-          code = run_command(scene, output, summary_json, executor);
-        } catch (const io::SceneError& e) {
-          spdlog::error("{}", e.what());
-          code = 2;
-        } catch (const solver::OptionsError& e) {
-          spdlog::error("{}", e.what());
-          code = 2;
-        } catch (const solver::IntegrationFailure& e) {
-          spdlog::error("{}", e.what());
-          code = 3;
-        } catch (const std::exception& e) {
-          spdlog::error("{}", e.what());
-          code = 1;
-        }
+          return run_command(scene, output, summary_json, executor);
+        });
       }
     }  // the executor's destructor releases the workers if rank 0 failed
     MPI_Finalize();
@@ -278,8 +290,8 @@ int main(int argc, char** argv) {
   }
   // PETSc after MPI (so it leaves MPI_Finalize to us), on the master only: the linear algebra runs
   // there (DESIGN.md 5). Destroyed before MPI_Finalize.
-  auto petsc = std::make_unique<solver::PetscRuntime>(petsc_options);
-  try {
+  code = exit_code_of([&] {
+    const solver::PetscRuntime petsc(petsc_options);
     if (*check) {
       const io::Scene scene = load(scene_path);
       solver::BorderedLayout layout;
@@ -294,28 +306,12 @@ int main(int argc, char** argv) {
       }
       std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
       std::puts("scene OK");
-    } else if (*report) {
-      if (!std::isnan(window_start)) report_options.window_start = window_start;
-      report_options.plots = !no_plots;
-      code = report_command(report_options);
+      return 0;
     }
-  } catch (const io::ReportInputError& e) {
-    spdlog::error("{}", e.what());
-    code = 2;
-  } catch (const io::SceneError& e) {
-    spdlog::error("{}", e.what());
-    code = 2;
-  } catch (const solver::OptionsError& e) {
-    spdlog::error("{}", e.what());
-    code = 2;
-  } catch (const solver::IntegrationFailure& e) {
-    spdlog::error("{}", e.what());
-    code = 3;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    code = 1;
-  }
-  petsc.reset();
+    if (!std::isnan(window_start)) report_options.window_start = window_start;
+    report_options.plots = !no_plots;
+    return report_command(report_options);
+  });
   MPI_Finalize();
   return code;
 }
