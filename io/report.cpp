@@ -343,6 +343,7 @@ SpatialRun read_spatial_run(const std::string& path) {
   run.cage_velocity = series("/cage/velocity", {3}).data;
   run.cage_angular_velocity = series("/cage/angular_velocity", {3}).data;
   run.epicyclic_speed = series("/cage/epicyclic_speed", {}).data;
+  if (r.exists("/cage/rolling_speed")) run.rolling_speed = series("/cage/rolling_speed", {}).data;  // newer files
 
   for (const auto& kind_name : r.members("/segments")) {
     const std::string g = "/segments/" + kind_name;
@@ -386,6 +387,7 @@ SpatialRun read_spatial_run(const std::string& path) {
   cut_rows(run.cage_velocity, rows, 3);
   cut_rows(run.cage_angular_velocity, rows, 3);
   cut_rows(run.epicyclic_speed, rows, 1);
+  if (!run.rolling_speed.empty()) cut_rows(run.rolling_speed, rows, 1);
   for (auto& [k, cols] : run.segments)
     for (auto& [d, v] : cols.diagnostic) cut_rows(v, rows, cols.columns());
 
@@ -426,11 +428,21 @@ JsonObject summarize_spatial_run(const SpatialRun& run, const ReportOptions& opt
       .add("epicyclic_rpm", cs.epicyclic_speed_rpm)
       .add("slip", cs.slip)
       .add("direction", direction);
+  std::string rolling_line;
+  if (!run.rolling_speed.empty()) {
+    // Against the kinematic speed at the angle the balls actually roll at (under axial load a deep
+    // groove bearing runs at 10-15 deg, not its nominal 0).
+    const CageSpeedStats rs = cage_speed_stats(t, omega_z, run.rolling_speed, w);
+    speed.add("rolling_rad_s", rs.epicyclic_speed).add("rolling_rpm", rs.epicyclic_speed_rpm).add("slip_rolling", rs.slip);
+    rolling_line = fmt::format("kinematic cage speed at the loaded contact angle {:.2f} rpm: slip {:.3f} %",
+                               rs.epicyclic_speed_rpm, 100 * rs.slip);
+  }
   sum.add("cage_speed", std::move(speed));
   lines.push_back(fmt::format("window {:.6g} .. {:.6g} s ({} samples): cage {:.2f} rpm, epicyclic {:.2f} rpm, "
                               "slip {:.3f} %",
                               w.t_begin, w.t_end, w.samples(), cs.cage_speed_rpm, cs.epicyclic_speed_rpm,
                               100 * cs.slip));
+  if (!rolling_line.empty()) lines.push_back(rolling_line);
 
   // Centroid trajectory.
   const CentroidMetrics cm =

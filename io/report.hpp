@@ -56,6 +56,7 @@ struct SpatialRun {
   std::vector<double> cage_velocity;           ///< [T x 3] m/s
   std::vector<double> cage_angular_velocity;   ///< [T x 3] rad/s
   std::vector<double> epicyclic_speed;         ///< [T] rad/s
+  std::vector<double> rolling_speed;           ///< [T] rad/s, at the loaded contact angle; empty in older files
   std::vector<double> ball_position;           ///< [T x balls x 3] m
   std::map<std::string, SegmentColumns> segments;  ///< by kind (ball_inner_groove, ball_pocket, ...)
   double pitch_radius = 0, pocket_clearance = 0, land_clearance = 0;  ///< m; NaN if not in the file

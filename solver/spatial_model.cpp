@@ -337,12 +337,14 @@ contact::SpatialKinematics SpatialModel::kinematics(int b, double t, const doubl
   return k;
 }
 
-double SpatialModel::epicyclic_cage_speed(double t) const {
+double SpatialModel::epicyclic_cage_speed(double t) const { return epicyclic_cage_speed(t, nominal_contact_angle); }
+
+double SpatialModel::epicyclic_cage_speed(double t, double contact_angle) const {
   auto speed = [&](int b) {
     const auto* r = bodies[static_cast<std::size_t>(b)].ring;
     return r->motion == io::RingMotion::driven ? r->speed(t) : 0.0;
   };
-  const double gamma = 2.0 * ball_radius * std::cos(nominal_contact_angle) / (2.0 * pitch_radius);
+  const double gamma = 2.0 * ball_radius * std::cos(contact_angle) / (2.0 * pitch_radius);
   return 0.5 * (speed(inner_ring) * (1.0 - gamma) + speed(outer_ring) * (1.0 + gamma));
 }
 

@@ -92,6 +92,9 @@ struct SpatialModel {
   std::string describe() const;
   /// Kinematic cage speed (seed 001 eq. 5-6) from the rings' speeds at t, at the nominal angle.
   double epicyclic_cage_speed(double t) const;
+  /// The same at a given contact angle (seed 001 eq. 5 with cos(alpha)): the kinematic cage speed of
+  /// balls rolling at that angle.
+  double epicyclic_cage_speed(double t, double contact_angle) const;
   /// Spin of a ring about its own axis at (t, z) [rad/s].
   double ring_spin(int b, double t, const double* z) const;
 };

@@ -52,6 +52,9 @@ class SpatialOutput {
       file_.define_series(g + "/force", {6}, "N, N m", "net force and moment at the centre (contacts, loads, supports, gravity)");
     }
     file_.define_series("/cage/epicyclic_speed", {1}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
+    file_.define_series("/cage/rolling_speed", {1}, "rad/s",
+                        "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
+                        "(nominal angle when none is loaded)");
     const std::size_t n = static_cast<std::size_t>(m.ball_count);
     file_.define_series("/balls/position", {n, 3}, "m", "ball centres");
     file_.define_series("/balls/velocity", {n, 3}, "m/s", "ball centre velocities");
@@ -75,6 +78,19 @@ class SpatialOutput {
       }
     }
     file_.set_attribute("/", "state_names", m.state_name);
+  }
+
+  /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
+  /// balls roll at); the nominal angle when none is loaded.
+  double loaded_contact_angle(const SpatialEquations& eq) const {
+    const auto& rec = eq.segment_records();
+    double load = 0, weighted = 0;
+    for (std::size_t s = 0; s < m_.segments.size(); ++s) {
+      if (m_.segments[s].kind != SpatialSegmentKind::ball_inner_groove) continue;
+      const double* d = rec.data() + s * SpatialRecord::size + SpatialRecord::diagnostics;
+      load += d[1], weighted += d[1] * std::abs(d[2]);  // normal_force, contact_angle
+    }
+    return load > 0 ? weighted / load : m_.nominal_contact_angle;
   }
 
   void append(double t, const std::vector<double>& z, const SpatialEquations& eq, double energy) {
@@ -102,6 +118,8 @@ class SpatialOutput {
     }
     const double epi = m_.epicyclic_cage_speed(t);
     file_.append("/cage/epicyclic_speed", std::span<const double>(&epi, 1));
+    const double rolling = m_.epicyclic_cage_speed(t, loaded_contact_angle(eq));
+    file_.append("/cage/rolling_speed", std::span<const double>(&rolling, 1));
     const std::size_t n = static_cast<std::size_t>(m_.ball_count);
     std::vector<double> pos(3 * n), vel(3 * n), om(3 * n);
     for (std::size_t k = 0; k < n; ++k) {

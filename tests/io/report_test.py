@@ -27,7 +27,7 @@ except ImportError as err:
     sys.exit(77)
 
 T, DT, N = 600, 1e-4, 8  # samples, output interval (s), balls; default window = samples 300 .. 599
-W_CAGE, W_EPI = 200.0, 210.0  # rad/s
+W_CAGE, W_EPI, W_ROLL = 200.0, 210.0, 201.0  # rad/s: cage, epicyclic (nominal angle), at the rolling angle
 R_WHIRL, CX, CY = 20e-6, 5e-6, -10e-6  # m
 W_WHIRL = 2 * math.pi * 3 / (300 * DT)  # 3 whirl periods per 300-sample window
 PITCH = 0.05
@@ -76,6 +76,7 @@ def write_spatial(path, direction=1, drop=None, model_kind="spatial"):
         ds("cage/angular_velocity", np.stack([np.zeros(T), np.zeros(T), np.full(T, wc)], 1), "rad/s")
         ds("cage/angles", np.stack([np.zeros(T), np.zeros(T), wc * t], 1), "rad")
         ds("cage/epicyclic_speed", np.full(T, we), "rad/s")
+        ds("cage/rolling_speed", np.full(T, direction * W_ROLL), "rad/s")
         for ring in ("inner_ring", "outer_ring"):
             ds(f"{ring}/position", np.zeros((T, 3)), "m")
         psi = wc * t[:, None] + 2 * math.pi * np.arange(N)[None, :] / N  # [T x N]
@@ -125,14 +126,20 @@ def run(raceway, *args, env=None):
     return p.returncode, p.stdout, p.stderr
 
 
-def check_summary(s, window_samples=300, direction=1):
-    """The numbers of write_spatial(), by hand."""
+def check_summary(s, window_samples=300, direction=1, rolling=True):
+    """The numbers of write_spatial(), by hand (rolling=False: a file without /cage/rolling_speed,
+    as written before it existed: no rolling keys)."""
     near(s["window"]["samples"], window_samples, 0, "window samples")
     cs = s["cage_speed"]
     near(cs["mean_rad_s"], direction * W_CAGE, 1e-9, "cage speed")
     near(cs["mean_rpm"], direction * W_CAGE * 60 / (2 * math.pi), 1e-7, "cage rpm")
     near(cs["epicyclic_rad_s"], direction * W_EPI, 1e-9, "epicyclic speed")
     near(cs["slip"], 1 - W_CAGE / W_EPI, 1e-12, "slip")
+    if rolling:
+        near(cs.get("rolling_rad_s", math.nan), direction * W_ROLL, 1e-9, "kinematic speed at the rolling angle")
+        near(cs.get("slip_rolling", math.nan), 1 - W_CAGE / W_ROLL, 1e-12, "slip against it")
+    else:
+        check("rolling_rad_s" not in cs and "slip_rolling" not in cs, "no rolling keys without /cage/rolling_speed")
     near(cs["direction"], direction, 0, "direction")
     c = s["cage_centroid"]
     near(c["centre_x_m"], CX, 1e-12, "centre x")
@@ -214,14 +221,15 @@ def main():
                         check(fh.read(8) == b"\x89PNG\r\n\x1a\n", f"{png} is not a PNG")
         elif case == "reverse":
             # Cage turning in -z with the circumferential signs flipped: the same bars.
-            write_spatial(h5, direction=-1)
+            # Also a file without /cage/rolling_speed (older runs): read all the same.
+            write_spatial(h5, direction=-1, drop="cage/rolling_speed")
             out_dir = os.path.join(work, "custom")
             rc, out, err = run(raceway, h5, "-o", out_dir, "--no-plots")
             check(rc == 0, f"exit code {rc}, expected 0; stderr:\n{err}")
             with open(os.path.join(out_dir, "summary.json")) as fh:
                 s = json.load(fh)
             # The ball load zone turns with the balls' azimuths, which are the same set of angles.
-            check_summary(s, direction=-1)
+            check_summary(s, direction=-1, rolling=False)
             check(not any(n.endswith(".png") for n in os.listdir(out_dir)), "--no-plots wrote PNGs")
         elif case == "options":
             write_spatial(h5)

@@ -71,6 +71,9 @@ struct AxialOutcome {
   double worst_inertia = 0;       ///< max over times of |F_net,z| / F_a (the ring's own m a_z)
   double worst_unloaded = 0;      ///< four-point: largest load on an arc that should be open [N]
   double mean_load = 0, mean_angle = 0;
+  double mean_cage_speed = 0;     ///< rad/s, second half
+  double mean_rolling_speed = 0;  ///< rad/s, /cage/rolling_speed (kinematic at the loaded angle)
+  double mean_epicyclic_speed = 0;  ///< rad/s, /cage/epicyclic_speed (nominal angle)
   RunSummary summary;
 };
 
@@ -88,6 +91,9 @@ AxialOutcome run_axial(const io::Scene& scene, double fa, const char* label) {
   const auto q = read_segments(options.output_path, "ball_inner_groove", "normal_force");
   const auto angle = read_segments(options.output_path, "ball_inner_groove", "contact_angle");
   const auto ring_force = test::read_dataset(options.output_path, "/inner_ring/force");
+  const auto cage_rate = test::read_dataset(options.output_path, "/cage/angular_velocity");
+  const auto rolling_speed = test::read_dataset(options.output_path, "/cage/rolling_speed");
+  const auto epicyclic_speed = test::read_dataset(options.output_path, "/cage/epicyclic_speed");
   const int z = scene.bearing.rolling_elements;
   const std::size_t columns = q.ball.size();
   int samples = 0;
@@ -117,8 +123,11 @@ AxialOutcome run_axial(const io::Scene& scene, double fa, const char* label) {
     o.worst_balance = std::max(o.worst_balance, std::abs(axial - fa) / fa);
     o.worst_inertia = std::max(o.worst_inertia, std::abs(net_z) / fa);
     o.mean_balance += axial, o.mean_load += mean_q, o.mean_angle += mean_a, ++samples;
+    o.mean_cage_speed += cage_rate.at(i, 2), o.mean_rolling_speed += rolling_speed.values[i];
+    o.mean_epicyclic_speed += epicyclic_speed.values[i];
   }
   o.mean_balance /= samples, o.mean_load /= samples, o.mean_angle /= samples;
+  o.mean_cage_speed /= samples, o.mean_rolling_speed /= samples, o.mean_epicyclic_speed /= samples;
   std::printf("[ axial ] %s, F_a %g N: %d samples (second half); mean ball load %.4f N at %.4f deg; largest "
               "spread between balls: loads %.3g, angles %.3g; mean Z Q sin(a) / F_a - 1 = %.3g; worst "
               "|Z Q sin(a) - F_a| / F_a %.3g; worst |m a_z| / F_a %.3g; open arcs <= %.3g N; summary "
@@ -300,6 +309,17 @@ TEST(SpatialPhysics, PureAxialLoadEqualBallsDeepGroove) {
               1e6 * c.z(), ball.load, alpha * 180 / pi, r.mean_load / ball.load - 1, r.mean_angle / alpha - 1);
   EXPECT_NEAR(r.mean_load, ball.load, 1e-2 * ball.load);
   EXPECT_NEAR(r.mean_angle, alpha, 1e-2 * alpha);
+
+  // Cage speed: all balls roll at the same angle, so the cage turns at the kinematic speed of that
+  // angle, omega_i / 2 (1 - D cos(alpha) / d_m), which /cage/rolling_speed reports; the nominal
+  // (0 deg) epicyclic speed is off by D (1 - cos alpha) / d_m (0.4 % at 12 deg here).
+  const double rolling = 0.5 * o.speed_rpm * pi / 30 * (1 - 2 * qs.rb * std::cos(r.mean_angle) / (2 * qs.rp));
+  std::printf("[ axial ] cage %.6f rad/s; rolling speed %.6f rad/s (analytic at the mean angle %.6f); nominal "
+              "epicyclic %.6f rad/s\n",
+              r.mean_cage_speed, r.mean_rolling_speed, rolling, r.mean_epicyclic_speed);
+  EXPECT_NEAR(r.mean_rolling_speed, rolling, 1e-6 * rolling);
+  EXPECT_NEAR(r.mean_cage_speed, r.mean_rolling_speed, 1e-3 * rolling);
+  EXPECT_GT(std::abs(r.mean_cage_speed - r.mean_epicyclic_speed), 2e-3 * rolling);
 }
 
 // Four-point bearing: each ball carries the load on one inner arc and the opposite outer arc; the
