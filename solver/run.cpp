@@ -1,10 +1,10 @@
 #include "solver/run.hpp"
+#include "solver/run_loop.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "io/h5_series.hpp"
 #include "solver/schedule_output.hpp"
@@ -18,7 +18,6 @@ using contact::Component;
 
 namespace {
 
-constexpr double rpm = 30.0 / std::numbers::pi;
 
 const char* diagnostic_names[contact::diagnostics_count] = {
     "approach", "normal_force", "traction_force", "slip_velocity", "elastic_energy", "power_loss"};
@@ -156,7 +155,6 @@ io::JsonObject RunSummary::to_json() const {
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   if (scene.scene.model == io::ModelKind::spatial) return run_spatial_scene(scene, options);
   const auto wall_start = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
@@ -178,83 +176,32 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   OutputWriter out(file, model, scene.output.segments);
 
   Integrator integrator(eq, scene.solver, t0, start.state);
-  std::vector<double> z = start.state, zdot(z.size());
-  RunSummary sum;
-  const double end = scene.scene.end_time, dt = scene.scene.output_interval;
-  const long samples = std::lround(std::floor(end / dt + 1e-9));
-  double cage_sum = 0, epi_sum = 0, force_sum[2] = {0, 0}, load_sum[2] = {0, 0};
-  int half_count = 0;
-  const Body& drive = model.bodies[scene.inner_ring.motion == io::RingMotion::driven ? model.inner_ring : model.outer_ring];
-  double revolutions = 0, last_t = t0;
-
-  auto record = [&](double t) {
-    eq.rhs(t, z.data(), zdot.data());
-    const double e = eq.energy(t, z.data());
-    if (sum.output_samples == 0) sum.energy_initial_j = e;
-    sum.energy_final_j = e;
-    sum.energy_max_drift_j = std::max(sum.energy_max_drift_j, std::abs(e - sum.energy_initial_j));
+  double force_sum[2] = {0, 0}, load_sum[2] = {0, 0};
+  RunRecorder recorder;
+  recorder.append = [&](double t, const std::vector<double>& z, const std::vector<double>& zdot, double e) {
     out.append(t, z, zdot, eq, e);
-    ++sum.output_samples;
-    if (drive.ring->motion == io::RingMotion::driven)
-      revolutions += 0.5 * (drive.ring->speed(last_t) + drive.ring->speed(t)) * (t - last_t) / (2 * std::numbers::pi);
-    last_t = t;
-    if (t >= 0.5 * end - 1e-12) {
-      cage_sum += z[model.bodies[model.cage].slot[Component::omega]];
-      epi_sum += model.epicyclic_cage_speed(t);
-      // Contact force of the rollers on the inner ring (without its load).
-      const Body& in = model.bodies[model.inner_ring];
-      const auto& rec = eq.segment_records();
-      for (std::size_t s = 0; s < model.segments.size(); ++s) {
-        const auto& seg = model.segments[s];
-        const double* r = rec.data() + s * SegmentRecord::size;
-        if (seg.body_a == model.inner_ring) force_sum[0] += r[0], force_sum[1] += r[1];
-        else if (seg.body_b == model.inner_ring) force_sum[0] += r[3], force_sum[1] += r[4];
-      }
-      load_sum[0] += in.ring->load.fx(t);
-      load_sum[1] += in.ring->load.fy(t);
-      ++half_count;
+  };
+  recorder.second_half = [&](double t, const std::vector<double>& z) {
+    // Contact force of the rollers on the inner ring (without its load).
+    const Body& in = model.bodies[model.inner_ring];
+    const auto& rec = eq.segment_records();
+    for (std::size_t s = 0; s < model.segments.size(); ++s) {
+      const auto& seg = model.segments[s];
+      const double* r = rec.data() + s * SegmentRecord::size;
+      if (seg.body_a == model.inner_ring) force_sum[0] += r[0], force_sum[1] += r[1];
+      else if (seg.body_b == model.inner_ring) force_sum[0] += r[3], force_sum[1] += r[4];
+    }
+    load_sum[0] += in.ring->load.fx(t);
+    load_sum[1] += in.ring->load.fy(t);
+    return std::pair(z[model.bodies[model.cage].slot[Component::omega]], model.epicyclic_cage_speed(t));
+  };
+  recorder.summarize = [&](RunSummary& sum, int count) {
+    for (int d = 0; d < 2; ++d) {
+      sum.inner_ring_contact_force_n.push_back(force_sum[d] / count);
+      sum.inner_ring_load_n.push_back(load_sum[d] / count);
     }
   };
-
-  record(t0);
-  auto finish = [&](double t) {
-    const auto st = integrator.statistics();
-    sum.stats = st;
-    sum.simulated_time_s = t;
-    sum.wall_time_s = wall();
-    sum.model_rhs_evaluations = eq.rhs_evaluations();
-    sum.model_jacobian_evaluations = eq.jacobian_evaluations();
-    sum.segment_evaluations = eq.segment_evaluations();
-    sum.rhs_seconds = executor.total_seconds(scheduler::Phase::rhs);
-    sum.jacobian_seconds = executor.total_seconds(scheduler::Phase::jacobian);
-    sum.driven_ring_revolutions = revolutions;
-    if (half_count > 0) {
-      sum.cage_speed_rpm = cage_sum / half_count * rpm;
-      sum.epicyclic_cage_speed_rpm = epi_sum / half_count * rpm;
-      sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
-      for (int d = 0; d < 2; ++d) {
-        sum.inner_ring_contact_force_n.push_back(force_sum[d] / half_count);
-        sum.inner_ring_load_n.push_back(load_sum[d] / half_count);
-      }
-    }
-    file.set_attribute("/", "summary_json", sum.to_json().dump());
-    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
-  };
-  for (long i = 1; i <= samples; ++i) {
-    const double t = t0 + static_cast<double>(i) * dt;
-    try {
-      integrator.advance_to(t, z);
-    } catch (const IntegrationFailure&) {
-      finish(last_t);
-      file.flush();
-      throw;  // the .partial file stays, the previous output is untouched
-    }
-    record(t);
-    if (options.on_progress) options.on_progress({t, end, revolutions, wall(), integrator.statistics().steps});
-  }
-  finish(last_t);
-  file.commit();
-  return sum;
+  return record_run(scene, options, eq, executor, integrator, file, start.state, RunSummary{}, wall_start, recorder);
 }
 
 void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve) {

@@ -4,11 +4,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "io/h5_series.hpp"
 #include "solver/schedule_output.hpp"
 #include "solver/run.hpp"
+#include "solver/run_loop.hpp"
 #include "solver/spatial_equations.hpp"
 #include "solver/spatial_startup.hpp"
 
@@ -18,7 +18,6 @@ using contact::Vec3;
 
 namespace {
 
-constexpr double rpm = 30.0 / std::numbers::pi;
 
 const char* diagnostic_names[contact::point_diagnostics_count] = {
     "approach",       "normal_force",   "contact_angle",         "max_pressure",   "film_thickness", "slip_velocity",
@@ -159,7 +158,6 @@ class SpatialOutput {
 
 RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const SpatialModel model = build_spatial_model(scene);
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
@@ -186,88 +184,35 @@ RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) 
   SpatialOutput out(file, model, scene.output.segments);
 
   Integrator integrator(eq, scene.solver, t0, start.state);
-  std::vector<double> z = start.state, zdot(z.size());
   RunSummary sum;
   sum.model_kind = "spatial";
-  const double end = scene.scene.end_time, dt = scene.scene.output_interval;
-  const long samples = std::lround(std::floor(end / dt + 1e-9));
-  double cage_sum = 0, epi_sum = 0;
   Vec3 force_sum = Vec3::Zero(), load_sum = Vec3::Zero();
-  int half_count = 0;
-  const auto& drive_ring =
-      model.bodies[static_cast<std::size_t>(scene.inner_ring.motion == io::RingMotion::driven ? model.inner_ring : model.outer_ring)];
-  double revolutions = 0, last_t = t0;
-  const auto& cage = model.bodies[static_cast<std::size_t>(model.cage)];
-
-  auto record = [&](double t) {
-    eq.rhs(t, z.data(), zdot.data());
-    const double e = eq.energy(t, z.data());
-    if (sum.output_samples == 0) sum.energy_initial_j = e;
-    sum.energy_final_j = e;
-    sum.energy_max_drift_j = std::max(sum.energy_max_drift_j, std::abs(e - sum.energy_initial_j));
+  double max_ball_load = 0;
+  RunRecorder recorder;
+  recorder.append = [&](double t, const std::vector<double>& z, const std::vector<double>&, double e) {
     out.append(t, z, eq, e);
-    ++sum.output_samples;
-    if (drive_ring.ring->motion == io::RingMotion::driven)
-      revolutions += 0.5 * (drive_ring.ring->speed(last_t) + drive_ring.ring->speed(t)) * (t - last_t) / (2 * std::numbers::pi);
-    last_t = t;
-    if (t >= 0.5 * end - 1e-12) {
-      cage_sum += model.kinematics(model.cage, t, z.data()).angular_velocity.z();
-      epi_sum += model.epicyclic_cage_speed(t);
-      force_sum += eq.contact_loads()[static_cast<std::size_t>(model.inner_ring)].force;
-      const auto& l = scene.inner_ring.load;
-      load_sum += Vec3(l.fx(t), l.fy(t), l.fz(t));
-      const auto& rec = eq.segment_records();
-      std::vector<double> ball_load(static_cast<std::size_t>(model.ball_count), 0.0);
-      for (std::size_t s = 0; s < model.segments.size(); ++s)
-        if (model.segments[s].kind == SpatialSegmentKind::ball_inner_groove)
-          ball_load[static_cast<std::size_t>(model.segments[s].ball)] +=
-              rec[s * SpatialRecord::size + SpatialRecord::diagnostics + 1];
-      for (double q : ball_load) sum.max_ball_load_n = std::max(sum.max_ball_load_n, q);
-      ++half_count;
+  };
+  recorder.second_half = [&](double t, const std::vector<double>& z) {
+    force_sum += eq.contact_loads()[static_cast<std::size_t>(model.inner_ring)].force;
+    const auto& l = scene.inner_ring.load;
+    load_sum += Vec3(l.fx(t), l.fy(t), l.fz(t));
+    const auto& rec = eq.segment_records();
+    std::vector<double> ball_load(static_cast<std::size_t>(model.ball_count), 0.0);
+    for (std::size_t s = 0; s < model.segments.size(); ++s)
+      if (model.segments[s].kind == SpatialSegmentKind::ball_inner_groove)
+        ball_load[static_cast<std::size_t>(model.segments[s].ball)] +=
+            rec[s * SpatialRecord::size + SpatialRecord::diagnostics + 1];
+    for (double q : ball_load) max_ball_load = std::max(max_ball_load, q);
+    return std::pair(model.kinematics(model.cage, t, z.data()).angular_velocity.z(), model.epicyclic_cage_speed(t));
+  };
+  recorder.summarize = [&](RunSummary& s, int count) {
+    s.max_ball_load_n = max_ball_load;
+    for (int d = 0; d < 3; ++d) {
+      s.inner_ring_contact_force_n.push_back(force_sum[d] / count);
+      s.inner_ring_load_n.push_back(load_sum[d] / count);
     }
   };
-  (void)cage;
-
-  record(t0);
-  auto finish = [&](double t) {
-    sum.stats = integrator.statistics();
-    sum.simulated_time_s = t;
-    sum.wall_time_s = wall();
-    sum.model_rhs_evaluations = eq.rhs_evaluations();
-    sum.model_jacobian_evaluations = eq.jacobian_evaluations();
-    sum.segment_evaluations = eq.segment_evaluations();
-    sum.rhs_seconds = executor.total_seconds(scheduler::Phase::rhs);
-    sum.jacobian_seconds = executor.total_seconds(scheduler::Phase::jacobian);
-    sum.driven_ring_revolutions = revolutions;
-    if (half_count > 0) {
-      sum.cage_speed_rpm = cage_sum / half_count * rpm;
-      sum.epicyclic_cage_speed_rpm = epi_sum / half_count * rpm;
-      sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
-      sum.inner_ring_contact_force_n.clear();
-      sum.inner_ring_load_n.clear();
-      for (int d = 0; d < 3; ++d) {
-        sum.inner_ring_contact_force_n.push_back(force_sum[d] / half_count);
-        sum.inner_ring_load_n.push_back(load_sum[d] / half_count);
-      }
-    }
-    file.set_attribute("/", "summary_json", sum.to_json().dump());
-    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
-  };
-  for (long i = 1; i <= samples; ++i) {
-    const double t = t0 + static_cast<double>(i) * dt;
-    try {
-      integrator.advance_to(t, z);
-    } catch (const IntegrationFailure&) {
-      finish(last_t);
-      file.flush();
-      throw;
-    }
-    record(t);
-    if (options.on_progress) options.on_progress({t, end, revolutions, wall(), integrator.statistics().steps});
-  }
-  finish(last_t);
-  file.commit();
-  return sum;
+  return record_run(scene, options, eq, executor, integrator, file, start.state, std::move(sum), wall_start, recorder);
 }
 
 }  // namespace raceway::solver
