@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "io/h5_handle.hpp"
+
 namespace raceway::io {
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "raceway needs HDF5 >= 1.10 (64-bit hid_t)");
@@ -56,43 +58,13 @@ hid_t failed_id() {
   return -1;
 }
 
-// Switches HDF5's automatic error-stack printing off for the lifetime of the guard and restores
-// whatever was installed before (the rest of the program keeps its own setting).
-class ErrorSilencer {
+// HDF5's error printing off for a writer operation, which starts with no saved error.
+class ErrorSilencer : public h5::QuietErrors {
  public:
-  ErrorSilencer() {
-    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) < 0) {
-      func_ = nullptr;
-      data_ = nullptr;
-    }
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    t_saved_error.clear();
-  }
-  ~ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  ErrorSilencer(const ErrorSilencer&) = delete;
-  ErrorSilencer& operator=(const ErrorSilencer&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
+  ErrorSilencer() { t_saved_error.clear(); }
 };
 
-// Owns one HDF5 identifier; closes it with the matching H5?close.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*closer)(hid_t)) : id_(id), closer_(closer) {}
-  ~Handle() {
-    if (id_ >= 0) closer_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*closer_)(hid_t);
-};
+using h5::Handle;
 
 // "/a//b/" -> {"a", "b"}
 std::vector<std::string> split_path(const std::string& path) {

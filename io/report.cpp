@@ -22,6 +22,7 @@
 #include <fmt/format.h>
 
 #include "io/cage_metrics.hpp"
+#include "io/h5_handle.hpp"
 
 extern char** environ;  // NOLINT: POSIX, for posix_spawn
 
@@ -39,22 +40,8 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 // ---- HDF5 reading -------------------------------------------------------------------------------
 
-// HDF5's automatic error printing off while the report reads (restored afterwards): failures are
-// reported once, by the exception.
-class ErrorSilencer {
- public:
-  ErrorSilencer() {
-    if (H5Eget_auto2(H5E_DEFAULT, &func_, &data_) < 0) func_ = nullptr, data_ = nullptr;
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  ErrorSilencer(const ErrorSilencer&) = delete;
-  ErrorSilencer& operator=(const ErrorSilencer&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
+// HDF5's automatic error printing off while the report reads (restored afterwards).
+using ErrorSilencer = h5::QuietErrors;
 
 // The innermost message of the current HDF5 error stack ("" if none).
 std::string hdf5_error_text() {
@@ -67,22 +54,7 @@ std::string hdf5_error_text() {
   return last;
 }
 
-// One HDF5 identifier, closed with its H5?close.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
+using h5::Handle;
 
 struct Array {
   std::vector<std::size_t> dims;
