@@ -164,15 +164,7 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   const StartupReport start = consistent_initial_state(model, t0);
   if (options.on_info) options.on_info(start.summary);
 
-  // The linear solver (and PETSc's options) is checked before the output file exists.
-  const std::string solver_line =
-      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
-  if (options.on_info) options.on_info(solver_line);
-  auto file = io::H5SeriesWriter::create(options.output_path);
-  file.set_attribute("/", "scene_text", scene.text);
-  file.set_attribute("/", "scene_source", scene.source);
-  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
-  file.set_attribute("/", "model", model.describe());
+  auto file = open_run_output(scene, options, eq, model.describe());
   OutputWriter out(file, model, scene.output.segments);
 
   Integrator integrator(eq, scene.solver, t0, start.state);

@@ -15,6 +15,7 @@
 #include "io/scene.hpp"
 #include "scheduler/executor.hpp"
 #include "solver/integrator.hpp"
+#include "solver/newton_backends.hpp"
 #include "solver/run.hpp"
 #include "solver/schedule_output.hpp"
 
@@ -29,6 +30,22 @@ struct RunRecorder {
   /// Writes the means of the model's own figures over `count` second-half samples into the summary.
   std::function<void(RunSummary& sum, int count)> summarize;
 };
+
+/// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates
+/// the output (OUT.h5.partial) with the attributes every run has.
+template <class Equations>
+io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& options, const Equations& eq,
+                                   const std::string& model_description) {
+  const std::string solver_line =
+      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
+  if (options.on_info) options.on_info(solver_line);
+  auto file = io::H5SeriesWriter::create(options.output_path);
+  file.set_attribute("/", "scene_text", scene.text);
+  file.set_attribute("/", "scene_source", scene.source);
+  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
+  file.set_attribute("/", "model", model_description);
+  return file;
+}
 
 /// Integrates from z to the scene's end time with output every output_interval and returns the
 /// summary (started as `sum`). `wall_start` is when the run began (model building included).

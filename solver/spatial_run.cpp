@@ -167,15 +167,7 @@ RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options) 
   const SpatialStartupReport start = spatial_initial_state(model, t0, options.azimuth_offset);
   if (options.on_info) options.on_info(start.summary);
 
-  // The linear solver (and PETSc's options) is checked before the output file exists.
-  const std::string solver_line =
-      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
-  if (options.on_info) options.on_info(solver_line);
-  auto file = io::H5SeriesWriter::create(options.output_path);
-  file.set_attribute("/", "scene_text", scene.text);
-  file.set_attribute("/", "scene_source", scene.source);
-  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
-  file.set_attribute("/", "model", model.describe());
+  auto file = open_run_output(scene, options, eq, model.describe());
   file.set_attribute("/", "model_kind", std::string("spatial"));
   file.set_attribute("/", "ball_count", static_cast<long long>(model.ball_count));
   file.set_attribute("/", "pitch_radius", model.pitch_radius);
