@@ -3,10 +3,10 @@
 // Run: perf/run_benchmarks.sh (records perf/results/bench_planar.txt).
 #include <benchmark/benchmark.h>
 
-#include "contact/planar_segments.hpp"
-#include "io/scene_parser.hpp"
-#include "solver/equations.hpp"
-#include "solver/startup.hpp"
+#include "contact/segments/roller_segments.hpp"
+#include "io/scene/scene_parser.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/startup.hpp"
 
 namespace {
 

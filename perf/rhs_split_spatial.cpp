@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "io/scene_parser.hpp"
-#include "solver/spatial_equations.hpp"
-#include "solver/spatial_startup.hpp"
+#include "io/scene/scene_parser.hpp"
+#include "solver/bearing/spatial_equations.hpp"
+#include "solver/bearing/spatial_startup.hpp"
 
 int main(int argc, char** argv) {
   using namespace raceway;

@@ -3,7 +3,7 @@
 #
 #   cli_test.sh CASE RACEWAY_EXECUTABLE SOURCE_DIR
 #
-# Exit codes of raceway (solver/cli/main.cpp): 0 success, 2 bad scene, 3 integration failure, 1 other.
+# Exit codes of raceway (solver/driver/main.cpp): 0 success, 2 bad scene, 3 integration failure, 1 other.
 set -u
 
 case_name=${1:?case}

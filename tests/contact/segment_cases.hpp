@@ -18,9 +18,9 @@
 #include <variant>
 #include <vector>
 
-#include "contact/line_contact.hpp"
-#include "contact/planar_segments.hpp"
-#include "contact/segment_jacobian.hpp"
+#include "contact/laws/line_contact.hpp"
+#include "contact/segments/roller_segments.hpp"
+#include "contact/segments/segment_jacobian.hpp"
 
 namespace raceway::contact::test {
 

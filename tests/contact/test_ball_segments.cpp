@@ -23,10 +23,10 @@
 #include <variant>
 #include <vector>
 
-#include "contact/ball_segments.hpp"
-#include "contact/line_contact.hpp"
-#include "contact/point_contact.hpp"
-#include "contact/spatial_segment_jacobian.hpp"
+#include "contact/segments/ball_segments.hpp"
+#include "contact/laws/line_contact.hpp"
+#include "contact/laws/point_contact.hpp"
+#include "contact/segments/spatial_segment_jacobian.hpp"
 
 namespace raceway::contact::test {
 namespace {

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "contact/line_contact.hpp"
+#include "contact/laws/line_contact.hpp"
 
 namespace raceway::contact {
 namespace {

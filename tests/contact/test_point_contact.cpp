@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "contact/line_contact.hpp"
-#include "contact/point_contact.hpp"
+#include "contact/laws/line_contact.hpp"
+#include "contact/laws/point_contact.hpp"
 
 namespace raceway::contact {
 namespace {

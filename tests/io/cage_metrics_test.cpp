@@ -1,7 +1,7 @@
 // Tests of the post-processing metrics (io/cage_metrics.hpp) against closed forms: a circular and
 // an elliptical cage whirl (seed 001 section 4, eq. 9), square-pulse bar forces, the front / rear
 // sign convention of docs/output_layout.md, and a Hertzian cos^1.5 ball-load zone.
-#include "io/cage_metrics.hpp"
+#include "io/report/cage_metrics.hpp"
 
 #include <gtest/gtest.h>
 

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "io/h5_series.hpp"
-#include "io/summary_json.hpp"
+#include "io/h5/h5_series.hpp"
+#include "io/json/summary_json.hpp"
 
 namespace fs = std::filesystem;
 using raceway::io::H5SeriesWriter;

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_parser.hpp"
+#include "io/scene/scene_parser.hpp"
 
 namespace raceway::io {
 namespace {

@@ -5,8 +5,8 @@
 #include <numbers>
 #include <string>
 
-#include "io/scene.hpp"
-#include "io/units.hpp"
+#include "io/scene/scene.hpp"
+#include "io/scene/units.hpp"
 
 namespace raceway::io {
 namespace {

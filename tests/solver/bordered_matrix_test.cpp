@@ -8,7 +8,7 @@
 #include <tuple>
 #include <vector>
 
-#include "solver/bordered_matrix.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
 
 namespace raceway::solver {
 namespace {

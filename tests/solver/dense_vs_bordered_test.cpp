@@ -20,13 +20,13 @@
 #include <random>
 #include <vector>
 
-#include "io/scene_parser.hpp"
+#include "io/scene/scene_parser.hpp"
 #include "scheduler/executor.hpp"
-#include "solver/bordered_matrix.hpp"
-#include "solver/equations.hpp"
-#include "solver/integrator.hpp"
-#include "solver/model.hpp"
-#include "solver/startup.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

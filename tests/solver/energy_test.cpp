@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "solver/run.hpp"
+#include "solver/run/run.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/run.hpp"
+#include "solver/run/run.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "contact/planar_segments.hpp"
+#include "contact/segments/roller_segments.hpp"
 #include "scheduler/executor.hpp"
-#include "solver/bordered_matrix.hpp"
-#include "solver/equations.hpp"
-#include "solver/integrator.hpp"
-#include "solver/model.hpp"
-#include "solver/startup.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

@@ -16,16 +16,16 @@
 #include <string>
 #include <tuple>
 
-#include "io/scene_parser.hpp"
+#include "io/scene/scene_parser.hpp"
 #include "scheduler/executor.hpp"
-#include "solver/equations.hpp"
-#include "solver/integrator.hpp"
-#include "solver/model.hpp"
-#include "solver/newton_backends.hpp"
-#include "solver/spatial_equations.hpp"
-#include "solver/spatial_model.hpp"
-#include "solver/spatial_startup.hpp"
-#include "solver/startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/numerics/newton_backends.hpp"
+#include "solver/bearing/spatial_equations.hpp"
+#include "solver/bearing/spatial_model.hpp"
+#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/startup.hpp"
 #include "spatial_scene_builder.hpp"
 
 namespace raceway::solver {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-#include "solver/newton_backends.hpp"
+#include "solver/numerics/newton_backends.hpp"
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "io/scene.hpp"
-#include "io/scene_parser.hpp"
+#include "io/scene/scene.hpp"
+#include "io/scene/scene_parser.hpp"
 
 namespace raceway::solver::test {
 

@@ -20,15 +20,15 @@
 #include <string>
 #include <vector>
 
-#include "contact/line_contact.hpp"
-#include "contact/point_contact.hpp"
+#include "contact/laws/line_contact.hpp"
+#include "contact/laws/point_contact.hpp"
 #include "scheduler/executor.hpp"
-#include "solver/bordered_matrix.hpp"
-#include "solver/integrator.hpp"
-#include "solver/run.hpp"
-#include "solver/spatial_equations.hpp"
-#include "solver/spatial_model.hpp"
-#include "solver/spatial_startup.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "solver/run/run.hpp"
+#include "solver/bearing/spatial_equations.hpp"
+#include "solver/bearing/spatial_model.hpp"
+#include "solver/bearing/spatial_startup.hpp"
 #include "solver_test_support.hpp"
 #include "spatial_scene_builder.hpp"
 

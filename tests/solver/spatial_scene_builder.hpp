@@ -7,7 +7,7 @@
 #include <numbers>
 #include <string>
 
-#include "io/scene.hpp"
+#include "io/scene/scene.hpp"
 
 namespace raceway::solver::test {
 

@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <vector>
 
-#include "contact/planar_segments.hpp"
+#include "contact/segments/roller_segments.hpp"
 #include "scheduler/executor.hpp"
-#include "solver/equations.hpp"
-#include "solver/model.hpp"
-#include "solver/startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

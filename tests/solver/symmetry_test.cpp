@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "solver/run.hpp"
+#include "solver/run/run.hpp"
 #include "solver_test_support.hpp"
 
 namespace raceway::solver {

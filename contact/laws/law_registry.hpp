@@ -1,0 +1,54 @@
+// The registry of contact laws: the only place their names live. A scene names a law per role
+// (normal, damping, traction) and contact kind; the parser looks the name up here (an unknown
+// name is an error listing the known ones for that contact), stores the law's id, and the model
+// builders build from the id. Adding a law: one row in the table (law_registry.cpp) and its
+// implementation in contact/laws; nothing else compares names.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace raceway::contact {
+
+/// What part of a contact a law describes.
+enum class LawRole { normal, damping, traction };
+
+/// Every law raceway knows.
+enum class LawId {
+  palmgren,       ///< normal, line contact: Q = K delta^(10/9) (per slice)
+  hertz,          ///< normal, point contact: Q = K delta^1.5, K from the exact ellipticity
+  hunt_crossley,  ///< damping: F = F_el (1 + factor * d(delta)/dt), continuous at onset
+  no_damping,     ///< damping: none
+  tanh_traction,  ///< traction: mu = mu_max tanh(u / u_s), smooth through zero slip
+  no_traction,    ///< traction: none
+  limiting_shear  ///< traction, lubricated point contacts: Barus viscosity, limiting shear stress
+};
+
+/// The contacts of a scene, as bits: a law lists the ones it applies to.
+enum ContactKindBit : unsigned {
+  roller_race_contact = 1u << 0,  ///< [contact.roller_race]
+  roller_cage_contact = 1u << 1,  ///< [contact.roller_cage]
+  ball_race_contact = 1u << 2,    ///< [contact.ball_race]
+  ball_cage_contact = 1u << 3,    ///< [contact.ball_cage]
+  cage_land_contact = 1u << 4,    ///< [contact.cage_land]
+};
+
+struct LawEntry {
+  LawRole role;
+  LawId id;
+  std::string_view name;     ///< the scene's spelling
+  unsigned contacts;         ///< ContactKindBit mask of the contacts that accept it
+  std::string_view meaning;  ///< one line, for errors, `raceway check` and docs
+};
+
+/// All registered laws, in a fixed order.
+std::span<const LawEntry> registered_laws();
+/// The law of `role` called `name` that `contact` accepts, or nullptr.
+const LawEntry* find_law(LawRole role, std::string_view name, ContactKindBit contact);
+/// The entry of a law id (always exists).
+const LawEntry& law_entry(LawId id);
+/// "a, b or c": the names of `role` that `contact` accepts, for error messages.
+std::string known_law_names(LawRole role, ContactKindBit contact);
+
+}  // namespace raceway::contact

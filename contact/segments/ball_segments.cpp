@@ -1,0 +1,294 @@
+#include "contact/segments/ball_segments.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace raceway::contact {
+namespace {
+
+const Vec3 unit_z = Vec3::UnitZ();
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+/// Length of (x, y). Contact coordinates are far from overflow, so no std::hypot (several times
+/// slower) in the hot path.
+inline double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+/// Velocity of the material point of body k at the spatial point c.
+inline Vec3 point_velocity(const SpatialKinematics& k, const Vec3& c) {
+  return k.velocity + k.angular_velocity.cross(c - k.position);
+}
+
+/// Puts the force `f_b` on B at the contact point `point` and the couple `couple_b` on B, and their
+/// opposites on A at the same point: action = reaction and zero total moment about any point.
+inline void apply_at_point(const SpatialKinematics& a, const SpatialKinematics& b, const Vec3& point,
+                           const Vec3& f_b, const Vec3& couple_b, SpatialSegmentResult& r) {
+  r.on_b.force += f_b;
+  r.on_b.moment += (point - b.position).cross(f_b) + couple_b;
+  r.on_a.force -= f_b;
+  r.on_a.moment -= (point - a.position).cross(f_b) + couple_b;
+}
+
+/// Component of the force on B along the bearing's circumferential direction at B's centre
+/// (e_theta = e_z x e_r); 0 when B's centre lies on the bearing axis.
+inline double circumferential(const Vec3& b_position, const Vec3& f_b) {
+  const double r = length(b_position.x(), b_position.y());
+  if (!(r > 0)) return 0.0;
+  return (-b_position.y() * f_b.x() + b_position.x() * f_b.y()) / r;
+}
+
+/// Hunt-Crossley on a Hertz point contact: Q = K delta^1.5 (1 + c d(delta)/dt), clipped at zero.
+struct HuntCrossley {
+  double force = 0, elastic_energy = 0, damping_power = 0;
+};
+inline HuntCrossley hertz_hunt_crossley(double stiffness, double damping_factor, double approach,
+                                        double approach_rate) {
+  const double elastic = stiffness * approach * std::sqrt(approach);
+  const double total = elastic * (1.0 + damping_factor * approach_rate);
+  HuntCrossley h;
+  h.force = total > 0 ? total : 0.0;  // a contact cannot pull
+  h.elastic_energy = 0.4 * elastic * approach;
+  h.damping_power = (h.force - elastic) * approach_rate;  // >= 0 in both branches
+  return h;
+}
+
+/// Slope of a regularised Coulomb curve through zero: mu(s) / s, finite at s = 0 (no 0/0).
+inline double friction_per_speed(const TractionCurve& curve, double speed) {
+  if (curve.friction_coefficient == 0) return 0.0;
+  if (speed > 0) return curve.coefficient(speed) / speed;
+  return curve.friction_coefficient / curve.slip_velocity_scale;
+}
+
+/// A result that failed: no force, flagged recoverable.
+inline SpatialSegmentResult invalid_result(double approach) {
+  SpatialSegmentResult r;
+  r.diagnostics.approach = approach;
+  r.valid = false;
+  return r;
+}
+
+/// Never hand garbage on: a non-finite wrench or diagnostic (NaN or infinity in the input) turns
+/// the result into an invalid one without force.
+inline void check_finite(SpatialSegmentResult& r) {
+  const PointDiagnostics& d = r.diagnostics;
+  const double sum = r.on_a.force.sum() + r.on_a.moment.sum() + r.on_b.force.sum() +
+                     r.on_b.moment.sum() + d.approach + d.normal_force + d.contact_angle +
+                     d.max_pressure + d.film_thickness + d.slip_velocity + d.spin_velocity +
+                     d.traction_force + d.circumferential_force + d.elastic_energy + d.power_loss;
+  if (!std::isfinite(sum)) r = invalid_result(d.approach);
+}
+
+}  // namespace
+
+SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                              const SpatialKinematics& ball) {
+  SpatialSegmentResult r;
+  const Mat3& rot = ring.rotation;
+  const Vec3 rel = ball.position - ring.position;
+  const Vec3 p = rot.transpose() * rel;  // ball centre, ring frame
+  const double rho_ball = length(p.x(), p.y());
+  if (!(rho_ball > 0) || !std::isfinite(rho_ball) || !std::isfinite(p.z())) return invalid_result(not_a_number);
+  const Vec3 e_r(p.x() / rho_ball, p.y() / rho_ball, 0.0);  // ring frame, at the ball's azimuth
+  const Vec3 e_t(-e_r.y(), e_r.x(), 0.0);
+  // d = ball centre - arc centre, in the (e_r, e_z) plane of the ball's azimuth.
+  const double d_rad = rho_ball - s.centre_radius;
+  const double d_ax = p.z() - s.centre_axial;
+  const double len = length(d_rad, d_ax);
+  const double approach = len - (s.groove_radius - s.ball_radius);
+  r.diagnostics.approach = approach;
+  if (!std::isfinite(approach)) return invalid_result(approach);
+  if (len > 0) r.diagnostics.contact_angle = std::atan2(d_ax, std::abs(d_rad));
+  if (approach <= 0) return r;
+
+  // Geometry of the contact: normal n from the ball centre into the ring (body 1), the contact point
+  // on the groove, and the contact frame (x rolling = e_theta, y = n x x, z = n).
+  const double n_rad = d_rad / len, n_ax = d_ax / len;
+  const Vec3 n_ring = n_rad * e_r + n_ax * unit_z;
+  const Vec3 point_ring = s.centre_radius * e_r + s.centre_axial * unit_z + s.groove_radius * n_ring;
+  const Vec3 n = rot * n_ring;
+  const Vec3 ex = rot * e_t;
+  const Vec3 ey = n.cross(ex);
+  const Vec3 point = ring.position + rot * point_ring;
+  const Vec3 v_rel = point_velocity(ball, point) - point_velocity(ring, point);
+  const double approach_rate = n.dot(v_rel);  // exact d(approach)/dt
+
+  // Hertz at s = cos(contact angle); relative curvatures for the film.
+  const double cos_angle = std::abs(n_rad);
+  const HertzPointContact hertz = s.normal.hertz.at(cos_angle);
+  const HuntCrossley normal =
+      hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
+  r.valid = approach <= s.normal.max_approach;
+  const double q = normal.force;
+  const double rho_contact = s.centre_radius + s.groove_radius * n_rad;  // from the ring axis
+  const double kx = 1.0 / s.ball_radius + (s.outer ? -cos_angle : cos_angle) / rho_contact;
+  const double ky = 1.0 / s.ball_radius - 1.0 / s.groove_radius;
+  const double rx = 1.0 / kx, ry = 1.0 / ky;
+
+  // Entrainment: surface speeds along x relative to the contact point, which moves with the ring
+  // plus a rotation about the ring axis at the ball centre's azimuth rate in the ring frame.
+  const Vec3 p_dot = rot.transpose() * (ball.velocity - ring.velocity - ring.angular_velocity.cross(rel));
+  const double azimuth_rate = p_dot.dot(e_t) / rho_ball;
+  const double u_ring = -azimuth_rate * rho_contact;
+  const double slide_x = v_rel.dot(ex), slide_y = v_rel.dot(ey);
+  const double u_ball = u_ring + slide_x;
+  const double entrainment = 0.5 * std::abs(u_ring + u_ball);
+
+  const FilmThickness film =
+      hamrock_dowson_film(entrainment, q, rx, ry, s.normal.reduced_modulus, s.lubricant);
+  const double cbrt_q = std::cbrt(q);
+  const double a = hertz.a_coefficient * cbrt_q, b = hertz.b_coefficient * cbrt_q;
+  const double ax = hertz.a_along_x ? a : b, ay = hertz.a_along_x ? b : a;
+  const Vec3 w_rel = ball.angular_velocity - ring.angular_velocity;
+  const ContactSliding sliding{slide_x, slide_y, w_rel.dot(n)};
+  const TractionResult traction =
+      q > 0 ? integrate_traction(s.traction, s.lubricant, q, ax, ay, film.central, sliding)
+            : TractionResult{};
+  Vec3 couple = traction.spin_moment * n;
+
+  // EHL rolling resistance as a pair of couples about y opposing the relative rolling rotation
+  // (equivalent to shifting the pressure centre towards the inlet by F_R Rx / Q): it conserves force
+  // and angular momentum and dissipates F_R Rx |Omega| (= F_R u_e in pure rolling). F_R is bounded
+  // by Q (1/F = 1/F_R + 1/Q, a change of order F_R/Q ~ 1e-4 under load): Houpert's F_R ~ Q^0.47
+  // alone would have an unbounded slope at contact onset.
+  double rolling_loss = 0;
+  if (s.rolling_resistance && film.central > 0) {
+    const double houpert =
+        ehl_rolling_resistance(entrainment, q, rx, ry, s.normal.reduced_modulus, s.lubricant);
+    const double f_r = houpert > 0 ? houpert * q / (houpert + q) : 0.0;
+    const double rolling_rate = w_rel.dot(ey);
+    const double scale = s.traction.slip_velocity_scale > 0 ? s.traction.slip_velocity_scale : 1.0;
+    const double m = -f_r * rx * std::tanh(rolling_rate * rx / scale);
+    couple += m * ey;
+    rolling_loss = -m * rolling_rate;
+  }
+  const Vec3 tangential = traction.force_x * ex + traction.force_y * ey;
+  const Vec3 f_ball = -q * n + tangential;
+  apply_at_point(ring, ball, point, f_ball, couple, r);
+
+  PointDiagnostics& d = r.diagnostics;
+  d.normal_force = q;
+  d.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0;
+  d.film_thickness = film.central;
+  d.slip_velocity = length(slide_x, slide_y);
+  d.spin_velocity = sliding.spin;
+  d.traction_force = length(traction.force_x, traction.force_y);
+  d.circumferential_force = circumferential(ball.position, f_ball);
+  d.elastic_energy = normal.elastic_energy;
+  d.power_loss = traction.power_loss + normal.damping_power + rolling_loss;
+  check_finite(r);
+  return r;
+}
+
+SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
+                              const SpatialKinematics& ball) {
+  SpatialSegmentResult r;
+  const Mat3& rot = cage.rotation;
+  const Vec3 p = rot.transpose() * (ball.position - cage.position);  // cage frame
+  const Vec3 axis(std::cos(s.pocket_angle), std::sin(s.pocket_angle), 0.0);  // radial pocket axis
+  Vec3 d = p - s.pitch_radius * axis;
+  if (s.shape == PocketShape::cylindrical) d -= d.dot(axis) * axis;
+  const double len = d.norm();
+  const double approach = len - 0.5 * s.clearance;
+  r.diagnostics.approach = approach;
+  if (!std::isfinite(approach)) return invalid_result(approach);
+  if (approach <= 0) return r;
+
+  const Vec3 n = rot * (d / len);  // from the ball centre into the cage (body 1)
+  const Vec3 point = ball.position + s.ball_radius * n;
+  const Vec3 v_rel = point_velocity(ball, point) - point_velocity(cage, point);
+  const double approach_rate = n.dot(v_rel);
+  const HertzPointContact hertz = s.normal.hertz.at(1.0);
+  const HuntCrossley normal =
+      hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
+  r.valid = approach <= s.normal.max_approach;
+  const double q = normal.force;
+
+  const Vec3 slide = v_rel - approach_rate * n;  // tangential sliding of the ball on the cage
+  const double speed = slide.norm();
+  const double per_speed = friction_per_speed(s.friction, speed);
+  const Vec3 friction = -(per_speed * q) * slide;
+  const Vec3 f_ball = -q * n + friction;
+  apply_at_point(cage, ball, point, f_ball, Vec3::Zero(), r);
+
+  PointDiagnostics& dg = r.diagnostics;
+  dg.normal_force = q;
+  const double cbrt_q = std::cbrt(q);
+  const double ab = hertz.a_coefficient * hertz.b_coefficient * cbrt_q * cbrt_q;
+  dg.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0;
+  dg.slip_velocity = speed;
+  dg.spin_velocity = (ball.angular_velocity - cage.angular_velocity).dot(n);
+  dg.traction_force = per_speed * q * speed;
+  dg.circumferential_force = circumferential(ball.position, f_ball);
+  dg.elastic_energy = normal.elastic_energy;
+  dg.power_loss = per_speed * q * speed * speed + normal.damping_power;
+  check_finite(r);
+  return r;
+}
+
+SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics& cage,
+                              const SpatialKinematics& ring) {
+  SpatialSegmentResult r;
+  const Mat3& rot = ring.rotation;
+  const Vec3 cage_axis = cage.rotation.col(2);
+  const Vec3 ring_axis = rot.col(2);
+  const double side = s.outer_land ? 1.0 : -1.0;
+  // Inner land: the cage bore (land + clearance) meets the land opposite to the eccentricity;
+  // outer land: the cage's outside (land - clearance) meets the land bore on its side.
+  const double cage_radius = s.outer_land ? s.land_radius - s.clearance : s.land_radius + s.clearance;
+  if (s.stations < 1) return invalid_result(not_a_number);
+  const double station_length = s.width / s.stations;
+
+  double max_approach = -std::numeric_limits<double>::infinity(), max_force = 0;
+  Vec3 friction_sum = Vec3::Zero();
+  PointDiagnostics& dg = r.diagnostics;
+  for (int j = 0; j < s.stations; ++j) {
+    const double zeta = s.axial_offset + (j + 0.5) * station_length - 0.5 * s.width;
+    const Vec3 station = cage.position + zeta * cage_axis;
+    const Vec3 q = rot.transpose() * (station - ring.position);  // ring frame
+    const double eccentricity = length(q.x(), q.y());
+    const double approach = eccentricity - s.clearance;
+    if (!std::isfinite(approach) || !std::isfinite(q.z())) return invalid_result(approach);
+    max_approach = std::max(max_approach, approach);
+    if (approach <= 0) continue;
+
+    // Normal force on the ring (B) along u, the station's eccentricity direction (bearing frame);
+    // contact point midway between the two surfaces on the radial line through u.
+    const Vec3 u = rot * Vec3(q.x() / eccentricity, q.y() / eccentricity, 0.0);
+    const double radial = 0.5 * (side * s.land_radius + eccentricity + side * cage_radius);
+    const Vec3 point = ring.position + radial * u + q.z() * ring_axis;
+    const Vec3 v_rel = point_velocity(ring, point) - point_velocity(cage, point);  // B on A
+    const double approach_rate = -u.dot(v_rel);
+    const NormalForce nf = evaluate_normal(s.law, approach, approach_rate);
+    if (!nf.valid) r.valid = false;
+    const Vec3 slide = v_rel + approach_rate * u;  // tangential part (axial and circumferential)
+    const double speed = slide.norm();
+    const double per_speed = friction_per_speed(s.friction, speed);
+    const Vec3 friction = -(per_speed * nf.force) * slide;
+    apply_at_point(cage, ring, point, nf.force * u + friction, Vec3::Zero(), r);
+
+    friction_sum += friction;
+    dg.normal_force += nf.force;
+    dg.elastic_energy += nf.elastic_energy;
+    dg.power_loss += per_speed * nf.force * speed * speed + nf.damping_power;
+    if (nf.force > max_force) {  // the most loaded station gives slip, spin and pressure
+      max_force = nf.force;
+      dg.slip_velocity = speed;
+      dg.spin_velocity = (ring.angular_velocity - cage.angular_velocity).dot(u);
+    }
+  }
+  dg.approach = max_approach;
+  if (max_force > 0) {
+    // Line-contact Hertz estimate: p = sqrt(q E* / (pi R)), q the load per length, 1/R the relative
+    // curvature of the conforming cylinders, E* from Palmgren's K of a station (palmgren_stiffness).
+    const double e_reduced =
+        s.law.stiffness / (palmgren_coefficient * std::pow(station_length, 8.0 / 9.0));
+    const double curvature = std::abs(1.0 / s.land_radius - 1.0 / cage_radius);
+    dg.max_pressure = std::sqrt(max_force / station_length * e_reduced * curvature / std::numbers::pi);
+  }
+  dg.traction_force = friction_sum.norm();
+  check_finite(r);
+  return r;
+}
+
+}  // namespace raceway::contact

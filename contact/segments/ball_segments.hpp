@@ -1,0 +1,177 @@
+// Spatial contact segments of a ball bearing (DESIGN.md 3.2): ball-groove (one per groove arc:
+// two per ring for a four-point bearing), ball-cage pocket, and cage-land guidance.
+//
+// A segment evaluation is a pure function: (its parameters, the kinematics of its two bodies A and
+// B) -> force and moment on each body at the body's centre (bearing frame), and diagnostics. All
+// forces of a segment act at one contact point (traction moments about the normal and the rolling
+// resistance act as couples), so action equals reaction and angular momentum about any point is
+// conserved. No heap allocation; thread-safe.
+//
+// Frames: bearing frame, z the bearing axis. A body's rotation matrix maps body-frame vectors to
+// the bearing frame. Ring frames: z along the ring axis, groove geometry fixed in the ring frame.
+//
+// Conventions shared by the point contacts (ball-groove, ball-pocket):
+//  - body 1 of ContactSliding is A (ring, cage), body 2 is B (the ball); the contact normal n is the
+//    unit vector from the ball centre towards A's surface (into body 1); the normal force on the
+//    ball is -Q n;
+//  - the approach rate used by the damping is the exact d(approach)/dt, n . (v_B - v_A) of the
+//    material points at the contact point (so the elastic force does work Q_el d(approach)/dt);
+//  - sliding is B's surface velocity relative to A's at the contact point, spin_velocity is
+//    (omega_B - omega_A) . n;
+//  - validity: approach > max_approach gives valid = false with the forces still computed; a
+//    non-finite input gives valid = false and no force at all (never garbage).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "contact/laws/line_contact.hpp"
+#include "contact/laws/point_contact.hpp"
+
+namespace raceway::contact {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+/// Spatial kinematics of a rigid body: centre, orientation (body -> bearing frame), their rates.
+struct SpatialKinematics {
+  Vec3 position = Vec3::Zero();
+  Mat3 rotation = Mat3::Identity();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();  ///< bearing frame
+};
+
+/// Force [N] and moment [N m] on a body at its centre, bearing frame.
+struct SpatialWrench {
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+};
+
+/// What a spatial segment reports besides forces. Fixed size, one record per evaluation.
+struct PointDiagnostics {
+  double approach = 0;              ///< m, > 0 in contact
+  double normal_force = 0;          ///< N, >= 0
+  double contact_angle = 0;         ///< rad: ball-groove: angle of the normal to the radial plane
+                                    ///< (sign of its axial component along the ring axis), from the
+                                    ///< geometry, reported also when apart; others 0
+  double max_pressure = 0;          ///< Pa
+  double film_thickness = 0;        ///< m, central EHL film (0 dry)
+  double slip_velocity = 0;         ///< m/s, magnitude of sliding at the contact centre
+                                    ///< (cage-land: at the most loaded station)
+  double spin_velocity = 0;         ///< rad/s, relative spin about the normal
+  double traction_force = 0;        ///< N, magnitude of the tangential force
+  double circumferential_force = 0; ///< N, force on B along the bearing's circumferential direction
+                                    ///< at B's centre (e_theta = e_z x e_r, bearing frame): > 0
+                                    ///< pushes B forward; 0 for cage-land (B, a ring, is on the axis)
+  double elastic_energy = 0;        ///< J
+  double power_loss = 0;            ///< W, traction + damping + rolling resistance, >= 0
+};
+inline constexpr int point_diagnostics_count = 11;
+
+struct SpatialSegmentResult {
+  SpatialWrench on_a, on_b;
+  PointDiagnostics diagnostics;
+  bool valid = true;  ///< false: a law left its valid range (recoverable: retry a smaller step)
+};
+
+/// Normal law of a point contact: Hertz, Q = K(s) delta^1.5, with Hunt-Crossley damping
+/// Q = K delta^1.5 (1 + damping_factor * d(delta)/dt), clipped at zero (a contact cannot pull).
+/// Elastic energy (2/5) K delta^2.5. (Where K depends on the contact angle, that energy is not an
+/// exact potential of the normal force; the force is the standard K(s) delta^1.5 along n.)
+struct PointNormalLaw {
+  HertzTable hertz;
+  double reduced_modulus = 0;  ///< E* [Pa] (film and rolling resistance use E' = 2 E*)
+  double damping_factor = 0;   ///< s/m
+  double max_approach = 0;     ///< m, validity limit (recoverable error beyond)
+};
+
+/// A ball in one groove arc of a ring. A = ring, B = ball.
+/// The arc's cross-section is a circle of radius `groove_radius` whose centre, in the ring frame,
+/// lies on the circle of radius `centre_radius` at axial position `centre_axial` (for a four-point
+/// bearing the arcs' centres are offset axially; for a deep-groove ring centre_axial = 0). With d
+/// the vector from the arc centre (at the ball's azimuth) to the ball centre, the approach is
+/// |d| - (groove_radius - ball_radius) and the contact normal is d/|d|: the contact angle comes from
+/// the geometry, never from input. `outer`: the outer ring (race concave in the rolling direction).
+/// Hertz parameter s = cos(contact angle); rolling-direction curvature of the race cos(a)/rho
+/// (rho: distance of the contact point from the ring axis), convex for inner, concave for outer.
+///
+/// Contact point: on the groove's undeformed surface, arc centre + groove_radius n (ring frame).
+/// Contact frame: x = e_theta of the ring frame at the ball's azimuth (tangent to the race, positive
+/// in the ring's positive sense of rotation), y = n x x (transverse), z = n. Relative curvatures for
+/// the film: kx = 1/r_b +- cos(a)/rho, ky = 1/r_b - 1/groove_radius; Rx = 1/kx, Ry = 1/ky.
+/// Entrainment speed u_e = |u_A + u_B| / 2 of the surfaces' velocities along x relative to the
+/// contact point, which moves with the ring plus a rotation about the ring axis at the ball centre's
+/// azimuth rate in the ring frame (it follows the ball's orbit). Traction: integrate_traction on the
+/// Hertz ellipse (force on the ball at the contact point, spin moment as a couple about n).
+/// Rolling resistance (where the film is > 0): a couple -F Rx tanh(Omega Rx / s) e_y on the ball and
+/// its opposite on the ring, Omega = (omega_B - omega_A) . e_y the relative rolling rate and s the
+/// traction's slip_velocity_scale: the pressure centre shifted towards the inlet by F Rx / Q. It
+/// conserves force and angular momentum and dissipates F Rx |Omega| (= F u_e in pure rolling).
+/// F = F_R Q / (F_R + Q) with F_R from ehl_rolling_resistance: bounded by Q (a change of order
+/// F_R / Q, ~1e-4 under load) so that the couple stays C1 at contact onset (F_R ~ Q^0.47 alone has
+/// an unbounded slope there). power_loss = traction + damping + rolling-resistance dissipation.
+struct BallGrooveSegment {
+  double centre_radius = 0;  ///< m
+  double centre_axial = 0;   ///< m
+  double groove_radius = 0;  ///< m
+  double ball_radius = 0;    ///< m
+  bool outer = false;
+  PointNormalLaw normal;
+  PointTraction traction;
+  PointLubricant lubricant;
+  bool rolling_resistance = true;  ///< add EHL rolling resistance where there is a film
+};
+SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                              const SpatialKinematics& ball);
+
+/// A ball in its cage pocket. A = cage, B = ball. Pocket centre in the cage frame at
+/// (pitch_radius cos(pocket_angle), pitch_radius sin(pocket_angle), 0). Spherical pocket: contact
+/// when the ball centre is off the pocket centre by more than half the clearance; cylindrical: the
+/// same, measured perpendicular to the pocket's (radial) axis. Elastic Hertz contact of the ball in
+/// the concave pocket, Hunt-Crossley damping, lubricated friction as a regularised Coulomb curve.
+/// Normal n: from the pocket centre (cylindrical: its axis) through the ball centre; contact point on
+/// the ball's surface, x_B + r_b n. Friction: mu(|s|) Q against the tangential sliding s of the ball
+/// on the cage at the contact point (smooth through s = 0). traction_force = mu Q, film 0.
+enum class PocketShape { spherical, cylindrical };
+struct BallPocketSegment {
+  double pitch_radius = 0;    ///< m
+  double pocket_angle = 0;    ///< rad, cage frame
+  double clearance = 0;       ///< m, pocket diameter - ball diameter
+  double ball_radius = 0;     ///< m
+  PocketShape shape = PocketShape::cylindrical;
+  PointNormalLaw normal;      ///< Hertz table constant in s
+  TractionCurve friction;
+};
+SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
+                              const SpatialKinematics& ball);
+
+/// Cage guided on a ring land. A = cage, B = ring. The guiding surfaces are coaxial cylinders in
+/// their bodies' frames (the cage's bore on an inner-ring land, or the cage's outside in an outer-
+/// ring land bore) of axial width `width`, radial clearance `clearance` when centred. Evaluated at
+/// `stations` points along the cage axis (>= 2 gives tilt moments), each a line contact of width
+/// width/stations (Palmgren law), with regularised Coulomb friction on the sliding.
+///
+/// Station j sits on the cage axis at zeta_j = axial_offset + (j + 1/2) width/stations - width/2
+/// (cage frame); its eccentricity e_j from the ring axis (measured perpendicular to it, in the ring
+/// frame, direction u_j) gives the approach e_j - clearance (tilt of the cage's cylinder to second
+/// order neglected). Inner land: the cage bore meets the land opposite to u_j; outer land: the
+/// cage's outside meets the land bore on the side of u_j. The normal force pushes the ring along
+/// +u_j and the cage back along -u_j, at the point midway between the two surfaces on that radial
+/// line. Friction acts against the whole tangential sliding there (circumferential and axial).
+/// Diagnostics: approach = the largest station approach, normal_force, elastic_energy and
+/// power_loss summed, traction_force = |sum of friction forces|, slip and spin at the most loaded
+/// station, max_pressure = Hertz line-contact estimate sqrt(q E* / (pi R)) at that station (E* from
+/// the law's Palmgren K), contact_angle and circumferential_force 0. stations < 1: invalid.
+struct CageLandSegment3 {
+  double land_radius = 0;  ///< m, radius of the ring's land surface
+  double clearance = 0;    ///< m, radial clearance
+  double width = 0;        ///< m, axial width of the guiding contact
+  double axial_offset = 0; ///< m, axial position of the land's centre in the cage frame
+  int stations = 2;
+  bool outer_land = false;
+  LineContactLaw law;      ///< for one station (width / stations)
+  TractionCurve friction;
+};
+SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics& cage,
+                              const SpatialKinematics& ring);
+
+}  // namespace raceway::contact

@@ -1,0 +1,50 @@
+// raceway scene parser: TOML scene file -> validated, SI-unit io::Scene.
+//
+// The schema (sections, keys, units, defaults and the physical checks) is documented in
+// jobs/scenes/default.toml (planar: cylindrical roller bearings) and jobs/scenes/6309_R3.toml
+// (spatial: ball bearings); the parse_* functions in io/scene_parser.cpp are its definition.
+// Every problem is a SceneError that names the file, the line, the dotted key and the reason.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "io/scene/scene.hpp"
+
+namespace raceway::io {
+
+/// A scene that cannot be read, parsed or validated.
+/// what() is "FILE:LINE: key 'section.key': reason", or "FILE:LINE: reason" when no key applies
+/// (TOML syntax errors), or "FILE: reason" when the file cannot be read (line 0).
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, int line, std::string key, std::string reason);
+  const std::string& file() const noexcept { return file_; }
+  /// Line of the offending value; of the section header for a missing key; 1 for a missing
+  /// section; 0 when the file could not be read.
+  int line() const noexcept { return line_; }
+  /// Dotted key, e.g. "bearing.roller_diameter"; empty for syntax errors and unreadable files.
+  const std::string& key() const noexcept { return key_; }
+  const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  std::string file_;
+  int line_;
+  std::string key_;
+  std::string reason_;
+};
+
+/// Reads and parses a scene file. Scene::source = path, Scene::text = the file contents.
+Scene load_scene(const std::string& path);
+
+/// Parses scene text; source_name is used in errors and stored in Scene::source.
+Scene parse_scene(std::string_view text, const std::string& source_name);
+
+/// The built-in default scene (a small bearing that runs in seconds).
+Scene default_scene();
+
+/// TOML text of the default scene (identical to jobs/scenes/default.toml).
+std::string default_scene_text();
+
+}  // namespace raceway::io

@@ -1,0 +1,331 @@
+#include "solver/bearing/spatial_startup.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace raceway::solver {
+
+using contact::Mat3;
+using contact::SpatialKinematics;
+using contact::Vec3;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// The force balance of the seating problem. Unknowns: the rings' position-type states (x, y, z,
+/// tilts) and each ball's radial and axial position in its azimuthal plane.
+struct Seating {
+  const SpatialModel& m;
+  double t0;
+  double orbit = 0;         ///< epicyclic cage speed [rad/s]
+  double force_scale = 1;   ///< N
+  // A weak spring on every unknown keeps the problem regular while contacts are open (a ball in
+  // its clearance, a ring not yet seated). 1e3 N/m is about 1e-4 of a loaded ball contact's
+  // stiffness: it shifts the equilibrium by about 1e-3 N per um of displacement.
+  double regularization = 1e3;
+  double azimuth_offset = 0;  ///< rad, of ball 0 and the cage
+
+  struct Unknown {
+    int body = -1;       ///< ring body, or ball body
+    int component = -1;  ///< ring: SpatialComponent (sx..say); ball: 0 radial, 1 axial
+    bool ball = false;
+    double scale = 1e-6; ///< m or rad per unit of the scaled unknown
+  };
+  std::vector<Unknown> unknowns;
+
+  explicit Seating(const SpatialModel& model, double t) : m(model), t0(t) {
+    orbit = m.epicyclic_cage_speed(t0);
+    for (int r : {m.inner_ring, m.outer_ring}) {
+      const auto& b = m.bodies[static_cast<std::size_t>(r)];
+      for (int c = sx; c <= say; ++c)
+        if (b.slot[c] >= 0) unknowns.push_back({r, c, false, c >= sax ? 1e-4 : 1e-6});
+    }
+    for (int k = 0; k < m.ball_count; ++k) {
+      unknowns.push_back({m.first_ball + k, 0, true, 1e-6});
+      unknowns.push_back({m.first_ball + k, 1, true, 1e-6});
+    }
+    double load = 0;
+    for (int r : {m.inner_ring, m.outer_ring}) {
+      const auto& l = m.bodies[static_cast<std::size_t>(r)].ring->load;
+      load = std::max({load, std::abs(l.fx(t0)), std::abs(l.fy(t0)), std::abs(l.fz(t0))});
+    }
+    force_scale = std::max(load, 1.0);
+  }
+
+  double azimuth(int ball) const { return azimuth_offset + 2.0 * pi * ball / m.ball_count; }
+
+  /// The state for scaled unknowns u: positions set, velocities zero.
+  std::vector<double> state(const Eigen::VectorXd& u) const {
+    std::vector<double> z(static_cast<std::size_t>(m.state_size), 0.0);
+    std::vector<double> radial(static_cast<std::size_t>(m.ball_count), m.pitch_radius),
+        axial(static_cast<std::size_t>(m.ball_count), 0.0);
+    for (std::size_t i = 0; i < unknowns.size(); ++i) {
+      const auto& q = unknowns[i];
+      const double v = u[static_cast<Eigen::Index>(i)] * q.scale;
+      if (!q.ball) {
+        z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(q.body)].slot[q.component])] = v;
+      } else {
+        const auto k = static_cast<std::size_t>(q.body - m.first_ball);
+        (q.component == 0 ? radial[k] : axial[k]) += v;
+      }
+    }
+    for (int k = 0; k < m.ball_count; ++k) {
+      const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+      const double psi = azimuth(k);
+      const auto kk = static_cast<std::size_t>(k);
+      z[static_cast<std::size_t>(b.slot[sx])] = radial[kk] * std::cos(psi);
+      z[static_cast<std::size_t>(b.slot[sy])] = radial[kk] * std::sin(psi);
+      z[static_cast<std::size_t>(b.slot[sz])] = axial[kk];
+    }
+    return z;
+  }
+
+  /// Contact, load, support and gravity balance; velocity-free (no damping, no traction).
+  Eigen::VectorXd residual(const Eigen::VectorXd& u) const {
+    const std::vector<double> z = state(u);
+    std::vector<contact::SpatialWrench> w(m.bodies.size());
+    for (const auto& seg : m.segments) {
+      if (seg.kind != SpatialSegmentKind::ball_inner_groove && seg.kind != SpatialSegmentKind::ball_outer_groove) continue;
+      SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
+      ring.velocity.setZero();
+      ring.angular_velocity.setZero();
+      SpatialKinematics ball = m.kinematics(seg.body_b, t0, z.data());
+      const auto r = contact::evaluate(m.groove_segments[static_cast<std::size_t>(seg.parameters)], ring, ball);
+      auto& wa = w[static_cast<std::size_t>(seg.body_a)];
+      auto& wb = w[static_cast<std::size_t>(seg.body_b)];
+      wa.force += r.on_a.force, wa.moment += r.on_a.moment;
+      wb.force += r.on_b.force, wb.moment += r.on_b.moment;
+    }
+    Eigen::VectorXd res(static_cast<Eigen::Index>(unknowns.size()));
+    for (std::size_t i = 0; i < unknowns.size(); ++i) {
+      const auto& q = unknowns[i];
+      const auto& body = m.bodies[static_cast<std::size_t>(q.body)];
+      const double value = u[static_cast<Eigen::Index>(i)] * q.scale;
+      double f = 0;
+      if (!q.ball) {
+        // External wrench at rest: loads, supports (springs), gravity.
+        contact::SpatialWrench ext;
+        const auto& l = body.ring->load;
+        ext.force = Vec3(l.fx(t0), l.fy(t0), l.fz(t0));
+        ext.moment = Vec3(l.mx(t0), l.my(t0), 0.0);
+        if (body.slot[svy] >= 0) ext.force.y() -= body.mass * m.gravity;
+        const auto& s = body.ring->support;
+        auto pos = [&](int c) { return body.slot[c] >= 0 ? z[static_cast<std::size_t>(body.slot[c])] : 0.0; };
+        ext.force -= Vec3(s.stiffness * pos(sx), s.stiffness * pos(sy), s.axial_stiffness * pos(sz));
+        ext.moment -= Vec3(s.tilt_stiffness * pos(sax), s.tilt_stiffness * pos(say), 0.0);
+        const auto& cw = w[static_cast<std::size_t>(q.body)];
+        const double scale = q.component >= sax ? m.pitch_radius : 1.0;
+        f = (q.component >= sax ? cw.moment[q.component - sax] + ext.moment[q.component - sax]
+                                : cw.force[q.component] + ext.force[q.component]) / scale;
+        f -= regularization * value * (q.component >= sax ? m.pitch_radius : 1.0);
+      } else {
+        const int k = q.body - m.first_ball;
+        const double psi = azimuth(k);
+        const Vec3 er(std::cos(psi), std::sin(psi), 0.0);
+        const Vec3 x(z[static_cast<std::size_t>(body.slot[sx])], z[static_cast<std::size_t>(body.slot[sy])], 0.0);
+        Vec3 force = w[static_cast<std::size_t>(q.body)].force;
+        force += body.mass * orbit * orbit * x;  // centrifugal, at the epicyclic orbital speed
+        force.y() -= body.mass * m.gravity;
+        f = q.component == 0 ? force.dot(er) : force.z();
+        f -= regularization * value;
+      }
+      res[static_cast<Eigen::Index>(i)] = f / force_scale;
+    }
+    return res;
+  }
+};
+
+/// Contact point and normal (bearing frame) of a ball in a groove arc, from the same geometry as
+/// contact::evaluate(BallGrooveSegment).
+void groove_contact(const contact::BallGrooveSegment& g, const SpatialKinematics& ring, const Vec3& ball, Vec3& point,
+                    Vec3& normal) {
+  const Vec3 p = ring.rotation.transpose() * (ball - ring.position);
+  const double phi = std::atan2(p.y(), p.x());
+  const Vec3 centre(g.centre_radius * std::cos(phi), g.centre_radius * std::sin(phi), g.centre_axial);
+  const Vec3 n = (p - centre).normalized();
+  point = ring.position + ring.rotation * (centre + g.groove_radius * n);
+  normal = ring.rotation * n;
+}
+
+}  // namespace
+
+SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, double azimuth_offset) {
+  Seating seat(m, t0);
+  seat.azimuth_offset = azimuth_offset;
+  const auto n = static_cast<Eigen::Index>(seat.unknowns.size());
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd r;
+  int iterations = 0;
+  // Continuation in the regularization spring: with every contact open, moving the ring and its
+  // balls together costs nothing but that spring, so a stiff spring first carries the load until
+  // the contacts close; each stage then starts next to its solution. Levenberg-Marquardt with a
+  // forward-difference Jacobian within each stage.
+  for (const double spring : {1e8, 1e7, 1e6, 1e5, 1e4, 1e3}) {
+  seat.regularization = spring;
+  r = seat.residual(u);
+  double cost = r.squaredNorm();
+  double lambda = 1e-3;
+  const double tolerance = spring > 1e3 ? 1e-6 : 1e-9;  // relative to the load scale
+  for (int stage_iterations = 0; stage_iterations < 200 && r.lpNorm<Eigen::Infinity>() > tolerance;
+       ++stage_iterations, ++iterations) {
+    Eigen::MatrixXd jac(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::VectorXd up = u;
+      const double h = 1e-4;  // 0.1 nm, 1e-8 rad
+      up[j] += h;
+      jac.col(j) = (seat.residual(up) - r) / h;
+    }
+    const Eigen::MatrixXd a = jac.transpose() * jac;
+    const Eigen::VectorXd g = jac.transpose() * r;
+    bool improved = false;
+    for (int attempt = 0; attempt < 30 && !improved; ++attempt) {
+      Eigen::MatrixXd damped = a;
+      // Marquardt's scaling, floored: an unknown whose contacts are all open has a nearly zero
+      // diagonal and must still be damped, or its step is the load over the regularization spring.
+      const double floor = 1e-4 * a.diagonal().maxCoeff() + 1e-30;
+      for (Eigen::Index i = 0; i < n; ++i) damped(i, i) += lambda * std::max(a(i, i), floor);
+      Eigen::VectorXd step = damped.ldlt().solve(-g);
+      // Trust region: at most 5 um (or 5e-4 rad) per iteration, a fraction of a contact's
+      // deflection, so open contacts close gradually instead of the ring jumping through them.
+      const double largest = step.lpNorm<Eigen::Infinity>();
+      if (largest > 5.0) step *= 5.0 / largest;
+      const Eigen::VectorXd trial = u + step;
+      const Eigen::VectorXd rt = seat.residual(trial);
+      if (rt.allFinite() && rt.squaredNorm() < cost) {
+        u = trial, r = rt, cost = rt.squaredNorm();
+        lambda = std::max(lambda / 5.0, 1e-12);
+        improved = true;
+      } else {
+        lambda *= 8.0;
+      }
+    }
+    if (!improved) break;
+  }
+  }
+  SpatialStartupReport rep;
+  rep.iterations = iterations;
+  rep.residual = r.lpNorm<Eigen::Infinity>() * seat.force_scale;
+  if (!(rep.residual <= 1e-6 * seat.force_scale + 1e-6))
+    throw std::runtime_error(fmt::format(
+        "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
+        "check the loads, supports and clearance",
+        iterations, rep.residual));
+
+  // Velocities: rings as prescribed (drive speeds come from the kinematics, not states). Each ball
+  // rolls without sliding at its loaded contacts: a ball held between two or more contacts gets its
+  // orbital speed and spin from them (at the seated contact angle, not the nominal one, which for a
+  // deep groove bearing under axial load is 12 deg off); a ball on one contact (or none) orbits with
+  // the cage and spins to roll on that contact. The cage turns at the load-weighted mean orbital
+  // speed of the held balls (the epicyclic speed when none is held), its pockets on the balls.
+  std::vector<double> z = seat.state(u);
+  const auto& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  z[static_cast<std::size_t>(cage.slot[saz])] = azimuth_offset;
+  rep.inner_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
+  rep.outer_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
+
+  // Rolling equations of ball k: one row per loaded contact and tangent direction t,
+  //   (orbit e_z x x + w x lever - ring surface velocity) . t = 0,
+  // in the unknowns (orbit * r_p / R, w): the orbit column is scaled by R / r_p so that both kinds
+  // of unknown weigh alike in the singular values. Rows weighted by sqrt(load).
+  struct Rolling {
+    Eigen::MatrixXd a = Eigen::MatrixXd(0, 4);
+    Eigen::VectorXd rhs = Eigen::VectorXd(0);
+    int contacts = 0;
+    double load = 0;
+  };
+  const double orbit_column_scale = m.ball_radius / m.pitch_radius;
+  auto ball_position = [&](int k) {
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    return Vec3(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
+                z[static_cast<std::size_t>(b.slot[sz])]);
+  };
+  std::vector<Rolling> rolling(static_cast<std::size_t>(m.ball_count));
+  for (int k = 0; k < m.ball_count; ++k) {
+    const Vec3 x = ball_position(k);
+    Rolling& eqs = rolling[static_cast<std::size_t>(k)];
+    for (const auto& seg : m.segments) {
+      if (seg.ball != k || (seg.kind != SpatialSegmentKind::ball_inner_groove && seg.kind != SpatialSegmentKind::ball_outer_groove))
+        continue;
+      const SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
+      const auto& g = m.groove_segments[static_cast<std::size_t>(seg.parameters)];
+      SpatialKinematics at_rest = ring;
+      at_rest.velocity.setZero();
+      at_rest.angular_velocity.setZero();
+      SpatialKinematics ball_rest;
+      ball_rest.position = x;
+      const double q = contact::evaluate(g, at_rest, ball_rest).diagnostics.normal_force;
+      (seg.kind == SpatialSegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
+          [static_cast<std::size_t>(k)] += q;
+      if (q <= 0) continue;
+      ++eqs.contacts, eqs.load += q;
+      Vec3 point, normal;
+      groove_contact(g, ring, x, point, normal);
+      const Vec3 t1 = normal.cross(Vec3::UnitZ()).normalized(), t2 = normal.cross(t1);
+      const Vec3 ring_surface = ring.velocity + ring.angular_velocity.cross(point - ring.position);
+      const Vec3 lever = point - x, orbit_direction = Vec3::UnitZ().cross(x);
+      const double weight = std::sqrt(q);
+      for (const Vec3& t : {t1, t2}) {
+        eqs.a.conservativeResize(eqs.a.rows() + 1, 4);
+        eqs.rhs.conservativeResize(eqs.rhs.size() + 1);
+        eqs.a.row(eqs.a.rows() - 1) << weight * orbit_direction.dot(t) * orbit_column_scale,
+            weight * lever.cross(t).transpose();  // (w x lever) . t = w . (lever x t)
+        eqs.rhs[eqs.rhs.size() - 1] = weight * ring_surface.dot(t);
+      }
+    }
+  }
+  // Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
+  // equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
+  // instead of taking huge values from a near-singular fit. Singular values (SVD), not the
+  // diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
+  auto least_squares = [](const Eigen::MatrixXd& a, const Eigen::VectorXd& rhs) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    svd.setThreshold(1e-3);
+    return Eigen::VectorXd(svd.solve(rhs));
+  };
+  std::vector<double> orbit(static_cast<std::size_t>(m.ball_count), seat.orbit);
+  std::vector<Vec3> spin(static_cast<std::size_t>(m.ball_count), Vec3::Zero());
+  double held_load = 0, held_orbit = 0;
+  for (int k = 0; k < m.ball_count; ++k) {
+    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
+    if (eqs.contacts < 2) continue;
+    const Eigen::VectorXd sol = least_squares(eqs.a, eqs.rhs);
+    orbit[static_cast<std::size_t>(k)] = sol[0] * orbit_column_scale;
+    spin[static_cast<std::size_t>(k)] = sol.tail<3>();
+    held_load += eqs.load, held_orbit += eqs.load * orbit[static_cast<std::size_t>(k)];
+  }
+  const double cage_speed = held_load > 0 ? held_orbit / held_load : seat.orbit;
+  z[static_cast<std::size_t>(cage.slot[swz])] = cage_speed;
+  for (int k = 0; k < m.ball_count; ++k) {
+    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
+    if (eqs.contacts == 1) {
+      // Orbit with the cage; spin from the rolling rows with the orbit known.
+      orbit[static_cast<std::size_t>(k)] = cage_speed;
+      const Eigen::VectorXd rhs = eqs.rhs - eqs.a.col(0) * (cage_speed / orbit_column_scale);
+      spin[static_cast<std::size_t>(k)] = least_squares(eqs.a.rightCols<3>(), rhs);
+    } else if (eqs.contacts == 0) {
+      orbit[static_cast<std::size_t>(k)] = cage_speed;
+    }
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    const Vec3 v = orbit[static_cast<std::size_t>(k)] * Vec3::UnitZ().cross(ball_position(k));
+    for (int d = 0; d < 3; ++d) {
+      z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
+      z[static_cast<std::size_t>(b.slot[swx + d])] = spin[static_cast<std::size_t>(k)][d];
+    }
+  }
+  rep.state = std::move(z);
+  double q_max = 0;
+  for (int k = 0; k < m.ball_count; ++k) q_max = std::max(q_max, rep.inner_contact_force[static_cast<std::size_t>(k)]);
+  rep.summary = fmt::format(
+      "start-up: quasi-static seating in {} iterations (largest unbalanced force {:.3g} N); largest inner-groove "
+      "ball load {:.4g} N; cage at {:.4g} rpm (rolling balls; epicyclic at the nominal contact angle {:.4g} rpm)",
+      rep.iterations, rep.residual, q_max, cage_speed * 30.0 / pi, seat.orbit * 30.0 / pi);
+  return rep;
+}
+
+}  // namespace raceway::solver

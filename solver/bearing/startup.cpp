@@ -1,0 +1,204 @@
+#include "solver/bearing/startup.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace raceway::solver {
+
+using contact::Component;
+using contact::PlanarKinematics;
+
+namespace {
+
+struct Seating {
+  const Model& m;
+  double t0;
+  double orbit;           // epicyclic cage speed [rad/s]
+  double load_direction;  // azimuth of the load on the inner ring relative to the outer [rad]
+  double spin = 0;                 // roller spin of the returned state [rad/s]
+  double ring_speed[2] = {0, 0};   // inner, outer ring rotation speeds at t0 [rad/s]
+
+  /// The kinematics the returned state will have: rings at rest but for their drive speed, the
+  /// roller orbiting at the epicyclic speed with its rolling spin (so damping and traction are in
+  /// the balance, as they are in Equations::rhs).
+  PlanarKinematics ring_at(int r, double cx, double cy) const { return {cx, cy, 0, 0, 0, ring_speed[r]}; }
+  PlanarKinematics roller_at(double rho, double psi) const {
+    return {rho * std::cos(psi), rho * std::sin(psi), 0, -orbit * rho * std::sin(psi), orbit * rho * std::cos(psi), spin};
+  }
+
+  double azimuth(int k) const { return load_direction + 2.0 * std::numbers::pi * k / m.roller_count; }
+
+  /// Radial contact force of a race on a roller centred at radius rho along azimuth psi, given the
+  /// ring centre. Positive = along the outward radial direction e_psi.
+  double race_force(int segment, double cx, double cy, double rho, double psi) const {
+    const auto& seg = m.race_segments[segment];
+    const auto r = contact::evaluate(seg, ring_at(segment, cx, cy), roller_at(rho, psi));
+    return r.on_b.fx * std::cos(psi) + r.on_b.fy * std::sin(psi);
+  }
+
+  /// Seats roller k between the rings (radial balance with the centrifugal force): bisection on
+  /// rho, monotone because the inner force grows and the outer force falls... as rho decreases.
+  double seat(int k, const double* inner, const double* outer) const {
+    const double psi = azimuth(k);
+    const double mass = m.bodies[m.first_roller + k].mass;
+    auto residual = [&](double rho) {
+      return race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
+             mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
+    };
+    // The outer race alone bounds rho from above (residual < 0 deep in the outer race); search down.
+    double hi = m.outer_race_radius - m.roller_radius + 1e-2 * m.roller_radius;
+    double lo = m.inner_race_radius + m.roller_radius - 1e-2 * m.roller_radius;
+    if (residual(hi) > 0 || residual(lo) < 0)
+      throw std::runtime_error(fmt::format("start-up: cannot seat roller {} between the races", k));
+    for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (residual(mid) > 0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+
+  /// Net force on the rings (contacts + loads + gravity + supports) with rollers seated.
+  /// x = the free ring translations, in body order.
+  Eigen::VectorXd ring_residual(const Eigen::VectorXd& x, const std::vector<int>& free_rings) const {
+    double centre[2][2] = {{0, 0}, {0, 0}};
+    for (std::size_t i = 0; i < free_rings.size(); ++i) {
+      centre[free_rings[i]][0] = x[2 * i];
+      centre[free_rings[i]][1] = x[2 * i + 1];
+    }
+    double force[2][2] = {{0, 0}, {0, 0}};
+    for (int k = 0; k < m.roller_count; ++k) {
+      const double rho = seat(k, centre[0], centre[1]);
+      const double psi = azimuth(k);
+      const PlanarKinematics roller = roller_at(rho, psi);
+      for (int r = 0; r < 2; ++r) {
+        const auto res = contact::evaluate(m.race_segments[r], ring_at(r, centre[r][0], centre[r][1]), roller);
+        force[r][0] += res.on_a.fx;
+        force[r][1] += res.on_a.fy;
+      }
+    }
+    Eigen::VectorXd out(x.size());
+    for (std::size_t i = 0; i < free_rings.size(); ++i) {
+      const Body& b = m.bodies[free_rings[i] == 0 ? m.inner_ring : m.outer_ring];
+      const auto& sup = b.ring->support;
+      out[2 * i] = force[free_rings[i]][0] + b.ring->load.fx(t0) - sup.stiffness * x[2 * i];
+      out[2 * i + 1] = force[free_rings[i]][1] + b.ring->load.fy(t0) - b.mass * m.gravity -
+                       sup.stiffness * x[2 * i + 1];
+    }
+    return out;
+  }
+};
+
+}  // namespace
+
+StartupReport consistent_initial_state(const Model& m, double t0) {
+  StartupReport rep;
+  std::vector<int> free_rings;  // 0 inner, 1 outer
+  if (m.bodies[m.inner_ring].slot[Component::px] >= 0) free_rings.push_back(0);
+  if (m.bodies[m.outer_ring].slot[Component::px] >= 0) free_rings.push_back(1);
+
+  // Direction in which the load pushes the inner ring against the outer one.
+  const auto& in = m.scene->inner_ring.load;
+  const auto& out = m.scene->outer_ring.load;
+  double lx = in.fx(t0) - out.fx(t0), ly = in.fy(t0) - out.fy(t0);
+  const double g = m.gravity;
+  ly -= g * (m.bodies[m.inner_ring].mass - m.bodies[m.outer_ring].mass);
+  Seating s{m, t0, m.epicyclic_cage_speed(t0),
+            (lx == 0 && ly == 0) ? -0.5 * std::numbers::pi : std::atan2(ly, lx)};
+
+  {
+    auto speed = [&](int b) {
+      const auto* spec = m.bodies[b].ring;
+      return spec->motion == io::RingMotion::driven ? spec->speed(t0) : 0.0;
+    };
+    s.ring_speed[0] = speed(m.inner_ring);
+    s.ring_speed[1] = speed(m.outer_ring);
+    s.spin = s.orbit - (s.ring_speed[0] - s.orbit) * m.inner_race_radius / m.roller_radius;
+  }
+  // Newton with finite differences and backtracking on the ring translations.
+  const int n = 2 * static_cast<int>(free_rings.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  double load_scale = 1.0;
+  for (const auto* l : {&in, &out}) load_scale = std::max({load_scale, std::abs(l->fx(t0)), std::abs(l->fy(t0))});
+  if (n > 0) {
+    Eigen::VectorXd r = s.ring_residual(x, free_rings);
+    // A tiny initial approach so the contacts are closed (Palmgren has zero stiffness at onset).
+    for (int i = 0; i < n; i += 2) {
+      x[i] = 1e-7 * std::cos(s.load_direction) * (free_rings[i / 2] == 0 ? 1 : -1);
+      x[i + 1] = 1e-7 * std::sin(s.load_direction) * (free_rings[i / 2] == 0 ? 1 : -1);
+    }
+    r = s.ring_residual(x, free_rings);
+    for (rep.newton_iterations = 0; rep.newton_iterations < 100; ++rep.newton_iterations) {
+      if (r.cwiseAbs().maxCoeff() < 1e-10 * load_scale) break;
+      Eigen::MatrixXd jac(n, n);
+      for (int j = 0; j < n; ++j) {
+        Eigen::VectorXd xp = x;
+        const double h = 1e-10;
+        xp[j] += h;
+        jac.col(j) = (s.ring_residual(xp, free_rings) - r) / h;
+      }
+      Eigen::VectorXd dx = jac.fullPivLu().solve(-r);
+      double lambda = 1.0;
+      for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
+        Eigen::VectorXd xn = x + lambda * dx;
+        Eigen::VectorXd rn = s.ring_residual(xn, free_rings);
+        if (rn.norm() < r.norm()) {
+          x = xn;
+          r = rn;
+          break;
+        }
+      }
+    }
+    rep.residual = r.cwiseAbs().maxCoeff();
+    if (!(rep.residual < 1e-6 * load_scale))
+      throw std::runtime_error(fmt::format(
+          "start-up: no quasi-static equilibrium of the rings under their loads (residual {:.3g} N)",
+          rep.residual));
+  }
+
+  // Assemble the state.
+  rep.state.assign(m.state_size, 0.0);
+  double centre[2][2] = {{0, 0}, {0, 0}};
+  for (std::size_t i = 0; i < free_rings.size(); ++i) {
+    const Body& b = m.bodies[free_rings[i] == 0 ? m.inner_ring : m.outer_ring];
+    centre[free_rings[i]][0] = rep.state[b.slot[Component::px]] = x[2 * i];
+    centre[free_rings[i]][1] = rep.state[b.slot[Component::py]] = x[2 * i + 1];
+  }
+  const double wc = s.orbit;
+  for (int r : {m.inner_ring, m.outer_ring}) {
+    const Body& b = m.bodies[r];
+    if (b.slot[Component::omega] >= 0) rep.state[b.slot[Component::omega]] = 0.0;
+  }
+  // Rollers: the seated positions with the kinematics the seating balanced (epicyclic orbit, pure
+  // rolling spin on the inner race).
+  for (int k = 0; k < m.roller_count; ++k) {
+    const Body& b = m.bodies[m.first_roller + k];
+    const PlanarKinematics r = s.roller_at(s.seat(k, centre[0], centre[1]), s.azimuth(k));
+    rep.state[b.slot[Component::px]] = r.x;
+    rep.state[b.slot[Component::py]] = r.y;
+    rep.state[b.slot[Component::vx]] = r.vx;
+    rep.state[b.slot[Component::vy]] = r.vy;
+    rep.state[b.slot[Component::omega]] = r.omega;
+  }
+  // Cage: concentric with its guiding ring, pocket k centred on roller k, at the epicyclic speed.
+  const Body& cage = m.bodies[m.cage];
+  int guide = -1;
+  if (!m.land_segments.empty()) guide = m.land_segments.front().outer_land ? 1 : 0;
+  if (guide >= 0) {
+    rep.state[cage.slot[Component::px]] = centre[guide][0];
+    rep.state[cage.slot[Component::py]] = centre[guide][1];
+  }
+  rep.state[cage.slot[Component::theta]] = s.load_direction;
+  rep.state[cage.slot[Component::omega]] = wc;
+  rep.summary = fmt::format(
+      "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
+      "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",
+      rep.newton_iterations, rep.residual, 1e6 * centre[0][0], 1e6 * centre[0][1], wc * 30 / std::numbers::pi,
+      s.spin);
+  return rep;
+}
+
+}  // namespace raceway::solver

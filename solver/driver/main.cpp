@@ -1,0 +1,317 @@
+// The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
+// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`.
+//
+// Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors
+// (including an error inside a contact task on any rank, which ends all ranks through MPI_Abort).
+//
+// `mpirun -np P raceway run SCENE`: every rank parses the scene rank 0 read (its text is broadcast);
+// rank 0 integrates and evaluates its share of the contact tasks, ranks 1.. evaluate theirs
+// (scheduler::MpiExecutor). check and report run on rank 0 only.
+#include <mpi.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <fmt/format.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include "io/report/report.hpp"
+#include "io/scene/scene_parser.hpp"
+#include "io/json/summary_json.hpp"
+#include "scheduler/mpi_executor.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/numerics/newton_backends.hpp"
+#include "solver/bearing/spatial_model.hpp"
+#include "solver/run/run.hpp"
+
+namespace {
+
+using namespace raceway;
+
+io::Scene load(const std::string& path) { return path.empty() ? io::default_scene() : io::load_scene(path); }
+
+std::string clock_text(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{:02}:{:02}", t / 60, t % 60);
+}
+
+/// A progress bar on a terminal; plain log lines (every 10 %) otherwise.
+class ProgressReporter {
+ public:
+  ProgressReporter() : tty_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(const solver::Progress& p) {
+    const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
+    const double eta = frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
+    if (tty_) {
+      const int width = 30, filled = static_cast<int>(frac * width);
+      std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
+                   p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta).c_str(), p.steps);
+      if (frac >= 1.0) std::fprintf(stderr, "\n");
+      std::fflush(stderr);
+    } else if (frac >= next_) {
+      spdlog::info("t {:.6g} s of {:.6g} s ({:.0f} %), {:.2f} revolutions, wall {:.2f} s, eta {}, steps {}", p.time,
+                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta), p.steps);
+      while (next_ <= frac) next_ += 0.1;
+    }
+  }
+
+ private:
+  bool tty_;
+  double next_ = 0.1;
+};
+
+int run_command(const io::Scene& scene, const std::string& output, const std::string& summary_json,
+                scheduler::Executor& executor) {
+  spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
+  solver::RunOptions options;
+  options.executor = &executor;
+  options.output_path = output;
+  ProgressReporter progress;
+  options.on_progress = [&](const solver::Progress& p) { progress(p); };
+  options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
+  const auto sum = solver::run_scene(scene, options);
+  executor.stop();
+  const auto json = sum.to_json();
+  spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
+               "{} newton failures, {} error-test failures",
+               sum.simulated_time_s, sum.driven_ring_revolutions, sum.wall_time_s, sum.stats.steps,
+               sum.model_rhs_evaluations, sum.model_jacobian_evaluations, sum.stats.newton_failures,
+               sum.stats.error_test_failures);
+  spdlog::info("cage speed {:.3f} rpm (second half), epicyclic {:.3f} rpm, slip {:.3f} %", sum.cage_speed_rpm,
+               sum.epicyclic_cage_speed_rpm, 100 * sum.cage_slip);
+  if (const auto* log = executor.schedule_log(); log && log->ranks > 1) {
+    auto ratio = [&](int p) {
+      return log->sum_mean_seconds[p] > 0 ? log->sum_max_seconds[p] / log->sum_mean_seconds[p] : 1.0;
+    };
+    spdlog::info("scheduler: {} ranks, {} policy, {} plans; time-averaged imbalance rhs {:.3f}, jacobian {:.3f}",
+                 log->ranks, log->policy, log->plans.size(), ratio(0), ratio(1));
+  }
+  spdlog::info("output written to {}", output);
+  if (!summary_json.empty()) {
+    io::write_json_file(summary_json, json);
+    spdlog::info("summary written to {}", summary_json);
+  }
+  return 0;
+}
+
+/// `raceway report OUT.h5`: cage and ball metrics of a spatial run into <dir>/summary.json, plus PNGs.
+int report_command(const io::ReportOptions& options) {
+  const io::ReportResult res = io::make_report(options);
+  for (const auto& note : res.notes) spdlog::warn("{}", note);
+  for (const auto& line : res.headlines) spdlog::info("{}", line);
+  spdlog::info("summary written to {}", res.summary_path);
+  if (!res.plot_message.empty()) {
+    if (options.plots) spdlog::warn("{}", res.plot_message);
+    else spdlog::info("{}", res.plot_message);
+  }
+  if (!res.plots.empty()) spdlog::info("{} plots written to {}", res.plots.size(), res.output_dir);
+  return 0;
+}
+
+/// Rank 0's scene text and source name to every rank (every rank then parses the same text).
+/// Returns false on the workers when rank 0 could not read a scene (it reports why).
+bool broadcast_scene_text(int rank, std::string& text, std::string& source, bool ok) {
+  long long sizes[3] = {ok ? 1 : 0, static_cast<long long>(text.size()), static_cast<long long>(source.size())};
+  MPI_Bcast(sizes, 3, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  if (sizes[0] == 0) return false;
+  if (rank != 0) text.resize(static_cast<std::size_t>(sizes[1])), source.resize(static_cast<std::size_t>(sizes[2]));
+  MPI_Bcast(text.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, MPI_COMM_WORLD);
+  MPI_Bcast(source.data(), static_cast<int>(sizes[2]), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return true;
+}
+
+/// `--inject-failure RANK:EVALUATION` (test only).
+void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& options) {
+  const auto colon = spec.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    options.inject_failure_rank = std::stoi(spec.substr(0, colon));
+    options.inject_failure_evaluation = std::stol(spec.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--inject-failure expects RANK:EVALUATION (e.g. 1:40), got '" + spec + "'");
+  }
+}
+
+/// A worker rank of `raceway run`: builds the model and evaluates tasks until rank 0 stops it.
+/// Any error here ends the whole job (MPI_Abort) with this rank's message.
+int worker(const std::string& text, const std::string& source, scheduler::MpiExecutor& executor) {
+  try {
+    const io::Scene scene = io::parse_scene(text, source);
+    if (!executor.await_start()) return 0;  // rank 0 failed before it had a model and says why
+    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c) { executor.serve(c); });
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "[raceway] rank %d: error: %s\n", executor.rank(), e.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  return 1;
+}
+
+/// Runs a command and maps what it throws to the exit code (bad input 2, failed integration 3,
+/// anything else 1), logging the message.
+int exit_code_of(const std::function<int()>& command) {
+  try {
+    return command();
+  } catch (const io::ReportInputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const io::SceneError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const solver::OptionsError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const solver::IntegrationFailure& e) {
+    spdlog::error("{}", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  spdlog::set_default_logger(spdlog::stderr_color_mt("raceway"));  // messages on stderr, data on stdout
+  spdlog::set_pattern("[raceway] %v");
+
+  CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
+  app.require_subcommand(1);
+  std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
+  auto* run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
+  run->add_option("scene", scene_path, "scene file (TOML)");
+  run->add_option("-o,--output", output, "HDF5 output file")->capture_default_str();
+  run->add_option("--summary-json", summary_json, "write the run summary as JSON");
+  run->add_option("--petsc-options", petsc_options,
+                  "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
+                  "mumps\"; override the scene's [solver] petsc_options");
+  scheduler::MpiExecutorOptions exec_options;
+  std::string schedule = "adaptive", inject;
+  bool replan_every_evaluation = false;
+  run->add_option("--schedule", schedule, "task plan under mpirun: adaptive (re-planned from measured task times) "
+                  "or static (one plan from the first measured times)")
+      ->check(CLI::IsMember({"adaptive", "static"}))
+      ->capture_default_str();
+  run->add_option("--master-share", exec_options.master_share,
+                  "rank 0's share of the contact tasks relative to a worker's (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_option("--schedule-sample-every", exec_options.sample_every,
+                  "keep every n-th evaluation's imbalance in /scheduler/imbalance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // Test-only options (hidden: empty group).
+  run->add_flag("--replan-every-step", replan_every_evaluation, "test only: a new plan before every evaluation")
+      ->group("");
+  run->add_option("--inject-failure", inject, "test only: RANK:EVALUATION throws inside a task")->group("");
+  auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
+  check->alias("plan");
+  check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
+  check->add_option("--petsc-options", petsc_options, "PETSc options to validate with the scene's");
+  io::ReportOptions report_options;
+  double window_start = NAN;
+  bool no_plots = false;
+  auto* report = app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
+  report->add_option("output_file", report_options.input, "HDF5 output of a spatial run")->required();
+  report->add_option("-o,--output-dir", report_options.output_dir, "folder for summary.json and the PNGs "
+                     "(default: <stem>_report beside the file)");
+  report->add_option("--window-start", window_start, "start of the analysis window in s (default: second half)");
+  report->add_option("--bin-width", report_options.bin_width_deg, "azimuth bin width in deg")->capture_default_str();
+  report->add_flag("--no-plots", no_plots, "write summary.json only");
+  int code = 0;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    code = app.exit(e);
+    MPI_Finalize();
+    return code;
+  }
+  if (*run) {
+    // Every rank takes part: rank 0 reads the scene and integrates, all ranks evaluate tasks.
+    std::string text, source;
+    io::Scene scene;
+    bool ok = true;
+    if (rank == 0) {
+      try {
+        scene = load(scene_path);
+        text = scene.text, source = scene.source;
+      } catch (const io::SceneError& e) {
+        spdlog::error("{}", e.what());
+        code = 2, ok = false;
+      }
+    }
+    if (!broadcast_scene_text(rank, text, source, ok)) {
+      MPI_Finalize();
+      return rank == 0 ? code : 0;
+    }
+    {
+      exec_options.policy = replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
+                            : schedule == "static"  ? scheduler::SchedulePolicy::static_plan
+                                                    : scheduler::SchedulePolicy::adaptive;
+      try {
+        if (!inject.empty()) parse_injection(inject, exec_options);
+      } catch (const std::exception& e) {
+        if (rank == 0) spdlog::error("{}", e.what());
+        MPI_Finalize();
+        return 2;
+      }
+      exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
+      scheduler::MpiExecutor executor(MPI_COMM_WORLD, exec_options);
+      if (rank != 0) {
+        code = worker(text, source, executor);
+      } else {
+        if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
+                                   scheduler::schedule_policy_name(exec_options.policy));
+        code = exit_code_of([&] {
+          // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
+          const solver::PetscRuntime petsc(petsc_options);
+          return run_command(scene, output, summary_json, executor);
+        });
+      }
+    }  // the executor's destructor releases the workers if rank 0 failed
+    MPI_Finalize();
+    return code;
+  }
+  if (rank != 0) {
+    MPI_Finalize();
+    return 0;
+  }
+  // PETSc after MPI (so it leaves MPI_Finalize to us), on the master only: the linear algebra runs
+  // there (DESIGN.md 5). Destroyed before MPI_Finalize.
+  code = exit_code_of([&] {
+    const solver::PetscRuntime petsc(petsc_options);
+    if (*check) {
+      const io::Scene scene = load(scene_path);
+      solver::BorderedLayout layout;
+      if (scene.scene.model == io::ModelKind::spatial) {
+        const auto model = solver::build_spatial_model(scene);
+        std::fputs(model.describe().c_str(), stdout);
+        layout = {model.border_size, model.ball_count, solver::SpatialModel::ball_block_size};
+      } else {
+        const auto model = solver::build_model(scene);
+        std::fputs(model.describe().c_str(), stdout);
+        layout = {model.border_size, model.roller_count, (model.state_size - model.border_size) / model.roller_count};
+      }
+      std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
+      std::puts("scene OK");
+      return 0;
+    }
+    if (!std::isnan(window_start)) report_options.window_start = window_start;
+    report_options.plots = !no_plots;
+    return report_command(report_options);
+  });
+  MPI_Finalize();
+  return code;
+}

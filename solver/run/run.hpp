@@ -1,0 +1,63 @@
+// One simulation from a validated scene to an output file and a summary: model, start-up state,
+// CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/cli) owns it.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/scene/scene.hpp"
+#include "io/json/summary_json.hpp"
+#include "scheduler/executor.hpp"
+#include "solver/numerics/integrator.hpp"
+
+namespace raceway::solver {
+
+struct Progress {
+  double time = 0, end_time = 0;  ///< s
+  double revolutions = 0;         ///< of the driven ring
+  double wall_seconds = 0;
+  long steps = 0;
+};
+
+struct RunOptions {
+  std::string output_path = "raceway.h5";
+  std::function<void(const Progress&)> on_progress;  ///< called after every output time
+  std::function<void(const std::string&)> on_info;   ///< start-up and model messages
+  double azimuth_offset = 0;  ///< spatial: ball set and cage turned about z at start (tests of frame invariance)
+  /// Evaluates the contact tasks (not owned). nullptr: a serial executor on this process. The run
+  /// attach()es the equations' task catalogue to it and writes its schedule_log() to /scheduler.
+  scheduler::Executor* executor = nullptr;
+};
+
+struct RunSummary {
+  double simulated_time_s = 0, wall_time_s = 0;
+  IntegratorStatistics stats;
+  long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
+  double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
+  double cage_speed_rpm = 0;            ///< mean over the second half of the run
+  double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
+  double cage_slip = 0;                 ///< 1 - cage / epicyclic
+  double driven_ring_revolutions = 0;
+  std::vector<double> inner_ring_contact_force_n;  ///< mean over the second half, from the rolling elements
+  std::vector<double> inner_ring_load_n;           ///< applied, mean over the same samples
+  double max_ball_load_n = 0;       ///< spatial: largest inner-groove ball load, second half
+  std::string model_kind = "planar";
+  double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
+  int output_samples = 0;
+  io::JsonObject to_json() const;
+};
+
+/// Runs the scene and writes `options.output_path` (via a .partial file: an existing output is
+/// replaced only when the run ends). On an integration failure the partial output is kept as
+/// OUT.h5.partial and IntegrationFailure is rethrown with its diagnosis.
+RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
+/// The same for a spatial (ball-bearing) scene; run_scene dispatches to it.
+RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options);
+
+/// The worker side of a run: builds the same model and equations as run_scene does on the
+/// master and hands their task catalogue to `serve` (which evaluates tasks until the master stops
+/// it, e.g. scheduler::MpiExecutor::serve). No integration, no output.
+void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve);
+
+}  // namespace raceway::solver
