@@ -1,97 +1,137 @@
 #include "solver/bearing/equations.hpp"
 
-#include <cmath>
+#include <fmt/format.h>
 
-#include "contact/segments/segment_jacobian.hpp"
+#include <cmath>
+#include <type_traits>
 
 namespace raceway::solver {
 
-using contact::Component;
-using contact::PlanarKinematics;
-using contact::SegmentResult;
+std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model);
+std::unique_ptr<BodyDynamics> make_spatial_dynamics(const Model& model);
+
+std::unique_ptr<BodyDynamics> make_body_dynamics(const Model& model) {
+  return model.kind == io::ModelKind::spatial ? make_spatial_dynamics(model) : make_planar_dynamics(model);
+}
+
+FiniteDifferenceSteps::FiniteDifferenceSteps(const Model& model)
+    : relative_(model.scene->solver.jacobian_perturbation),
+      scale_(static_cast<std::size_t>(model.state_size)),
+      position_step_(static_cast<std::size_t>(model.state_size), 0.0) {
+  const auto atol = model.absolute_tolerance();
+  for (std::size_t i = 0; i < scale_.size(); ++i) {
+    scale_[i] = atol[i] / model.scene->solver.rtol;
+    const auto c = model.state_class[i];
+    if (c == VariableClass::position || c == VariableClass::angle) position_step_[i] = relative_ * 1e-3 * scale_[i];
+  }
+}
+
+double FiniteDifferenceSteps::operator()(int state, const double* z) const {
+  const auto i = static_cast<std::size_t>(state);
+  if (position_step_[i] > 0) return position_step_[i];
+  return relative_ * std::max(std::abs(z[state]), scale_[i]);
+}
 
 namespace {
-constexpr int jacobian_entries = 6 * 12;
-constexpr int jacobian_record = SegmentRecord::size + jacobian_entries;
+
+/// Laws of the line-contact family take planar kinematics; the point-contact family spatial ones.
+template <class Law>
+constexpr bool line_family = std::is_same_v<Law, contact::RollerRaceSegment> ||
+                             std::is_same_v<Law, contact::CageBarSegment> ||
+                             std::is_same_v<Law, contact::CageLandSegment>;
+
+template <class Law>
+auto kinematics_for(const Model& m, int b, double t, const double* z) {
+  if constexpr (line_family<Law>)
+    return m.planar_kinematics(b, t, z);
+  else
+    return m.kinematics(b, t, z);
+}
+
+template <class Law>
+int elastic_energy_field() {
+  if constexpr (line_family<Law>)
+    return contact::field_index(contact::line_diagnostic_fields, "elastic_energy");
+  else
+    return contact::field_index(contact::point_diagnostic_fields, "elastic_energy");
+}
+
+int state_count(const Body& b) {
+  int n = 0;
+  for (int c = 0; c < coordinate_count; ++c) n += b.slot[c] >= 0;
+  return n;
+}
+
+/// The record of one segment's Jacobian task: its result at (t, z), then one column of wrench
+/// differences per state of body A, then of body B (in coordinate order), by forward differences.
+template <class Law>
+void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, const Law& law, const Segment& seg,
+                             double t, const double* z, std::span<double> rec) {
+  const auto ka = kinematics_for<Law>(m, seg.body_a, t, z);
+  const auto kb = kinematics_for<Law>(m, seg.body_b, t, z);
+  const auto base = contact::evaluate(law, ka, kb);
+  bool ok = base.valid;
+  std::vector<double> zp(z, z + m.state_size);
+  int column = 0;
+  for (int side = 0; side < 2; ++side) {
+    const int b = side == 0 ? seg.body_a : seg.body_b;
+    for (int c = 0; c < coordinate_count; ++c) {
+      const int j = m.bodies[static_cast<std::size_t>(b)].slot[c];
+      if (j < 0) continue;
+      const double h = step(j, z);
+      zp[static_cast<std::size_t>(j)] = z[j] + h;
+      const auto kp = kinematics_for<Law>(m, b, t, zp.data());
+      const auto r = side == 0 ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
+      zp[static_cast<std::size_t>(j)] = z[j];
+      ok = ok && r.valid;
+      write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
+      ++column;
+    }
+  }
+  write_result(base, rec);
+  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+}
+
 }  // namespace
 
 Equations::Equations(const Model& model, scheduler::Executor& executor)
     : model_(model),
       executor_(executor),
-      loads_(model.bodies.size()),
+      dynamics_(make_body_dynamics(model)),
+      step_(model),
+      contact_(model.bodies.size()),
+      net_(model.bodies.size()),
       context_(1 + static_cast<std::size_t>(model.state_size)),
       rhs_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { rhs_task(ctx, s, rec); }),
       jacobian_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); }) {
-  // Finite-difference increments per state. Positions and angles: a contact sees differences of
-  // positions, not their size, and its approach may be a few nm (an outer contact carrying only the
-  // centrifugal force), so the step is absolute: rel * 1e-3 * the tolerance scale (2.3e-12 m for a
-  // 22.9 mm pitch radius at rel = 1e-7), far below any closed contact's approach and far above
-  // round-off. Velocities: relative to the value, with the tolerance scale as a floor.
-  const auto atol = model.absolute_tolerance();
-  const double rel = model.scene->solver.jacobian_perturbation;
-  position_step_.assign(model.state_size, 0.0);
-  scale_.resize(model.state_size);
-  for (int i = 0; i < model.state_size; ++i) {
-    scale_[i] = atol[i] / model.scene->solver.rtol;
-    const auto c = model.state_class[i];
-    if (c == VariableClass::position || c == VariableClass::angle) position_step_[i] = rel * 1e-3 * scale_[i];
-  }
-}
-
-SegmentResult Equations::evaluate_segment(int s, const PlanarKinematics& a,
-                                          const PlanarKinematics& b) const {
-  const Segment& seg = model_.segments[s];
-  switch (seg.kind) {
-    case SegmentKind::roller_inner_race:
-    case SegmentKind::roller_outer_race:
-      return contact::evaluate(model_.race_segments[seg.parameters], a, b);
-    case SegmentKind::cage_bar_front:
-    case SegmentKind::cage_bar_rear:
-      return contact::evaluate(model_.bar_segments[seg.parameters], a, b);
-    case SegmentKind::cage_land:
-      return contact::evaluate(model_.land_segments[seg.parameters], a, b);
-  }
-  return {};
-}
-
-namespace {
-void write_result(const SegmentResult& r, std::span<double> rec) {
-  rec[SegmentRecord::on_a + 0] = r.on_a.fx;
-  rec[SegmentRecord::on_a + 1] = r.on_a.fy;
-  rec[SegmentRecord::on_a + 2] = r.on_a.mz;
-  rec[SegmentRecord::on_b + 0] = r.on_b.fx;
-  rec[SegmentRecord::on_b + 1] = r.on_b.fy;
-  rec[SegmentRecord::on_b + 2] = r.on_b.mz;
-  const auto& d = r.diagnostics;
-  const double diag[contact::diagnostics_count] = {d.approach,      d.normal_force,   d.traction_force,
-                                                   d.slip_velocity, d.elastic_energy, d.power_loss};
-  for (int i = 0; i < contact::diagnostics_count; ++i) rec[SegmentRecord::diagnostics + i] = diag[i];
-  rec[SegmentRecord::valid] = r.valid ? 1.0 : 0.0;
-}
-}  // namespace
-
-void Equations::add_external_loads(double t, const double* z) {
-  for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
-    const Body& body = model_.bodies[b];
-    auto& w = loads_[b];
-    if (body.slot[Component::vy] >= 0) w.fy -= body.mass * model_.gravity;
-    if (!body.ring) continue;
-    w.fx += body.ring->load.fx(t);
-    w.fy += body.ring->load.fy(t);
-    w.mz += body.ring->load.mz(t);
-    const auto& sup = body.ring->support;
-    if (sup.stiffness > 0 && body.slot[Component::px] >= 0) {
-      w.fx -= sup.stiffness * z[body.slot[Component::px]] + sup.damping * z[body.slot[Component::vx]];
-      w.fy -= sup.stiffness * z[body.slot[Component::py]] + sup.damping * z[body.slot[Component::vy]];
-    }
+  // Counted here, not in the tasks, which may run on other ranks.
+  for (const Segment& seg : model.segments) {
+    jacobian_segment_evaluations_ += 1 + state_count(model.bodies[static_cast<std::size_t>(seg.body_a)]) +
+                                     state_count(model.bodies[static_cast<std::size_t>(seg.body_b)]);
+    elastic_energy_field_.push_back(std::visit(
+        [](const auto& law) { return elastic_energy_field<std::decay_t<decltype(law)>>(); },
+        model.laws[static_cast<std::size_t>(seg.law)]));
   }
 }
 
 void Equations::rhs_task(std::span<const double> context, int s, std::span<double> rec) const {
   const double t = context[0];
   const double* z = context.data() + 1;
-  const Segment& seg = model_.segments[s];
-  write_result(evaluate_segment(s, model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)), rec);
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  std::visit(
+      [&](const auto& law) {
+        using Law = std::decay_t<decltype(law)>;
+        write_result(contact::evaluate(law, kinematics_for<Law>(model_, seg.body_a, t, z),
+                                       kinematics_for<Law>(model_, seg.body_b, t, z)),
+                     rec);
+      },
+      model_.laws[static_cast<std::size_t>(seg.law)]);
+}
+
+void Equations::jacobian_task(std::span<const double> context, int s, std::span<double> rec) const {
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  std::visit([&](const auto& law) { segment_jacobian_record(model_, step_, law, seg, context[0], context.data() + 1, rec); },
+             model_.laws[static_cast<std::size_t>(seg.law)]);
 }
 
 scheduler::TaskCatalogue Equations::task_catalogue() const {
@@ -99,18 +139,12 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   c.task_count = static_cast<int>(model_.segments.size());
   c.context_size = 1 + model_.state_size;
   for (const Segment& seg : model_.segments) {
-    int group = scheduler::border_group;
-    for (int b : {seg.body_a, seg.body_b})
-      if (model_.bodies[b].kind == BodyKind::roller) group = b - model_.first_roller;
-    c.group.push_back(group);
-    c.bodies.push_back({model_.bodies[seg.body_a].has_states() ? seg.body_a : -1,
-                        model_.bodies[seg.body_b].has_states() ? seg.body_b : -1});
+    c.group.push_back(seg.element >= 0 ? seg.element : scheduler::border_group);
+    c.bodies.push_back({model_.bodies[static_cast<std::size_t>(seg.body_a)].has_states() ? seg.body_a : -1,
+                        model_.bodies[static_cast<std::size_t>(seg.body_b)].has_states() ? seg.body_b : -1});
   }
-  c.function[static_cast<int>(scheduler::Phase::rhs)] = [this](std::span<const double> ctx, int s, std::span<double> rec) {
-    rhs_task(ctx, s, rec);
-  };
-  c.function[static_cast<int>(scheduler::Phase::jacobian)] =
-      [this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); };
+  c.function[static_cast<int>(scheduler::Phase::rhs)] = rhs_task_;
+  c.function[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_task_;
   c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
   c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
   return c;
@@ -124,155 +158,100 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   executor_.run(scheduler::Phase::rhs, context_, nseg, SegmentRecord::size, rhs_task_, records_);
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
-  for (auto& w : loads_) w = {};
+  for (auto& w : contact_) w = {};
   int status = 0;
   for (int s = 0; s < nseg; ++s) {
     const double* rec = records_.data() + static_cast<std::size_t>(s) * SegmentRecord::size;
-    const Segment& seg = model_.segments[s];
-    auto& a = loads_[seg.body_a];
-    auto& b = loads_[seg.body_b];
-    a.fx += rec[0], a.fy += rec[1], a.mz += rec[2];
-    b.fx += rec[3], b.fy += rec[4], b.mz += rec[5];
+    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+    add_wrench(contact_[static_cast<std::size_t>(seg.body_a)], rec + SegmentRecord::on_a);
+    add_wrench(contact_[static_cast<std::size_t>(seg.body_b)], rec + SegmentRecord::on_b);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
     }
   }
-  add_external_loads(t, z);
-  for (std::size_t i = 0; i < model_.bodies.size(); ++i) {
-    const Body& body = model_.bodies[i];
-    const auto& w = loads_[i];
-    const auto& sl = body.slot;
-    if (sl[Component::px] >= 0) {
-      zdot[sl[Component::px]] = z[sl[Component::vx]];
-      zdot[sl[Component::py]] = z[sl[Component::vy]];
-      zdot[sl[Component::vx]] = w.fx / body.mass;
-      zdot[sl[Component::vy]] = w.fy / body.mass;
-    }
-    if (sl[Component::theta] >= 0) zdot[sl[Component::theta]] = z[sl[Component::omega]];
-    if (sl[Component::omega] >= 0) zdot[sl[Component::omega]] = w.mz / body.inertia;
-  }
+  for (std::size_t b = 0; b < model_.bodies.size(); ++b)
+    dynamics_->rates(static_cast<int>(b), t, z, contact_[b], net_[b], zdot);
   return status;
 }
 
-void Equations::jacobian_task(std::span<const double> context, int s, std::span<double> rec) const {
-  const double t = context[0];
-  const double* z = context.data() + 1;
-  const double rel = model_.scene->solver.jacobian_perturbation;
-  const Segment& seg = model_.segments[s];
-  const Body& ba = model_.bodies[seg.body_a];
-  const Body& bb = model_.bodies[seg.body_b];
-  const PlanarKinematics ka = model_.kinematics(seg.body_a, t, z);
-  const PlanarKinematics kb = model_.kinematics(seg.body_b, t, z);
-  const SegmentResult base = evaluate_segment(s, ka, kb);
-  std::array<double, 12> step{};
-  for (int j = 0; j < 12; ++j) {
-    const int slot = (j < 6 ? ba : bb).slot[j % 6];
-    if (slot >= 0)
-      step[j] = position_step_[slot] > 0 ? position_step_[slot]
-                                         : rel * std::max(std::abs(z[slot]), scale_[slot]);
+void Equations::add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const {
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  const int body_index[2] = {seg.body_a, seg.body_b};
+  const Body* bodies[2] = {&model_.bodies[static_cast<std::size_t>(seg.body_a)],
+                           &model_.bodies[static_cast<std::size_t>(seg.body_b)]};
+  int column = 0;
+  for (int side = 0; side < 2; ++side) {
+    for (int k = 0; k < coordinate_count; ++k) {
+      const int state = bodies[side]->slot[k];
+      if (state < 0) continue;
+      const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column++;
+      for (int target = 0; target < 2; ++target) {
+        const Body& rb = *bodies[target];
+        if (!rb.has_states()) continue;
+        Wrench dw;
+        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+        double rates[coordinate_count];
+        dynamics_->contact_rate_derivative(body_index[target], z, dw, rates);
+        for (int c = svx; c < coordinate_count; ++c)
+          if (rb.slot[c] >= 0 && rates[c] != 0.0) jac.add(rb.slot[c], state, rates[c]);
+      }
+    }
   }
-  std::array<std::array<double, 12>, 6> block{};
-  bool ok = base.valid;
-  switch (seg.kind) {
-    case SegmentKind::roller_inner_race:
-    case SegmentKind::roller_outer_race:
-      ok &= contact::segment_jacobian(model_.race_segments[seg.parameters], ka, kb,
-                                      base, step, block);
-      break;
-    case SegmentKind::cage_bar_front:
-    case SegmentKind::cage_bar_rear:
-      ok &= contact::segment_jacobian(model_.bar_segments[seg.parameters], ka, kb,
-                                      base, step, block);
-      break;
-    case SegmentKind::cage_land:
-      ok &= contact::segment_jacobian(model_.land_segments[seg.parameters], ka, kb,
-                                      base, step, block);
-      break;
-  }
-  write_result(base, rec);
-  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 12; ++j) rec[SegmentRecord::size + 12 * i + j] = block[i][j];
 }
 
 int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   ++jac_count_;
   const int nseg = static_cast<int>(model_.segments.size());
-  segment_count_ += 13L * nseg;  // the base point and 12 perturbed columns per segment
+  segment_count_ += jacobian_segment_evaluations_;
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   executor_.run(scheduler::Phase::jacobian, context_, nseg, jacobian_record, jacobian_task_, jac_records_);
   jac.set_zero();
   int status = 0;
+  std::vector<Wrench> contacts(model_.bodies.size());
   for (int s = 0; s < nseg; ++s) {
     const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * jacobian_record;
+    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
     }
-    const Segment& seg = model_.segments[s];
-    const Body* bodies[2] = {&model_.bodies[seg.body_a], &model_.bodies[seg.body_b]};
-    for (int i = 0; i < 6; ++i) {
-      const Body& rb = *bodies[i / 3];
-      const int comp = 3 + i % 3;  // force fx, fy, mz -> accelerations of vx, vy, omega
-      const int row = rb.slot[comp];
-      if (row < 0) continue;
-      const double inv = 1.0 / (comp == Component::omega ? rb.inertia : rb.mass);
-      for (int j = 0; j < 12; ++j) {
-        const int col = bodies[j / 6]->slot[j % 6];
-        const double v = rec[SegmentRecord::size + 12 * i + j];
-        if (col >= 0 && v != 0.0) jac.add(row, col, v * inv);
-      }
-    }
+    add_wrench(contacts[static_cast<std::size_t>(seg.body_a)], rec + SegmentRecord::on_a);
+    add_wrench(contacts[static_cast<std::size_t>(seg.body_b)], rec + SegmentRecord::on_b);
+    add_segment_jacobian(s, rec, z, jac);
   }
-  // Kinematic rows (dq/dt = v) and supports.
-  for (const Body& body : model_.bodies) {
-    const auto& sl = body.slot;
-    if (sl[Component::px] >= 0) {
-      jac.add(sl[Component::px], sl[Component::vx], 1.0);
-      jac.add(sl[Component::py], sl[Component::vy], 1.0);
-      if (body.ring && body.ring->support.stiffness > 0) {
-        const auto& sup = body.ring->support;
-        for (int d = 0; d < 2; ++d) {
-          jac.add(sl[Component::vx + d], sl[Component::px + d], -sup.stiffness / body.mass);
-          jac.add(sl[Component::vx + d], sl[Component::vx + d], -sup.damping / body.mass);
-        }
-      }
-    }
-    if (sl[Component::theta] >= 0) jac.add(sl[Component::theta], sl[Component::omega], 1.0);
-  }
+  dynamics_->add_body_jacobian(t, z, contacts, step_, jac);
   return status;
 }
 
 double Equations::energy(double t, const double* z) const {
-  double e = 0;
-  for (std::size_t i = 0; i < model_.bodies.size(); ++i) {
-    const Body& body = model_.bodies[i];
-    const auto& sl = body.slot;
-    if (sl[Component::vx] >= 0) {
-      const double vx = z[sl[Component::vx]], vy = z[sl[Component::vy]];
-      const double x = z[sl[Component::px]], y = z[sl[Component::py]];
-      e += 0.5 * body.mass * (vx * vx + vy * vy);
-      e += body.mass * model_.gravity * y;
-      if (body.ring) {
-        e -= body.ring->load.fx(t) * x + body.ring->load.fy(t) * y;
-        e += 0.5 * body.ring->support.stiffness * (x * x + y * y);
-      }
-    }
-    if (sl[Component::omega] >= 0) {
-      const double w = z[sl[Component::omega]];
-      e += 0.5 * body.inertia * w * w;
-    }
-  }
-  const std::size_t nseg = model_.segments.size();
-  for (std::size_t s = 0; s < nseg; ++s)
-    e += records_[s * SegmentRecord::size + SegmentRecord::diagnostics + 4];
+  double e = dynamics_->body_energy(t, z);
+  for (std::size_t s = 0; s < model_.segments.size(); ++s) e += diagnostic(s, elastic_energy_field_[s]);
   return e;
 }
 
 std::string Equations::explain_state(int index) const {
-  return explain_model_state(model_, index, records_, SegmentRecord::size, SegmentRecord::diagnostics, last_invalid_);
+  const Model& m = model_;
+  std::string out = m.state_name[static_cast<std::size_t>(index)];
+  int body = -1;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (index >= m.bodies[b].offset && index < m.bodies[b].offset + m.bodies[b].size) body = static_cast<int>(b);
+  std::size_t best = m.segments.size();
+  double best_force = -1;
+  for (std::size_t s = 0; s < m.segments.size() && !records_.empty(); ++s) {
+    const auto& seg = m.segments[s];
+    if (seg.body_a != body && seg.body_b != body) continue;
+    const double f = diagnostic(s, normal_force_field);
+    if (f > best_force) best_force = f, best = s;
+  }
+  if (best < m.segments.size())
+    out += fmt::format("; most loaded contact of that body: {} ({:.4g} N, approach {:.4g} um)", m.segments[best].name,
+                       best_force, 1e6 * diagnostic(best, approach_field));
+  if (last_invalid_ >= 0)
+    out += fmt::format("; contact that last left its valid range: {}",
+                       m.segments[static_cast<std::size_t>(last_invalid_)].name);
+  return out;
 }
 
 }  // namespace raceway::solver

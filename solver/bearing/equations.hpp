@@ -1,27 +1,22 @@
-// Equations of motion of the planar bearing: dz/dt = f(t, z) (seed 000 eq. 2) and its Jacobian,
-// both assembled from contact segments evaluated as tasks through a scheduler::Executor.
-//
-// Newton for translation and Euler for rotation in an inertial bearing frame: centrifugal and
-// gyroscopic effects come out of the equations (Cartesian coordinates), not out of added terms.
+// Equations of motion of a bearing: dz/dt = f(t, z) (seed 000 eq. 2) and its Jacobian, assembled
+// from contact segments evaluated as tasks through a scheduler::Executor. One loop for every bearing
+// kind: segment results are summed in the canonical (segment) order, so the right-hand side is
+// bitwise identical for any schedule; the kind's BodyDynamics turns each body's net wrench into
+// rates. The Jacobian: each segment's block by finite differences of that segment alone (it
+// touches two bodies), each body's own terms from its dynamics.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "scheduler/executor.hpp"
+#include "solver/bearing/body_dynamics.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/segment_record.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 #include "solver/numerics/dynamic_system.hpp"
-#include "solver/bearing/model.hpp"
 
 namespace raceway::solver {
-
-/// Layout of one segment's record in the right-hand-side phase.
-struct SegmentRecord {
-  static constexpr int on_a = 0;         // fx, fy, mz on body A
-  static constexpr int on_b = 3;         // fx, fy, mz on body B
-  static constexpr int diagnostics = 6;  // contact::SegmentDiagnostics, in declaration order
-  static constexpr int valid = diagnostics + contact::diagnostics_count;
-  static constexpr int size = valid + 1;
-};
 
 class Equations final : public DynamicSystem {
  public:
@@ -32,25 +27,28 @@ class Equations final : public DynamicSystem {
 
   int state_size() const override { return model_.state_size; }
   int border_size() const override { return model_.border_size; }
-  int block_count() const override { return model_.roller_count; }
-  int block_size() const override {
-    return model_.roller_count > 0 ? (model_.state_size - model_.border_size) / model_.roller_count : 0;
-  }
+  int block_count() const override { return model_.element_count; }
+  int block_size() const override { return model_.block_size; }
   std::vector<double> absolute_tolerance() const override { return model_.absolute_tolerance(); }
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   int rhs(double t, const double* z, double* zdot) override;
-  /// J = df/dz by finite differences of one segment at a time, into the bordered matrix.
-  /// Returns 0, or 1 (recoverable).
+  /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).
   int jacobian(double t, const double* z, BorderedMatrix& jac) override;
   std::string explain_state(int index) const override;
 
   /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
   const std::vector<double>& segment_records() const { return records_; }
+  /// A diagnostic of segment s from the last rhs(), by its position in the segment family's field table.
+  double diagnostic(std::size_t s, int field) const {
+    return records_[s * SegmentRecord::size + SegmentRecord::diagnostics + static_cast<std::size_t>(field)];
+  }
   /// Total mechanical energy: kinetic + elastic contact + support springs + potential of the
   /// current external loads and gravity [J]. Uses the last rhs() records: call rhs(t, z) first.
   double energy(double t, const double* z) const;
-  /// Net force/moment on each body from the last rhs() (contacts + loads + supports + gravity).
-  const std::vector<contact::PlanarWrench>& body_loads() const { return loads_; }
+  /// Net force and moment on each body from the last rhs() (contacts + loads + supports + gravity).
+  const std::vector<Wrench>& body_loads() const { return net_; }
+  /// Contact force and moment on each body from the last rhs() (segments only).
+  const std::vector<Wrench>& contact_loads() const { return contact_; }
   /// Index of the segment that most recently reported leaving its valid range, or -1.
   int last_invalid_segment() const { return last_invalid_; }
 
@@ -62,26 +60,28 @@ class Equations final : public DynamicSystem {
   /// The tasks (one per segment) with their grouping and task functions, for an executor's
   /// attach() on the master and serve() on the workers: every rank evaluates the same code.
   scheduler::TaskCatalogue task_catalogue() const;
+  /// Size of a Jacobian task's record.
+  static constexpr int jacobian_record = SegmentRecord::size + SegmentRecord::wrench_rows * 2 * coordinate_count;
 
  private:
-  contact::SegmentResult evaluate_segment(int s, const contact::PlanarKinematics& a,
-                                          const contact::PlanarKinematics& b) const;
-  void add_external_loads(double t, const double* z);
   /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
   void rhs_task(std::span<const double> context, int s, std::span<double> rec) const;
   void jacobian_task(std::span<const double> context, int s, std::span<double> rec) const;
+  void add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const;
 
   const Model& model_;
   scheduler::Executor& executor_;
+  std::unique_ptr<BodyDynamics> dynamics_;
+  FiniteDifferenceSteps step_;
   std::vector<double> records_, jac_records_;
-  std::vector<contact::PlanarWrench> loads_;
-  std::vector<double> context_;  ///< [t, z...] sent with every evaluation
+  std::vector<Wrench> contact_, net_;
+  std::vector<int> elastic_energy_field_;  ///< per segment, in its family's field table
+  std::vector<double> context_;            ///< [t, z...] sent with every evaluation
   scheduler::TaskFunction rhs_task_, jacobian_task_;
-  std::vector<double> scale_;          ///< physical scale per state
-  std::vector<double> position_step_;  ///< absolute finite-difference step (positions, angles), else 0
   int last_invalid_ = -1;
   long rhs_count_ = 0, jac_count_ = 0;
   long segment_count_ = 0;
+  long jacobian_segment_evaluations_ = 0;  ///< per Jacobian: base point and one per state of each segment's bodies
 };
 
 }  // namespace raceway::solver

@@ -1,88 +1,149 @@
-// The planar bearing model: bodies, state layout and contact segments built from a scene
-// (DESIGN.md 3.1). Model no more than the scene needs: fixed and driven motions are not states, a
-// roller's and a ring's angle about their own axes are not states, and a segment exists only where
-// the geometry can close it.
+// The bearing as a multibody system: bodies, state layout and contact segments built from a scene.
+// One description for every bearing kind: a planar roller bearing is the spatial description
+// restricted to the coordinates it needs (x, y and the rotation about z), as a 2-D molecular
+// dynamics code runs 2-D as 3-D restricted.
 //
-// State layout: border first (inner ring, outer ring, cage: whichever carry states), then one block
-// per roller. Within a body: positions (x, y[, theta]) then velocities (vx, vy[, omega]); a roller
-// is (x, y, vx, vy, omega). The Jacobian is then block diagonal with borders.
+// Model no more than the scene needs:
+//  - a coordinate that nothing depends on is not a state: a ball's orientation (a sphere's contact
+//    geometry does not depend on it), a roller's and a ring's angle about their own axes;
+//  - fixed and driven motions and prescribed misalignments are functions of time, not states;
+//  - a segment exists only where the geometry can close it.
+//
+// State layout: border first (inner ring, outer ring, cage: whichever carry states), then one equal
+// block per rolling element. The Jacobian is then block diagonal with borders (seed 000 fig. 2).
+// Within a body the builder orders positions before velocities.
+//
+// Orientation (spatial): R = Rx(ax) Ry(ay) Rz(az) maps body-frame vectors to the bearing frame. Ring
+// tilts are small (mrad); the cage keeps its full pose (its pockets are not symmetric).
 #pragma once
 
 #include <array>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "contact/segments/ball_segments.hpp"
 #include "contact/segments/roller_segments.hpp"
 #include "io/scene/scene.hpp"
 
 namespace raceway::solver {
 
-enum class BodyKind { inner_ring, outer_ring, cage, roller };
+/// Generalized coordinates of a body: the full spatial set; Body::slot[c] is the state index of
+/// coordinate c or -1 (not a state). Angles: ring tilts (sax, say) or the cage's Cardan angles.
+/// Angular velocities: balls in the bearing frame; rings (swx, swy) tilt rates and swz the spin
+/// about the ring's axis; the cage in its own frame. A planar body uses sx, sy, saz, svx, svy, swz.
+enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, swz };
+inline constexpr int coordinate_count = 12;
+
 enum class VariableClass { position, angle, velocity, angular_velocity };
+enum class BodyKind { inner_ring, outer_ring, cage, rolling_element };
 
-/// Absolute tolerances per state from physical scales, where the scene's [solver] section gives
-/// none: positions rtol times the pitch radius, angles rtol, velocities rtol times the driven ring's
-/// surface speed at the pitch radius, angular velocities rtol times a rolling element's rolling spin.
-/// Shared by the planar and the spatial model.
-std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
-                                                double pitch_radius, double rolling_element_radius);
-
-/// One rigid body. slot[c] is the state index of kinematic component c (contact::Component), or -1
-/// when that component is not a state (then it is prescribed: zero, or the drive speed).
+/// One rigid body. Its degrees of freedom are the coordinates with a slot (the mask).
 struct Body {
   std::string name;
-  BodyKind kind = BodyKind::roller;
-  int index = 0;  ///< roller number, 0 for the others
-  double mass = 0, inertia = 0;
-  std::array<int, 6> slot{-1, -1, -1, -1, -1, -1};
-  int offset = 0, size = 0;          ///< contiguous block of this body's states
+  BodyKind kind = BodyKind::rolling_element;
+  int index = 0;                  ///< rolling-element number, 0 for the others
+  double mass = 0;                ///< kg
+  double axial_inertia = 0;       ///< kg m^2 about the body's own (bearing-parallel) axis
+  double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial bodies)
+  std::array<int, coordinate_count> slot{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  int offset = 0, size = 0;       ///< contiguous block of this body's states
   const io::RingSpec* ring = nullptr;  ///< rings: motion, drive, loads, support
   bool has_states() const { return size > 0; }
+  bool has(Coordinate c) const { return slot[c] >= 0; }
 };
 
-enum class SegmentKind { roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear, cage_land };
-inline constexpr int segment_kind_count = 5;
+/// The closed set of segment kinds (each is one dataset group in the output, in this order).
+enum class SegmentKind {
+  roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear,
+  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land
+};
+inline constexpr int segment_kind_count = 8;
 const char* segment_kind_name(SegmentKind k);
 
-/// A contact segment: two bodies (A, B as in contact/planar_segments.hpp) and the index of its
-/// parameters in the model's array for its kind.
+/// The contact laws a segment can evaluate, with their parameters (contact/segments). Dispatched
+/// once per segment evaluation by std::visit: a jump table, no virtual call per contact.
+using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
+                                contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3>;
+
+/// A contact segment: two bodies (A, B as in contact/segments) and its law in Model::laws.
 struct Segment {
   SegmentKind kind;
   int body_a, body_b;
-  int parameters;
-  int roller;  ///< roller it belongs to, -1 for cage-land
+  int law;      ///< index into Model::laws (segments of one kind often share one)
+  int element;  ///< rolling element it belongs to, -1 for cage-land
   std::string name;
 };
 
 struct Model {
   const io::Scene* scene = nullptr;
-  std::vector<Body> bodies;  ///< inner ring, outer ring, cage, rollers (in that order, always)
-  int inner_ring = 0, outer_ring = 1, cage = 2, first_roller = 3;
-  int roller_count = 0;
+  io::ModelKind kind = io::ModelKind::planar;
+  std::vector<Body> bodies;  ///< inner ring, outer ring, cage, rolling elements (in that order, always)
+  int inner_ring = 0, outer_ring = 1, cage = 2, first_element = 3;
+  int element_count = 0;
   int state_size = 0;
-  int border_size = 0;  ///< states of rings and cage; rollers follow
+  int border_size = 0;  ///< states of rings and cage; rolling-element blocks follow
+  int block_size = 0;   ///< states per rolling element
   std::vector<VariableClass> state_class;
   std::vector<std::string> state_name;
+  std::vector<SegmentLaw> laws;
   std::vector<Segment> segments;
-  std::vector<contact::RollerRaceSegment> race_segments;
-  std::vector<contact::CageBarSegment> bar_segments;
-  std::vector<contact::CageLandSegment> land_segments;
 
-  // Geometry, kept for start-up and diagnostics.
-  double pitch_radius = 0, roller_radius = 0, inner_race_radius = 0, outer_race_radius = 0;
-  double gravity = 0;  ///< m/s^2 along -y
+  // Geometry, kept for start-up, output and diagnostics.
+  double pitch_radius = 0, element_radius = 0;
+  double inner_race_radius = 0, outer_race_radius = 0;  ///< planar: race radii
+  double nominal_contact_angle = 0;                     ///< rad (spatial): 0 deep groove, the arc angle four-point
+  int arcs_per_ring = 1;                                ///< 2 for a four-point bearing
+  double gravity = 0;                                   ///< m/s^2 along -y
+  const char* element_group = "rollers";                ///< output group of the rolling elements
+
+  template <class Law>
+  const Law& law(const Segment& s) const { return std::get<Law>(laws[static_cast<std::size_t>(s.law)]); }
+  /// The first segment of a kind, or nullptr.
+  const Segment* first_segment(SegmentKind k) const;
 
   /// Absolute tolerance per state from the scene, or from physical scales where the scene is silent.
   std::vector<double> absolute_tolerance() const;
-  /// Kinematics of body b at (t, z): states from z, the rest prescribed.
-  contact::PlanarKinematics kinematics(int b, double t, const double* z) const;
+  /// Planar kinematics of body b at (t, z): x, y, rotation about z and rates; the rest prescribed.
+  contact::PlanarKinematics planar_kinematics(int b, double t, const double* z) const;
+  /// Spatial kinematics of body b at (t, z): states from z, the rest prescribed.
+  contact::SpatialKinematics kinematics(int b, double t, const double* z) const;
+  /// Spin of a ring about its own axis at (t, z) [rad/s].
+  double ring_spin(int b, double t, const double* z) const;
+  /// Kinematic (epicyclic) cage speed for the rings' speeds at t [rad/s]: planar from the race
+  /// radii, spatial at the nominal contact angle (seed 001 eq. 5-6).
+  double epicyclic_cage_speed(double t) const;
+  /// Spatial: the same at a given contact angle: the cage speed of balls rolling at that angle.
+  double epicyclic_cage_speed(double t, double contact_angle) const;
   /// The model explained: bodies, states, segments, laws and the reasons (raceway check).
   std::string describe() const;
-  /// Epicyclic (kinematic) cage speed for the rings' speeds at time t [rad/s].
-  double epicyclic_cage_speed(double t) const;
 };
 
-/// Builds the model. Throws std::runtime_error naming the scene key when something cannot be built.
+/// Builds the model of the scene's kind. Throws std::runtime_error naming the scene key when
+/// something cannot be built.
 Model build_model(const io::Scene& scene);
+
+/// Absolute tolerances per state from physical scales, where the scene's [solver] section gives
+/// none: positions rtol times the pitch radius, angles rtol, velocities rtol times the driven ring's
+/// surface speed at the pitch radius, angular velocities rtol times a rolling element's rolling spin.
+std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
+                                                double pitch_radius, double rolling_element_radius);
+
+/// R = Rx(ax) Ry(ay) Rz(az).
+contact::Mat3 cardan_rotation(double ax, double ay, double az);
+/// Rates of the Cardan x-y-z angles from a body-frame angular velocity (singular at ay = +-90 deg,
+/// far beyond any cage tilt).
+contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angular_velocity);
+
+// The builders (one per bearing kind; build_model dispatches).
+Model build_roller_model(const io::Scene& scene);  ///< planar cylindrical roller bearing
+Model build_ball_model(const io::Scene& scene);    ///< spatial ball bearing
+std::string describe_roller_model(const Model& m);
+std::string describe_ball_model(const Model& m);
+
+/// Mass of a ring-shaped body (hollow cylinder) [kg].
+double annulus_mass(double density, double r_in, double r_out, double width);
+/// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.
+void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* what);
 
 }  // namespace raceway::solver

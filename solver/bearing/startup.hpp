@@ -1,5 +1,6 @@
-// A consistent initial state (issue 2, item 9): rollers and cage at their epicyclic speeds and the
-// rollers seated under the load, so the start-up transient is short.
+// A consistent initial state: rings seated under their loads, rolling elements at the epicyclic
+// orbit with their rolling spin, the cage at the epicyclic speed, so the start-up transient is short.
+// One entry point; the seating itself differs by bearing kind (roller_startup.cpp, ball_startup.cpp).
 #pragma once
 
 #include <string>
@@ -11,15 +12,28 @@ namespace raceway::solver {
 
 struct StartupReport {
   std::vector<double> state;
-  int newton_iterations = 0;
-  double residual = 0;       ///< N, largest unbalanced ring force at the solution
+  int iterations = 0;        ///< Newton (planar) or Levenberg-Marquardt (spatial) iterations
+  double residual = 0;       ///< N, largest unbalanced force at the solution
+  std::vector<double> inner_contact_force;  ///< N, per rolling element: its inner-race normal forces (spatial)
+  std::vector<double> outer_contact_force;  ///< N, per rolling element: its outer-race normal forces (spatial)
   std::string summary;
 };
 
-/// Quasi-static seating at t0: ring centres moved until the roller contact forces balance the
-/// loads (each roller's radial position balancing its inner and outer contact and its centrifugal
-/// force at the epicyclic orbital speed), then velocities set to pure rolling.
-/// Throws std::runtime_error when no equilibrium is found.
-StartupReport consistent_initial_state(const Model& model, double t0);
+/// The consistent initial state of the model at t0. `azimuth_offset` (spatial) turns the whole
+/// ball set and the cage about z (ball k starts at offset + 2 pi k / Z): with the loads turned by
+/// the same angle, the same physical state. Throws std::runtime_error when no equilibrium is found.
+StartupReport initial_state(const Model& model, double t0, double azimuth_offset = 0.0);
+
+/// Planar roller bearing: ring centres moved until the roller contact forces balance the loads
+/// (each roller's radial position balancing its inner and outer contact and its centrifugal force
+/// at the epicyclic orbital speed), then velocities set to pure rolling.
+StartupReport seat_roller_bearing(const Model& model, double t0);
+
+/// Spatial ball bearing, quasi-static seating with the same contact functions the dynamics use:
+/// unknowns are the free ring coordinates (translation, tilt) and each ball's radial and axial
+/// position in its azimuthal plane; Levenberg-Marquardt on the force balance (robust from open
+/// contacts). The cage is centred with its pockets on the balls, turning at the load-weighted mean
+/// of the balls' orbits. Ball spin: least-squares rolling without sliding at its loaded contacts.
+StartupReport seat_ball_bearing(const Model& model, double t0, double azimuth_offset);
 
 }  // namespace raceway::solver

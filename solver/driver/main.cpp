@@ -25,7 +25,6 @@
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
-#include "solver/bearing/spatial_model.hpp"
 #include "solver/run/run.hpp"
 
 namespace {
@@ -294,16 +293,9 @@ int main(int argc, char** argv) {
     const solver::PetscRuntime petsc(petsc_options);
     if (*check) {
       const io::Scene scene = load(scene_path);
-      solver::BorderedLayout layout;
-      if (scene.scene.model == io::ModelKind::spatial) {
-        const auto model = solver::build_spatial_model(scene);
-        std::fputs(model.describe().c_str(), stdout);
-        layout = {model.border_size, model.ball_count, solver::SpatialModel::ball_block_size};
-      } else {
-        const auto model = solver::build_model(scene);
-        std::fputs(model.describe().c_str(), stdout);
-        layout = {model.border_size, model.roller_count, (model.state_size - model.border_size) / model.roller_count};
-      }
+      const auto model = solver::build_model(scene);
+      std::fputs(model.describe().c_str(), stdout);
+      const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
       std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
       std::puts("scene OK");
       return 0;

@@ -1,126 +1,24 @@
+// One simulation from a validated scene to an output file (docs/output_layout.md) and a summary:
+// model, start-up state, CVODE, output at fixed times by interpolation. One loop for every bearing
+// kind; what a sample writes comes from the output table (solver/run/output_writer.hpp).
 #include "solver/run/run.hpp"
-#include "solver/run/run_loop.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "io/h5/h5_series.hpp"
-#include "solver/run/schedule_output.hpp"
 #include "solver/bearing/equations.hpp"
-#include "solver/bearing/spatial_equations.hpp"
 #include "solver/bearing/startup.hpp"
+#include "solver/numerics/newton_backends.hpp"
+#include "solver/run/output_writer.hpp"
+#include "solver/run/schedule_output.hpp"
 
 namespace raceway::solver {
 
-using contact::Component;
-
-namespace {
-
-
-const char* diagnostic_names[contact::diagnostics_count] = {
-    "approach", "normal_force", "traction_force", "slip_velocity", "elastic_energy", "power_loss"};
-const char* diagnostic_units[contact::diagnostics_count] = {"m", "N", "N", "m/s", "J", "W"};
-const char* diagnostic_docs[contact::diagnostics_count] = {
-    "approach of the two surfaces (> 0 in contact)", "normal contact force (>= 0)",
-    "tangential force on body B along the segment tangent", "sliding velocity of B's surface relative to A's",
-    "elastic energy stored in the contact", "power dissipated by traction and damping"};
-
-/// Writes the model-dependent output layout (docs/output_layout.md) and appends samples.
-class OutputWriter {
- public:
-  OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments) : file_(file), m_(m), segments_(segments) {
-    file_.define_series("/time", {1}, "s", "output times (interpolated, not solver steps)");
-    file_.define_series("/energy", {1}, "J", "total mechanical energy (kinetic + elastic + load potential)");
-    for (int b = 0; b < m.first_roller; ++b) {
-      const std::string g = "/" + m.bodies[b].name;
-      file_.define_series(g + "/position", {2}, "m", "centre x, y in the bearing frame");
-      file_.define_series(g + "/velocity", {2}, "m/s", "centre velocity");
-      file_.define_series(g + "/angle", {1}, "rad", "rotation about z (0 where not a state)");
-      file_.define_series(g + "/angular_velocity", {1}, "rad/s", "rotation rate about z (drive speed if driven)");
-      file_.define_series(g + "/acceleration", {3}, "m/s^2, m/s^2, rad/s^2",
-                          "ax, ay, angular acceleration (0 where not a state)");
-      file_.define_series(g + "/force", {3}, "N, N, N m", "net force and moment (contacts, loads, supports)");
-    }
-    const std::size_t n = static_cast<std::size_t>(m.roller_count);
-    file_.define_series("/rollers/position", {n, 2}, "m", "roller centres x, y");
-    file_.define_series("/rollers/velocity", {n, 2}, "m/s", "roller centre velocities");
-    file_.define_series("/rollers/spin", {n}, "rad/s", "roller rotation rate about its axis");
-    file_.define_series("/rollers/acceleration", {n, 3}, "m/s^2, m/s^2, rad/s^2", "ax, ay, spin acceleration");
-    if (segments_) {
-      for (int k = 0; k < segment_kind_count; ++k) {
-        std::vector<std::string> names;
-        for (std::size_t s = 0; s < m.segments.size(); ++s)
-          if (static_cast<int>(m.segments[s].kind) == k) {
-            names.push_back(m.segments[s].name);
-            index_[k].push_back(static_cast<int>(s));
-          }
-        if (names.empty()) continue;
-        const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
-        file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
-        for (int d = 0; d < contact::diagnostics_count; ++d)
-          file_.define_series(g + "/" + diagnostic_names[d], {names.size()}, diagnostic_units[d], diagnostic_docs[d]);
-      }
-    }
-    file_.set_attribute("/", "state_names", m.state_name);
-  }
-
-  void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq, double energy) {
-    file_.append("/time", std::span<const double>(&t, 1));
-    file_.append("/energy", std::span<const double>(&energy, 1));
-    const auto& loads = eq.body_loads();
-    auto val = [&](const Body& b, int c, const std::vector<double>& v) { return b.slot[c] >= 0 ? v[b.slot[c]] : 0.0; };
-    for (int bi = 0; bi < m_.first_roller; ++bi) {
-      const Body& b = m_.bodies[bi];
-      const auto k = m_.kinematics(bi, t, z.data());
-      const std::string g = "/" + b.name;
-      const double pos[2] = {k.x, k.y}, vel[2] = {k.vx, k.vy}, ang = k.theta, w = k.omega;
-      const double acc[3] = {val(b, Component::vx, zdot), val(b, Component::vy, zdot), val(b, Component::omega, zdot)};
-      const double f[3] = {loads[bi].fx, loads[bi].fy, loads[bi].mz};
-      file_.append(g + "/position", pos);
-      file_.append(g + "/velocity", vel);
-      file_.append(g + "/angle", std::span<const double>(&ang, 1));
-      file_.append(g + "/angular_velocity", std::span<const double>(&w, 1));
-      file_.append(g + "/acceleration", acc);
-      file_.append(g + "/force", f);
-    }
-    const std::size_t n = static_cast<std::size_t>(m_.roller_count);
-    std::vector<double> pos(2 * n), vel(2 * n), spin(n), acc(3 * n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const Body& b = m_.bodies[m_.first_roller + k];
-      pos[2 * k] = z[b.slot[Component::px]], pos[2 * k + 1] = z[b.slot[Component::py]];
-      vel[2 * k] = z[b.slot[Component::vx]], vel[2 * k + 1] = z[b.slot[Component::vy]];
-      spin[k] = z[b.slot[Component::omega]];
-      acc[3 * k] = zdot[b.slot[Component::vx]], acc[3 * k + 1] = zdot[b.slot[Component::vy]];
-      acc[3 * k + 2] = zdot[b.slot[Component::omega]];
-    }
-    file_.append("/rollers/position", pos);
-    file_.append("/rollers/velocity", vel);
-    file_.append("/rollers/spin", spin);
-    file_.append("/rollers/acceleration", acc);
-    if (!segments_) return;
-    const auto& rec = eq.segment_records();
-    for (int k = 0; k < segment_kind_count; ++k) {
-      if (index_[k].empty()) continue;
-      const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
-      std::vector<double> row(index_[k].size());
-      for (int d = 0; d < contact::diagnostics_count; ++d) {
-        for (std::size_t i = 0; i < row.size(); ++i)
-          row[i] = rec[static_cast<std::size_t>(index_[k][i]) * SegmentRecord::size + SegmentRecord::diagnostics + d];
-        file_.append(g + "/" + diagnostic_names[d], row);
-      }
-    }
-  }
-
- private:
-  io::H5SeriesWriter& file_;
-  const Model& m_;
-  bool segments_;
-  std::vector<int> index_[segment_kind_count];
-};
-
-}  // namespace
+using contact::Vec3;
 
 io::JsonObject RunSummary::to_json() const {
   io::JsonObject j;
@@ -152,63 +50,157 @@ io::JsonObject RunSummary::to_json() const {
   return j;
 }
 
+namespace {
+
+/// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates
+/// the output (OUT.h5.partial) with the attributes every run has.
+io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& options, const Equations& eq) {
+  const std::string solver_line =
+      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
+  if (options.on_info) options.on_info(solver_line);
+  const Model& model = eq.model();
+  auto file = io::H5SeriesWriter::create(options.output_path);
+  file.set_attribute("/", "scene_text", scene.text);
+  file.set_attribute("/", "scene_source", scene.source);
+  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
+  file.set_attribute("/", "model", model.describe());
+  if (model.kind == io::ModelKind::spatial) {
+    file.set_attribute("/", "model_kind", std::string("spatial"));
+    file.set_attribute("/", "ball_count", static_cast<long long>(model.element_count));
+    file.set_attribute("/", "pitch_radius", model.pitch_radius);
+    file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
+    file.set_attribute("/", "land_clearance",
+                       model.first_segment(SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);
+  }
+  return file;
+}
+
+/// The summary's figures of the run's second half, accumulated over the output samples.
+class SecondHalf {
+ public:
+  explicit SecondHalf(const Model& m) : m_(m) {}
+
+  void add(double t, const std::vector<double>& z, const Equations& eq) {
+    force_sum_ += eq.contact_loads()[static_cast<std::size_t>(m_.inner_ring)].force;
+    const auto& l = m_.scene->inner_ring.load;
+    load_sum_ += Vec3(l.fx(t), l.fy(t), l.fz(t));
+    constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
+    std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);
+    for (std::size_t s = 0; s < m_.segments.size(); ++s)
+      if (m_.segments[s].kind == SegmentKind::ball_inner_groove)
+        element_load[static_cast<std::size_t>(m_.segments[s].element)] += eq.diagnostic(s, normal_force);
+    for (double q : element_load) max_element_load_ = std::max(max_element_load_, q);
+    const std::vector<double> none(z.size(), 0.0);
+    cage_sum_ += sample_body(m_, m_.cage, t, z, none, Wrench{}).angular_velocity.z();
+    epicyclic_sum_ += m_.epicyclic_cage_speed(t);
+    ++count_;
+  }
+
+  void summarize(RunSummary& sum) const {
+    if (count_ == 0) return;
+    constexpr double rpm = 30.0 / std::numbers::pi;
+    sum.cage_speed_rpm = cage_sum_ / count_ * rpm;
+    sum.epicyclic_cage_speed_rpm = epicyclic_sum_ / count_ * rpm;
+    sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
+    sum.max_ball_load_n = max_element_load_;
+    const int dims = m_.kind == io::ModelKind::spatial ? 3 : 2;
+    for (int d = 0; d < dims; ++d) {
+      sum.inner_ring_contact_force_n.push_back(force_sum_[d] / count_);
+      sum.inner_ring_load_n.push_back(load_sum_[d] / count_);
+    }
+  }
+
+ private:
+  const Model& m_;
+  Vec3 force_sum_ = Vec3::Zero(), load_sum_ = Vec3::Zero();
+  double cage_sum_ = 0, epicyclic_sum_ = 0, max_element_load_ = 0;
+  int count_ = 0;
+};
+
+/// Counters and times of the run into the summary, which is stored as the file's summary_json.
+void finish_summary(RunSummary& sum, double t, const Integrator& integrator, const Equations& eq,
+                    scheduler::Executor& executor, double wall_seconds) {
+  sum.stats = integrator.statistics();
+  sum.simulated_time_s = t;
+  sum.wall_time_s = wall_seconds;
+  sum.model_rhs_evaluations = eq.rhs_evaluations();
+  sum.model_jacobian_evaluations = eq.jacobian_evaluations();
+  sum.segment_evaluations = eq.segment_evaluations();
+  sum.rhs_seconds = executor.total_seconds(scheduler::Phase::rhs);
+  sum.jacobian_seconds = executor.total_seconds(scheduler::Phase::jacobian);
+}
+
+}  // namespace
+
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
-  if (scene.scene.model == io::ModelKind::spatial) return run_spatial_scene(scene, options);
   const auto wall_start = std::chrono::steady_clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
   Equations eq(model, executor);
   executor.attach(eq.task_catalogue());
-  const double t0 = 0.0;
-  const StartupReport start = consistent_initial_state(model, t0);
+  const double t0 = 0.0, end = scene.scene.end_time, dt = scene.scene.output_interval;
+  const StartupReport start = initial_state(model, t0, options.azimuth_offset);
   if (options.on_info) options.on_info(start.summary);
 
-  auto file = open_run_output(scene, options, eq, model.describe());
+  auto file = open_run_output(scene, options, eq);
   OutputWriter out(file, model, scene.output.segments);
-
   Integrator integrator(eq, scene.solver, t0, start.state);
-  double force_sum[2] = {0, 0}, load_sum[2] = {0, 0};
-  RunRecorder recorder;
-  recorder.append = [&](double t, const std::vector<double>& z, const std::vector<double>& zdot, double e) {
+  RunSummary sum;
+  sum.model_kind = model.kind == io::ModelKind::spatial ? "spatial" : "planar";
+  SecondHalf second_half(model);
+  const long samples = std::lround(std::floor(end / dt + 1e-9));
+  const io::RingSpec& drive = scene.inner_ring.motion == io::RingMotion::driven ? scene.inner_ring : scene.outer_ring;
+  std::vector<double> z = start.state, zdot(z.size());
+  double revolutions = 0, last_t = t0;
+
+  auto record = [&](double t) {
+    eq.rhs(t, z.data(), zdot.data());
+    const double e = eq.energy(t, z.data());
+    if (sum.output_samples == 0) sum.energy_initial_j = e;
+    sum.energy_final_j = e;
+    sum.energy_max_drift_j = std::max(sum.energy_max_drift_j, std::abs(e - sum.energy_initial_j));
     out.append(t, z, zdot, eq, e);
+    ++sum.output_samples;
+    if (drive.motion == io::RingMotion::driven)
+      revolutions += 0.5 * (drive.speed(last_t) + drive.speed(t)) * (t - last_t) / (2 * std::numbers::pi);
+    last_t = t;
+    if (t >= 0.5 * end - 1e-12) second_half.add(t, z, eq);
   };
-  recorder.second_half = [&](double t, const std::vector<double>& z) {
-    // Contact force of the rollers on the inner ring (without its load).
-    const Body& in = model.bodies[model.inner_ring];
-    const auto& rec = eq.segment_records();
-    for (std::size_t s = 0; s < model.segments.size(); ++s) {
-      const auto& seg = model.segments[s];
-      const double* r = rec.data() + s * SegmentRecord::size;
-      if (seg.body_a == model.inner_ring) force_sum[0] += r[0], force_sum[1] += r[1];
-      else if (seg.body_b == model.inner_ring) force_sum[0] += r[3], force_sum[1] += r[4];
+  auto finish = [&](double t) {
+    finish_summary(sum, t, integrator, eq, executor, wall());
+    sum.driven_ring_revolutions = revolutions;
+    second_half.summarize(sum);
+    file.set_attribute("/", "summary_json", sum.to_json().dump());
+    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
+  };
+
+  record(t0);
+  for (long i = 1; i <= samples; ++i) {
+    const double t = t0 + static_cast<double>(i) * dt;
+    try {
+      integrator.advance_to(t, z);
+    } catch (const IntegrationFailure&) {
+      finish(last_t);
+      file.flush();
+      throw;  // the .partial file stays, the previous output is untouched
     }
-    load_sum[0] += in.ring->load.fx(t);
-    load_sum[1] += in.ring->load.fy(t);
-    return std::pair(z[model.bodies[model.cage].slot[Component::omega]], model.epicyclic_cage_speed(t));
-  };
-  recorder.summarize = [&](RunSummary& sum, int count) {
-    for (int d = 0; d < 2; ++d) {
-      sum.inner_ring_contact_force_n.push_back(force_sum[d] / count);
-      sum.inner_ring_load_n.push_back(load_sum[d] / count);
-    }
-  };
-  return record_run(scene, options, eq, executor, integrator, file, start.state, RunSummary{}, wall_start, recorder);
+    record(t);
+    if (options.on_progress) options.on_progress({t, end, revolutions, wall(), integrator.statistics().steps});
+  }
+  finish(last_t);
+  file.commit();
+  return sum;
 }
 
 void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve) {
   // The equations need an executor, but a worker's never call run(): their tasks are called by
   // `serve` with the master's context.
   scheduler::SerialExecutor unused;
-  if (scene.scene.model == io::ModelKind::spatial) {
-    const SpatialModel model = build_spatial_model(scene);
-    const SpatialEquations eq(model, unused);
-    serve(eq.task_catalogue());
-  } else {
-    const Model model = build_model(scene);
-    const Equations eq(model, unused);
-    serve(eq.task_catalogue());
-  }
+  const Model model = build_model(scene);
+  const Equations eq(model, unused);
+  serve(eq.task_catalogue());
 }
 
 }  // namespace raceway::solver

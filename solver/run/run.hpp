@@ -1,5 +1,5 @@
 // One simulation from a validated scene to an output file and a summary: model, start-up state,
-// CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/cli) owns it.
+// CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/driver) owns it.
 #pragma once
 
 #include <functional>
@@ -52,8 +52,6 @@ struct RunSummary {
 /// replaced only when the run ends). On an integration failure the partial output is kept as
 /// OUT.h5.partial and IntegrationFailure is rethrown with its diagnosis.
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
-/// The same for a spatial (ball-bearing) scene; run_scene dispatches to it.
-RunSummary run_spatial_scene(const io::Scene& scene, const RunOptions& options);
 
 /// The worker side of a run: builds the same model and equations as run_scene does on the
 /// master and hands their task catalogue to `serve` (which evaluates tasks until the master stops

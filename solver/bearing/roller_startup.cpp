@@ -9,7 +9,6 @@
 
 namespace raceway::solver {
 
-using contact::Component;
 using contact::PlanarKinematics;
 
 namespace {
@@ -30,12 +29,18 @@ struct Seating {
     return {rho * std::cos(psi), rho * std::sin(psi), 0, -orbit * rho * std::sin(psi), orbit * rho * std::cos(psi), spin};
   }
 
-  double azimuth(int k) const { return load_direction + 2.0 * std::numbers::pi * k / m.roller_count; }
+  /// The race law of ring r (0 inner, 1 outer).
+  const contact::RollerRaceSegment& race(int r) const {
+    return m.law<contact::RollerRaceSegment>(
+        *m.first_segment(r == 0 ? SegmentKind::roller_inner_race : SegmentKind::roller_outer_race));
+  }
+
+  double azimuth(int k) const { return load_direction + 2.0 * std::numbers::pi * k / m.element_count; }
 
   /// Radial contact force of a race on a roller centred at radius rho along azimuth psi, given the
   /// ring centre. Positive = along the outward radial direction e_psi.
   double race_force(int segment, double cx, double cy, double rho, double psi) const {
-    const auto& seg = m.race_segments[segment];
+    const auto& seg = race(segment);
     const auto r = contact::evaluate(seg, ring_at(segment, cx, cy), roller_at(rho, psi));
     return r.on_b.fx * std::cos(psi) + r.on_b.fy * std::sin(psi);
   }
@@ -44,14 +49,14 @@ struct Seating {
   /// rho, monotone because the inner force grows and the outer force falls... as rho decreases.
   double seat(int k, const double* inner, const double* outer) const {
     const double psi = azimuth(k);
-    const double mass = m.bodies[m.first_roller + k].mass;
+    const double mass = m.bodies[m.first_element + k].mass;
     auto residual = [&](double rho) {
       return race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
              mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
     };
     // The outer race alone bounds rho from above (residual < 0 deep in the outer race); search down.
-    double hi = m.outer_race_radius - m.roller_radius + 1e-2 * m.roller_radius;
-    double lo = m.inner_race_radius + m.roller_radius - 1e-2 * m.roller_radius;
+    double hi = m.outer_race_radius - m.element_radius + 1e-2 * m.element_radius;
+    double lo = m.inner_race_radius + m.element_radius - 1e-2 * m.element_radius;
     if (residual(hi) > 0 || residual(lo) < 0)
       throw std::runtime_error(fmt::format("start-up: cannot seat roller {} between the races", k));
     for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
@@ -70,12 +75,12 @@ struct Seating {
       centre[free_rings[i]][1] = x[2 * i + 1];
     }
     double force[2][2] = {{0, 0}, {0, 0}};
-    for (int k = 0; k < m.roller_count; ++k) {
+    for (int k = 0; k < m.element_count; ++k) {
       const double rho = seat(k, centre[0], centre[1]);
       const double psi = azimuth(k);
       const PlanarKinematics roller = roller_at(rho, psi);
       for (int r = 0; r < 2; ++r) {
-        const auto res = contact::evaluate(m.race_segments[r], ring_at(r, centre[r][0], centre[r][1]), roller);
+        const auto res = contact::evaluate(race(r), ring_at(r, centre[r][0], centre[r][1]), roller);
         force[r][0] += res.on_a.fx;
         force[r][1] += res.on_a.fy;
       }
@@ -94,11 +99,11 @@ struct Seating {
 
 }  // namespace
 
-StartupReport consistent_initial_state(const Model& m, double t0) {
+StartupReport seat_roller_bearing(const Model& m, double t0) {
   StartupReport rep;
   std::vector<int> free_rings;  // 0 inner, 1 outer
-  if (m.bodies[m.inner_ring].slot[Component::px] >= 0) free_rings.push_back(0);
-  if (m.bodies[m.outer_ring].slot[Component::px] >= 0) free_rings.push_back(1);
+  if (m.bodies[m.inner_ring].slot[sx] >= 0) free_rings.push_back(0);
+  if (m.bodies[m.outer_ring].slot[sx] >= 0) free_rings.push_back(1);
 
   // Direction in which the load pushes the inner ring against the outer one.
   const auto& in = m.scene->inner_ring.load;
@@ -116,7 +121,7 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
     };
     s.ring_speed[0] = speed(m.inner_ring);
     s.ring_speed[1] = speed(m.outer_ring);
-    s.spin = s.orbit - (s.ring_speed[0] - s.orbit) * m.inner_race_radius / m.roller_radius;
+    s.spin = s.orbit - (s.ring_speed[0] - s.orbit) * m.inner_race_radius / m.element_radius;
   }
   // Newton with finite differences and backtracking on the ring translations.
   const int n = 2 * static_cast<int>(free_rings.size());
@@ -131,7 +136,7 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
       x[i + 1] = 1e-7 * std::sin(s.load_direction) * (free_rings[i / 2] == 0 ? 1 : -1);
     }
     r = s.ring_residual(x, free_rings);
-    for (rep.newton_iterations = 0; rep.newton_iterations < 100; ++rep.newton_iterations) {
+    for (rep.iterations = 0; rep.iterations < 100; ++rep.iterations) {
       if (r.cwiseAbs().maxCoeff() < 1e-10 * load_scale) break;
       Eigen::MatrixXd jac(n, n);
       for (int j = 0; j < n; ++j) {
@@ -164,41 +169,47 @@ StartupReport consistent_initial_state(const Model& m, double t0) {
   double centre[2][2] = {{0, 0}, {0, 0}};
   for (std::size_t i = 0; i < free_rings.size(); ++i) {
     const Body& b = m.bodies[free_rings[i] == 0 ? m.inner_ring : m.outer_ring];
-    centre[free_rings[i]][0] = rep.state[b.slot[Component::px]] = x[2 * i];
-    centre[free_rings[i]][1] = rep.state[b.slot[Component::py]] = x[2 * i + 1];
+    centre[free_rings[i]][0] = rep.state[b.slot[sx]] = x[2 * i];
+    centre[free_rings[i]][1] = rep.state[b.slot[sy]] = x[2 * i + 1];
   }
   const double wc = s.orbit;
   for (int r : {m.inner_ring, m.outer_ring}) {
     const Body& b = m.bodies[r];
-    if (b.slot[Component::omega] >= 0) rep.state[b.slot[Component::omega]] = 0.0;
+    if (b.slot[swz] >= 0) rep.state[b.slot[swz]] = 0.0;
   }
   // Rollers: the seated positions with the kinematics the seating balanced (epicyclic orbit, pure
   // rolling spin on the inner race).
-  for (int k = 0; k < m.roller_count; ++k) {
-    const Body& b = m.bodies[m.first_roller + k];
+  for (int k = 0; k < m.element_count; ++k) {
+    const Body& b = m.bodies[m.first_element + k];
     const PlanarKinematics r = s.roller_at(s.seat(k, centre[0], centre[1]), s.azimuth(k));
-    rep.state[b.slot[Component::px]] = r.x;
-    rep.state[b.slot[Component::py]] = r.y;
-    rep.state[b.slot[Component::vx]] = r.vx;
-    rep.state[b.slot[Component::vy]] = r.vy;
-    rep.state[b.slot[Component::omega]] = r.omega;
+    rep.state[b.slot[sx]] = r.x;
+    rep.state[b.slot[sy]] = r.y;
+    rep.state[b.slot[svx]] = r.vx;
+    rep.state[b.slot[svy]] = r.vy;
+    rep.state[b.slot[swz]] = r.omega;
   }
   // Cage: concentric with its guiding ring, pocket k centred on roller k, at the epicyclic speed.
   const Body& cage = m.bodies[m.cage];
   int guide = -1;
-  if (!m.land_segments.empty()) guide = m.land_segments.front().outer_land ? 1 : 0;
+  if (const Segment* land = m.first_segment(SegmentKind::cage_land))
+    guide = m.law<contact::CageLandSegment>(*land).outer_land ? 1 : 0;
   if (guide >= 0) {
-    rep.state[cage.slot[Component::px]] = centre[guide][0];
-    rep.state[cage.slot[Component::py]] = centre[guide][1];
+    rep.state[cage.slot[sx]] = centre[guide][0];
+    rep.state[cage.slot[sy]] = centre[guide][1];
   }
-  rep.state[cage.slot[Component::theta]] = s.load_direction;
-  rep.state[cage.slot[Component::omega]] = wc;
+  rep.state[cage.slot[saz]] = s.load_direction;
+  rep.state[cage.slot[swz]] = wc;
   rep.summary = fmt::format(
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",
-      rep.newton_iterations, rep.residual, 1e6 * centre[0][0], 1e6 * centre[0][1], wc * 30 / std::numbers::pi,
+      rep.iterations, rep.residual, 1e6 * centre[0][0], 1e6 * centre[0][1], wc * 30 / std::numbers::pi,
       s.spin);
   return rep;
+}
+
+StartupReport initial_state(const Model& model, double t0, double azimuth_offset) {
+  if (model.kind == io::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset);
+  return seat_roller_bearing(model, t0);
 }
 
 }  // namespace raceway::solver

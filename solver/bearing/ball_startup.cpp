@@ -1,4 +1,4 @@
-#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/startup.hpp"
 
 #include <fmt/format.h>
 
@@ -21,7 +21,7 @@ constexpr double pi = std::numbers::pi;
 /// The force balance of the seating problem. Unknowns: the rings' position-type states (x, y, z,
 /// tilts) and each ball's radial and axial position in its azimuthal plane.
 struct Seating {
-  const SpatialModel& m;
+  const Model& m;
   double t0;
   double orbit = 0;         ///< epicyclic cage speed [rad/s]
   double force_scale = 1;   ///< N
@@ -33,22 +33,22 @@ struct Seating {
 
   struct Unknown {
     int body = -1;       ///< ring body, or ball body
-    int component = -1;  ///< ring: SpatialComponent (sx..say); ball: 0 radial, 1 axial
+    int component = -1;  ///< ring: Coordinate (sx..say); ball: 0 radial, 1 axial
     bool ball = false;
     double scale = 1e-6; ///< m or rad per unit of the scaled unknown
   };
   std::vector<Unknown> unknowns;
 
-  explicit Seating(const SpatialModel& model, double t) : m(model), t0(t) {
+  explicit Seating(const Model& model, double t) : m(model), t0(t) {
     orbit = m.epicyclic_cage_speed(t0);
     for (int r : {m.inner_ring, m.outer_ring}) {
       const auto& b = m.bodies[static_cast<std::size_t>(r)];
       for (int c = sx; c <= say; ++c)
         if (b.slot[c] >= 0) unknowns.push_back({r, c, false, c >= sax ? 1e-4 : 1e-6});
     }
-    for (int k = 0; k < m.ball_count; ++k) {
-      unknowns.push_back({m.first_ball + k, 0, true, 1e-6});
-      unknowns.push_back({m.first_ball + k, 1, true, 1e-6});
+    for (int k = 0; k < m.element_count; ++k) {
+      unknowns.push_back({m.first_element + k, 0, true, 1e-6});
+      unknowns.push_back({m.first_element + k, 1, true, 1e-6});
     }
     double load = 0;
     for (int r : {m.inner_ring, m.outer_ring}) {
@@ -58,25 +58,25 @@ struct Seating {
     force_scale = std::max(load, 1.0);
   }
 
-  double azimuth(int ball) const { return azimuth_offset + 2.0 * pi * ball / m.ball_count; }
+  double azimuth(int ball) const { return azimuth_offset + 2.0 * pi * ball / m.element_count; }
 
   /// The state for scaled unknowns u: positions set, velocities zero.
   std::vector<double> state(const Eigen::VectorXd& u) const {
     std::vector<double> z(static_cast<std::size_t>(m.state_size), 0.0);
-    std::vector<double> radial(static_cast<std::size_t>(m.ball_count), m.pitch_radius),
-        axial(static_cast<std::size_t>(m.ball_count), 0.0);
+    std::vector<double> radial(static_cast<std::size_t>(m.element_count), m.pitch_radius),
+        axial(static_cast<std::size_t>(m.element_count), 0.0);
     for (std::size_t i = 0; i < unknowns.size(); ++i) {
       const auto& q = unknowns[i];
       const double v = u[static_cast<Eigen::Index>(i)] * q.scale;
       if (!q.ball) {
         z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(q.body)].slot[q.component])] = v;
       } else {
-        const auto k = static_cast<std::size_t>(q.body - m.first_ball);
+        const auto k = static_cast<std::size_t>(q.body - m.first_element);
         (q.component == 0 ? radial[k] : axial[k]) += v;
       }
     }
-    for (int k = 0; k < m.ball_count; ++k) {
-      const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    for (int k = 0; k < m.element_count; ++k) {
+      const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
       const double psi = azimuth(k);
       const auto kk = static_cast<std::size_t>(k);
       z[static_cast<std::size_t>(b.slot[sx])] = radial[kk] * std::cos(psi);
@@ -91,12 +91,12 @@ struct Seating {
     const std::vector<double> z = state(u);
     std::vector<contact::SpatialWrench> w(m.bodies.size());
     for (const auto& seg : m.segments) {
-      if (seg.kind != SpatialSegmentKind::ball_inner_groove && seg.kind != SpatialSegmentKind::ball_outer_groove) continue;
+      if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
       SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
       ring.velocity.setZero();
       ring.angular_velocity.setZero();
       SpatialKinematics ball = m.kinematics(seg.body_b, t0, z.data());
-      const auto r = contact::evaluate(m.groove_segments[static_cast<std::size_t>(seg.parameters)], ring, ball);
+      const auto r = contact::evaluate(m.law<contact::BallGrooveSegment>(seg), ring, ball);
       auto& wa = w[static_cast<std::size_t>(seg.body_a)];
       auto& wb = w[static_cast<std::size_t>(seg.body_b)];
       wa.force += r.on_a.force, wa.moment += r.on_a.moment;
@@ -125,7 +125,7 @@ struct Seating {
                                 : cw.force[q.component] + ext.force[q.component]) / scale;
         f -= regularization * value * (q.component >= sax ? m.pitch_radius : 1.0);
       } else {
-        const int k = q.body - m.first_ball;
+        const int k = q.body - m.first_element;
         const double psi = azimuth(k);
         const Vec3 er(std::cos(psi), std::sin(psi), 0.0);
         const Vec3 x(z[static_cast<std::size_t>(body.slot[sx])], z[static_cast<std::size_t>(body.slot[sy])], 0.0);
@@ -155,7 +155,7 @@ void groove_contact(const contact::BallGrooveSegment& g, const SpatialKinematics
 
 }  // namespace
 
-SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, double azimuth_offset) {
+StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset) {
   Seating seat(m, t0);
   seat.azimuth_offset = azimuth_offset;
   const auto n = static_cast<Eigen::Index>(seat.unknowns.size());
@@ -208,7 +208,7 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
     if (!improved) break;
   }
   }
-  SpatialStartupReport rep;
+  StartupReport rep;
   rep.iterations = iterations;
   rep.residual = r.lpNorm<Eigen::Infinity>() * seat.force_scale;
   if (!(rep.residual <= 1e-6 * seat.force_scale + 1e-6))
@@ -226,8 +226,8 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
   std::vector<double> z = seat.state(u);
   const auto& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   z[static_cast<std::size_t>(cage.slot[saz])] = azimuth_offset;
-  rep.inner_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
-  rep.outer_contact_force.assign(static_cast<std::size_t>(m.ball_count), 0.0);
+  rep.inner_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
+  rep.outer_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
 
   // Rolling equations of ball k: one row per loaded contact and tangent direction t,
   //   (orbit e_z x x + w x lever - ring surface velocity) . t = 0,
@@ -239,28 +239,28 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
     int contacts = 0;
     double load = 0;
   };
-  const double orbit_column_scale = m.ball_radius / m.pitch_radius;
+  const double orbit_column_scale = m.element_radius / m.pitch_radius;
   auto ball_position = [&](int k) {
-    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
     return Vec3(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
                 z[static_cast<std::size_t>(b.slot[sz])]);
   };
-  std::vector<Rolling> rolling(static_cast<std::size_t>(m.ball_count));
-  for (int k = 0; k < m.ball_count; ++k) {
+  std::vector<Rolling> rolling(static_cast<std::size_t>(m.element_count));
+  for (int k = 0; k < m.element_count; ++k) {
     const Vec3 x = ball_position(k);
     Rolling& eqs = rolling[static_cast<std::size_t>(k)];
     for (const auto& seg : m.segments) {
-      if (seg.ball != k || (seg.kind != SpatialSegmentKind::ball_inner_groove && seg.kind != SpatialSegmentKind::ball_outer_groove))
+      if (seg.element != k || (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove))
         continue;
       const SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
-      const auto& g = m.groove_segments[static_cast<std::size_t>(seg.parameters)];
+      const auto& g = m.law<contact::BallGrooveSegment>(seg);
       SpatialKinematics at_rest = ring;
       at_rest.velocity.setZero();
       at_rest.angular_velocity.setZero();
       SpatialKinematics ball_rest;
       ball_rest.position = x;
       const double q = contact::evaluate(g, at_rest, ball_rest).diagnostics.normal_force;
-      (seg.kind == SpatialSegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
+      (seg.kind == SegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
           [static_cast<std::size_t>(k)] += q;
       if (q <= 0) continue;
       ++eqs.contacts, eqs.load += q;
@@ -288,10 +288,10 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
     svd.setThreshold(1e-3);
     return Eigen::VectorXd(svd.solve(rhs));
   };
-  std::vector<double> orbit(static_cast<std::size_t>(m.ball_count), seat.orbit);
-  std::vector<Vec3> spin(static_cast<std::size_t>(m.ball_count), Vec3::Zero());
+  std::vector<double> orbit(static_cast<std::size_t>(m.element_count), seat.orbit);
+  std::vector<Vec3> spin(static_cast<std::size_t>(m.element_count), Vec3::Zero());
   double held_load = 0, held_orbit = 0;
-  for (int k = 0; k < m.ball_count; ++k) {
+  for (int k = 0; k < m.element_count; ++k) {
     const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
     if (eqs.contacts < 2) continue;
     const Eigen::VectorXd sol = least_squares(eqs.a, eqs.rhs);
@@ -301,7 +301,7 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
   }
   const double cage_speed = held_load > 0 ? held_orbit / held_load : seat.orbit;
   z[static_cast<std::size_t>(cage.slot[swz])] = cage_speed;
-  for (int k = 0; k < m.ball_count; ++k) {
+  for (int k = 0; k < m.element_count; ++k) {
     const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
     if (eqs.contacts == 1) {
       // Orbit with the cage; spin from the rolling rows with the orbit known.
@@ -311,7 +311,7 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
     } else if (eqs.contacts == 0) {
       orbit[static_cast<std::size_t>(k)] = cage_speed;
     }
-    const auto& b = m.bodies[static_cast<std::size_t>(m.first_ball + k)];
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
     const Vec3 v = orbit[static_cast<std::size_t>(k)] * Vec3::UnitZ().cross(ball_position(k));
     for (int d = 0; d < 3; ++d) {
       z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
@@ -320,7 +320,7 @@ SpatialStartupReport spatial_initial_state(const SpatialModel& m, double t0, dou
   }
   rep.state = std::move(z);
   double q_max = 0;
-  for (int k = 0; k < m.ball_count; ++k) q_max = std::max(q_max, rep.inner_contact_force[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < m.element_count; ++k) q_max = std::max(q_max, rep.inner_contact_force[static_cast<std::size_t>(k)]);
   rep.summary = fmt::format(
       "start-up: quasi-static seating in {} iterations (largest unbalanced force {:.3g} N); largest inner-groove "
       "ball load {:.4g} N; cage at {:.4g} rpm (rolling balls; epicyclic at the nominal contact angle {:.4g} rpm)",

@@ -1,0 +1,101 @@
+// Planar body dynamics: Newton in x, y and Euler about z in the inertial bearing frame (the planar
+// bearing's bodies carry sx, sy, saz, svx, svy, swz at most).
+#include <memory>
+
+#include "solver/bearing/body_dynamics.hpp"
+
+namespace raceway::solver {
+
+namespace {
+
+class PlanarDynamics final : public BodyDynamics {
+ public:
+  explicit PlanarDynamics(const Model& model) : m_(model) {}
+
+  void rates(int b, double t, const double* z, const Wrench& contacts, Wrench& net, double* zdot) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    const auto& sl = body.slot;
+    double fx = contacts.force.x(), fy = contacts.force.y(), mz = contacts.moment.z();
+    if (sl[svy] >= 0) fy -= body.mass * m_.gravity;
+    if (body.ring) {
+      fx += body.ring->load.fx(t);
+      fy += body.ring->load.fy(t);
+      mz += body.ring->load.mz(t);
+      const auto& sup = body.ring->support;
+      if (sup.stiffness > 0 && sl[sx] >= 0) {
+        fx -= sup.stiffness * z[sl[sx]] + sup.damping * z[sl[svx]];
+        fy -= sup.stiffness * z[sl[sy]] + sup.damping * z[sl[svy]];
+      }
+    }
+    net = Wrench{};
+    net.force.x() = fx, net.force.y() = fy, net.moment.z() = mz;
+    if (sl[sx] >= 0) {
+      zdot[sl[sx]] = z[sl[svx]];
+      zdot[sl[sy]] = z[sl[svy]];
+      zdot[sl[svx]] = fx / body.mass;
+      zdot[sl[svy]] = fy / body.mass;
+    }
+    if (sl[saz] >= 0) zdot[sl[saz]] = z[sl[swz]];
+    if (sl[swz] >= 0) zdot[sl[swz]] = mz / body.axial_inertia;
+  }
+
+  void contact_rate_derivative(int b, const double*, const Wrench& dw, double rates[coordinate_count]) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    for (int c = 0; c < coordinate_count; ++c) rates[c] = 0;
+    const double inv_mass = 1.0 / body.mass;
+    rates[svx] = dw.force.x() * inv_mass;
+    rates[svy] = dw.force.y() * inv_mass;
+    rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);
+  }
+
+  /// Kinematic rows (dq/dt = v) and ring supports, analytically.
+  void add_body_jacobian(double, const double*, const std::vector<Wrench>&, const FiniteDifferenceSteps&,
+                         BorderedMatrix& jac) const override {
+    for (const Body& body : m_.bodies) {
+      const auto& sl = body.slot;
+      if (sl[sx] >= 0) {
+        jac.add(sl[sx], sl[svx], 1.0);
+        jac.add(sl[sy], sl[svy], 1.0);
+        if (body.ring && body.ring->support.stiffness > 0) {
+          const auto& sup = body.ring->support;
+          for (int d = 0; d < 2; ++d) {
+            jac.add(sl[svx + d], sl[sx + d], -sup.stiffness / body.mass);
+            jac.add(sl[svx + d], sl[svx + d], -sup.damping / body.mass);
+          }
+        }
+      }
+      if (sl[saz] >= 0) jac.add(sl[saz], sl[swz], 1.0);
+    }
+  }
+
+  double body_energy(double t, const double* z) const override {
+    double e = 0;
+    for (const Body& body : m_.bodies) {
+      const auto& sl = body.slot;
+      if (sl[svx] >= 0) {
+        const double vx = z[sl[svx]], vy = z[sl[svy]];
+        const double x = z[sl[sx]], y = z[sl[sy]];
+        e += 0.5 * body.mass * (vx * vx + vy * vy);
+        e += body.mass * m_.gravity * y;
+        if (body.ring) {
+          e -= body.ring->load.fx(t) * x + body.ring->load.fy(t) * y;
+          e += 0.5 * body.ring->support.stiffness * (x * x + y * y);
+        }
+      }
+      if (sl[swz] >= 0) {
+        const double w = z[sl[swz]];
+        e += 0.5 * body.axial_inertia * w * w;
+      }
+    }
+    return e;
+  }
+
+ private:
+  const Model& m_;
+};
+
+}  // namespace
+
+std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model) { return std::make_unique<PlanarDynamics>(model); }
+
+}  // namespace raceway::solver

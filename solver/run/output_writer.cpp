@@ -1,0 +1,214 @@
+#include "solver/run/output_writer.hpp"
+
+#include <cmath>
+
+namespace raceway::solver {
+
+using contact::Vec3;
+
+namespace {
+
+enum class Quantity { position, velocity, angles, angular_velocity, acceleration, force };
+
+/// One dataset of a body group: `count` components of a sampled quantity.
+struct BodySeries {
+  const char* name;
+  Quantity quantity;
+  std::vector<int> components;
+  const char* unit;
+  const char* meaning;
+};
+
+const std::vector<BodySeries>& border_series(io::ModelKind kind) {
+  static const std::vector<BodySeries> planar = {
+      {"position", Quantity::position, {0, 1}, "m", "centre x, y in the bearing frame"},
+      {"velocity", Quantity::velocity, {0, 1}, "m/s", "centre velocity"},
+      {"angle", Quantity::angles, {2}, "rad", "rotation about z (0 where not a state)"},
+      {"angular_velocity", Quantity::angular_velocity, {2}, "rad/s", "rotation rate about z (drive speed if driven)"},
+      {"acceleration", Quantity::acceleration, {0, 1, 5}, "m/s^2, m/s^2, rad/s^2",
+       "ax, ay, angular acceleration (0 where not a state)"},
+      {"force", Quantity::force, {0, 1, 5}, "N, N, N m", "net force and moment (contacts, loads, supports)"}};
+  static const std::vector<BodySeries> spatial = {
+      {"position", Quantity::position, {0, 1, 2}, "m", "centre in the bearing frame"},
+      {"velocity", Quantity::velocity, {0, 1, 2}, "m/s", "centre velocity"},
+      {"angles", Quantity::angles, {0, 1, 2}, "rad", "tilt about x, tilt about y, rotation about z (rings: 0 about z)"},
+      {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "angular velocity, bearing frame"},
+      {"force", Quantity::force, {0, 1, 2, 3, 4, 5}, "N, N m",
+       "net force and moment at the centre (contacts, loads, supports, gravity)"}};
+  return kind == io::ModelKind::spatial ? spatial : planar;
+}
+
+const std::vector<BodySeries>& element_series(io::ModelKind kind) {
+  static const std::vector<BodySeries> planar = {
+      {"position", Quantity::position, {0, 1}, "m", "roller centres x, y"},
+      {"velocity", Quantity::velocity, {0, 1}, "m/s", "roller centre velocities"},
+      {"spin", Quantity::angular_velocity, {2}, "rad/s", "roller rotation rate about its axis"},
+      {"acceleration", Quantity::acceleration, {0, 1, 5}, "m/s^2, m/s^2, rad/s^2", "ax, ay, spin acceleration"}};
+  static const std::vector<BodySeries> spatial = {
+      {"position", Quantity::position, {0, 1, 2}, "m", "ball centres"},
+      {"velocity", Quantity::velocity, {0, 1, 2}, "m/s", "ball centre velocities"},
+      {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "ball angular velocities, bearing frame"}};
+  return kind == io::ModelKind::spatial ? spatial : planar;
+}
+
+double component(const BodySample& s, Quantity q, int c) {
+  switch (q) {
+    case Quantity::position: return s.position[c];
+    case Quantity::velocity: return s.velocity[c];
+    case Quantity::angles: return s.angles[c];
+    case Quantity::angular_velocity: return s.angular_velocity[c];
+    case Quantity::acceleration: return s.acceleration[c];
+    case Quantity::force: return s.force[c];
+  }
+  return 0;
+}
+
+bool is_line_family(const SegmentLaw& law) {
+  return std::holds_alternative<contact::RollerRaceSegment>(law) || std::holds_alternative<contact::CageBarSegment>(law) ||
+         std::holds_alternative<contact::CageLandSegment>(law);
+}
+
+template <class Table>
+void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns) {
+  for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning);
+}
+
+template <class Table>
+void append_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields,
+                        const std::vector<int>& index, const Equations& eq) {
+  std::vector<double> row(index.size());
+  for (std::size_t d = 0; d < fields.size(); ++d) {
+    for (std::size_t i = 0; i < row.size(); ++i) row[i] = eq.diagnostic(static_cast<std::size_t>(index[i]), static_cast<int>(d));
+    file.append(group + "/" + fields[d].name, row);
+  }
+}
+
+}  // namespace
+
+BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
+                       const Wrench& net) {
+  const Body& body = m.bodies[static_cast<std::size_t>(b)];
+  auto state = [&](int c) { return body.slot[c] >= 0 ? z[static_cast<std::size_t>(body.slot[c])] : 0.0; };
+  BodySample s;
+  for (int c = 0; c < 6; ++c) {
+    s.acceleration[c] = body.slot[svx + c] >= 0 ? zdot[static_cast<std::size_t>(body.slot[svx + c])] : 0.0;
+    s.force[c] = c < 3 ? net.force[c] : net.moment[c - 3];
+  }
+  if (m.kind == io::ModelKind::planar) {
+    const auto k = m.planar_kinematics(b, t, z.data());
+    s.position = Vec3(k.x, k.y, 0), s.velocity = Vec3(k.vx, k.vy, 0);
+    s.angles = Vec3(0, 0, k.theta), s.angular_velocity = Vec3(0, 0, k.omega);
+    return s;
+  }
+  const auto k = m.kinematics(b, t, z.data());
+  s.position = k.position, s.velocity = k.velocity, s.angular_velocity = k.angular_velocity;
+  s.angles = Vec3(state(sax), state(say), state(saz));
+  if (body.ring && body.ring->tilt == io::RingTilt::prescribed)
+    s.angles.x() = body.ring->misalignment_x(t), s.angles.y() = body.ring->misalignment_y(t);
+  return s;
+}
+
+OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments)
+    : file_(file), m_(m), segments_(segments) {
+  file_.define_series("/time", {1}, "s", "output times (interpolated, not solver steps)");
+  file_.define_series("/energy", {1}, "J", "kinetic + elastic + support + load potential energy");
+  for (int b = 0; b < m.first_element; ++b)
+    for (const BodySeries& s : border_series(m.kind))
+      file_.define_series("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name, {s.components.size()}, s.unit,
+                          s.meaning);
+  if (m.kind == io::ModelKind::spatial) {
+    file_.define_series("/cage/epicyclic_speed", {1}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
+    file_.define_series("/cage/rolling_speed", {1}, "rad/s",
+                        "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
+                        "(nominal angle when none is loaded)");
+  }
+  const auto n = static_cast<std::size_t>(m.element_count);
+  for (const BodySeries& s : element_series(m.kind)) {
+    std::vector<std::size_t> shape{n};
+    if (s.components.size() > 1) shape.push_back(s.components.size());
+    file_.define_series(std::string("/") + m.element_group + "/" + s.name, shape, s.unit, s.meaning);
+  }
+  if (segments_) define_segment_groups();
+  file_.set_attribute("/", "state_names", m.state_name);
+}
+
+void OutputWriter::define_segment_groups() {
+  for (int k = 0; k < segment_kind_count; ++k) {
+    std::vector<std::string> names;
+    std::vector<double> elements;
+    for (std::size_t s = 0; s < m_.segments.size(); ++s)
+      if (static_cast<int>(m_.segments[s].kind) == k) {
+        names.push_back(m_.segments[s].name);
+        elements.push_back(m_.segments[s].element);
+        index_[k].push_back(static_cast<int>(s));
+      }
+    if (names.empty()) continue;
+    line_family_[k] = is_line_family(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
+    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
+    file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
+    if (m_.kind == io::ModelKind::spatial)
+      file_.write_array(g + "/ball", {elements.size()}, elements, "-", "ball index (0-based) of each column; -1 for cage-land");
+    if (line_family_[k])
+      define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size());
+    else
+      define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size());
+  }
+}
+
+double OutputWriter::loaded_contact_angle(const Model& m, const Equations& eq) {
+  constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
+  constexpr int contact_angle = contact::field_index(contact::point_diagnostic_fields, "contact_angle");
+  double load = 0, weighted = 0;
+  for (std::size_t s = 0; s < m.segments.size(); ++s) {
+    if (m.segments[s].kind != SegmentKind::ball_inner_groove) continue;
+    const double q = eq.diagnostic(s, normal_force);
+    load += q, weighted += q * std::abs(eq.diagnostic(s, contact_angle));
+  }
+  return load > 0 ? weighted / load : m.nominal_contact_angle;
+}
+
+void OutputWriter::append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot,
+                                 const Equations& eq) {
+  const auto& loads = eq.body_loads();
+  for (int bi = 0; bi < m_.first_element; ++bi) {
+    const BodySample s = sample_body(m_, bi, t, z, zdot, loads[static_cast<std::size_t>(bi)]);
+    for (const BodySeries& series : border_series(m_.kind)) {
+      std::vector<double> row;
+      for (int c : series.components) row.push_back(component(s, series.quantity, c));
+      file_.append("/" + m_.bodies[static_cast<std::size_t>(bi)].name + "/" + series.name, row);
+    }
+  }
+  if (m_.kind == io::ModelKind::spatial) {
+    const double epi = m_.epicyclic_cage_speed(t);
+    file_.append("/cage/epicyclic_speed", std::span<const double>(&epi, 1));
+    const double rolling = m_.epicyclic_cage_speed(t, loaded_contact_angle(m_, eq));
+    file_.append("/cage/rolling_speed", std::span<const double>(&rolling, 1));
+  }
+  const auto& all = element_series(m_.kind);
+  std::vector<std::vector<double>> rows(all.size());
+  for (int k = 0; k < m_.element_count; ++k) {
+    const int b = m_.first_element + k;
+    const BodySample s = sample_body(m_, b, t, z, zdot, loads[static_cast<std::size_t>(b)]);
+    for (std::size_t i = 0; i < all.size(); ++i)
+      for (int c : all[i].components) rows[i].push_back(component(s, all[i].quantity, c));
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) file_.append(std::string("/") + m_.element_group + "/" + all[i].name, rows[i]);
+}
+
+void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
+                          double energy) {
+  file_.append("/time", std::span<const double>(&t, 1));
+  file_.append("/energy", std::span<const double>(&energy, 1));
+  append_bodies(t, z, zdot, eq);
+  if (!segments_) return;
+  for (int k = 0; k < segment_kind_count; ++k) {
+    if (index_[k].empty()) continue;
+    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
+    if (line_family_[k])
+      append_diagnostics(file_, g, contact::line_diagnostic_fields, index_[k], eq);
+    else
+      append_diagnostics(file_, g, contact::point_diagnostic_fields, index_[k], eq);
+  }
+}
+
+}  // namespace raceway::solver

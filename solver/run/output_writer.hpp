@@ -1,0 +1,50 @@
+// The output file's model-dependent layout (docs/output_layout.md), written from one table: per
+// body group the series it stores (name, which components of the body's sampled quantities, unit,
+// meaning), per segment kind the diagnostics of its family's field table. A planar bearing stores
+// the planar components (x, y, rotation about z) of the same quantities a spatial one stores in full.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/h5/h5_series.hpp"
+#include "solver/bearing/equations.hpp"
+
+namespace raceway::solver {
+
+/// What the output knows of one body at one sample.
+struct BodySample {
+  contact::Vec3 position, velocity;          ///< m, m/s: centre, bearing frame
+  contact::Vec3 angles;                      ///< rad: tilts / Cardan angles about x, y; rotation about z
+  contact::Vec3 angular_velocity;            ///< rad/s, bearing frame
+  double acceleration[6] = {0, 0, 0, 0, 0, 0};  ///< m/s^2 x y z, rad/s^2 about x y z (0 where not a state)
+  double force[6] = {0, 0, 0, 0, 0, 0};         ///< N x y z, N m about x y z: net, at the centre
+};
+
+BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
+                       const Wrench& net);
+
+class OutputWriter {
+ public:
+  /// Defines the layout for the model (segment diagnostics only if `segments`).
+  OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments);
+  /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
+  void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
+              double energy);
+
+  /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
+  /// balls roll at); the nominal angle when none is loaded.
+  static double loaded_contact_angle(const Model& m, const Equations& eq);
+
+ private:
+  void define_segment_groups();
+  void append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq);
+
+  io::H5SeriesWriter& file_;
+  const Model& m_;
+  bool segments_;
+  std::vector<int> index_[segment_kind_count];  ///< segments of each kind, in column order
+  bool line_family_[segment_kind_count] = {};    ///< the kind's diagnostics: line (else point) field table
+};
+
+}  // namespace raceway::solver
