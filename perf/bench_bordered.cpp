@@ -31,9 +31,9 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
-#include "solver/bearing/spatial_equations.hpp"
-#include "solver/bearing/spatial_model.hpp"
-#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver/bearing/startup.hpp"
 #include "tests/solver/spatial_scene_builder.hpp"
 
@@ -160,11 +160,11 @@ int main(int argc, char** argv) {
     io::SolverSpec spec;
     for (int n : {8, 16, 32, 64, 128, 256, 512}) {
       const io::Scene scene = synthetic_scene(n);
-      const solver::SpatialModel model = solver::build_spatial_model(scene);
+      const solver::Model model = solver::build_model(scene);
       scheduler::SerialExecutor executor;
-      solver::SpatialEquations eq(model, executor);
-      const std::vector<double> z = solver::spatial_initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.ball_count, solver::SpatialModel::ball_block_size};
+      solver::Equations eq(model, executor);
+      const std::vector<double> z = solver::initial_state(model, 0.0).state;
+      const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
       solver::configure_petsc_options(spec, l);
       measure({"synthetic", l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, n, budget,
               max_dense);
@@ -172,13 +172,13 @@ int main(int argc, char** argv) {
     // The real bearings: N = 8..16.
     for (const char* file : {"6309_R3.toml", "qj215_validation.toml"}) {
       const io::Scene scene = io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + file);
-      const solver::SpatialModel model = solver::build_spatial_model(scene);
+      const solver::Model model = solver::build_model(scene);
       scheduler::SerialExecutor executor;
-      solver::SpatialEquations eq(model, executor);
-      const std::vector<double> z = solver::spatial_initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.ball_count, solver::SpatialModel::ball_block_size};
+      solver::Equations eq(model, executor);
+      const std::vector<double> z = solver::initial_state(model, 0.0).state;
+      const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
       solver::configure_petsc_options(spec, l);
-      measure({file, l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.ball_count,
+      measure({file, l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.element_count,
               budget, max_dense);
     }
     {
@@ -186,12 +186,12 @@ int main(int argc, char** argv) {
       const solver::Model model = solver::build_model(scene);
       scheduler::SerialExecutor executor;
       solver::Equations eq(model, executor);
-      const std::vector<double> z = solver::consistent_initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.roller_count,
-                                     (model.state_size - model.border_size) / model.roller_count};
+      const std::vector<double> z = solver::initial_state(model, 0.0).state;
+      const solver::BorderedLayout l{model.border_size, model.element_count,
+                                     (model.state_size - model.border_size) / model.element_count};
       solver::configure_petsc_options(spec, l);
       measure({"seed002_40hz.toml", l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }},
-              model.roller_count, budget, max_dense);
+              model.element_count, budget, max_dense);
     }
   }
   MPI_Finalize();

@@ -17,7 +17,7 @@ struct Fixture {
   solver::Model model = solver::build_model(scene);
   scheduler::SerialExecutor executor;
   solver::Equations eq{model, executor};
-  std::vector<double> z = solver::consistent_initial_state(model, 0.0).state;
+  std::vector<double> z = solver::initial_state(model, 0.0).state;
   std::vector<double> zdot = std::vector<double>(z.size());
 };
 Fixture& fixture() {
@@ -28,9 +28,10 @@ Fixture& fixture() {
 void BM_RollerRaceSegment(benchmark::State& state) {
   auto& f = fixture();
   const auto& seg = f.model.segments[0];  // roller 0 (most loaded) on the inner race
-  const auto a = f.model.kinematics(seg.body_a, 0, f.z.data());
-  const auto b = f.model.kinematics(seg.body_b, 0, f.z.data());
-  for (auto _ : state) benchmark::DoNotOptimize(contact::evaluate(f.model.race_segments[0], a, b));
+  const auto a = f.model.planar_kinematics(seg.body_a, 0, f.z.data());
+  const auto b = f.model.planar_kinematics(seg.body_b, 0, f.z.data());
+  const auto& law = f.model.law<contact::RollerRaceSegment>(seg);
+  for (auto _ : state) benchmark::DoNotOptimize(contact::evaluate(law, a, b));
 }
 BENCHMARK(BM_RollerRaceSegment);
 
@@ -43,7 +44,7 @@ BENCHMARK(BM_RightHandSide);
 
 void BM_Jacobian(benchmark::State& state) {
   auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.roller_count;
+  const int nb = f.model.border_size, n = f.model.element_count;
   solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
   for (auto _ : state) benchmark::DoNotOptimize(f.eq.jacobian(0.0, f.z.data(), j));
 }
@@ -51,7 +52,7 @@ BENCHMARK(BM_Jacobian);
 
 void BM_BorderedFactorSolve(benchmark::State& state) {
   auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.roller_count;
+  const int nb = f.model.border_size, n = f.model.element_count;
   solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
   f.eq.jacobian(0.0, f.z.data(), j);
   j.scale_add_identity(-1e-6);
@@ -67,7 +68,7 @@ BENCHMARK(BM_BorderedFactorSolve);
 
 void BM_DenseFactorSolve(benchmark::State& state) {
   auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.roller_count;
+  const int nb = f.model.border_size, n = f.model.element_count;
   solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
   f.eq.jacobian(0.0, f.z.data(), j);
   j.scale_add_identity(-1e-6);

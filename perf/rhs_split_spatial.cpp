@@ -7,8 +7,8 @@
 #include <cstdlib>
 
 #include "io/scene/scene_parser.hpp"
-#include "solver/bearing/spatial_equations.hpp"
-#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/startup.hpp"
 
 int main(int argc, char** argv) {
   using namespace raceway;
@@ -18,13 +18,13 @@ int main(int argc, char** argv) {
   }
   const io::Scene scene = io::load_scene(argv[1]);
   const int evaluations = argc > 2 ? std::atoi(argv[2]) : 20000;
-  const solver::SpatialModel model = solver::build_spatial_model(scene);
-  const auto start = solver::spatial_initial_state(model, 0.0);
+  const solver::Model model = solver::build_model(scene);
+  const auto start = solver::initial_state(model, 0.0);
   scheduler::SerialExecutor executor;
-  solver::SpatialEquations eq(model, executor);
+  solver::Equations eq(model, executor);
   std::vector<double> zdot(start.state.size());
-  double per_kind[solver::spatial_segment_kind_count] = {};
-  int count[solver::spatial_segment_kind_count] = {};
+  double per_kind[solver::segment_kind_count] = {};
+  int count[solver::segment_kind_count] = {};
   for (const auto& s : model.segments) ++count[static_cast<int>(s.kind)];
   const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < evaluations; ++i) {
@@ -36,11 +36,11 @@ int main(int argc, char** argv) {
   std::printf("scene %s: %d right-hand sides at the start-up state\n", argv[1], evaluations);
   std::printf("wall time per rhs: %.3f us (all segments, summation, body equations, timers)\n", 1e6 * wall / evaluations);
   double tasks = 0;
-  for (int k = 0; k < solver::spatial_segment_kind_count; ++k) tasks += per_kind[k];
-  for (int k = 0; k < solver::spatial_segment_kind_count; ++k)
+  for (int k = 0; k < solver::segment_kind_count; ++k) tasks += per_kind[k];
+  for (int k = 0; k < solver::segment_kind_count; ++k)
     if (count[k] > 0)
       std::printf("  %-18s %3d segments: %8.3f us per rhs (%5.1f %%), %.3f us per segment\n",
-                  solver::spatial_segment_kind_name(static_cast<solver::SpatialSegmentKind>(k)), count[k],
+                  solver::segment_kind_name(static_cast<solver::SegmentKind>(k)), count[k],
                   1e6 * per_kind[k] / evaluations, 100 * per_kind[k] / tasks, 1e6 * per_kind[k] / evaluations / count[k]);
   std::printf("  outside the segment tasks: %.3f us per rhs\n", 1e6 * (wall - tasks) / evaluations);
   return 0;

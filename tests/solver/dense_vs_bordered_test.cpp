@@ -49,7 +49,7 @@ Result integrate(io::LinearSolverKind kind, double perturbation = 0) {
   const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
   Equations eq(model, executor);
-  std::vector<double> z0 = consistent_initial_state(model, 0.0).state;
+  std::vector<double> z0 = initial_state(model, 0.0).state;
   for (double& v : z0) v *= 1 + perturbation;
   Integrator integrator(eq, scene.solver, 0.0, z0);
   Result r;
@@ -59,8 +59,8 @@ Result integrate(io::LinearSolverKind kind, double perturbation = 0) {
   r.stats = integrator.statistics();
   r.atol = model.absolute_tolerance();
   r.rtol = scene.solver.rtol;
-  r.ring_x = model.bodies[model.inner_ring].slot[contact::Component::px];
-  r.ring_y = model.bodies[model.inner_ring].slot[contact::Component::py];
+  r.ring_x = model.bodies[model.inner_ring].slot[sx];
+  r.ring_y = model.bodies[model.inner_ring].slot[sy];
   return r;
 }
 
@@ -81,7 +81,7 @@ TEST(DenseVsBordered, NewtonMatricesSolveLikeDenseLU) {
   const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
   Equations eq(model, executor);
-  const std::vector<double> z0 = consistent_initial_state(model, 0.0).state;
+  const std::vector<double> z0 = initial_state(model, 0.0).state;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
   double worst = 0;
@@ -91,7 +91,7 @@ TEST(DenseVsBordered, NewtonMatricesSolveLikeDenseLU) {
       Integrator integrator(eq, scene.solver, 0.0, z0);
       integrator.advance_to(t, z);
     }
-    BorderedMatrix jac(model.border_size, model.roller_count, (model.state_size - model.border_size) / model.roller_count);
+    BorderedMatrix jac(model.border_size, model.element_count, (model.state_size - model.border_size) / model.element_count);
     ASSERT_EQ(eq.jacobian(t, z.data(), jac), 0);
     for (double gamma : {1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3}) {
       BorderedMatrix m = jac;

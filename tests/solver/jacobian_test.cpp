@@ -43,7 +43,7 @@ double central_step(const Model& m, VariableClass c) {
     case VariableClass::position: return 1e-11;
     case VariableClass::angle: return 1e-11 / m.pitch_radius;
     case VariableClass::velocity: return 1e-7;
-    case VariableClass::angular_velocity: return 1e-7 / m.roller_radius;
+    case VariableClass::angular_velocity: return 1e-7 / m.element_radius;
   }
   return 0;
 }
@@ -66,7 +66,7 @@ Eigen::MatrixXd central_difference_jacobian(Equations& eq, const Model& m, doubl
 }
 
 int roller_of(const Model& m, int state) {
-  return state < m.border_size ? -1 : (state - m.border_size) / ((m.state_size - m.border_size) / m.roller_count);
+  return state < m.border_size ? -1 : (state - m.border_size) / ((m.state_size - m.border_size) / m.element_count);
 }
 
 struct ColumnErrors {
@@ -131,7 +131,7 @@ double check_state(Equations& eq, const Model& m, double t, const std::vector<do
   for (std::size_t s = 0; s < m.segments.size(); ++s)
     if (m.segments[s].kind == SegmentKind::roller_inner_race &&
         eq.segment_records()[s * SegmentRecord::size + SegmentRecord::diagnostics + 1] > 0)
-      carrying.push_back(m.segments[s].roller);
+      carrying.push_back(m.segments[s].element);
   EXPECT_FALSE(carrying.empty());
   const Eigen::MatrixXd fd = central_difference_jacobian(eq, m, t, z);
 
@@ -144,12 +144,12 @@ double check_state(Equations& eq, const Model& m, double t, const std::vector<do
       }
   // ... while each roller is coupled to the border (the rings carry it): the structure is not empty.
   for (int k : carrying) {
-    const int first = m.border_size + k * ((m.state_size - m.border_size) / m.roller_count);
+    const int first = m.border_size + k * ((m.state_size - m.border_size) / m.element_count);
     EXPECT_GT(fd.block(first, 0, 5, m.border_size).cwiseAbs().maxCoeff(), 0.0) << "roller " << k;
   }
 
   const int nb = m.border_size;
-  BorderedMatrix jac(nb, m.roller_count, (m.state_size - nb) / m.roller_count);
+  BorderedMatrix jac(nb, m.element_count, (m.state_size - nb) / m.element_count);
   EXPECT_EQ(eq.jacobian(t, z.data(), jac), 0);
   const Eigen::MatrixXd dense = jac.to_dense();
   const ColumnErrors e = compare(m, dense, fd, where);
@@ -168,7 +168,7 @@ struct Seed002 {
   StartupReport start;
   explicit Seed002(double perturbation)
       : scene(with_perturbation(perturbation)), model(build_model(scene)), eq(model, executor),
-        start(consistent_initial_state(model, 0.0)) {}
+        start(initial_state(model, 0.0)) {}
   static io::Scene with_perturbation(double p) {
     io::Scene s = test::load_job_scene("seed002_40hz.toml");
     s.solver.jacobian_perturbation = p;

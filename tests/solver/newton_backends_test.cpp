@@ -22,9 +22,9 @@
 #include "solver/numerics/integrator.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
-#include "solver/bearing/spatial_equations.hpp"
-#include "solver/bearing/spatial_model.hpp"
-#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver/bearing/startup.hpp"
 #include "spatial_scene_builder.hpp"
 
@@ -294,17 +294,17 @@ TEST(DenseVsBorderedBackends, Seed002RollerBearingRunsAgree) {
   const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
   Equations eq(model, executor);
-  compare_backends("seed 002, 10 ms", eq, scene.solver, consistent_initial_state(model, 0.0).state, 1e-3, 10);
+  compare_backends("seed 002, 10 ms", eq, scene.solver, initial_state(model, 0.0).state, 1e-3, 10);
 }
 
 TEST(DenseVsBorderedBackends, BallBearingRunsAgree) {
   test::BallSceneOptions o;
   o.fx = 300, o.fy = -1000, o.fz = 500;
   const io::Scene scene = test::deep_groove_scene(o);
-  const SpatialModel model = build_spatial_model(scene);
+  const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
-  SpatialEquations eq(model, executor);
-  compare_backends("6309-size ball bearing, 5 ms", eq, scene.solver, spatial_initial_state(model, 0.0).state, 1e-4, 50);
+  Equations eq(model, executor);
+  compare_backends("6309-size ball bearing, 5 ms", eq, scene.solver, initial_state(model, 0.0).state, 1e-4, 50);
 }
 }  // namespace
 }  // namespace raceway::solver

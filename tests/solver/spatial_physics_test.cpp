@@ -6,7 +6,7 @@
 //     equilibrium solved in this file (Hertz per ball, Newton on the ring displacement);
 //  3. frame invariance: the whole problem turned about the bearing axis gives the same scalars and
 //     rotated vectors;
-//  4. SpatialEquations::jacobian against central differences of rhs over all states, and the
+//  4. Equations::jacobian against central differences of rhs over all states, and the
 //     bordered structure (no ball-ball coupling) of the true Jacobian;
 //  5. dense and bordered Newton solves give the same trajectory;
 //  6. the contact forces and moments of the whole bearing sum to zero (action = reaction).
@@ -26,9 +26,9 @@
 #include "solver/numerics/bordered_matrix.hpp"
 #include "solver/numerics/integrator.hpp"
 #include "solver/run/run.hpp"
-#include "solver/bearing/spatial_equations.hpp"
-#include "solver/bearing/spatial_model.hpp"
-#include "solver/bearing/spatial_startup.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
 #include "solver_test_support.hpp"
 #include "spatial_scene_builder.hpp"
 
@@ -86,7 +86,7 @@ AxialOutcome run_axial(const io::Scene& scene, double fa, const char* label) {
   options.output_path = dir.file("axial.h5");
   const auto wall = std::chrono::steady_clock::now();
   AxialOutcome o;
-  o.summary = run_spatial_scene(scene, options);
+  o.summary = run_scene(scene, options);
   const auto time = test::read_dataset(options.output_path, "/time");
   const auto q = read_segments(options.output_path, "ball_inner_groove", "normal_force");
   const auto angle = read_segments(options.output_path, "ball_inner_groove", "contact_angle");
@@ -143,7 +143,7 @@ AxialOutcome run_axial(const io::Scene& scene, double fa, const char* label) {
 // Quasi-static deep-groove equilibrium, solved here independently of solver/spatial_startup.cpp
 // ---------------------------------------------------------------------------------------------
 
-/// Deep-groove geometry as documented in build_spatial_model (solver/spatial_model.cpp): groove
+/// Deep-groove geometry as documented in build_model (solver/spatial_model.cpp): groove
 /// radii r_g = f D; arc centres at radius r_p + (r_gi - R_b) - P_d/4 (inner, in the inner ring's
 /// frame) and r_p - (r_go - R_b) + P_d/4 (outer), axial 0. Hertz constants from
 /// contact::hertz_point_contact with the curvatures of the contact at angle alpha: ball 1/R_b both
@@ -363,8 +363,8 @@ io::Scene radial_scene(double end_time) {
 TEST(SpatialPhysics, RadialLoadStartupMatchesQuasiStatic) {
   const io::Scene scene = radial_scene(0.01);
   const QuasiStaticBearing qs(scene);
-  const SpatialModel model = build_spatial_model(scene);
-  const SpatialStartupReport start = spatial_initial_state(model, 0.0);
+  const Model model = build_model(scene);
+  const StartupReport start = initial_state(model, 0.0);
   std::vector<double> psi;
   for (int k = 0; k < qs.z; ++k) psi.push_back(2 * pi * k / qs.z);
   const Vec3 load(0, -1000, 0);
@@ -408,7 +408,7 @@ TEST(SpatialPhysics, RadialLoadMatchesQuasiStatic) {
   RunOptions options;
   options.output_path = dir.file("radial.h5");
   const auto wall = std::chrono::steady_clock::now();
-  const RunSummary sum = run_spatial_scene(scene, options);
+  const RunSummary sum = run_scene(scene, options);
   const double run_seconds = seconds_since(wall);
   const auto time = test::read_dataset(options.output_path, "/time");
   const auto balls = test::read_dataset(options.output_path, "/balls/position");
@@ -480,7 +480,7 @@ FrameRun run_turned(const test::TempDir& dir, double theta, const char* name, do
   options.azimuth_offset = theta + extra_offset;
   FrameRun r;
   r.file = options.output_path;
-  r.summary = run_spatial_scene(scene, options);
+  r.summary = run_scene(scene, options);
   return r;
 }
 
@@ -602,9 +602,9 @@ TEST(SpatialPhysics, FrameInvariance) {
 /// velocity.
 struct EngagedBearing {
   io::Scene scene;
-  SpatialModel model;
+  Model model;
   scheduler::SerialExecutor executor;
-  SpatialEquations eq;
+  Equations eq;
   std::vector<double> start, engaged;
 
   static io::Scene make_scene(double theta) {
@@ -621,8 +621,8 @@ struct EngagedBearing {
     return s;
   }
   explicit EngagedBearing(double theta = 0.0)
-      : scene(make_scene(theta)), model(build_spatial_model(scene)), eq(model, executor) {
-    start = spatial_initial_state(model, 0.0, theta).state;
+      : scene(make_scene(theta)), model(build_model(scene)), eq(model, executor) {
+    start = initial_state(model, 0.0, theta).state;
     engaged = start;
     const auto& cage = model.bodies[static_cast<std::size_t>(model.cage)];
     auto at = [&](int c) -> double& { return engaged[static_cast<std::size_t>(cage.slot[c])]; };
@@ -641,18 +641,26 @@ struct EngagedBearing {
 };
 
 /// Number of closed contacts of each segment kind in the last rhs().
-std::vector<int> closed_contacts(const SpatialModel& m, const SpatialEquations& eq) {
-  std::vector<int> closed(spatial_segment_kind_count, 0);
+std::vector<int> closed_contacts(const Model& m, const Equations& eq) {
+  std::vector<int> closed(segment_kind_count, 0);
   const auto& rec = eq.segment_records();
   for (std::size_t s = 0; s < m.segments.size(); ++s)
-    if (rec[s * SpatialRecord::size + SpatialRecord::diagnostics + 1] > 0) ++closed[static_cast<std::size_t>(m.segments[s].kind)];
+    if (rec[s * SegmentRecord::size + SegmentRecord::diagnostics + 1] > 0) ++closed[static_cast<std::size_t>(m.segments[s].kind)];
   return closed;
 }
 
-std::string describe_closed(const std::vector<int>& closed) {
+/// The segment kinds a ball-bearing model has (ball-groove, ball-pocket, cage-land).
+std::vector<int> ball_bearing_kinds(const Model& m) {
+  std::vector<int> kinds;
+  for (int k = 0; k < segment_kind_count; ++k)
+    if (m.first_segment(static_cast<SegmentKind>(k))) kinds.push_back(k);
+  return kinds;
+}
+
+std::string describe_closed(const Model& m, const std::vector<int>& closed) {
   std::string out;
-  for (int k = 0; k < spatial_segment_kind_count; ++k)
-    out += std::string(k ? ", " : "") + spatial_segment_kind_name(static_cast<SpatialSegmentKind>(k)) + " " +
+  for (int k : ball_bearing_kinds(m))
+    out += std::string(out.empty() ? "" : ", ") + segment_kind_name(static_cast<SegmentKind>(k)) + " " +
            std::to_string(closed[static_cast<std::size_t>(k)]);
   return out;
 }
@@ -661,10 +669,10 @@ Vec3 turn(const Vec3& v, double theta) { return cardan_rotation(0, 0, theta) * v
 
 /// A state turned about the bearing axis by theta: ring and ball vectors turned, the cage's pose
 /// composed with Rz(theta) (its body-frame angular velocity unchanged).
-std::vector<double> turned_state(const SpatialModel& m, const std::vector<double>& z, double theta) {
+std::vector<double> turned_state(const Model& m, const std::vector<double>& z, double theta) {
   std::vector<double> out = z;
-  auto get = [&](const SpatialBody& b, int c) { return b.slot[c] >= 0 ? z[static_cast<std::size_t>(b.slot[c])] : 0.0; };
-  auto put = [&](const SpatialBody& b, int c, double v) {
+  auto get = [&](const Body& b, int c) { return b.slot[c] >= 0 ? z[static_cast<std::size_t>(b.slot[c])] : 0.0; };
+  auto put = [&](const Body& b, int c, double v) {
     if (b.slot[c] >= 0) out[static_cast<std::size_t>(b.slot[c])] = v;
   };
   for (const auto& b : m.bodies) {
@@ -672,10 +680,10 @@ std::vector<double> turned_state(const SpatialModel& m, const std::vector<double
       const Vec3 v = turn(Vec3(get(b, first), get(b, first + 1), get(b, first + 2)), theta);
       for (int d = 0; d < 3; ++d) put(b, first + d, v[d]);
     }
-    if (b.kind == SpatialBodyKind::ball) {
+    if (b.kind == BodyKind::rolling_element) {
       const Vec3 w = turn(Vec3(get(b, swx), get(b, swy), get(b, swz)), theta);
       for (int d = 0; d < 3; ++d) put(b, swx + d, w[d]);
-    } else if (b.kind == SpatialBodyKind::cage) {
+    } else if (b.kind == BodyKind::cage) {
       const contact::Mat3 r = cardan_rotation(0, 0, theta) * cardan_rotation(get(b, sax), get(b, say), get(b, saz));
       put(b, say, std::asin(r(0, 2)));
       put(b, sax, std::atan2(-r(1, 2), r(2, 2)));
@@ -697,21 +705,22 @@ std::vector<double> turned_state(const SpatialModel& m, const std::vector<double
 TEST(SpatialPhysics, FrameInvarianceOfEquations) {
   const double theta = 0.7137;
   EngagedBearing ref(0.0), turned(theta);
-  const SpatialModel& m = ref.model;
+  const Model& m = ref.model;
   const std::vector<double> z_turned = turned_state(m, ref.engaged, theta);
   std::vector<double> f_ref(ref.engaged.size()), f_turned(ref.engaged.size());
   EXPECT_EQ(ref.eq.rhs(0.0, ref.engaged.data(), f_ref.data()), 0);
   EXPECT_EQ(turned.eq.rhs(0.0, z_turned.data(), f_turned.data()), 0);
   const auto closed = closed_contacts(m, ref.eq);
-  std::printf("[ frame eq ] closed contacts: %s\n", describe_closed(closed).c_str());
+  std::printf("[ frame eq ] closed contacts: %s\n", describe_closed(m, closed).c_str());
   for (std::size_t s = 0; s < m.segments.size(); ++s) {
-    const double* r = ref.eq.segment_records().data() + s * SpatialRecord::size + SpatialRecord::diagnostics;
+    const double* r = ref.eq.segment_records().data() + s * SegmentRecord::size + SegmentRecord::diagnostics;
     const auto kind = m.segments[s].kind;
-    if (r[1] > 0 && (kind == SpatialSegmentKind::ball_pocket || kind == SpatialSegmentKind::cage_land))
+    if (r[1] > 0 && (kind == SegmentKind::ball_pocket || kind == SegmentKind::cage_land))
       std::printf("[ frame eq ]   %s: approach %.3g um, %.4g N\n", m.segments[s].name.c_str(), 1e6 * r[0], r[1]);
   }
-  for (int k = 0; k < spatial_segment_kind_count; ++k)
-    EXPECT_GT(closed[static_cast<std::size_t>(k)], 0) << "no closed " << spatial_segment_kind_name(static_cast<SpatialSegmentKind>(k));
+  ASSERT_EQ(ball_bearing_kinds(m).size(), 4u);
+  for (int k : ball_bearing_kinds(m))
+    EXPECT_GT(closed[static_cast<std::size_t>(k)], 0) << "no closed " << segment_kind_name(static_cast<SegmentKind>(k));
   EXPECT_EQ(closed, closed_contacts(m, turned.eq));
 
   // Segment diagnostics: the same numbers.
@@ -721,8 +730,8 @@ TEST(SpatialPhysics, FrameInvarianceOfEquations) {
   for (int d = 0; d < contact::point_diagnostics_count; ++d) {
     std::vector<double> a, b;
     for (std::size_t s = 0; s < m.segments.size(); ++s) {
-      a.push_back(ra[s * SpatialRecord::size + SpatialRecord::diagnostics + static_cast<std::size_t>(d)]);
-      b.push_back(rb[s * SpatialRecord::size + SpatialRecord::diagnostics + static_cast<std::size_t>(d)]);
+      a.push_back(ra[s * SegmentRecord::size + SegmentRecord::diagnostics + static_cast<std::size_t>(d)]);
+      b.push_back(rb[s * SegmentRecord::size + SegmentRecord::diagnostics + static_cast<std::size_t>(d)]);
     }
     const double e = relative_difference(a, b);
     worst_diagnostic = std::max(worst_diagnostic, e);
@@ -739,7 +748,7 @@ TEST(SpatialPhysics, FrameInvarianceOfEquations) {
     worst_rate = std::max(worst_rate, e);
     EXPECT_LT(e, 1e-9) << what;
   };
-  auto rate = [&](const std::vector<double>& f, const SpatialBody& b, int first) {
+  auto rate = [&](const std::vector<double>& f, const Body& b, int first) {
     return Vec3(b.slot[first] >= 0 ? f[static_cast<std::size_t>(b.slot[first])] : 0.0,
                 b.slot[first + 1] >= 0 ? f[static_cast<std::size_t>(b.slot[first + 1])] : 0.0,
                 b.slot[first + 2] >= 0 ? f[static_cast<std::size_t>(b.slot[first + 2])] : 0.0);
@@ -749,7 +758,7 @@ TEST(SpatialPhysics, FrameInvarianceOfEquations) {
     if (!b.has_states()) continue;
     a_vel.push_back(turn(rate(f_ref, b, sx), theta)), b_vel.push_back(rate(f_turned, b, sx));
     a_lin.push_back(turn(rate(f_ref, b, svx), theta)), b_lin.push_back(rate(f_turned, b, svx));
-    if (b.kind == SpatialBodyKind::ball)
+    if (b.kind == BodyKind::rolling_element)
       a_ang.push_back(turn(rate(f_ref, b, swx), theta)), b_ang.push_back(rate(f_turned, b, swx));
   }
   compare_group(a_vel, b_vel, "position rates (velocities)");
@@ -780,17 +789,17 @@ TEST(SpatialPhysics, FrameInvarianceOfEquations) {
 /// smallest closed approach here (~1 um: cage land and pockets; ball-race 10-20 um), so the O(h^2)
 /// error is ~1e-10 relative; 1e-7 m/s is 2e-6 of the traction slip scale (0.05 m/s). Angles and
 /// angular velocities: the same surface displacement / speed at the pitch and ball radii.
-double central_step(const SpatialModel& m, VariableClass c) {
+double central_step(const Model& m, VariableClass c) {
   switch (c) {
     case VariableClass::position: return 1e-11;
     case VariableClass::angle: return 1e-11 / m.pitch_radius;
     case VariableClass::velocity: return 1e-7;
-    case VariableClass::angular_velocity: return 1e-7 / m.ball_radius;
+    case VariableClass::angular_velocity: return 1e-7 / m.element_radius;
   }
   return 0;
 }
 
-Eigen::MatrixXd central_difference_jacobian(SpatialEquations& eq, const SpatialModel& m, double t,
+Eigen::MatrixXd central_difference_jacobian(Equations& eq, const Model& m, double t,
                                             const std::vector<double>& z) {
   const int n = m.state_size;
   Eigen::MatrixXd jac(n, n);
@@ -809,19 +818,19 @@ Eigen::MatrixXd central_difference_jacobian(SpatialEquations& eq, const SpatialM
   return jac;
 }
 
-int ball_of(const SpatialModel& m, int state) {
-  return state < m.border_size ? -1 : (state - m.border_size) / SpatialModel::ball_block_size;
+int ball_of(const Model& m, int state) {
+  return state < m.border_size ? -1 : (state - m.border_size) / m.block_size;
 }
 
-/// SpatialEquations::jacobian at (t, z) against central differences of rhs over all states: the
+/// Equations::jacobian at (t, z) against central differences of rhs over all states: the
 /// worst column error ||J_j - D_j|| / ||D_j|| (a column that is (nearly) zero in D is measured
 /// against the largest column of its variable class). Also checks the structure of D: no entry
 /// couples two different balls, and every ball is coupled to the border.
-double check_jacobian(SpatialEquations& eq, const SpatialModel& m, double t, const std::vector<double>& z,
+double check_jacobian(Equations& eq, const Model& m, double t, const std::vector<double>& z,
                       const char* where) {
   std::vector<double> f(z.size());
   EXPECT_EQ(eq.rhs(t, z.data(), f.data()), 0);
-  std::printf("[ jacobian ] %s: closed contacts: %s\n", where, describe_closed(closed_contacts(m, eq)).c_str());
+  std::printf("[ jacobian ] %s: closed contacts: %s\n", where, describe_closed(m, closed_contacts(m, eq)).c_str());
   const Eigen::MatrixXd fd = central_difference_jacobian(eq, m, t, z);
   for (int i = m.border_size; i < m.state_size; ++i)
     for (int j = m.border_size; j < m.state_size; ++j)
@@ -830,12 +839,12 @@ double check_jacobian(SpatialEquations& eq, const SpatialModel& m, double t, con
                       << m.state_name[static_cast<std::size_t>(j)];
         return 1e300;
       }
-  for (int k = 0; k < m.ball_count; ++k) {
-    const int first = m.border_size + k * SpatialModel::ball_block_size;
-    EXPECT_GT(fd.block(first, 0, SpatialModel::ball_block_size, m.border_size).cwiseAbs().maxCoeff(), 0.0)
+  for (int k = 0; k < m.element_count; ++k) {
+    const int first = m.border_size + k * m.block_size;
+    EXPECT_GT(fd.block(first, 0, m.block_size, m.border_size).cwiseAbs().maxCoeff(), 0.0)
         << where << ": ball " << k << " is not coupled to the border";
   }
-  BorderedMatrix jac(m.border_size, m.ball_count, SpatialModel::ball_block_size);
+  BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
   EXPECT_EQ(eq.jacobian(t, z.data(), jac), 0);
   const Eigen::MatrixXd dense = jac.to_dense();
   double class_norm[4] = {0, 0, 0, 0};
@@ -913,7 +922,7 @@ struct TrajectoryDifference {
   double ring = 0;   ///< m, largest difference of the inner ring's centre
 };
 
-TrajectoryDifference difference(const SpatialModel& m, double rtol, const Trajectory& p, const Trajectory& q) {
+TrajectoryDifference difference(const Model& m, double rtol, const Trajectory& p, const Trajectory& q) {
   const auto atol = m.absolute_tolerance();
   const auto& inner = m.bodies[static_cast<std::size_t>(m.inner_ring)];
   TrajectoryDifference d;
@@ -987,7 +996,7 @@ TEST(SpatialPhysics, DenseAndBorderedAgree) {
 struct Balance {
   double force = 0, moment = 0, largest = 0;
 };
-Balance contact_balance(SpatialEquations& eq, const SpatialModel& m, double t, const std::vector<double>& z) {
+Balance contact_balance(Equations& eq, const Model& m, double t, const std::vector<double>& z) {
   std::vector<double> f(z.size());
   EXPECT_EQ(eq.rhs(t, z.data(), f.data()), 0);
   Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
@@ -1000,9 +1009,9 @@ Balance contact_balance(SpatialEquations& eq, const SpatialModel& m, double t, c
   }
   const auto& rec = eq.segment_records();
   for (std::size_t s = 0; s < m.segments.size(); ++s)
-    b.largest = std::max(b.largest, Vec3(rec[s * SpatialRecord::size + SpatialRecord::on_b],
-                                         rec[s * SpatialRecord::size + SpatialRecord::on_b + 1],
-                                         rec[s * SpatialRecord::size + SpatialRecord::on_b + 2])
+    b.largest = std::max(b.largest, Vec3(rec[s * SegmentRecord::size + SegmentRecord::on_b],
+                                         rec[s * SegmentRecord::size + SegmentRecord::on_b + 1],
+                                         rec[s * SegmentRecord::size + SegmentRecord::on_b + 2])
                                         .norm());
   const double radius = 0.5 * m.scene->bearing.outer_outside_diameter;
   b.force = force.norm() / b.largest;
@@ -1028,7 +1037,7 @@ TEST(SpatialPhysics, ActionReactionOfTheWholeBearing) {
       states.push_back(z), times.push_back(0.5e-3 * i);
     }
   }
-  std::vector<int> ever_closed(spatial_segment_kind_count, 0);
+  std::vector<int> ever_closed(segment_kind_count, 0);
   double worst_force = 0, worst_moment = 0;
   for (std::size_t i = 0; i < states.size(); ++i) {
     const Balance bal = contact_balance(b.eq, b.model, times[i], states[i]);
@@ -1037,11 +1046,12 @@ TEST(SpatialPhysics, ActionReactionOfTheWholeBearing) {
     std::printf("[ action-reaction ] %s t = %.1f ms: largest contact force %.4g N; |sum F| / F_max %.3g, |sum M_0| / "
                 "(F_max R) %.3g; closed: %s\n",
                 i == 0 ? "start  " : i == 1 ? "engaged" : "run    ", 1e3 * times[i], bal.largest, bal.force, bal.moment,
-                describe_closed(closed).c_str());
+                describe_closed(b.model, closed).c_str());
     worst_force = std::max(worst_force, bal.force), worst_moment = std::max(worst_moment, bal.moment);
   }
-  for (int k = 0; k < spatial_segment_kind_count; ++k)
-    EXPECT_GT(ever_closed[static_cast<std::size_t>(k)], 0) << spatial_segment_kind_name(static_cast<SpatialSegmentKind>(k));
+  ASSERT_EQ(ball_bearing_kinds(b.model).size(), 4u);
+  for (int k : ball_bearing_kinds(b.model))
+    EXPECT_GT(ever_closed[static_cast<std::size_t>(k)], 0) << segment_kind_name(static_cast<SegmentKind>(k));
   EXPECT_LT(worst_force, 1e-12);
   EXPECT_LT(worst_moment, 1e-12);
 }
@@ -1061,15 +1071,15 @@ TEST(SpatialPhysics, CageSupportOnlyDissipatesAtEveryCageAngle) {
   support.radial_stiffness = 2e7, support.radial_damping = 1e3;
   support.axial_stiffness = 2e7, support.axial_damping = 1e3;
   support.tilt_stiffness = 5e4, support.tilt_damping = 2.5;
-  const SpatialModel model = build_spatial_model(scene);
+  const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
-  SpatialEquations eq(model, executor);
-  const std::vector<double> start = spatial_initial_state(model, 0.0).state;
-  const SpatialBody& cage = model.bodies[static_cast<std::size_t>(model.cage)];
+  Equations eq(model, executor);
+  const std::vector<double> start = initial_state(model, 0.0).state;
+  const Body& cage = model.bodies[static_cast<std::size_t>(model.cage)];
   auto slot = [&](int c) { return static_cast<std::size_t>(cage.slot[c]); };
   for (int c : {sx, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, swz}) ASSERT_GE(cage.slot[c], 0);
-  const double pocket_pitch = 2 * pi / model.ball_count;
-  for (int k = 0; k < model.ball_count; ++k) {
+  const double pocket_pitch = 2 * pi / model.element_count;
+  for (int k = 0; k < model.element_count; ++k) {
     std::vector<double> z = start, zdot(z.size());
     // Turn the cage by whole pockets (the balls stay in their pockets), displace and tilt it, and
     // give it translation and tilt rates.
