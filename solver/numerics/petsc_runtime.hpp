@@ -12,6 +12,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "io/scene/scene.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
