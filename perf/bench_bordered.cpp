@@ -1,11 +1,12 @@
-// Newton linear algebra against the number of rolling elements (issue 5): on a synthetic large deep
-// groove ball bearing (the 6309 ball, 8 to 512 balls on a pitch circle that grows with N), times
+// Newton linear algebra against the number of rolling elements (README "Newton linear solvers"): on
+// a synthetic large deep groove ball bearing (the 6309 ball, 8 to 512 balls on a pitch circle that
+// grows with N), times:
 //   - one Jacobian evaluation (O(N) segment evaluations),
 //   - assembly + factorisation + one solve: J loaded into the backend's matrix, M = I - gamma J
 //     formed, the solver's setup, one solve (together: a library may defer factorisation work),
 //   - one solve alone (after the setup),
-// for each backend of solver/newton_backends.hpp (petsc-bordered, block-elimination, sundials-dense),
-// and checks that the backends' solutions agree. Then the same for the real bearings (seed 002 roller
+// for each backend of solver/numerics/newton_backends.hpp (petsc-bordered, block-elimination,
+// sundials-dense), and checks that the backends' solutions agree. Then the same for the real bearings (seed 002 roller
 // bearing, 13 rollers; 6309, 8 balls; QJ215, 15 balls). Each time is the minimum over repetitions
 // (other engineers share the 2 cores: the minimum is the least disturbed), the median beside it.
 //
@@ -31,9 +32,6 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
-#include "solver/bearing/equations.hpp"
-#include "solver/bearing/model.hpp"
-#include "solver/bearing/startup.hpp"
 #include "solver/bearing/startup.hpp"
 #include "tests/solver/spatial_scene_builder.hpp"
 
@@ -146,6 +144,19 @@ void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
   SUNContext_Free(&ctx);
 }
 
+/// measure() on a ball bearing's Jacobian at its start-up state, with raceway's default PETSc options.
+/// Every backend on the Newton systems of a bearing scene (its Jacobian at the start-up state).
+void measure_bearing(const char* name, const io::Scene& scene, double budget, int max_dense) {
+  const solver::Model model = solver::build_model(scene);
+  scheduler::SerialExecutor executor;
+  solver::Equations eq(model, executor);
+  const std::vector<double> z = solver::initial_state(model, 0.0).state;
+  const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
+  solver::configure_petsc_options(io::SolverSpec{}, l);
+  measure({name, l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.element_count,
+          budget, max_dense);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -157,42 +168,13 @@ int main(int argc, char** argv) {
     const int max_dense = argc > 2 ? std::atoi(argv[2]) : 512;  // largest N for the dense baseline
     std::printf("scene,N,states,backend,jacobian_min_s,jacobian_median_s,setup_solve_min_s,setup_solve_median_s,solve_min_s,"
                 "solve_median_s,setup_reps,solve_reps,difference_to_petsc,residual\n");
-    io::SolverSpec spec;
-    for (int n : {8, 16, 32, 64, 128, 256, 512}) {
-      const io::Scene scene = synthetic_scene(n);
-      const solver::Model model = solver::build_model(scene);
-      scheduler::SerialExecutor executor;
-      solver::Equations eq(model, executor);
-      const std::vector<double> z = solver::initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
-      solver::configure_petsc_options(spec, l);
-      measure({"synthetic", l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, n, budget,
-              max_dense);
-    }
+    for (int n : {8, 16, 32, 64, 128, 256, 512}) measure_bearing("synthetic", synthetic_scene(n), budget, max_dense);
     // The real bearings: N = 8..16.
-    for (const char* file : {"6309_R3.toml", "qj215_validation.toml"}) {
-      const io::Scene scene = io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + file);
-      const solver::Model model = solver::build_model(scene);
-      scheduler::SerialExecutor executor;
-      solver::Equations eq(model, executor);
-      const std::vector<double> z = solver::initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
-      solver::configure_petsc_options(spec, l);
-      measure({file, l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.element_count,
-              budget, max_dense);
-    }
-    {
-      const io::Scene scene = io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
-      const solver::Model model = solver::build_model(scene);
-      scheduler::SerialExecutor executor;
-      solver::Equations eq(model, executor);
-      const std::vector<double> z = solver::initial_state(model, 0.0).state;
-      const solver::BorderedLayout l{model.border_size, model.element_count,
-                                     (model.state_size - model.border_size) / model.element_count};
-      solver::configure_petsc_options(spec, l);
-      measure({"seed002_40hz.toml", l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }},
-              model.element_count, budget, max_dense);
-    }
+    for (const char* file : {"6309_R3.toml", "qj215_validation.toml"})
+      measure_bearing(file, io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + file), budget,
+                           max_dense);
+    measure_bearing("seed002_40hz.toml", io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml"), budget,
+                    max_dense);
   }
   MPI_Finalize();
   return 0;

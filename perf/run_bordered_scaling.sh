@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Newton linear algebra against the number of rolling elements (issue 5): Jacobian evaluation,
-# assembly + factorisation + one solve, and one solve, for petsc-bordered, block-elimination and
-# sundials-dense, N = 8 .. 512 balls of a synthetic ball bearing plus the real bearings; fitted
-# exponents and a plot. Records perf/results/bordered_scaling.{csv,txt,png}.
+# Newton linear algebra against the number of rolling elements (README "Newton linear solvers"):
+# Jacobian evaluation, assembly + factorisation + one solve, and one solve, for petsc-bordered,
+# block-elimination and sundials-dense, N = 8 .. 512 balls of a synthetic ball bearing plus the real
+# bearings; fitted exponents and a plot. Records perf/results/bordered_scaling.{csv,txt,png}.
 # Usage: scripts/bootstrap.sh && cmake --build build && perf/run_bordered_scaling.sh [budget_s] [max_dense_N]
 # The CPU is shared: `uptime` before and after is recorded with the results; times are minima over
 # repetitions (the least disturbed), medians beside them in the CSV.

@@ -1,4 +1,4 @@
-// A matrix that is block diagonal with borders (seed 000 fig. 2; DESIGN.md 4.3):
+// A matrix that is block diagonal with borders (seed 000 fig. 2):
 //
 //        [ A_bb   A_b1  A_b2 ... ]      border: rings and cage (n_b states)
 //   M =  [ A_1b   D_1            ]      D_k: rolling element k's block (m x m)
@@ -9,14 +9,22 @@
 // S = A_bb - sum_k A_bk D_k^-1 A_kb is formed and factored exactly, so factorisation and solve cost
 // O(N) in the number of rolling elements (instead of O(N^3) and O(N^2) dense).
 //
-// Hand-written rather than PETSc for now: the PETSc PCFIELDSPLIT path is issue 5; this class is the
-// seam it will plug into (the same assemble / factor / solve calls).
+// This is the Jacobian every Newton linear-solver backend is loaded from
+// (solver/numerics/newton_backends.hpp), and BorderedFactorization is the block-elimination backend;
+// the petsc-bordered backend does the same elimination with PETSc's PCFIELDSPLIT. Which to use is
+// measured in README "Newton linear solvers".
 #pragma once
 
 #include <Eigen/Dense>
 #include <vector>
 
 namespace raceway::solver {
+
+/// Sizes of a bordered system: border states (rings, cage), rolling elements, states per element.
+struct BorderedLayout {
+  int border = 0, blocks = 0, block_size = 0;
+  int size() const { return border + blocks * block_size; }
+};
 
 class BorderedMatrix {
  public:

@@ -1,7 +1,8 @@
-// Time integration with CVODE (DESIGN.md 4.1): BDF (or Adams) with Newton iteration, tolerances per
-// variable class, and the Newton solve through one of the backends of solver/newton_backends.hpp
-// (PETSc bordered, hand-written block elimination, SUNDIALS dense baseline). CVODE sees a state vector, a right-hand side, a
-// Jacobian and a linear solve; it knows nothing of rollers (STYLE.md habit 1).
+// Time integration with CVODE: BDF (or Adams) with Newton iteration, tolerances per variable class,
+// and the Newton solve through one of the backends of solver/numerics/newton_backends.hpp (PETSc
+// bordered, hand-written block elimination, SUNDIALS dense baseline). CVODE sees a state vector, a
+// right-hand side, a Jacobian and a linear solve, through the seam of
+// solver/numerics/dynamic_system.hpp; it knows nothing of rollers.
 #pragma once
 
 #include <memory>

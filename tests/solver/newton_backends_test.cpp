@@ -1,4 +1,4 @@
-// The Newton linear solvers of solver/newton_backends.hpp, one conformance suite for every backend
+// The Newton linear solvers of solver/numerics/newton_backends.hpp, one conformance suite for every backend
 // (petsc-bordered, block-elimination, sundials-dense), through the same SUNMatrix / SUNLinearSolver
 // calls CVODE makes:
 //  1. random bordered systems M = I - gamma J (with an empty border, a single rolling element, and
@@ -7,7 +7,8 @@
 //     objects solve the new systems, not the old ones;
 //  3. a singular rolling-element block is a recoverable failure (CVODE retries with a smaller step);
 //  4. PETSc options: valid ones (another LU package) work, a misspelt type, an option nothing reads and
-//     an unusable combination are errors naming the scene key or --petsc-options.
+//     an unusable combination are errors naming the scene key or --petsc-options;
+//  5. the backend table's names and aliases are the ones the scene parser maps to the same kinds.
 #include <gtest/gtest.h>
 #include <nvector/nvector_serial.h>
 
@@ -22,9 +23,6 @@
 #include "solver/numerics/integrator.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
-#include "solver/bearing/equations.hpp"
-#include "solver/bearing/model.hpp"
-#include "solver/bearing/startup.hpp"
 #include "solver/bearing/startup.hpp"
 #include "spatial_scene_builder.hpp"
 
@@ -172,7 +170,7 @@ io::SolverSpec spec_with(const std::string& options) {
 
 struct RestoreOptions {
   ~RestoreOptions() {
-    PetscRuntime::set_command_line_options("");
+    PetscRuntime::current().set_command_line_options("");
     configure_petsc_options(io::SolverSpec{}, {12, 3, 9});
   }
 };
@@ -214,7 +212,7 @@ TEST(PetscOptions, BadSceneOptionsNameTheKeyAndLine) {
 
 TEST(PetscOptions, BadCommandLineOptionsNameTheOption) {
   RestoreOptions restore;
-  PetscRuntime::set_command_line_options("-ksp_type no_such_ksp");
+  PetscRuntime::current().set_command_line_options("-ksp_type no_such_ksp");
   try {
     configure_petsc_options(spec_with(""), {12, 3, 9});
     FAIL() << "a misspelt KSP type was accepted";
@@ -222,14 +220,45 @@ TEST(PetscOptions, BadCommandLineOptionsNameTheOption) {
     EXPECT_EQ(std::string(e.what()).rfind("--petsc-options: ", 0), 0u) << e.what();
   }
   // An unusable combination: MUMPS cannot factor the dense Schur complement.
-  PetscRuntime::set_command_line_options("-fieldsplit_1_pc_factor_mat_solver_type mumps");
+  PetscRuntime::current().set_command_line_options("-fieldsplit_1_pc_factor_mat_solver_type mumps");
   EXPECT_THROW(configure_petsc_options(spec_with(""), {12, 3, 9}), OptionsError);
+}
+
+// ---- the backend table against the scene parser --------------------------------------------------
+
+/// The default scene with `linear_solver = "<name>"`, parsed.
+io::LinearSolverKind parsed_kind(const std::string& name) {
+  std::string text = io::default_scene_text();
+  const std::string key = "linear_solver = \"auto\"";
+  const auto at = text.find(key);
+  EXPECT_NE(at, std::string::npos) << "the default scene no longer sets " << key;
+  if (at == std::string::npos) return Kind::automatic;
+  text.replace(at, key.size(), "linear_solver = \"" + name + "\"");
+  return io::parse_scene(text, "edited.toml").solver.linear_solver;
+}
+
+TEST(LinearSolverBackends, NamesAndAliasesParseToTheirKinds) {
+  int with_factory = 0;
+  for (const LinearSolverBackend& b : linear_solver_backends()) {
+    EXPECT_EQ(parsed_kind(b.name), b.kind) << b.name;
+    if (b.alias) {
+      EXPECT_EQ(parsed_kind(b.alias), b.kind) << b.alias;
+    }
+    EXPECT_STREQ(linear_solver_name(b.kind), b.name);
+    EXPECT_EQ(&linear_solver_backend(b.kind), &b);
+    // Every kind but auto creates a backend; auto stands for one that does.
+    EXPECT_EQ(b.create == nullptr, b.kind == Kind::automatic) << b.name;
+    with_factory += b.create != nullptr;
+  }
+  EXPECT_EQ(with_factory, 3);
+  EXPECT_NE(linear_solver_backend(resolve_linear_solver(Kind::automatic, {12, 3, 9})).create, nullptr);
+  EXPECT_THROW(parsed_kind("no-such-solver"), io::SceneError);
 }
 
 
 // ---- whole runs: every backend against the SUNDIALS dense baseline ------------------------------
 // Named DenseVsBordered* so that it runs with the long solver tests (label solver_long).
-// Step counts within 2 % (issue 5) and trajectories within 3x the round-off baseline + 10 tolerance
+// Step counts within 2 % (README "Newton linear solvers": the backends give the same runs) and trajectories within 3x the round-off baseline + 10 tolerance
 // units (a dense run from the start state scaled by 1 + 1e-15: two correct linear solvers differ by
 // round-off, and CVODE's step-size sequence forks on it; see dense_vs_bordered_test.cpp). Measured:
 // seed 002, 10 ms: dense 6335 steps, petsc-bordered 6301 (0.5 %), block-elimination 6231 (1.6 %),

@@ -1,5 +1,5 @@
 // gtest main of the solver tests: MPI, then PETSc (the petsc-bordered backend needs it), as the
-// raceway driver does (solver/cli/main.cpp). Serial: the linear algebra runs on one rank.
+// raceway driver does (solver/driver/main.cpp). Serial: the linear algebra runs on one rank.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
