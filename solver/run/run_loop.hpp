@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/h5/h5_series.hpp"
+#include "raceway/version.hpp"
 #include "io/scene/scene.hpp"
 #include "scheduler/executor.hpp"
 #include "solver/numerics/integrator.hpp"
@@ -42,7 +43,8 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   auto file = io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
-  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
+  file.set_attribute("/", "raceway_version", std::string(kVersion));
+  file.set_attribute("/", "raceway_commit", std::string(kGitCommit));
   file.set_attribute("/", "model", model_description);
   return file;
 }
