@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 000 validation (DESIGN.md section 8, V3): runs the four 6309 cases (R3, R5, A12, M24),
+# Seed 000 validation (docs/validation_ball_bearings.md): runs the four 6309 cases (R3, R5, A12, M24),
 # writes each report, prints the cage-pocket figures the validation page reads, and copies the
 # pocket-force plots to docs/figures/6309_<case>_*.png.
 # Usage: jobs/run_6309_cases.sh [OUTDIR]   (from the repository root, after scripts/bootstrap.sh)

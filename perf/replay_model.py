@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Replay model of raceway's master/worker execution (issue 4, DESIGN.md 5).
+"""Replay model of raceway's master/worker execution (scheduler/mpi_executor.hpp, plan.hpp).
 
 Predicts the wall time and speed-up of a run at P = 1..64 ranks from a recorded one-rank run
 (its output file: /scheduler task costs, evaluation counts, message sizes; the summary's wall

@@ -19,6 +19,6 @@ tmp="$(mktemp -d)"
     -o "$tmp/seed002_40hz.h5" --summary-json "$out/seed002_40hz_20rev_summary.json"
 } 2>&1 | tail -5 | tee "$out/seed002_40hz_20rev.txt"
 rm -rf "$tmp"
-# Spatial right-hand side split into contact kinds (issue 3).
+# Spatial right-hand side split into contact kinds (ball bearings: 6309 and QJ215).
 "$root/build/perf/rhs_split_spatial" "$root/jobs/scenes/6309_R3.toml" 20000 | tee "$out/rhs_split_6309_R3.txt"
 "$root/build/perf/rhs_split_spatial" "$root/jobs/scenes/qj215_validation.toml" 10000 | tee "$out/rhs_split_qj215_validation.txt"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Parallel benchmarks of issue 4 (MPI master/worker executor), recorded in perf/results/:
+# Parallel benchmarks of the MPI master/worker executor (scheduler/mpi_executor.hpp), recorded in
+# perf/results/:
 #   (a) parallel_speedup.txt: wall time np=1 and np=2 on the heavy scene (6309 R3, 100 ms, 40 x 40
 #       traction grid), RUNS runs each, alternating; speed-up = median(np1) / median(np2);
 #   (b) parallel_imbalance.txt: time-averaged imbalance (sum over evaluations of the slowest
@@ -19,7 +20,9 @@ runs=${RUNS:-5}
 parts=${PARTS:-"a b c"}
 mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none  # recommended in this VM (TOOLCHAIN.md)
+# Open MPI's shared-memory single-copy transfers (CMA) need ptrace rights that containers and some
+# VMs lack; plain copies work everywhere.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
 # Waiting ranks yield the core (sched_yield) instead of spinning: on a shared 2-core machine a
 # spinning rank otherwise steals the time slice its partner needs (measured here: np=2 3.4x
 # slower than np=1 next to two busy neighbours without it, 1.3x with it). Costs nothing when the

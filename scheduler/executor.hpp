@@ -1,4 +1,4 @@
-// Task execution (DESIGN.md 5). The scheduler knows tasks, records and ranks, not physics: the
+// Task execution. The scheduler knows tasks, records and ranks, not physics: the
 // solver hands it a callback that evaluates task i into a fixed-size record of doubles, and gets
 // the records back in task order (the canonical order in which the master sums them), with each
 // task's measured time.
@@ -8,7 +8,7 @@
 // their own copy of the equations (TaskCatalogue) and evaluate it with the context the master sent.
 //
 // This file holds the interface and the serial executor; scheduler/mpi_executor.hpp holds the MPI
-// master/worker executor (issue 4).
+// master/worker executor.
 #pragma once
 
 #include <array>

@@ -10,7 +10,7 @@ namespace raceway::scheduler {
 
 namespace {
 
-// ---- Re-planning policy (DESIGN.md 5) -----------------------------------------------------------
+// ---- Re-planning policy ---------------------------------------------------------------------------
 // Cost model: per phase and task, an exponential moving average of measured task seconds, weight
 // cost_smoothing on the newest evaluation (the first measurement is taken as it is). 0.2 follows a
 // load that moves over ~5 evaluations (a ball entering the loaded zone takes hundreds of

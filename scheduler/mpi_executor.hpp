@@ -1,4 +1,5 @@
-// The MPI master/worker executor (DESIGN.md 5, issue 4).
+// The MPI master/worker executor (parallelism across the contact tasks, after seed 000 section 2.6;
+// docs/references.md).
 //
 // Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
 // other ranks (workers) loop in serve() on commands broadcast by the master:

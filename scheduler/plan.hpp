@@ -1,5 +1,5 @@
-// Two-level plans (DESIGN.md 5, seed 000 2.6): which rank evaluates which task. Pure functions of
-// measured costs: no MPI, unit-tested in tests/scheduler.
+// Two-level plans (seed 000 section 2.6, docs/references.md): which rank evaluates which task.
+// Pure functions of measured costs: no MPI, unit-tested in tests/scheduler.
 //
 // Level 1 gives whole rolling elements (all their tasks) to ranks; border tasks (cage-land, ring
 // segments) are units of their own. Two level-1 partitioners are tried and the one with the

@@ -115,6 +115,15 @@ void fsync_file(const std::string& path) {
   (void)::close(fd);
 }
 
+// Pointers to the strings' characters, for HDF5's variable-length string writes (valid while
+// `values` lives).
+std::vector<const char*> c_strings(const std::vector<std::string>& values) {
+  std::vector<const char*> ptrs;
+  ptrs.reserve(values.size());
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  return ptrs;
+}
+
 std::size_t product(const std::vector<std::size_t>& shape) {
   std::size_t n = 1;
   for (const std::size_t d : shape) n *= d;
@@ -472,12 +481,31 @@ void H5SeriesWriter::set_attribute(const std::string& object_path, const std::st
                                    const std::vector<std::string>& value) {
   require_open("set_attribute");
   ErrorSilencer quiet;
-  std::vector<const char*> ptrs;
-  ptrs.reserve(value.size());
-  for (const auto& v : value) ptrs.push_back(v.c_str());
+  const std::vector<const char*> ptrs = c_strings(value);
   const Handle type(make_vlen_string_type(), H5Tclose);
   const Handle space(make_dataspace({static_cast<hsize_t>(value.size())}), H5Sclose);
   put_attribute(object_path, name, type.get(), type.get(), space.get(), ptrs.empty() ? nullptr : ptrs.data());
+}
+
+namespace {
+
+// The normalized dataset path of a write_array; an empty path is an error.
+std::string array_key(const std::string& path) {
+  const auto parts = split_path(path);
+  if (parts.empty()) throw std::invalid_argument("H5SeriesWriter::write_array: empty dataset path");
+  return join_path(parts, parts.size());
+}
+
+}  // namespace
+
+H5SeriesWriter::Hid H5SeriesWriter::create_array(const std::string& key, Hid type, Hid space) {
+  const auto parts = split_path(key);
+  if (!ensure_groups(file_, parts, parts.size() - 1)) fail("creating the parent groups", key);
+  const Handle dcpl(make_dcpl(), H5Pclose);
+  if (type < 0 || space < 0 || !dcpl.ok()) fail("making the type/dataspace", key);
+  const hid_t dset = H5Dcreate2(file_, key.c_str(), type, space, H5P_DEFAULT, dcpl.get(), H5P_DEFAULT);
+  if (dset < 0) fail("H5Dcreate2", key);
+  return dset;
 }
 
 void H5SeriesWriter::write_array(const std::string& path, std::vector<std::size_t> shape,
@@ -485,20 +513,13 @@ void H5SeriesWriter::write_array(const std::string& path, std::vector<std::size_
                                  const std::string& description) {
   require_open("write_array");
   ErrorSilencer quiet;
-  const auto parts = split_path(path);
-  const std::string key = join_path(parts, parts.size());
-  if (parts.empty()) throw std::invalid_argument("H5SeriesWriter::write_array: empty dataset path");
+  const std::string key = array_key(path);
   if (product(shape) != data.size()) {
     throw std::invalid_argument(fmt::format("H5SeriesWriter::write_array: '{}' has shape of {} values but {} given",
                                             key, product(shape), data.size()));
   }
-  if (!ensure_groups(file_, parts, parts.size() - 1)) fail("creating the parent groups", key);
   const Handle space(make_dataspace(std::vector<hsize_t>(shape.begin(), shape.end())), H5Sclose);
-  const Handle dcpl(make_dcpl(), H5Pclose);
-  if (!space.ok() || !dcpl.ok()) fail("making the dataspace", key);
-  const Handle dset(H5Dcreate2(file_, key.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                    H5Dclose);
-  if (!dset.ok()) fail("H5Dcreate2", key);
+  const Handle dset(create_array(key, H5T_IEEE_F64LE, space.get()), H5Dclose);
   if (!data.empty() && H5Dwrite(dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, dxpl_, data.data()) < 0) {
     fail("H5Dwrite", key);
   }
@@ -509,20 +530,11 @@ void H5SeriesWriter::write_array(const std::string& path, const std::vector<std:
                                  const std::string& description) {
   require_open("write_array");
   ErrorSilencer quiet;
-  const auto parts = split_path(path);
-  const std::string key = join_path(parts, parts.size());
-  if (parts.empty()) throw std::invalid_argument("H5SeriesWriter::write_array: empty dataset path");
-  if (!ensure_groups(file_, parts, parts.size() - 1)) fail("creating the parent groups", key);
-  std::vector<const char*> ptrs;
-  ptrs.reserve(values.size());
-  for (const auto& v : values) ptrs.push_back(v.c_str());
+  const std::string key = array_key(path);
+  const std::vector<const char*> ptrs = c_strings(values);
   const Handle type(make_vlen_string_type(), H5Tclose);
   const Handle space(make_dataspace({static_cast<hsize_t>(values.size())}), H5Sclose);
-  const Handle dcpl(make_dcpl(), H5Pclose);
-  if (!type.ok() || !space.ok() || !dcpl.ok()) fail("making the string type", key);
-  const Handle dset(H5Dcreate2(file_, key.c_str(), type.get(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                    H5Dclose);
-  if (!dset.ok()) fail("H5Dcreate2", key);
+  const Handle dset(create_array(key, type.get(), space.get()), H5Dclose);
   if (!ptrs.empty() && H5Dwrite(dset.get(), type.get(), H5S_ALL, H5S_ALL, dxpl_, ptrs.data()) < 0) {
     fail("H5Dwrite", key);
   }

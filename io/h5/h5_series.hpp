@@ -138,6 +138,8 @@ class H5SeriesWriter {
   void put_attribute(const std::string& object_path, const std::string& name, Hid file_type, Hid mem_type,
                      Hid space, const void* buf);
   [[noreturn]] void fail(const std::string& what, const std::string& object) const;
+  /// The dataset `key` of a write_array with its parent groups (no timestamps); the caller closes it.
+  Hid create_array(const std::string& key, Hid type, Hid space);
 
   std::string final_path_;
   std::string partial_path_;

@@ -1,5 +1,5 @@
 // raceway post-processing: cage and ball metrics computed from output time series
-// (DESIGN.md section 6; `raceway report`, io/report.hpp).
+// (`raceway report`, io/report/report.hpp).
 //
 // Pure functions on in-memory series: no HDF5, no files, no physics model. All quantities are SI
 // (s, m, m/s, rad, rad/s, N, N s) unless a name says otherwise (`_rpm`, `_deg`).
@@ -13,7 +13,7 @@
 // impulse F k dt and a duration k dt exactly: each sample stands for one interval dt.
 //
 // Plain means (cage speed, centroid statistics) are sample means, like the run summary's
-// `cage_speed_rpm` (solver/run.cpp), because output times are equally spaced.
+// `cage_speed_rpm` (solver/run/run.cpp), because output times are equally spaced.
 //
 // Functions return NaN for quantities that are undefined on the given data (a zero mean
 // speed, an empty bin, no contact at all); they throw std::invalid_argument for inconsistent
@@ -40,8 +40,8 @@ struct TimeWindow {
 };
 
 /// The samples with time >= start (start given) or, by default, the second half of the run:
-/// time >= t_0 + (t_last - t_0) / 2 (the run summary's "second half", solver/run.cpp). A tolerance
-/// of 1e-9 of the run length keeps a sample that sits on the boundary. Throws
+/// time >= t_0 + (t_last - t_0) / 2 (the run summary's "second half", solver/run/run.cpp). A
+/// tolerance of 1e-9 of the run length keeps a sample that sits on the boundary. Throws
 /// std::invalid_argument if time is empty, not increasing, or fewer than 2 samples fall in the
 /// window.
 TimeWindow select_window(std::span<const double> time, std::optional<double> start = std::nullopt);

@@ -194,6 +194,16 @@ def binned_line(ax, summary, key, color, label, sign=1.0):
     ax.plot(az["bin_centre_deg"], sign * y, color=color, lw=1.5, label=label)
 
 
+def finish_azimuth_plot(fig, ax, outdir, what, ylabel, name):
+    """The common end of the plots against azimuth: a 0-360 deg axis, labels, legend, saved as name."""
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 45))
+    ax.set_xlabel(f"{what} azimuth (deg, atan2(y, x))")
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=7, loc="best")
+    save(fig, outdir, name)
+
+
 def pocket_force_azimuth(f, summary, outdir):
     t = series(f, "time").reshape(-1)
     n = len(t)
@@ -209,12 +219,7 @@ def pocket_force_azimuth(f, summary, outdir):
         ax.scatter(x[::s], sign * y[::s], s=6, color=color, alpha=0.4, lw=0, label=f"{name} bar contacts")
         binned_line(ax, summary, f"{name}_force_max_n", color, f"{name} max per bin", sign)
     ax.axhline(0, color="k", lw=0.5)
-    ax.set_xlim(0, 360)
-    ax.set_xticks(range(0, 361, 45))
-    ax.set_xlabel("pocket azimuth (deg, atan2(y, x))")
-    ax.set_ylabel("bar force (N; rear drawn negative)")
-    ax.legend(fontsize=7, loc="best")
-    save(fig, outdir, "pocket_force_azimuth.png")
+    finish_azimuth_plot(fig, ax, outdir, "pocket", "bar force (N; rear drawn negative)", "pocket_force_azimuth.png")
 
 
 def ball_load_azimuth(f, summary, outdir):
@@ -242,12 +247,7 @@ def ball_load_azimuth(f, summary, outdir):
         spans = [(start, end)] if end > start else [(start, 360), (0, end)]
         for i, (a, b) in enumerate(spans):
             ax.axvspan(a, b, color="tab:green", alpha=0.08, label="load zone" if i == 0 else None)
-    ax.set_xlim(0, 360)
-    ax.set_xticks(range(0, 361, 45))
-    ax.set_xlabel("ball azimuth (deg, atan2(y, x))")
-    ax.set_ylabel("inner-groove ball load (N)")
-    ax.legend(fontsize=7, loc="best")
-    save(fig, outdir, "ball_load_azimuth.png")
+    finish_azimuth_plot(fig, ax, outdir, "ball", "inner-groove ball load (N)", "ball_load_azimuth.png")
 
 
 def power_loss(f, summary, outdir):

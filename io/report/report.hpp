@@ -1,9 +1,11 @@
-// raceway post-processing: `raceway report OUT.h5` (DESIGN.md section 6).
+// raceway post-processing: `raceway report OUT.h5`.
 //
 // Reads a spatial (ball-bearing) output file (layout: docs/output_layout.md, "Spatial (ball-bearing)
-// runs"), computes the cage and ball metrics of io/cage_metrics.hpp over a time window, writes them
-// to <dir>/summary.json and runs io/report/plot_report.py (/usr/bin/python3 with matplotlib, h5py
-// and numpy) to draw PNGs into the same folder. <dir> defaults to <stem>_report beside the input.
+// runs"), computes the cage and ball metrics of io/report/cage_metrics.hpp over a time window,
+// writes them to <dir>/summary.json and runs io/report/plot_report.py (/usr/bin/python3 with
+// matplotlib, h5py and numpy) to draw PNGs into the same folder. <dir> defaults to <stem>_report
+// beside the input. Reading: report_reader.cpp; the summary: report_summary.cpp; the rest:
+// report.cpp.
 //
 // Serial and local: the file is opened read-only with the default (sec2) driver, so a report can run
 // while no MPI job is around; call it on one rank only.

@@ -1,5 +1,6 @@
 // The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
-// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`.
+// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`,
+// `raceway --version`.
 //
 // Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors
 // (including an error inside a contact task on any rank, which ends all ranks through MPI_Abort).
@@ -20,6 +21,7 @@
 #include <spdlog/spdlog.h>
 
 #include "io/report/report.hpp"
+#include "raceway/version.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "io/json/summary_json.hpp"
 #include "scheduler/mpi_executor.hpp"
@@ -176,6 +178,127 @@ int exit_code_of(const std::function<int()>& command) {
   }
 }
 
+/// The command line: its subcommands and the values of their options.
+struct CommandLine {
+  std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
+  scheduler::MpiExecutorOptions exec_options;
+  std::string schedule = "adaptive", inject;
+  bool replan_every_evaluation = false;
+  io::ReportOptions report_options;
+  double window_start = NAN;
+  bool no_plots = false;
+  CLI::App* run = nullptr;
+  CLI::App* check = nullptr;
+  CLI::App* report = nullptr;
+};
+
+void add_run_command(CLI::App& app, CommandLine& cl) {
+  auto* run = cl.run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
+  run->add_option("scene", cl.scene_path, "scene file (TOML)");
+  run->add_option("-o,--output", cl.output, "HDF5 output file")->capture_default_str();
+  run->add_option("--summary-json", cl.summary_json, "write the run summary as JSON");
+  run->add_option("--petsc-options", cl.petsc_options,
+                  "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
+                  "mumps\"; override the scene's [solver] petsc_options");
+  run->add_option("--schedule", cl.schedule, "task plan under mpirun: adaptive (re-planned from measured task times) "
+                  "or static (one plan from the first measured times)")
+      ->check(CLI::IsMember({"adaptive", "static"}))
+      ->capture_default_str();
+  run->add_option("--master-share", cl.exec_options.master_share,
+                  "rank 0's share of the contact tasks relative to a worker's (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  run->add_option("--schedule-sample-every", cl.exec_options.sample_every,
+                  "keep every n-th evaluation's imbalance in /scheduler/imbalance")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // Test-only options (hidden: empty group).
+  run->add_flag("--replan-every-step", cl.replan_every_evaluation, "test only: a new plan before every evaluation")
+      ->group("");
+  run->add_option("--inject-failure", cl.inject, "test only: RANK:EVALUATION throws inside a task")->group("");
+}
+
+void add_check_command(CLI::App& app, CommandLine& cl) {
+  auto* check = cl.check = app.add_subcommand("check", "validate a scene and print the model it would build");
+  check->alias("plan");
+  check->add_option("scene", cl.scene_path, "scene file (TOML); the built-in default when none is given");
+  check->add_option("--petsc-options", cl.petsc_options, "PETSc options to validate with the scene's");
+}
+
+void add_report_command(CLI::App& app, CommandLine& cl) {
+  auto* report = cl.report =
+      app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
+  report->add_option("output_file", cl.report_options.input, "HDF5 output of a spatial run")->required();
+  report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json and the PNGs "
+                     "(default: <stem>_report beside the file)");
+  report->add_option("--window-start", cl.window_start, "start of the analysis window in s (default: second half)");
+  report->add_option("--bin-width", cl.report_options.bin_width_deg, "azimuth bin width in deg")->capture_default_str();
+  report->add_flag("--no-plots", cl.no_plots, "write summary.json only");
+}
+
+/// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
+int check_command(const std::string& scene_path) {
+  const io::Scene scene = load(scene_path);
+  const auto model = solver::build_model(scene);
+  std::fputs(model.describe().c_str(), stdout);
+  const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
+  std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
+  std::puts("scene OK");
+  return 0;
+}
+
+/// `raceway run` on every rank: rank 0 reads the scene and integrates, all ranks evaluate tasks.
+/// Returns this rank's exit code; MPI is still initialised.
+int run_on_all_ranks(CommandLine& cl, int rank, int size) {
+  std::string text, source;
+  io::Scene scene;
+  bool ok = true;
+  int code = 0;
+  if (rank == 0) {
+    try {
+      scene = load(cl.scene_path);
+      text = scene.text, source = scene.source;
+    } catch (const io::SceneError& e) {
+      spdlog::error("{}", e.what());
+      code = 2, ok = false;
+    }
+  }
+  if (!broadcast_scene_text(rank, text, source, ok)) return rank == 0 ? code : 0;
+  cl.exec_options.policy = cl.replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
+                           : cl.schedule == "static"  ? scheduler::SchedulePolicy::static_plan
+                                                      : scheduler::SchedulePolicy::adaptive;
+  try {
+    if (!cl.inject.empty()) parse_injection(cl.inject, cl.exec_options);
+  } catch (const std::exception& e) {
+    if (rank == 0) spdlog::error("{}", e.what());
+    return 2;
+  }
+  cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
+  // The executor's destructor (on return) releases the workers if rank 0 failed.
+  scheduler::MpiExecutor executor(MPI_COMM_WORLD, cl.exec_options);
+  if (rank != 0) return worker(text, source, executor);
+  if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
+                             scheduler::schedule_policy_name(cl.exec_options.policy));
+  return exit_code_of([&] {
+    // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
+    const solver::PetscRuntime petsc(cl.petsc_options);
+    return run_command(scene, cl.output, cl.summary_json, executor);
+  });
+}
+
+/// `raceway check` or `raceway report`, on rank 0 only.
+int check_or_report(CommandLine& cl) {
+  // PETSc after MPI (so it leaves MPI_Finalize to us), on rank 0 only: the Newton systems and their
+  // linear algebra live there (README.md, "In parallel"). Destroyed before MPI_Finalize.
+  return exit_code_of([&] {
+    const solver::PetscRuntime petsc(cl.petsc_options);
+    if (*cl.check) return check_command(cl.scene_path);
+    if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
+    cl.report_options.plots = !cl.no_plots;
+    return report_command(cl.report_options);
+  });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -188,122 +311,19 @@ int main(int argc, char** argv) {
 
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
   app.require_subcommand(1);
-  std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
-  auto* run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
-  run->add_option("scene", scene_path, "scene file (TOML)");
-  run->add_option("-o,--output", output, "HDF5 output file")->capture_default_str();
-  run->add_option("--summary-json", summary_json, "write the run summary as JSON");
-  run->add_option("--petsc-options", petsc_options,
-                  "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
-                  "mumps\"; override the scene's [solver] petsc_options");
-  scheduler::MpiExecutorOptions exec_options;
-  std::string schedule = "adaptive", inject;
-  bool replan_every_evaluation = false;
-  run->add_option("--schedule", schedule, "task plan under mpirun: adaptive (re-planned from measured task times) "
-                  "or static (one plan from the first measured times)")
-      ->check(CLI::IsMember({"adaptive", "static"}))
-      ->capture_default_str();
-  run->add_option("--master-share", exec_options.master_share,
-                  "rank 0's share of the contact tasks relative to a worker's (0: none)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  run->add_option("--schedule-sample-every", exec_options.sample_every,
-                  "keep every n-th evaluation's imbalance in /scheduler/imbalance")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  // Test-only options (hidden: empty group).
-  run->add_flag("--replan-every-step", replan_every_evaluation, "test only: a new plan before every evaluation")
-      ->group("");
-  run->add_option("--inject-failure", inject, "test only: RANK:EVALUATION throws inside a task")->group("");
-  auto* check = app.add_subcommand("check", "validate a scene and print the model it would build");
-  check->alias("plan");
-  check->add_option("scene", scene_path, "scene file (TOML); the built-in default when none is given");
-  check->add_option("--petsc-options", petsc_options, "PETSc options to validate with the scene's");
-  io::ReportOptions report_options;
-  double window_start = NAN;
-  bool no_plots = false;
-  auto* report = app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
-  report->add_option("output_file", report_options.input, "HDF5 output of a spatial run")->required();
-  report->add_option("-o,--output-dir", report_options.output_dir, "folder for summary.json and the PNGs "
-                     "(default: <stem>_report beside the file)");
-  report->add_option("--window-start", window_start, "start of the analysis window in s (default: second half)");
-  report->add_option("--bin-width", report_options.bin_width_deg, "azimuth bin width in deg")->capture_default_str();
-  report->add_flag("--no-plots", no_plots, "write summary.json only");
-  int code = 0;
+  app.set_version_flag("--version", fmt::format("raceway {} (commit {})", kVersion, kGitCommit));
+  CommandLine cl;
+  add_run_command(app, cl);
+  add_check_command(app, cl);
+  add_report_command(app, cl);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    code = app.exit(e);
+  } catch (const CLI::ParseError& e) {  // also --help and --version, with code 0
+    const int code = app.exit(e);
     MPI_Finalize();
     return code;
   }
-  if (*run) {
-    // Every rank takes part: rank 0 reads the scene and integrates, all ranks evaluate tasks.
-    std::string text, source;
-    io::Scene scene;
-    bool ok = true;
-    if (rank == 0) {
-      try {
-        scene = load(scene_path);
-        text = scene.text, source = scene.source;
-      } catch (const io::SceneError& e) {
-        spdlog::error("{}", e.what());
-        code = 2, ok = false;
-      }
-    }
-    if (!broadcast_scene_text(rank, text, source, ok)) {
-      MPI_Finalize();
-      return rank == 0 ? code : 0;
-    }
-    {
-      exec_options.policy = replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
-                            : schedule == "static"  ? scheduler::SchedulePolicy::static_plan
-                                                    : scheduler::SchedulePolicy::adaptive;
-      try {
-        if (!inject.empty()) parse_injection(inject, exec_options);
-      } catch (const std::exception& e) {
-        if (rank == 0) spdlog::error("{}", e.what());
-        MPI_Finalize();
-        return 2;
-      }
-      exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
-      scheduler::MpiExecutor executor(MPI_COMM_WORLD, exec_options);
-      if (rank != 0) {
-        code = worker(text, source, executor);
-      } else {
-        if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
-                                   scheduler::schedule_policy_name(exec_options.policy));
-        code = exit_code_of([&] {
-          // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
-          const solver::PetscRuntime petsc(petsc_options);
-          return run_command(scene, output, summary_json, executor);
-        });
-      }
-    }  // the executor's destructor releases the workers if rank 0 failed
-    MPI_Finalize();
-    return code;
-  }
-  if (rank != 0) {
-    MPI_Finalize();
-    return 0;
-  }
-  // PETSc after MPI (so it leaves MPI_Finalize to us), on the master only: the linear algebra runs
-  // there (DESIGN.md 5). Destroyed before MPI_Finalize.
-  code = exit_code_of([&] {
-    const solver::PetscRuntime petsc(petsc_options);
-    if (*check) {
-      const io::Scene scene = load(scene_path);
-      const auto model = solver::build_model(scene);
-      std::fputs(model.describe().c_str(), stdout);
-      const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
-      std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
-      std::puts("scene OK");
-      return 0;
-    }
-    if (!std::isnan(window_start)) report_options.window_start = window_start;
-    report_options.plots = !no_plots;
-    return report_command(report_options);
-  });
+  const int code = *cl.run ? run_on_all_ranks(cl, rank, size) : rank == 0 ? check_or_report(cl) : 0;
   MPI_Finalize();
   return code;
 }

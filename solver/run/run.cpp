@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "io/h5/h5_series.hpp"
+#include "raceway/version.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/newton_backends.hpp"
@@ -62,7 +63,8 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   auto file = io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
-  file.set_attribute("/", "raceway_version", std::string("0.1.0"));
+  file.set_attribute("/", "raceway_version", std::string(kVersion));
+  file.set_attribute("/", "raceway_commit", std::string(kGitCommit));
   file.set_attribute("/", "model", model.describe());
   if (model.kind == io::ModelKind::spatial) {
     file.set_attribute("/", "model_kind", std::string("spatial"));

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Behaviour tests of the `raceway` command line (exit codes, messages, files), one case per ctest.
 #
-#   cli_test.sh CASE RACEWAY_EXECUTABLE SOURCE_DIR
+#   cli_test.sh CASE RACEWAY_EXECUTABLE SOURCE_DIR [VERSION]
+#
+# VERSION is project(VERSION) of the top-level CMakeLists.txt (the version case needs it).
 #
 # Exit codes of raceway (solver/driver/main.cpp): 0 success, 2 bad scene, 3 integration failure, 1 other.
 set -u
@@ -9,6 +11,7 @@ set -u
 case_name=${1:?case}
 raceway=${2:?raceway executable}
 source_dir=${3:?source dir}
+version=${4:-}
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/raceway_cli_${case_name}.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -110,6 +113,28 @@ integration_failure)
     fail "the message names no contact"
   [[ $elapsed_ms -lt 10000 ]] || fail "took $elapsed_ms ms"
   [[ -e "$work/f.h5" ]] && fail "f.h5 written by a failed run"
+  ;;
+
+version)
+  # (f) `raceway --version` prints "raceway VERSION (commit ...)" with CMake's project version, exit 0.
+  [[ -n "$version" ]] || { echo "the version case needs VERSION (4th argument)" >&2; exit 2; }
+  run --version
+  [[ $rc -eq 0 ]] || fail "exit code $rc, expected 0"
+  line=$(head -n 1 "$work/out")
+  pattern='^raceway ([^ ]+) \(commit ([^ )]+)\)$'
+  [[ "$line" =~ $pattern ]] || fail "stdout '$line' is not 'raceway VERSION (commit ID)'"
+  [[ "${BASH_REMATCH[1]:-}" == "$version" ]] || fail "version '${BASH_REMATCH[1]:-}', CMake says '$version'"
+  # The same version in a run's output file (root attributes raceway_version, raceway_commit).
+  if command -v h5dump >/dev/null; then
+    sed 's/^end_time *=.*/end_time = "2 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/short.toml"
+    run run "$work/short.toml" -o "$work/v.h5"
+    [[ $rc -eq 0 ]] || { fail "run: exit code $rc"; cat "$work/err" >&2; }
+    h5dump -a /raceway_version "$work/v.h5" >"$work/dump" 2>&1 || fail "no raceway_version attribute"
+    grep -qF "\"$version\"" "$work/dump" || fail "raceway_version is not \"$version\""
+    h5dump -a /raceway_commit "$work/v.h5" >/dev/null 2>&1 || fail "no raceway_commit attribute"
+  else
+    fail "h5dump not found (apt-get install hdf5-tools)"
+  fi
   ;;
 
 *)

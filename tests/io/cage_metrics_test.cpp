@@ -1,4 +1,4 @@
-// Tests of the post-processing metrics (io/cage_metrics.hpp) against closed forms: a circular and
+// Tests of the post-processing metrics (io/report/cage_metrics.hpp) against closed forms: a circular and
 // an elliptical cage whirl (seed 001 section 4, eq. 9), square-pulse bar forces, the front / rear
 // sign convention of docs/output_layout.md, and a Hertzian cos^1.5 ball-load zone.
 #include "io/report/cage_metrics.hpp"

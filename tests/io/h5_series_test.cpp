@@ -176,7 +176,44 @@ bool hdf5_readable(const std::string& path) {
 
 using H5Series = TempDir;
 
-TEST_F(H5Series, RoundTripSeriesArraysAndAttributes) {
+namespace {
+
+// Chunked, about 64 KiB per chunk, not compressed.
+void expect_chunked_about_64k(hid_t file, const std::string& path, std::size_t rank) {
+  H5Id d{H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose};
+  H5Id dcpl{H5Dget_create_plist(d), H5Pclose};
+  EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
+  EXPECT_EQ(H5Pget_nfilters(dcpl), 0);
+  std::vector<hsize_t> chunk(rank);
+  ASSERT_EQ(H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), static_cast<int>(chunk.size()));
+  hsize_t bytes = sizeof(double);
+  for (const hsize_t c : chunk) bytes *= c;
+  EXPECT_LE(bytes, 64u * 1024u);
+  EXPECT_GE(bytes, 32u * 1024u);
+}
+
+// A 1-D dataset of variable-length strings, read back (and its type checked).
+std::vector<std::string> read_string_dataset(hid_t file, const std::string& path) {
+  std::vector<std::string> out;
+  H5Id names{H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose};
+  EXPECT_GE(names.id, 0) << path;
+  if (names.id < 0) return out;
+  H5Id ntype{H5Dget_type(names), H5Tclose};
+  EXPECT_GT(H5Tis_variable_str(ntype), 0);
+  H5Id nspace{H5Dget_space(names), H5Sclose};
+  std::vector<char*> ptrs(static_cast<std::size_t>(H5Sget_simple_extent_npoints(nspace)), nullptr);
+  H5Id mtype{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(mtype, H5T_VARIABLE);
+  if (ptrs.empty()) return out;
+  EXPECT_GE(H5Dread(names, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), 0);
+  for (char* p : ptrs) out.emplace_back(p ? p : "");
+  H5Dvlen_reclaim(mtype, nspace, H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+}  // namespace
+
+TEST_F(H5Series, RoundTripSeries) {
   const std::string file = path("run.h5");
   struct Def {
     std::string path;
@@ -205,27 +242,6 @@ TEST_F(H5Series, RoundTripSeriesArraysAndAttributes) {
       }
       EXPECT_EQ(w.rows(defs[s].path), n_rows[s]);
     }
-    // Root attributes of every kind, attributes on a new group and on a series.
-    w.set_attribute("/", "scene_toml", "[bearing]\nname = \"NU206\" # \u00e9\n");
-    w.set_attribute("/", "pi", 3.141592653589793);
-    w.set_attribute("/", "steps", 123456789012345LL);
-    w.set_attribute("/", "ranks", 2);                  // int -> int64
-    w.set_attribute("/", "outputs", std::size_t{42});  // size_t -> int64
-    w.set_attribute("/", "gravity", std::vector<double>{0.0, -9.80665, 0.1});
-    w.set_attribute("/", "state_names", std::vector<std::string>{"x", "y", "theta", ""});
-    w.set_attribute("/", "no_names", std::vector<std::string>{});
-    w.set_attribute("/", "no_values", std::vector<double>{});
-    w.set_attribute("/build/info", "compiler", "g++ 12");  // groups created
-    w.set_attribute("/bodies/cage/position", "frame", "inertial");
-    w.set_attribute("/", "replaced", "first");
-    w.set_attribute("/", "replaced", 2.5);  // replaces, with another type
-    // Fixed arrays.
-    const std::vector<double> table{1.5, -2.25, 1e-310, 4.0, 5.0, 6.0};
-    w.write_array("/geometry/table", {2, 3}, table, "Pa", "a 2x3 table");
-    w.write_array("/geometry/scalar", {}, std::vector<double>{0.1}, "kg", "a scalar");
-    w.write_array("/geometry/segment_names", std::vector<std::string>{"inner race", "outer race", "cage\u00e9"},
-                  "segment names");
-    w.write_array("/geometry/empty_names", std::vector<std::string>{}, "no names");
     w.commit();
     EXPECT_FALSE(w.is_open());
   }
@@ -245,18 +261,34 @@ TEST_F(H5Series, RoundTripSeriesArraysAndAttributes) {
     EXPECT_TRUE(bit_equal(a.values, expected[s]));
     EXPECT_EQ(read_string_attr(f, p, "units"), std::vector<std::string>{"m"});
     EXPECT_EQ(read_string_attr(f, p, "description"), std::vector<std::string>{"description of " + defs[s].path});
-    // Chunked, about 64 KiB per chunk, not compressed.
-    H5Id d{H5Dopen2(f, p.c_str(), H5P_DEFAULT), H5Dclose};
-    H5Id dcpl{H5Dget_create_plist(d), H5Pclose};
-    EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
-    EXPECT_EQ(H5Pget_nfilters(dcpl), 0);
-    std::vector<hsize_t> chunk(dims.size());
-    ASSERT_EQ(H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), static_cast<int>(chunk.size()));
-    hsize_t bytes = sizeof(double);
-    for (const hsize_t c : chunk) bytes *= c;
-    EXPECT_LE(bytes, 64u * 1024u);
-    EXPECT_GE(bytes, 32u * 1024u);
+    expect_chunked_about_64k(f, p, dims.size());
   }
+}
+
+TEST_F(H5Series, RoundTripAttributes) {
+  const std::string file = path("attributes.h5");
+  {
+    auto w = H5SeriesWriter::create(file);
+    w.define_series("/bodies/cage/position", {3}, "m", "cage position");
+    w.append("/bodies/cage/position", std::vector<double>{1.0, 2.0, 3.0});
+    // Root attributes of every kind, attributes on a new group and on a series.
+    w.set_attribute("/", "scene_toml", "[bearing]\nname = \"NU206\" # \u00e9\n");
+    w.set_attribute("/", "pi", 3.141592653589793);
+    w.set_attribute("/", "steps", 123456789012345LL);
+    w.set_attribute("/", "ranks", 2);                  // int -> int64
+    w.set_attribute("/", "outputs", std::size_t{42});  // size_t -> int64
+    w.set_attribute("/", "gravity", std::vector<double>{0.0, -9.80665, 0.1});
+    w.set_attribute("/", "state_names", std::vector<std::string>{"x", "y", "theta", ""});
+    w.set_attribute("/", "no_names", std::vector<std::string>{});
+    w.set_attribute("/", "no_values", std::vector<double>{});
+    w.set_attribute("/build/info", "compiler", "g++ 12");  // groups created
+    w.set_attribute("/bodies/cage/position", "frame", "inertial");
+    w.set_attribute("/", "replaced", "first");
+    w.set_attribute("/", "replaced", 2.5);  // replaces, with another type
+    w.commit();
+  }
+  H5Id f{H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  ASSERT_GE(f.id, 0);
   EXPECT_EQ(read_string_attr(f, "/", "scene_toml"), std::vector<std::string>{"[bearing]\nname = \"NU206\" # \u00e9\n"});
   EXPECT_EQ(read_double_attr(f, "/", "pi"), std::vector<double>{3.141592653589793});
   EXPECT_EQ(read_int_attr(f, "/", "steps"), 123456789012345LL);
@@ -269,7 +301,22 @@ TEST_F(H5Series, RoundTripSeriesArraysAndAttributes) {
   EXPECT_EQ(read_string_attr(f, "/build/info", "compiler"), std::vector<std::string>{"g++ 12"});
   EXPECT_EQ(read_string_attr(f, "/bodies/cage/position", "frame"), std::vector<std::string>{"inertial"});
   EXPECT_EQ(read_double_attr(f, "/", "replaced"), std::vector<double>{2.5});
+}
 
+TEST_F(H5Series, RoundTripFixedArrays) {
+  const std::string file = path("arrays.h5");
+  {
+    auto w = H5SeriesWriter::create(file);
+    const std::vector<double> table{1.5, -2.25, 1e-310, 4.0, 5.0, 6.0};
+    w.write_array("/geometry/table", {2, 3}, table, "Pa", "a 2x3 table");
+    w.write_array("/geometry/scalar", {}, std::vector<double>{0.1}, "kg", "a scalar");
+    w.write_array("/geometry/segment_names", std::vector<std::string>{"inner race", "outer race", "cage\u00e9"},
+                  "segment names");
+    w.write_array("/geometry/empty_names", std::vector<std::string>{}, "no names");
+    w.commit();
+  }
+  H5Id f{H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  ASSERT_GE(f.id, 0);
   const Array table = read_doubles(f, "/geometry/table");
   EXPECT_EQ(table.dims, (std::vector<hsize_t>{2, 3}));
   EXPECT_TRUE(bit_equal(table.values, {1.5, -2.25, 1e-310, 4.0, 5.0, 6.0}));
@@ -279,24 +326,13 @@ TEST_F(H5Series, RoundTripSeriesArraysAndAttributes) {
   EXPECT_TRUE(bit_equal(scalar.values, {0.1}));
 
   // The string table: 1-D variable-length UTF-8 strings.
-  H5Id names{H5Dopen2(f, "/geometry/segment_names", H5P_DEFAULT), H5Dclose};
-  ASSERT_GE(names.id, 0);
-  H5Id ntype{H5Dget_type(names), H5Tclose};
-  EXPECT_GT(H5Tis_variable_str(ntype), 0);
-  H5Id nspace{H5Dget_space(names), H5Sclose};
-  ASSERT_EQ(H5Sget_simple_extent_npoints(nspace), 3);
-  std::vector<char*> ptrs(3);
-  H5Id mtype{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(mtype, H5T_VARIABLE);
-  ASSERT_GE(H5Dread(names, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), 0);
-  EXPECT_STREQ(ptrs[0], "inner race");
-  EXPECT_STREQ(ptrs[1], "outer race");
-  EXPECT_STREQ(ptrs[2], "cage\u00e9");
-  H5Dvlen_reclaim(mtype, nspace, H5P_DEFAULT, ptrs.data());
+  EXPECT_EQ(read_string_dataset(f, "/geometry/segment_names"),
+            (std::vector<std::string>{"inner race", "outer race", "cage\u00e9"}));
   EXPECT_EQ(read_string_attr(f, "/geometry/segment_names", "description"), std::vector<std::string>{"segment names"});
   EXPECT_EQ(read_string_attr(f, "/geometry/segment_names", "units"), std::vector<std::string>{""});
   H5Id empty_names{H5Dopen2(f, "/geometry/empty_names", H5P_DEFAULT), H5Dclose};
   EXPECT_GE(empty_names.id, 0);
+  EXPECT_TRUE(read_string_dataset(f, "/geometry/empty_names").empty());
 }
 
 TEST_F(H5Series, FlushMakesRowsVisibleToAReader) {

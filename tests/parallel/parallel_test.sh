@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tests of `mpirun -np P raceway run` (issue 4), one case per ctest:
+# Tests of `mpirun -np P raceway run` (scheduler/mpi_executor.hpp), one case per ctest:
 #
 #   parallel_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
 #
