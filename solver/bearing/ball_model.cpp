@@ -264,43 +264,62 @@ void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo)
                         static_cast<int>(m.laws.size()) - 1, -1, outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
-}  // namespace
-
-Model build_ball_model(const io::Scene& scene) {
+void check_scene(const io::Scene& scene) {
   if (scene.scene.model != io::ModelKind::spatial || !scene.bearing.is_ball_bearing())
     throw std::runtime_error("scene.model: the spatial model needs a ball bearing (bearing.type)");
-  Model m;
-  m.scene = &scene;
-  m.kind = io::ModelKind::spatial;
-  m.element_group = "balls";
+}
+
+void set_geometry(Model& m, const io::Scene& scene) {
   const auto& g = scene.bearing;
   const bool four_point = g.type == io::BearingType::four_point_contact_ball;
+  m.kind = io::ModelKind::spatial;
+  m.element_group = "balls";
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.ball.ball_diameter;
   m.nominal_contact_angle = four_point ? g.ball.arc_contact_angle : 0.0;
   m.arcs_per_ring = four_point ? 2 : 1;
-  m.gravity = scene.gravity ? 9.80665 : 0.0;
-  const double D = g.ball.ball_diameter;
-  const double width = g.ring_width > 0 ? g.ring_width : 1.5 * D;
+}
+
+double ring_width(const io::Scene& scene) {
+  const auto& g = scene.bearing;
+  return g.ring_width > 0 ? g.ring_width : 1.5 * g.ball.ball_diameter;
+}
+
+/// Rings: the groove side of each ring is taken as a quarter ball diameter deep on average.
+void add_rings(Model& m, const io::Scene& scene) {
+  const auto& g = scene.bearing;
+  const double D = g.ball.ball_diameter, width = ring_width(scene);
   const double density = scene.material(g.ring_material).density;
-  // Rings: the groove side of each ring is taken as a quarter ball diameter deep on average.
   add_ring(m, BodyKind::inner_ring, "inner_ring", scene.inner_ring, 0.5 * g.inner_bore_diameter,
            0.5 * g.inner_race_diameter() + 0.25 * D, width, density);
   add_ring(m, BodyKind::outer_ring, "outer_ring", scene.outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
            0.5 * g.outer_outside_diameter, width, density);
+}
+
+CageGeometry cage_geometry(const Model& m, const io::Scene& scene) {
   const auto& cs = scene.cage;
   const double rp = m.pitch_radius, rb = m.element_radius;
-  const CageGeometry geo{cs.inner_diameter > 0 ? 0.5 * cs.inner_diameter : rp - 0.6 * rb,
-                         cs.outer_diameter > 0 ? 0.5 * cs.outer_diameter : rp + 0.6 * rb,
-                         cs.width > 0 ? cs.width : 0.8 * width};
-  add_cage(m, scene, geo);
-  m.border_size = m.state_size;
-  add_balls(m, scene);
-  m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
+  return {cs.inner_diameter > 0 ? 0.5 * cs.inner_diameter : rp - 0.6 * rb,
+          cs.outer_diameter > 0 ? 0.5 * cs.outer_diameter : rp + 0.6 * rb,
+          cs.width > 0 ? cs.width : 0.8 * ring_width(scene)};
+}
+
+void add_segments(Model& m, const io::Scene& scene) {
   add_ball_segments(m, scene);
-  add_land_segment(m, scene, geo);
-  return m;
+  add_land_segment(m, scene, cage_geometry(m, scene));
+}
+
+}  // namespace
+
+std::string describe_ball_model(const Model& m);
+
+const ModelBuilder& ball_model_builder() {
+  static const ModelBuilder builder{
+      check_scene, set_geometry, add_rings,
+      [](Model& m, const io::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene)); }, add_balls, add_segments,
+      describe_ball_model};
+  return builder;
 }
 
 std::string describe_ball_model(const Model& m) {

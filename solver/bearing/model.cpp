@@ -25,14 +25,29 @@ const char* segment_kind_name(SegmentKind k) {
   return "?";
 }
 
+namespace {
+const ModelBuilder& builder_of(io::ModelKind kind) {
+  return kind == io::ModelKind::spatial ? ball_model_builder() : roller_model_builder();
+}
+}  // namespace
+
 Model build_model(const io::Scene& scene) {
-  if (scene.scene.model == io::ModelKind::spatial) return build_ball_model(scene);
-  return build_roller_model(scene);
+  const ModelBuilder& builder = builder_of(scene.scene.model);
+  builder.check(scene);
+  Model m;
+  m.scene = &scene;
+  m.gravity = scene.gravity ? 9.80665 : 0.0;
+  builder.geometry(m, scene);
+  builder.rings(m, scene);
+  builder.cage(m, scene);
+  m.border_size = m.state_size;
+  builder.rolling_elements(m, scene);
+  m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
+  builder.segments(m, scene);
+  return m;
 }
 
-std::string Model::describe() const {
-  return kind == io::ModelKind::spatial ? describe_ball_model(*this) : describe_roller_model(*this);
-}
+std::string Model::describe() const { return builder_of(kind).describe(*this); }
 
 void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* what) {
   b.slot[c] = m.state_size++;

@@ -135,11 +135,19 @@ contact::Mat3 cardan_rotation(double ax, double ay, double az);
 /// far beyond any cage tilt).
 contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angular_velocity);
 
-// The builders (one per bearing kind; build_model dispatches).
-Model build_roller_model(const io::Scene& scene);  ///< planar cylindrical roller bearing
-Model build_ball_model(const io::Scene& scene);    ///< spatial ball bearing
-std::string describe_roller_model(const Model& m);
-std::string describe_ball_model(const Model& m);
+/// The steps of one bearing kind's builder. build_model runs them in the order every model has:
+/// rings, cage (together the border), rolling elements (equal blocks), contact segments.
+struct ModelBuilder {
+  void (*check)(const io::Scene&);          ///< throws when the scene is not of this kind
+  void (*geometry)(Model&, const io::Scene&);  ///< kind, element count, radii
+  void (*rings)(Model&, const io::Scene&);
+  void (*cage)(Model&, const io::Scene&);
+  void (*rolling_elements)(Model&, const io::Scene&);
+  void (*segments)(Model&, const io::Scene&);  ///< laws (derived constants once, here) and segments
+  std::string (*describe)(const Model&);       ///< Model::describe
+};
+const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
+const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
 
 /// Mass of a ring-shaped body (hollow cylinder) [kg].
 double annulus_mass(double density, double r_in, double r_out, double width);

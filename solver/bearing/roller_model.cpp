@@ -170,37 +170,47 @@ void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo)
                         outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
-}  // namespace
-
-Model build_roller_model(const io::Scene& scene) {
+void check_scene(const io::Scene& scene) {
   if (scene.scene.model != io::ModelKind::planar || scene.bearing.is_ball_bearing())
     throw std::runtime_error("scene.model: the planar model needs a cylindrical roller bearing (bearing.type)");
-  Model m;
-  m.scene = &scene;
+}
+
+void set_geometry(Model& m, const io::Scene& scene) {
+  const auto& g = scene.bearing;
   m.kind = io::ModelKind::planar;
   m.element_group = "rollers";
-  const auto& g = scene.bearing;
-  const auto& ring_mat = scene.material(g.ring_material);
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.roller_diameter;
   m.inner_race_radius = 0.5 * g.inner_race_diameter();
   m.outer_race_radius = 0.5 * g.outer_race_diameter();
-  m.gravity = scene.gravity ? 9.80665 : 0.0;
-  const double width = g.ring_width > 0 ? g.ring_width : g.roller_length;
+}
 
+void add_rings(Model& m, const io::Scene& scene) {
+  const auto& g = scene.bearing;
+  const double density = scene.material(g.ring_material).density;
+  const double width = g.ring_width > 0 ? g.ring_width : g.roller_length;
   add_ring(m, BodyKind::inner_ring, "inner_ring", scene.inner_ring, 0.5 * g.inner_bore_diameter, m.inner_race_radius,
-           width, ring_mat.density);
+           width, density);
   add_ring(m, BodyKind::outer_ring, "outer_ring", scene.outer_ring, m.outer_race_radius,
-           0.5 * g.outer_outside_diameter, width, ring_mat.density);
-  const CageGeometry geo = cage_geometry(m, scene.cage);
-  add_cage(m, scene, geo);
-  m.border_size = m.state_size;
-  add_rollers(m, scene);
-  m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
+           0.5 * g.outer_outside_diameter, width, density);
+}
+
+void add_segments(Model& m, const io::Scene& scene) {
   add_roller_segments(m, scene);
-  add_land_segment(m, scene, geo);
-  return m;
+  add_land_segment(m, scene, cage_geometry(m, scene.cage));
+}
+
+}  // namespace
+
+std::string describe_roller_model(const Model& m);
+
+const ModelBuilder& roller_model_builder() {
+  static const ModelBuilder builder{
+      check_scene, set_geometry, add_rings,
+      [](Model& m, const io::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene.cage)); }, add_rollers,
+      add_segments, describe_roller_model};
+  return builder;
 }
 
 std::string describe_roller_model(const Model& m) {
