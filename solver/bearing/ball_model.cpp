@@ -73,12 +73,10 @@ void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
   c.transverse_inertia = cs.transverse_inertia > 0 ? cs.transverse_inertia
                                                    : annulus_transverse_inertia(c.mass, geo.r_in, geo.r_out, geo.width);
   c.offset = m.state_size;
-  auto add = [&](Coordinate k, VariableClass cls, const char* what) { add_state(m, c, k, cls, what); };
-  add(sx, VariableClass::position, "x"), add(sy, VariableClass::position, "y"), add(sz, VariableClass::position, "z");
-  add(sax, VariableClass::angle, "angle_x"), add(say, VariableClass::angle, "angle_y"), add(saz, VariableClass::angle, "angle_z");
-  add(svx, VariableClass::velocity, "vx"), add(svy, VariableClass::velocity, "vy"), add(svz, VariableClass::velocity, "vz");
-  add(swx, VariableClass::angular_velocity, "wx_body"), add(swy, VariableClass::angular_velocity, "wy_body");
-  add(swz, VariableClass::angular_velocity, "wz_body");
+  add_states(m, c, sx, VariableClass::position, {"x", "y", "z"});
+  add_states(m, c, sax, VariableClass::angle, {"angle_x", "angle_y", "angle_z"});
+  add_states(m, c, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+  add_states(m, c, swx, VariableClass::angular_velocity, {"wx_body", "wy_body", "wz_body"});
   c.size = m.state_size - c.offset;
   m.bodies.push_back(c);
 }
@@ -87,22 +85,12 @@ void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
 void add_balls(Model& m, const io::Scene& scene) {
   const double rb = m.element_radius;
   const double ball_mass = scene.material(scene.bearing.roller_material).density * 4.0 / 3.0 * pi * rb * rb * rb;
-  for (int k = 0; k < m.element_count; ++k) {
-    Body b;
-    b.name = fmt::format("ball[{}]", k);
-    b.kind = BodyKind::rolling_element;
-    b.index = k;
-    b.mass = ball_mass;
-    b.axial_inertia = b.transverse_inertia = 0.4 * ball_mass * rb * rb;
-    b.offset = m.state_size;
-    auto add = [&](Coordinate c, VariableClass cls, const char* what) { add_state(m, b, c, cls, what); };
-    add(sx, VariableClass::position, "x"), add(sy, VariableClass::position, "y"), add(sz, VariableClass::position, "z");
-    add(svx, VariableClass::velocity, "vx"), add(svy, VariableClass::velocity, "vy"), add(svz, VariableClass::velocity, "vz");
-    add(swx, VariableClass::angular_velocity, "wx"), add(swy, VariableClass::angular_velocity, "wy");
-    add(swz, VariableClass::angular_velocity, "wz");
-    b.size = m.state_size - b.offset;
-    m.bodies.push_back(b);
-  }
+  const double inertia = 0.4 * ball_mass * rb * rb;
+  add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
+    add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
+    add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+    add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
+  });
 }
 
 double e_star(const io::Material& a, const io::Material& b) {

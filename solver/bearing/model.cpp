@@ -1,5 +1,7 @@
 #include "solver/bearing/model.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -53,6 +55,27 @@ void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* w
   b.slot[c] = m.state_size++;
   m.state_class.push_back(cls);
   m.state_name.push_back(b.name + "." + what);
+}
+
+void add_states(Model& m, Body& b, Coordinate first, VariableClass cls, const std::array<const char*, 3>& what) {
+  for (int d = 0; d < 3; ++d) add_state(m, b, static_cast<Coordinate>(first + d), cls, what[static_cast<std::size_t>(d)]);
+}
+
+void add_rolling_elements(Model& m, const char* name, double mass, double axial_inertia, double transverse_inertia,
+                          void (*add_states)(Model&, Body&)) {
+  for (int k = 0; k < m.element_count; ++k) {
+    Body b;
+    b.name = fmt::format("{}[{}]", name, k);
+    b.kind = BodyKind::rolling_element;
+    b.index = k;
+    b.mass = mass;
+    b.axial_inertia = axial_inertia;
+    b.transverse_inertia = transverse_inertia;
+    b.offset = m.state_size;
+    add_states(m, b);
+    b.size = m.state_size - b.offset;
+    m.bodies.push_back(b);
+  }
 }
 
 double annulus_mass(double density, double r_in, double r_out, double width) {

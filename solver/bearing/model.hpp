@@ -153,5 +153,11 @@ const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_mod
 double annulus_mass(double density, double r_in, double r_out, double width);
 /// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.
 void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* what);
+/// Three states of body b: coordinates first, first + 1, first + 2 (x, y, z of a vector).
+void add_states(Model& m, Body& b, Coordinate first, VariableClass cls, const std::array<const char*, 3>& what);
+/// The scene's rolling elements: equal bodies "<name>[k]" whose states `add_states` adds (positions
+/// before velocities), each one contiguous block.
+void add_rolling_elements(Model& m, const char* name, double mass, double axial_inertia, double transverse_inertia,
+                          void (*add_states)(Model&, Body&));
 
 }  // namespace raceway::solver

@@ -91,16 +91,8 @@ void add_rollers(Model& m, const io::Scene& scene) {
   const auto& g = scene.bearing;
   const double rr = m.element_radius;
   const double roller_mass = scene.material(g.roller_material).density * pi * rr * rr * g.roller_length;
-  for (int k = 0; k < g.rolling_elements; ++k) {
-    Body r;
-    r.name = fmt::format("roller[{}]", k);
-    r.kind = BodyKind::rolling_element;
-    r.index = k;
-    r.mass = roller_mass;
-    r.axial_inertia = 0.5 * roller_mass * rr * rr;
-    add_planar_states(m, r, true, false, true);
-    m.bodies.push_back(r);
-  }
+  add_rolling_elements(m, "roller", roller_mass, 0.5 * roller_mass * rr * rr, 0.0,
+                       [](Model& model, Body& r) { add_planar_states(model, r, true, false, true); });
 }
 
 /// Line-contact law and traction of one contact: derived constants once, here.
