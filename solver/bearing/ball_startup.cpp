@@ -153,25 +153,14 @@ void groove_contact(const contact::BallGrooveSegment& g, const SpatialKinematics
   normal = ring.rotation * n;
 }
 
-}  // namespace
-
-StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset) {
-  Seating seat(m, t0);
-  seat.azimuth_offset = azimuth_offset;
-  const auto n = static_cast<Eigen::Index>(seat.unknowns.size());
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd r;
-  int iterations = 0;
-  // Continuation in the regularization spring: with every contact open, moving the ring and its
-  // balls together costs nothing but that spring, so a stiff spring first carries the load until
-  // the contacts close; each stage then starts next to its solution. Levenberg-Marquardt with a
-  // forward-difference Jacobian within each stage.
-  for (const double spring : {1e8, 1e7, 1e6, 1e5, 1e4, 1e3}) {
-  seat.regularization = spring;
+/// One stage of the continuation: Levenberg-Marquardt with a forward-difference Jacobian at the
+/// seating's current regularization spring. Updates u and its residual r; returns the iterations.
+int levenberg_marquardt_stage(const Seating& seat, double tolerance, Eigen::VectorXd& u, Eigen::VectorXd& r) {
+  const auto n = u.size();
   r = seat.residual(u);
   double cost = r.squaredNorm();
   double lambda = 1e-3;
-  const double tolerance = spring > 1e3 ? 1e-6 : 1e-9;  // relative to the load scale
+  int iterations = 0;
   for (int stage_iterations = 0; stage_iterations < 200 && r.lpNorm<Eigen::Infinity>() > tolerance;
        ++stage_iterations, ++iterations) {
     Eigen::MatrixXd jac(n, n);
@@ -207,6 +196,131 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
     }
     if (!improved) break;
   }
+  return iterations;
+}
+
+/// Rolling equations of one ball: one row per loaded contact and tangent direction t,
+///   (orbit e_z x x + w x lever - ring surface velocity) . t = 0,
+/// in the unknowns (orbit * r_p / R, w): the orbit column is scaled by R / r_p so that both kinds
+/// of unknown weigh alike in the singular values. Rows weighted by sqrt(load).
+struct Rolling {
+  Eigen::MatrixXd a = Eigen::MatrixXd(0, 4);
+  Eigen::VectorXd rhs = Eigen::VectorXd(0);
+  int contacts = 0;
+  double load = 0;
+};
+
+Vec3 ball_position(const Model& m, const std::vector<double>& z, int k) {
+  const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
+  return Vec3(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
+              z[static_cast<std::size_t>(b.slot[sz])]);
+}
+
+/// The rolling equations of ball k at the seated state z; adds its groove loads to the report.
+Rolling rolling_equations(const Model& m, double t0, const std::vector<double>& z, int k, double orbit_column_scale,
+                          StartupReport& rep) {
+  Rolling eqs;
+  const Vec3 x = ball_position(m, z, k);
+  for (const auto& seg : m.segments) {
+    if (seg.element != k || (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove))
+      continue;
+    const SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
+    const auto& g = m.law<contact::BallGrooveSegment>(seg);
+    SpatialKinematics at_rest = ring;
+    at_rest.velocity.setZero();
+    at_rest.angular_velocity.setZero();
+    SpatialKinematics ball_rest;
+    ball_rest.position = x;
+    const double q = contact::evaluate(g, at_rest, ball_rest).diagnostics.normal_force;
+    (seg.kind == SegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
+        [static_cast<std::size_t>(k)] += q;
+    if (q <= 0) continue;
+    ++eqs.contacts, eqs.load += q;
+    Vec3 point, normal;
+    groove_contact(g, ring, x, point, normal);
+    const Vec3 t1 = normal.cross(Vec3::UnitZ()).normalized(), t2 = normal.cross(t1);
+    const Vec3 ring_surface = ring.velocity + ring.angular_velocity.cross(point - ring.position);
+    const Vec3 lever = point - x, orbit_direction = Vec3::UnitZ().cross(x);
+    const double weight = std::sqrt(q);
+    for (const Vec3& t : {t1, t2}) {
+      eqs.a.conservativeResize(eqs.a.rows() + 1, 4);
+      eqs.rhs.conservativeResize(eqs.rhs.size() + 1);
+      eqs.a.row(eqs.a.rows() - 1) << weight * orbit_direction.dot(t) * orbit_column_scale,
+          weight * lever.cross(t).transpose();  // (w x lever) . t = w . (lever x t)
+      eqs.rhs[eqs.rhs.size() - 1] = weight * ring_surface.dot(t);
+    }
+  }
+  return eqs;
+}
+
+/// Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
+/// equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
+/// instead of taking huge values from a near-singular fit. Singular values (SVD), not the
+/// diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
+Eigen::VectorXd least_squares(const Eigen::MatrixXd& a, const Eigen::VectorXd& rhs) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  svd.setThreshold(1e-3);
+  return Eigen::VectorXd(svd.solve(rhs));
+}
+
+/// Velocities: rings as prescribed (drive speeds come from the kinematics, not states). Each ball
+/// rolls without sliding at its loaded contacts: a ball held between two or more contacts gets its
+/// orbital speed and spin from them (at the seated contact angle, not the nominal one, which for a
+/// deep groove bearing under axial load is 12 deg off); a ball on one contact (or none) orbits with
+/// the cage and spins to roll on that contact. The cage turns at the load-weighted mean orbital
+/// speed of the held balls (the epicyclic speed when none is held), its pockets on the balls.
+/// Returns the cage speed.
+double set_rolling_velocities(const Model& m, double t0, double epicyclic, std::vector<double>& z, StartupReport& rep) {
+  const double orbit_column_scale = m.element_radius / m.pitch_radius;
+  const auto count = static_cast<std::size_t>(m.element_count);
+  std::vector<Rolling> rolling;
+  for (int k = 0; k < m.element_count; ++k) rolling.push_back(rolling_equations(m, t0, z, k, orbit_column_scale, rep));
+  std::vector<double> orbit(count, epicyclic);
+  std::vector<Vec3> spin(count, Vec3::Zero());
+  double held_load = 0, held_orbit = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (rolling[k].contacts < 2) continue;
+    const Eigen::VectorXd sol = least_squares(rolling[k].a, rolling[k].rhs);
+    orbit[k] = sol[0] * orbit_column_scale;
+    spin[k] = sol.tail<3>();
+    held_load += rolling[k].load, held_orbit += rolling[k].load * orbit[k];
+  }
+  const double cage_speed = held_load > 0 ? held_orbit / held_load : epicyclic;
+  z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[swz])] = cage_speed;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Rolling& eqs = rolling[k];
+    if (eqs.contacts == 1) {
+      // Orbit with the cage; spin from the rolling rows with the orbit known.
+      orbit[k] = cage_speed;
+      const Eigen::VectorXd rhs = eqs.rhs - eqs.a.col(0) * (cage_speed / orbit_column_scale);
+      spin[k] = least_squares(eqs.a.rightCols<3>(), rhs);
+    } else if (eqs.contacts == 0) {
+      orbit[k] = cage_speed;
+    }
+    const auto& b = m.bodies[static_cast<std::size_t>(m.first_element) + k];
+    const Vec3 v = orbit[k] * Vec3::UnitZ().cross(ball_position(m, z, static_cast<int>(k)));
+    for (int d = 0; d < 3; ++d) {
+      z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
+      z[static_cast<std::size_t>(b.slot[swx + d])] = spin[k][d];
+    }
+  }
+  return cage_speed;
+}
+
+}  // namespace
+
+StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset) {
+  Seating seat(m, t0);
+  seat.azimuth_offset = azimuth_offset;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(seat.unknowns.size()));
+  Eigen::VectorXd r;
+  int iterations = 0;
+  // Continuation in the regularization spring: with every contact open, moving the ring and its
+  // balls together costs nothing but that spring, so a stiff spring first carries the load until
+  // the contacts close; each stage then starts next to its solution.
+  for (const double spring : {1e8, 1e7, 1e6, 1e5, 1e4, 1e3}) {
+    seat.regularization = spring;
+    iterations += levenberg_marquardt_stage(seat, spring > 1e3 ? 1e-6 : 1e-9, u, r);  // relative to the load scale
   }
   StartupReport rep;
   rep.iterations = iterations;
@@ -216,111 +330,14 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
         "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
         "check the loads, supports and clearance",
         iterations, rep.residual));
-
-  // Velocities: rings as prescribed (drive speeds come from the kinematics, not states). Each ball
-  // rolls without sliding at its loaded contacts: a ball held between two or more contacts gets its
-  // orbital speed and spin from them (at the seated contact angle, not the nominal one, which for a
-  // deep groove bearing under axial load is 12 deg off); a ball on one contact (or none) orbits with
-  // the cage and spins to roll on that contact. The cage turns at the load-weighted mean orbital
-  // speed of the held balls (the epicyclic speed when none is held), its pockets on the balls.
   std::vector<double> z = seat.state(u);
-  const auto& cage = m.bodies[static_cast<std::size_t>(m.cage)];
-  z[static_cast<std::size_t>(cage.slot[saz])] = azimuth_offset;
+  z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[saz])] = azimuth_offset;
   rep.inner_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
   rep.outer_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
-
-  // Rolling equations of ball k: one row per loaded contact and tangent direction t,
-  //   (orbit e_z x x + w x lever - ring surface velocity) . t = 0,
-  // in the unknowns (orbit * r_p / R, w): the orbit column is scaled by R / r_p so that both kinds
-  // of unknown weigh alike in the singular values. Rows weighted by sqrt(load).
-  struct Rolling {
-    Eigen::MatrixXd a = Eigen::MatrixXd(0, 4);
-    Eigen::VectorXd rhs = Eigen::VectorXd(0);
-    int contacts = 0;
-    double load = 0;
-  };
-  const double orbit_column_scale = m.element_radius / m.pitch_radius;
-  auto ball_position = [&](int k) {
-    const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
-    return Vec3(z[static_cast<std::size_t>(b.slot[sx])], z[static_cast<std::size_t>(b.slot[sy])],
-                z[static_cast<std::size_t>(b.slot[sz])]);
-  };
-  std::vector<Rolling> rolling(static_cast<std::size_t>(m.element_count));
-  for (int k = 0; k < m.element_count; ++k) {
-    const Vec3 x = ball_position(k);
-    Rolling& eqs = rolling[static_cast<std::size_t>(k)];
-    for (const auto& seg : m.segments) {
-      if (seg.element != k || (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove))
-        continue;
-      const SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
-      const auto& g = m.law<contact::BallGrooveSegment>(seg);
-      SpatialKinematics at_rest = ring;
-      at_rest.velocity.setZero();
-      at_rest.angular_velocity.setZero();
-      SpatialKinematics ball_rest;
-      ball_rest.position = x;
-      const double q = contact::evaluate(g, at_rest, ball_rest).diagnostics.normal_force;
-      (seg.kind == SegmentKind::ball_inner_groove ? rep.inner_contact_force : rep.outer_contact_force)
-          [static_cast<std::size_t>(k)] += q;
-      if (q <= 0) continue;
-      ++eqs.contacts, eqs.load += q;
-      Vec3 point, normal;
-      groove_contact(g, ring, x, point, normal);
-      const Vec3 t1 = normal.cross(Vec3::UnitZ()).normalized(), t2 = normal.cross(t1);
-      const Vec3 ring_surface = ring.velocity + ring.angular_velocity.cross(point - ring.position);
-      const Vec3 lever = point - x, orbit_direction = Vec3::UnitZ().cross(x);
-      const double weight = std::sqrt(q);
-      for (const Vec3& t : {t1, t2}) {
-        eqs.a.conservativeResize(eqs.a.rows() + 1, 4);
-        eqs.rhs.conservativeResize(eqs.rhs.size() + 1);
-        eqs.a.row(eqs.a.rows() - 1) << weight * orbit_direction.dot(t) * orbit_column_scale,
-            weight * lever.cross(t).transpose();  // (w x lever) . t = w . (lever x t)
-        eqs.rhs[eqs.rhs.size() - 1] = weight * ring_surface.dot(t);
-      }
-    }
-  }
-  // Contacts on (nearly) one line leave the spin about that line (nearly) free: directions the
-  // equations fix less than 1e-3 as well as the best one are treated as free (minimum norm),
-  // instead of taking huge values from a near-singular fit. Singular values (SVD), not the
-  // diagonal of a column-pivoted QR: that rank decision depends on the orientation of the frame.
-  auto least_squares = [](const Eigen::MatrixXd& a, const Eigen::VectorXd& rhs) {
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    svd.setThreshold(1e-3);
-    return Eigen::VectorXd(svd.solve(rhs));
-  };
-  std::vector<double> orbit(static_cast<std::size_t>(m.element_count), seat.orbit);
-  std::vector<Vec3> spin(static_cast<std::size_t>(m.element_count), Vec3::Zero());
-  double held_load = 0, held_orbit = 0;
-  for (int k = 0; k < m.element_count; ++k) {
-    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
-    if (eqs.contacts < 2) continue;
-    const Eigen::VectorXd sol = least_squares(eqs.a, eqs.rhs);
-    orbit[static_cast<std::size_t>(k)] = sol[0] * orbit_column_scale;
-    spin[static_cast<std::size_t>(k)] = sol.tail<3>();
-    held_load += eqs.load, held_orbit += eqs.load * orbit[static_cast<std::size_t>(k)];
-  }
-  const double cage_speed = held_load > 0 ? held_orbit / held_load : seat.orbit;
-  z[static_cast<std::size_t>(cage.slot[swz])] = cage_speed;
-  for (int k = 0; k < m.element_count; ++k) {
-    const Rolling& eqs = rolling[static_cast<std::size_t>(k)];
-    if (eqs.contacts == 1) {
-      // Orbit with the cage; spin from the rolling rows with the orbit known.
-      orbit[static_cast<std::size_t>(k)] = cage_speed;
-      const Eigen::VectorXd rhs = eqs.rhs - eqs.a.col(0) * (cage_speed / orbit_column_scale);
-      spin[static_cast<std::size_t>(k)] = least_squares(eqs.a.rightCols<3>(), rhs);
-    } else if (eqs.contacts == 0) {
-      orbit[static_cast<std::size_t>(k)] = cage_speed;
-    }
-    const auto& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
-    const Vec3 v = orbit[static_cast<std::size_t>(k)] * Vec3::UnitZ().cross(ball_position(k));
-    for (int d = 0; d < 3; ++d) {
-      z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
-      z[static_cast<std::size_t>(b.slot[swx + d])] = spin[static_cast<std::size_t>(k)][d];
-    }
-  }
+  const double cage_speed = set_rolling_velocities(m, t0, seat.orbit, z, rep);
   rep.state = std::move(z);
   double q_max = 0;
-  for (int k = 0; k < m.element_count; ++k) q_max = std::max(q_max, rep.inner_contact_force[static_cast<std::size_t>(k)]);
+  for (double q : rep.inner_contact_force) q_max = std::max(q_max, q);
   rep.summary = fmt::format(
       "start-up: quasi-static seating in {} iterations (largest unbalanced force {:.3g} N); largest inner-groove "
       "ball load {:.4g} N; cage at {:.4g} rpm (rolling balls; epicyclic at the nominal contact angle {:.4g} rpm)",
