@@ -26,7 +26,7 @@
 #include "contact/segments/ball_segments.hpp"
 #include "contact/laws/line_contact.hpp"
 #include "contact/laws/point_contact.hpp"
-#include "contact/segments/spatial_segment_jacobian.hpp"
+#include "contact/segments/segment_jacobian.hpp"
 
 namespace raceway::contact::test {
 namespace {
@@ -183,7 +183,7 @@ SpatialSegmentResult evaluate_any(const AnySegment& s, const SpatialKinematics& 
 bool jacobian_any(const AnySegment& s, const SpatialKinematics& a, const SpatialKinematics& b,
                   const SpatialSegmentResult& base, const SpatialSteps& step, SpatialJacobian& jac) {
   return std::visit(
-      [&](const auto& seg) { return spatial_segment_jacobian(seg, a, b, base, step, jac); }, s);
+      [&](const auto& seg) { return segment_jacobian(seg, a, b, base, step, jac); }, s);
 }
 
 /// K of the whole contact: Hertz at the placement's contact angle, or Palmgren of all stations.
