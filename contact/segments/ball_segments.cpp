@@ -194,11 +194,14 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   const Vec3 tangential = traction.force_x * ex + traction.force_y * ey;
   const Vec3 f_ball = -q * n + tangential;
   finish_ball_contact(ring, ball,
-                      {point, f_ball, couple, q,
-                       q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0, film.central,
-                       length(slide_x, slide_y), sliding.spin,
-                       length(traction.force_x, traction.force_y), normal.elastic_energy,
-                       traction.power_loss + normal.damping_power + rolling_loss},
+                      {.point = point, .force_on_ball = f_ball, .couple_on_ball = couple,
+                       .normal_force = q,
+                       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0,
+                       .film_thickness = film.central, .slip_velocity = length(slide_x, slide_y),
+                       .spin_velocity = sliding.spin,
+                       .traction_force = length(traction.force_x, traction.force_y),
+                       .elastic_energy = normal.elastic_energy,
+                       .power_loss = traction.power_loss + normal.damping_power + rolling_loss},
                       r);
   return r;
 }
@@ -234,12 +237,13 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   const Vec3 f_ball = -q * n + friction;
   const double cbrt_q = std::cbrt(q);
   const double ab = hertz.a_coefficient * hertz.b_coefficient * cbrt_q * cbrt_q;
-  finish_ball_contact(cage, ball,
-                      {point, f_ball, Vec3::Zero(), q,
-                       q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0, 0.0, speed,
-                       (ball.angular_velocity - cage.angular_velocity).dot(n), per_speed * q * speed,
-                       normal.elastic_energy, per_speed * q * speed * speed + normal.damping_power},
-                      r);
+  const BallContact contact{
+      .point = point, .force_on_ball = f_ball, .couple_on_ball = Vec3::Zero(), .normal_force = q,
+      .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0, .film_thickness = 0.0,
+      .slip_velocity = speed, .spin_velocity = (ball.angular_velocity - cage.angular_velocity).dot(n),
+      .traction_force = per_speed * q * speed, .elastic_energy = normal.elastic_energy,
+      .power_loss = per_speed * q * speed * speed + normal.damping_power};
+  finish_ball_contact(cage, ball, contact, r);
   return r;
 }
 

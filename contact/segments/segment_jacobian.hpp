@@ -28,25 +28,24 @@ enum SpatialComponent : int {
 };
 inline constexpr int spatial_components = 12;
 
-/// Planar block: rows A fx fy mz, B fx fy mz; columns A's six components (Component), then B's.
-using PlanarSteps = std::array<double, 2 * kinematic_components>;
-using PlanarJacobian = std::array<PlanarSteps, 6>;
-/// Spatial block: rows A force x y z, A moment x y z, B force x y z, B moment x y z (bearing
-/// frame, at the bodies' centres, as in SpatialWrench); columns A's twelve components, then B's.
-using SpatialSteps = std::array<double, 2 * spatial_components>;
-using SpatialJacobian = std::array<SpatialSteps, 12>;
+/// The shape of a segment's block: `Components` columns per body (A's first, then B's), `Rows`
+/// wrench rows, and the result type the rows are read from.
+template <class SegmentResultType, int Components, int Rows>
+struct JacobianLayout {
+  using Result = SegmentResultType;
+  using Steps = std::array<double, 2 * Components>;
+  using Matrix = std::array<Steps, Rows>;
+  static constexpr int components = Components;
+};
 
-/// What the finite-difference Jacobian needs of a kinematics type: its result type, the block's
-/// shape, how to perturb one component of a body, and the block's rows read from a result.
+/// What the finite-difference Jacobian needs of a kinematics type: its layout, how to perturb one
+/// component of a body, and the block's rows read from a result.
 template <class Kinematics>
 struct JacobianShape;
 
+/// Planar block: rows A fx fy mz, B fx fy mz; columns A's six components (Component), then B's.
 template <>
-struct JacobianShape<PlanarKinematics> {
-  using Result = SegmentResult;
-  using Steps = PlanarSteps;
-  using Matrix = PlanarJacobian;
-  static constexpr int components = kinematic_components;
+struct JacobianShape<PlanarKinematics> : JacobianLayout<SegmentResult, kinematic_components, 6> {
   static void perturb(PlanarKinematics& k, int component, double h) {
     double* field[kinematic_components] = {&k.x, &k.y, &k.theta, &k.vx, &k.vy, &k.omega};
     *field[component] += h;
@@ -56,12 +55,11 @@ struct JacobianShape<PlanarKinematics> {
   }
 };
 
+/// Spatial block: rows A force x y z, A moment x y z, B force x y z, B moment x y z (bearing
+/// frame, at the bodies' centres, as in SpatialWrench); columns A's twelve components
+/// (SpatialComponent), then B's.
 template <>
-struct JacobianShape<SpatialKinematics> {
-  using Result = SpatialSegmentResult;
-  using Steps = SpatialSteps;
-  using Matrix = SpatialJacobian;
-  static constexpr int components = spatial_components;
+struct JacobianShape<SpatialKinematics> : JacobianLayout<SpatialSegmentResult, spatial_components, 12> {
   static void perturb(SpatialKinematics& k, int component, double h) {
     const int axis = component % 3;
     switch (component / 3) {
@@ -81,6 +79,11 @@ struct JacobianShape<SpatialKinematics> {
     return out;
   }
 };
+
+using PlanarSteps = JacobianShape<PlanarKinematics>::Steps;
+using PlanarJacobian = JacobianShape<PlanarKinematics>::Matrix;
+using SpatialSteps = JacobianShape<SpatialKinematics>::Steps;
+using SpatialJacobian = JacobianShape<SpatialKinematics>::Matrix;
 
 /// d(wrench on A, wrench on B) / d(kinematics of A, kinematics of B) by forward differences around
 /// `base` (the unperturbed result, already computed by the caller). Column j is skipped (left zero)
