@@ -112,12 +112,12 @@ using Placement = Placed<PlanarKinematics>;
 
 /// Places body B for segment configuration `c` so that the segment's approach is `approach` [m]
 /// (negative: apart by that much), with the test's normal (expected_normal_on_b) and a point on the
-/// line of action (the contact point of the undeformed surfaces up to the approach). `direction` [rad] is the bearing-frame angle of the line the
-/// contact acts along: race, the ray from the ring centre through the roller centre; bar, the pocket's
-/// radial line (A's theta is set to direction - pocket_angle); land, the cage's eccentricity from the
-/// ring centre (B, the ring, is placed opposite). `shift` [m]: bar only, radial offset of the roller
-/// from the pocket centre. A's position, velocities and spin are taken from `a`; B's theta, velocities
-/// and spin from `b_motion`.
+/// line of action (on an undeformed surface). `direction` [rad] is the bearing-frame angle of the
+/// line the contact acts along: race, the ray from the ring centre through the roller centre; bar,
+/// the pocket's radial line (A's theta is set to direction - pocket_angle); land, the cage's
+/// eccentricity from the ring centre (B, the ring, is placed opposite). `shift` [m]: bar only,
+/// radial offset of the roller from the pocket centre. A's position, velocities and spin are taken
+/// from `a`; B's theta, velocities and spin from `b_motion`.
 Placement place(const SegmentCase& c, const AnySegment& s, PlanarKinematics a,
                 PlanarKinematics b_motion, double approach, double direction, double shift = 0);
 

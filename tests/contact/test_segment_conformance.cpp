@@ -87,10 +87,12 @@ TYPED_TEST(SegmentConformance, ContinuousAtOnset) {
     }
     // The elastic law alone grows exactly like approach^n.
     const auto elastic = K::make(c, {.damping = false, .traction = false});
+    auto force_at = [&](double approach, double dir) {
+      return K::wrenches(evaluate_at<K>(elastic, K::placed(c, elastic, approach, dir, K::motions()[1]))).force_b.norm();
+    };
     for (const double dir : roller::directions) {
       for (const auto& [from, to, tolerance] : {std::array{1e-8, 1e-6, 1e-7}, std::array{1e-7, 1e-6, 1e-6}}) {
-        const double f1 = K::wrenches(evaluate_at<K>(elastic, K::placed(c, elastic, from, dir, K::motions()[1]))).force_b.norm();
-        const double f2 = K::wrenches(evaluate_at<K>(elastic, K::placed(c, elastic, to, dir, K::motions()[1]))).force_b.norm();
+        const double f1 = force_at(from, dir), f2 = force_at(to, dir);
         ASSERT_GT(f1, 0.0);
         EXPECT_NEAR(std::log(f2 / f1) / std::log(to / from), n_exp, tolerance);
       }
@@ -322,8 +324,12 @@ TYPED_TEST(SegmentConformance, Validity) {
     const double limit = K::approach_limit(c);
     for (const auto& m : {K::motions()[1], K::motions()[2]}) {
       for (const double dir : {0.5, 0.37, 2.1, -2.6}) {
-        for (const double inside : {0.98, 0.99}) EXPECT_TRUE(evaluate_at<K>(seg, K::placed(c, seg, inside * limit, dir, m)).valid);
-        for (const double beyond : {1.01, 1.02}) EXPECT_FALSE(evaluate_at<K>(seg, K::placed(c, seg, beyond * limit, dir, m)).valid);
+        for (const double inside : {0.98, 0.99}) {
+          EXPECT_TRUE(evaluate_at<K>(seg, K::placed(c, seg, inside * limit, dir, m)).valid);
+        }
+        for (const double beyond : {1.01, 1.02}) {
+          EXPECT_FALSE(evaluate_at<K>(seg, K::placed(c, seg, beyond * limit, dir, m)).valid);
+        }
       }
     }
     for (const double approach : {5e-6, 1e-5, -1e-5}) {

@@ -68,7 +68,8 @@ TYPED_TEST(SegmentJacobian, MatchesCentralDifferences) {
                                             K::wrenches(evaluate_at<K>(seg, minus)), 1.0 / (2 * central[j]));
             const Wrenches got = K::column(jac, j);
             const double floor = K::jacobian_roundoff * f / forward[j];
-            EXPECT_LE(weighted_norm<K>(difference(got, ref, 1.0)), K::jacobian_relative * weighted_norm<K>(ref) + floor)
+            EXPECT_LE(weighted_norm<K>(difference(got, ref, 1.0)),
+                      K::jacobian_relative * weighted_norm<K>(ref) + floor)
                 << "column " << j << " dir " << dir << " |ref| " << weighted_norm<K>(ref);
             // Action = reaction carries to the block: A's force rows are minus B's.
             const double col = weighted_norm<K>(got);
