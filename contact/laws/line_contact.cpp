@@ -1,9 +1,9 @@
 #include "contact/laws/line_contact.hpp"
 
-#include "contact/laws/damping.hpp"
-
 #include <cmath>
 #include <stdexcept>
+
+#include "contact/laws/damping.hpp"
 
 namespace raceway::contact {
 
