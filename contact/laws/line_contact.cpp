@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "contact/laws/damping.hpp"
+
 namespace raceway::contact {
 
 double reduced_modulus(double youngs_1, double poisson_1, double youngs_2, double poisson_2) {
@@ -45,10 +47,9 @@ NormalForce evaluate_normal(const LineContactLaw& law, double approach, double a
     out.elastic_force += f;
     out.elastic_energy += f * d / (n + 1.0);
   }
-  const double total = out.elastic_force * (1.0 + law.damping_factor * approach_rate);
-  // Hunt-Crossley can only push: a fast separation would give tension, which a contact cannot carry.
-  out.force = total > 0 ? total : 0.0;
-  out.damping_power = (out.force - out.elastic_force) * approach_rate;
+  const DampedForce damped = hunt_crossley(out.elastic_force, law.damping_factor, approach_rate);
+  out.force = damped.force;
+  out.damping_power = damped.damping_power;
   return out;
 }
 

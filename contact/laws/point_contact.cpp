@@ -1,4 +1,4 @@
-// Point-contact laws (contact/point_contact.hpp, DESIGN.md 3.3).
+// Point-contact laws (contact/laws/point_contact.hpp).
 //
 // Hertz's elliptical contact, after Johnson, Contact Mechanics (1985), ch. 3 (pressure on an
 // elliptical region) and sec. 4.2, and Harris & Kotzalas, Essential Concepts of Bearing Technology

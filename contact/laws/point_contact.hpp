@@ -1,4 +1,4 @@
-// Point-contact laws for ball bearings (DESIGN.md 3.3): Hertz's elliptical contact with exact
+// Point-contact laws for ball bearings: Hertz's elliptical contact with exact
 // ellipticity, Hamrock-Dowson EHL film, traction integrated over a grid on the contact ellipse from
 // the local sliding velocity (including spin), and EHL rolling resistance.
 //

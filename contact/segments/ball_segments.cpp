@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "contact/laws/damping.hpp"
+
 namespace raceway::contact {
 namespace {
 
@@ -38,18 +40,19 @@ inline double circumferential(const Vec3& b_position, const Vec3& f_b) {
   return (-b_position.y() * f_b.x() + b_position.x() * f_b.y()) / r;
 }
 
-/// Hunt-Crossley on a Hertz point contact: Q = K delta^1.5 (1 + c d(delta)/dt), clipped at zero.
-struct HuntCrossley {
+/// Hertz point contact with Hunt-Crossley damping: Q = K delta^1.5 (1 + c d(delta)/dt), clipped at
+/// zero (damping.hpp); elastic energy (2/5) K delta^2.5.
+struct HertzNormal {
   double force = 0, elastic_energy = 0, damping_power = 0;
 };
-inline HuntCrossley hertz_hunt_crossley(double stiffness, double damping_factor, double approach,
-                                        double approach_rate) {
+inline HertzNormal hertz_hunt_crossley(double stiffness, double damping_factor, double approach,
+                                       double approach_rate) {
   const double elastic = stiffness * approach * std::sqrt(approach);
-  const double total = elastic * (1.0 + damping_factor * approach_rate);
-  HuntCrossley h;
-  h.force = total > 0 ? total : 0.0;  // a contact cannot pull
+  const DampedForce damped = hunt_crossley(elastic, damping_factor, approach_rate);
+  HertzNormal h;
+  h.force = damped.force;
   h.elastic_energy = 0.4 * elastic * approach;
-  h.damping_power = (h.force - elastic) * approach_rate;  // >= 0 in both branches
+  h.damping_power = damped.damping_power;
   return h;
 }
 
@@ -77,6 +80,32 @@ inline void check_finite(SpatialSegmentResult& r) {
                      d.max_pressure + d.film_thickness + d.slip_velocity + d.spin_velocity +
                      d.traction_force + d.circumferential_force + d.elastic_energy + d.power_loss;
   if (!std::isfinite(sum)) r = invalid_result(d.approach);
+}
+
+/// What a ball's point contact (groove, pocket) hands on once its laws are evaluated: the force
+/// and couple on the ball at the contact point, and the diagnostics that differ between the two.
+struct BallContact {
+  Vec3 point, force_on_ball, couple_on_ball;
+  double normal_force, max_pressure, film_thickness, slip_velocity, spin_velocity, traction_force,
+      elastic_energy, power_loss;
+};
+
+/// The common tail of the ball's point contacts: puts the wrench on both bodies and fills the
+/// diagnostics (the caller has set approach, contact angle and validity).
+inline void finish_ball_contact(const SpatialKinematics& a, const SpatialKinematics& ball,
+                                const BallContact& c, SpatialSegmentResult& r) {
+  apply_at_point(a, ball, c.point, c.force_on_ball, c.couple_on_ball, r);
+  PointDiagnostics& d = r.diagnostics;
+  d.normal_force = c.normal_force;
+  d.max_pressure = c.max_pressure;
+  d.film_thickness = c.film_thickness;
+  d.slip_velocity = c.slip_velocity;
+  d.spin_velocity = c.spin_velocity;
+  d.traction_force = c.traction_force;
+  d.circumferential_force = circumferential(ball.position, c.force_on_ball);
+  d.elastic_energy = c.elastic_energy;
+  d.power_loss = c.power_loss;
+  check_finite(r);
 }
 
 }  // namespace
@@ -116,7 +145,7 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   // Hertz at s = cos(contact angle); relative curvatures for the film.
   const double cos_angle = std::abs(n_rad);
   const HertzPointContact hertz = s.normal.hertz.at(cos_angle);
-  const HuntCrossley normal =
+  const HertzNormal normal =
       hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
   r.valid = approach <= s.normal.max_approach;
   const double q = normal.force;
@@ -164,19 +193,16 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   }
   const Vec3 tangential = traction.force_x * ex + traction.force_y * ey;
   const Vec3 f_ball = -q * n + tangential;
-  apply_at_point(ring, ball, point, f_ball, couple, r);
-
-  PointDiagnostics& d = r.diagnostics;
-  d.normal_force = q;
-  d.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0;
-  d.film_thickness = film.central;
-  d.slip_velocity = length(slide_x, slide_y);
-  d.spin_velocity = sliding.spin;
-  d.traction_force = length(traction.force_x, traction.force_y);
-  d.circumferential_force = circumferential(ball.position, f_ball);
-  d.elastic_energy = normal.elastic_energy;
-  d.power_loss = traction.power_loss + normal.damping_power + rolling_loss;
-  check_finite(r);
+  finish_ball_contact(ring, ball,
+                      {.point = point, .force_on_ball = f_ball, .couple_on_ball = couple,
+                       .normal_force = q,
+                       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0,
+                       .film_thickness = film.central, .slip_velocity = length(slide_x, slide_y),
+                       .spin_velocity = sliding.spin,
+                       .traction_force = length(traction.force_x, traction.force_y),
+                       .elastic_energy = normal.elastic_energy,
+                       .power_loss = traction.power_loss + normal.damping_power + rolling_loss},
+                      r);
   return r;
 }
 
@@ -199,7 +225,7 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   const Vec3 v_rel = point_velocity(ball, point) - point_velocity(cage, point);
   const double approach_rate = n.dot(v_rel);
   const HertzPointContact hertz = s.normal.hertz.at(1.0);
-  const HuntCrossley normal =
+  const HertzNormal normal =
       hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
   r.valid = approach <= s.normal.max_approach;
   const double q = normal.force;
@@ -209,20 +235,15 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   const double per_speed = friction_per_speed(s.friction, speed);
   const Vec3 friction = -(per_speed * q) * slide;
   const Vec3 f_ball = -q * n + friction;
-  apply_at_point(cage, ball, point, f_ball, Vec3::Zero(), r);
-
-  PointDiagnostics& dg = r.diagnostics;
-  dg.normal_force = q;
   const double cbrt_q = std::cbrt(q);
   const double ab = hertz.a_coefficient * hertz.b_coefficient * cbrt_q * cbrt_q;
-  dg.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0;
-  dg.slip_velocity = speed;
-  dg.spin_velocity = (ball.angular_velocity - cage.angular_velocity).dot(n);
-  dg.traction_force = per_speed * q * speed;
-  dg.circumferential_force = circumferential(ball.position, f_ball);
-  dg.elastic_energy = normal.elastic_energy;
-  dg.power_loss = per_speed * q * speed * speed + normal.damping_power;
-  check_finite(r);
+  const BallContact contact{
+      .point = point, .force_on_ball = f_ball, .couple_on_ball = Vec3::Zero(), .normal_force = q,
+      .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0, .film_thickness = 0.0,
+      .slip_velocity = speed, .spin_velocity = (ball.angular_velocity - cage.angular_velocity).dot(n),
+      .traction_force = per_speed * q * speed, .elastic_energy = normal.elastic_energy,
+      .power_loss = per_speed * q * speed * speed + normal.damping_power};
+  finish_ball_contact(cage, ball, contact, r);
   return r;
 }
 

@@ -1,4 +1,4 @@
-// Spatial contact segments of a ball bearing (DESIGN.md 3.2): ball-groove (one per groove arc:
+// Spatial contact segments of a ball bearing: ball-groove (one per groove arc:
 // two per ring for a four-point bearing), ball-cage pocket, and cage-land guidance.
 //
 // A segment evaluation is a pure function: (its parameters, the kinematics of its two bodies A and
@@ -26,6 +26,7 @@
 
 #include "contact/laws/line_contact.hpp"
 #include "contact/laws/point_contact.hpp"
+#include "contact/segments/segment_result.hpp"
 
 namespace raceway::contact {
 
@@ -67,11 +68,7 @@ struct PointDiagnostics {
 };
 inline constexpr int point_diagnostics_count = 11;
 
-struct SpatialSegmentResult {
-  SpatialWrench on_a, on_b;
-  PointDiagnostics diagnostics;
-  bool valid = true;  ///< false: a law left its valid range (recoverable: retry a smaller step)
-};
+using SpatialSegmentResult = ContactResult<SpatialWrench, PointDiagnostics>;
 
 /// Normal law of a point contact: Hertz, Q = K(s) delta^1.5, with Hunt-Crossley damping
 /// Q = K delta^1.5 (1 + damping_factor * d(delta)/dt), clipped at zero (a contact cannot pull).

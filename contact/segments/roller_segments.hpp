@@ -1,4 +1,5 @@
-// Planar contact segments of a cylindrical roller bearing (DESIGN.md 3.2).
+// Planar contact segments of a cylindrical roller bearing: roller-race, roller-cage bar and
+// cage-land line contacts (README.md, "What is modelled (planar cylindrical roller bearing)").
 //
 // A segment is a place where contact can happen between two bodies A and B. Evaluating it is a pure
 // function: (its parameters, the kinematics of A and B) -> the force and moment on each body at the
@@ -9,6 +10,7 @@
 #pragma once
 
 #include "contact/laws/line_contact.hpp"
+#include "contact/segments/segment_result.hpp"
 
 namespace raceway::contact {
 
@@ -39,11 +41,7 @@ struct SegmentDiagnostics {
 };
 inline constexpr int diagnostics_count = 6;
 
-struct SegmentResult {
-  PlanarWrench on_a, on_b;
-  SegmentDiagnostics diagnostics;
-  bool valid = true;  ///< false: the law left its valid range (recoverable: retry a smaller step)
-};
+using SegmentResult = ContactResult<PlanarWrench, SegmentDiagnostics>;
 
 /// Roller on a raceway. A = ring, B = roller. `internal`: outer race (roller inside a bore).
 struct RollerRaceSegment {

@@ -1,6 +1,6 @@
-// The line-contact law on its own (contact/line_contact.hpp): Palmgren's classical constant, the
+// The line-contact law on its own (contact/laws/line_contact.hpp): Palmgren's classical constant, the
 // sliced law, Hunt-Crossley damping and validity. The segment-level versions of these checks run for
-// every segment in test_segment_conformance.cpp.
+// every segment kind in test_segment_conformance.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Point-contact laws on their own (contact/point_contact.hpp): the exact Hertz solution against
+// Point-contact laws on their own (contact/laws/point_contact.hpp): the exact Hertz solution against
 // independent formulations and closed forms, the Hertz table, the Hamrock-Dowson film, traction
 // integrated over the contact ellipse (equilibrium, symmetry, energy, limits, grid convergence) and
 // EHL rolling resistance.
@@ -195,7 +195,7 @@ TEST(HertzPointContact, RejectsDegenerateInput) {
 // 0.2018 /mm and F(rho) = 0.9399, for the outer race 0.1378 /mm and 0.9121 (values recalled from
 // the book; the stored search corpora did not hold it, so these are cross-checked here only through
 // the geometry). Hamrock & Brewe's closed forms (k 1.5 % high here, 6 % at Ry/Rx = 100) are 1.6 %
-// stiff at the inner race: not good enough (DESIGN.md 3.3), while the table is within 1e-4 of exact.
+// stiff at the inner race, while the table is within 1e-4 of exact: the segments use the table.
 TEST(HertzPointContact, Bearing209AgainstClosedForms) {
   const double e_star = steel_e_star();
   double kx = 0, ky = 0;

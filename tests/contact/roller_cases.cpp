@@ -1,8 +1,8 @@
-#include "segment_cases.hpp"
+#include "roller_cases.hpp"
 
 #include <stdexcept>
 
-namespace raceway::contact::test {
+namespace raceway::contact::test::roller {
 
 std::vector<SegmentCase> all_segment_cases() {
   using namespace seed002;
@@ -31,51 +31,26 @@ AnySegment make_segment(const SegmentCase& c, const LawOptions& o) {
   const double e_star = reduced_modulus(c.youngs_a, c.poisson_a, c.youngs_b, c.poisson_b);
   const LineContactLaw law = make_line_contact_law(e_star, c.length, o.slices, o.crown_drop,
                                                    o.damping ? damping_factor : 0.0, o.max_approach);
-  TractionCurve traction;
-  traction.friction_coefficient = o.traction ? friction_coefficient : 0.0;
-  traction.slip_velocity_scale = slip_velocity_scale;
+  const TractionCurve traction{o.traction ? friction_coefficient : 0.0, slip_velocity_scale};
   switch (c.kind) {
-    case Kind::race: {
-      RollerRaceSegment s;
-      s.race_radius = c.internal ? outer_race_radius : inner_race_radius;
-      s.roller_radius = roller_radius;
-      s.internal = c.internal;
-      s.law = law;
-      s.traction = traction;
-      return s;
-    }
-    case Kind::bar: {
-      CageBarSegment s;
-      s.pitch_radius = pitch_radius;
-      s.pocket_angle = pocket_angle;
-      s.half_clearance = 0.5 * pocket_clearance;
-      s.roller_radius = roller_radius;
-      s.side = c.side;
-      s.law = law;
-      s.traction = traction;
-      return s;
-    }
-    case Kind::land: {
-      CageLandSegment s;
-      s.land_radius = c.internal ? outer_land_radius : inner_land_radius;
-      s.clearance = land_clearance;
-      s.outer_land = c.internal;
-      s.law = law;
-      s.traction = traction;
-      return s;
-    }
+    case Kind::race:
+      return RollerRaceSegment{.race_radius = c.internal ? outer_race_radius : inner_race_radius,
+                               .roller_radius = roller_radius, .internal = c.internal, .law = law,
+                               .traction = traction};
+    case Kind::bar:
+      return CageBarSegment{.pitch_radius = pitch_radius, .pocket_angle = pocket_angle,
+                            .half_clearance = 0.5 * pocket_clearance, .roller_radius = roller_radius,
+                            .side = c.side, .law = law, .traction = traction};
+    case Kind::land:
+      return CageLandSegment{.land_radius = c.internal ? outer_land_radius : inner_land_radius,
+                             .clearance = land_clearance, .outer_land = c.internal, .law = law,
+                             .traction = traction};
   }
   throw std::logic_error("make_segment: unknown kind");
 }
 
 SegmentResult evaluate_any(const AnySegment& s, const PlanarKinematics& a, const PlanarKinematics& b) {
   return std::visit([&](const auto& seg) { return evaluate(seg, a, b); }, s);
-}
-
-bool jacobian_any(const AnySegment& s, const PlanarKinematics& a, const PlanarKinematics& b,
-                  const SegmentResult& base, const std::array<double, 12>& step,
-                  std::array<std::array<double, 12>, 6>& jac) {
-  return std::visit([&](const auto& seg) { return segment_jacobian(seg, a, b, base, step, jac); }, s);
 }
 
 double expected_stiffness(const SegmentCase& c) {
@@ -93,18 +68,38 @@ PlanarKinematics moving(double vx, double vy, double omega, double theta) {
   return k;
 }
 
+namespace {
+Vec3 vec3(Vec v) { return {v[0], v[1], 0.0}; }
+}  // namespace
+
+std::vector<Motion> motions() {
+  return {
+      {moving(0, 0, 0), moving(0, 0, 0)},
+      {moving(0.02, -0.01, 3.0), moving(-0.25, 0.4, -40.0)},
+      {moving(0.004, -0.003, 0.8), moving(-0.006, 0.005, -2.5)},
+      {moving(-0.3, 0.1, 30.0), moving(0.5, 0.2, 60.0)},
+  };
+}
+
+double wrench_norm(const SegmentResult& r) {
+  return std::abs(r.on_a.fx) + std::abs(r.on_a.fy) + std::abs(r.on_a.mz) + std::abs(r.on_b.fx) +
+         std::abs(r.on_b.fy) + std::abs(r.on_b.mz);
+}
+
 Placement place(const SegmentCase& c, const AnySegment& s, PlanarKinematics a,
                 PlanarKinematics b_motion, double approach, double direction, double shift) {
   Placement p{a, b_motion};
   const Vec u = unit(direction);
-  double distance = 0;  // from A's reference point to B's centre along u
-  Vec origin = position(a);
+  Vec line_point{};  // on the line of action of the normal force
   switch (c.kind) {
     case Kind::race: {
       const auto& race = std::get<RollerRaceSegment>(s);
       // Inner race: roller outside the race, approach = R + r - d. Outer race: approach = d + r - R.
-      distance = c.internal ? race.race_radius - race.roller_radius + approach
-                            : race.race_radius + race.roller_radius - approach;
+      const double distance = c.internal ? race.race_radius - race.roller_radius + approach
+                                         : race.race_radius + race.roller_radius - approach;
+      p.b.x = a.x + distance * u[0];
+      p.b.y = a.y + distance * u[1];
+      line_point = {a.x + race.race_radius * u[0], a.y + race.race_radius * u[1]};
       break;
     }
     case Kind::bar: {
@@ -115,17 +110,21 @@ Placement place(const SegmentCase& c, const AnySegment& s, PlanarKinematics a,
       const double along = bar.side * (bar.half_clearance + approach);
       p.b.x = a.x + (bar.pitch_radius + shift) * u[0] + along * t[0];
       p.b.y = a.y + (bar.pitch_radius + shift) * u[1] + along * t[1];
-      return p;
+      line_point = {p.b.x + bar.side * bar.roller_radius * t[0], p.b.y + bar.side * bar.roller_radius * t[1]};
+      break;
     }
     case Kind::land: {
       const auto& land = std::get<CageLandSegment>(s);
       // The cage sits at eccentricity (clearance + approach) along u from the ring centre.
-      distance = -(land.clearance + approach);
+      const double distance = -(land.clearance + approach);
+      p.b.x = a.x + distance * u[0];
+      p.b.y = a.y + distance * u[1];
+      line_point = {p.b.x + land.land_radius * u[0], p.b.y + land.land_radius * u[1]};
       break;
     }
   }
-  p.b.x = origin[0] + distance * u[0];
-  p.b.y = origin[1] + distance * u[1];
+  p.normal_on_b = vec3(expected_normal_on_b(c, p));
+  p.point = vec3(line_point);
   return p;
 }
 
@@ -173,7 +172,13 @@ PlanarKinematics rotate_body(PlanarKinematics k, double angle) {
 }  // namespace
 
 Placement rotated(const Placement& p, double angle) {
-  return {rotate_body(p.a, angle), rotate_body(p.b, angle)};
+  Placement q = p;
+  q.a = rotate_body(p.a, angle);
+  q.b = rotate_body(p.b, angle);
+  const double c = std::cos(angle), s = std::sin(angle);
+  rotate_in_place(q.normal_on_b.x(), q.normal_on_b.y(), c, s);
+  rotate_in_place(q.point.x(), q.point.y(), c, s);
+  return q;
 }
 
 Placement translated(const Placement& p, double dx, double dy) {
@@ -182,6 +187,7 @@ Placement translated(const Placement& p, double dx, double dy) {
   q.a.y += dy;
   q.b.x += dx;
   q.b.y += dy;
+  q.point += Vec3(dx, dy, 0.0);
   return q;
 }
 
@@ -200,4 +206,4 @@ double power_on_bodies(const SegmentResult& r, const Placement& p) {
          r.on_b.fy * p.b.vy + r.on_b.mz * p.b.omega;
 }
 
-}  // namespace raceway::contact::test
+}  // namespace raceway::contact::test::roller

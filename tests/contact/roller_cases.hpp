@@ -1,11 +1,12 @@
-// Test support for the contact conformance suite (STYLE.md habit 11): the six planar segment
-// configurations of the seed-002 cylindrical roller bearing, built with realistic SI numbers, and a
-// placement helper that puts body B where the segment's approach has a chosen value along a chosen
-// direction, with arbitrary velocities and spins.
+// Test support for the planar (roller) segments: the six segment configurations of the seed-002
+// cylindrical roller bearing, built with realistic SI numbers, and a placement helper that puts body
+// B where the segment's approach has a chosen value along a chosen direction, with arbitrary
+// velocities and spins.
 //
-// Every check in tests/contact runs the SAME code for each configuration through a value-parameterised
+// The typed conformance suite (test_segment_conformance.cpp) runs these configurations next to the
+// ball segments'; the roller-specific checks run each configuration through a value-parameterised
 // fixture (SegmentTest). The test's own statements of the geometry (expected_normal_on_b,
-// expected_stiffness) are written here independently of contact/*.cpp, so that they can disagree with it.
+// expected_stiffness) are written here independently of contact/, so that they can disagree with it.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -15,14 +16,15 @@
 #include <numbers>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "contact/laws/line_contact.hpp"
 #include "contact/segments/roller_segments.hpp"
-#include "contact/segments/segment_jacobian.hpp"
+#include "placement.hpp"
 
-namespace raceway::contact::test {
+namespace raceway::contact::test::roller {
 
 /// Seed 002 (13-roller cylindrical roller bearing), SI units. Values not given by the paper are marked.
 namespace seed002 {
@@ -40,7 +42,7 @@ inline constexpr double land_clearance = 0.3e-3;    // radial
 inline constexpr double damping_factor = 0.5;       // s/m
 inline constexpr double friction_coefficient = 0.1;
 inline constexpr double slip_velocity_scale = 0.05;  // m/s
-// Not in the paper: taken as solver/model.cpp builds them (a land rib half a roller radius high,
+// Not in the paper: taken as solver/bearing/model.cpp builds them (a land rib half a roller radius high,
 // land width half the roller length, validity limit 2 % of the roller radius); the bar segments use
 // pocket 3 of 13.
 inline constexpr double inner_land_radius = inner_race_radius + 0.5 * roller_radius;  // 20.57 mm
@@ -80,9 +82,6 @@ using AnySegment = std::variant<RollerRaceSegment, CageBarSegment, CageLandSegme
 
 AnySegment make_segment(const SegmentCase& c, const LawOptions& options = {});
 SegmentResult evaluate_any(const AnySegment& s, const PlanarKinematics& a, const PlanarKinematics& b);
-bool jacobian_any(const AnySegment& s, const PlanarKinematics& a, const PlanarKinematics& b,
-                  const SegmentResult& base, const std::array<double, 12>& step,
-                  std::array<std::array<double, 12>, 6>& jac);
 
 /// Palmgren K computed by the test from the configuration's materials: 0.70866 E* l^(8/9).
 double expected_stiffness(const SegmentCase& c);
@@ -99,17 +98,26 @@ inline Vec force(const PlanarWrench& w) { return {w.fx, w.fy}; }
 /// Kinematics from velocities and spin (position left at zero).
 PlanarKinematics moving(double vx, double vy, double omega, double theta = 0);
 
-struct Placement {
-  PlanarKinematics a, b;
-};
+/// Motions of (A, B) used across the checks: at rest; running (A slow, B fast, arbitrary directions);
+/// a slow creep in the linear part of the traction curve; both spinning fast. Approach rates stay
+/// below 2 m/s, so that Hunt-Crossley damping (0.5 s/m) never clips the force in contact.
+using Motion = std::pair<PlanarKinematics, PlanarKinematics>;
+std::vector<Motion> motions();
+inline constexpr double directions[] = {0.37, 2.1, -2.6};
+
+/// Sum of the magnitudes of all force and moment components on both bodies.
+double wrench_norm(const SegmentResult& r);
+
+using Placement = Placed<PlanarKinematics>;
 
 /// Places body B for segment configuration `c` so that the segment's approach is `approach` [m]
-/// (negative: apart by that much). `direction` [rad] is the bearing-frame angle of the line the
-/// contact acts along: race, the ray from the ring centre through the roller centre; bar, the pocket's
-/// radial line (A's theta is set to direction - pocket_angle); land, the cage's eccentricity from the
-/// ring centre (B, the ring, is placed opposite). `shift` [m]: bar only, radial offset of the roller
-/// from the pocket centre. A's position, velocities and spin are taken from `a`; B's theta, velocities
-/// and spin from `b_motion`.
+/// (negative: apart by that much), with the test's normal (expected_normal_on_b) and a point on the
+/// line of action (on an undeformed surface). `direction` [rad] is the bearing-frame angle of the
+/// line the contact acts along: race, the ray from the ring centre through the roller centre; bar,
+/// the pocket's radial line (A's theta is set to direction - pocket_angle); land, the cage's
+/// eccentricity from the ring centre (B, the ring, is placed opposite). `shift` [m]: bar only,
+/// radial offset of the roller from the pocket centre. A's position, velocities and spin are taken
+/// from `a`; B's theta, velocities and spin from `b_motion`.
 Placement place(const SegmentCase& c, const AnySegment& s, PlanarKinematics a,
                 PlanarKinematics b_motion, double approach, double direction, double shift = 0);
 
@@ -121,12 +129,14 @@ Vec expected_normal_on_b(const SegmentCase& c, const Placement& p);
 /// Radius of B's surface at the contact: the roller radius (race, bar) or the ring's land radius.
 double surface_radius_b(const SegmentCase& c);
 
-/// The whole configuration rotated by `angle` about the bearing axis through the origin.
+/// The whole configuration (bodies, normal and point) rotated by `angle` about the bearing axis
+/// through the origin.
 Placement rotated(const Placement& p, double angle);
 /// The whole configuration translated by (dx, dy).
 Placement translated(const Placement& p, double dx, double dy);
 
-/// Rigid motion of both bodies over a time `dt` with their velocities and spins (first order).
+/// Rigid motion of both bodies over a time `dt` with their velocities and spins (first order);
+/// normal and point are left as they were.
 Placement advanced(const Placement& p, double dt);
 
 /// Sum of F.v + M omega over both bodies [W].
@@ -142,4 +152,4 @@ class SegmentTest : public ::testing::TestWithParam<SegmentCase> {
 /// Name generator for INSTANTIATE_TEST_SUITE_P.
 inline std::string case_name(const ::testing::TestParamInfo<SegmentCase>& info) { return info.param.name; }
 
-}  // namespace raceway::contact::test
+}  // namespace raceway::contact::test::roller
