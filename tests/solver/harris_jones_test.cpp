@@ -1,6 +1,7 @@
-// Validation V1 (DESIGN.md section 8): the roller loads of seed 002 against an independent
-// Harris-Jones quasi-static solution with the CONSISTENT equations (not the paper's Table 4, whose
-// eq. (a) applies 2 Fr and whose centrifugal constant belongs to 100 Hz).
+// Validation of the roller loads of seed 002 (docs/validation.md, "Seed 002, 13-roller cylindrical
+// roller bearing") against an independent Harris-Jones quasi-static solution with the CONSISTENT
+// equations (not the paper's Table 4, whose eq. (a) applies 2 Fr and whose centrifugal constant
+// belongs to 100 Hz: docs/references.md, Errata).
 //
 // Harris-Jones (seed 002 section 3, eq. 1-6): unknown radial displacement delta_r of the inner ring
 // along the load; roller j at psi_j = j 360/Z from the load line:

@@ -33,38 +33,6 @@ const char* class_name(VariableClass c) {
   return "?";
 }
 
-/// Central-difference steps per variable class, from the contact physics rather than from the
-/// solver settings: 1e-11 m is ~1e-5 of the loaded roller deflections (~1 um) and ~2e-3 of the
-/// lightest closed contact (cage on its land under its own weight, ~5 nm), so the O(h^2) error is
-/// <= 1e-5 relative; 1e-7 m/s is ~2e-6 of the traction slip scale (0.05 m/s). Angles and spin rates
-/// use the same surface displacement / speed at the pitch and roller radii.
-double central_step(const Model& m, VariableClass c) {
-  switch (c) {
-    case VariableClass::position: return 1e-11;
-    case VariableClass::angle: return 1e-11 / m.pitch_radius;
-    case VariableClass::velocity: return 1e-7;
-    case VariableClass::angular_velocity: return 1e-7 / m.element_radius;
-  }
-  return 0;
-}
-
-Eigen::MatrixXd central_difference_jacobian(Equations& eq, const Model& m, double t, const std::vector<double>& z) {
-  const int n = m.state_size;
-  Eigen::MatrixXd jac(n, n);
-  std::vector<double> zp = z, fp(n), fm(n);
-  for (int j = 0; j < n; ++j) {
-    const double h = central_step(m, m.state_class[j]);
-    zp[j] = z[j] + h;
-    EXPECT_EQ(eq.rhs(t, zp.data(), fp.data()), 0);
-    zp[j] = z[j] - h;
-    EXPECT_EQ(eq.rhs(t, zp.data(), fm.data()), 0);
-    zp[j] = z[j];
-    const double h2 = (z[j] + h) - (z[j] - h);  // the step actually taken in floating point
-    for (int i = 0; i < n; ++i) jac(i, j) = (fp[i] - fm[i]) / h2;
-  }
-  return jac;
-}
-
 int roller_of(const Model& m, int state) {
   return state < m.border_size ? -1 : (state - m.border_size) / ((m.state_size - m.border_size) / m.element_count);
 }
@@ -133,7 +101,7 @@ double check_state(Equations& eq, const Model& m, double t, const std::vector<do
         eq.segment_records()[s * SegmentRecord::size + SegmentRecord::diagnostics + 1] > 0)
       carrying.push_back(m.segments[s].element);
   EXPECT_FALSE(carrying.empty());
-  const Eigen::MatrixXd fd = central_difference_jacobian(eq, m, t, z);
+  const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, t, z);
 
   // Sparsity of the true Jacobian: no entry couples two different rollers, exactly.
   for (int i = m.border_size; i < m.state_size; ++i)
@@ -184,7 +152,7 @@ std::vector<double> state_after(Seed002& s, double t) {
 }
 
 // Tolerance 1e-3 of the column norm. The model Jacobian is a FORWARD difference (contact/
-// segment_jacobian.hpp) with step jacobian_perturbation * max(|z_j|, scale_j), scale = atol/rtol
+// segments/segment_jacobian.hpp) with step jacobian_perturbation * max(|z_j|, scale_j), scale = atol/rtol
 // (pitch radius for positions, surface speed for velocities), so its truncation error is the floor of
 // this comparison. Measured worst column errors (Release; the t = 20 ms states differ a little with
 // the increment, since the Jacobian steers CVODE's Newton iterations):
@@ -202,7 +170,7 @@ std::vector<double> state_after(Seed002& s, double t) {
 //    column, mass or sign fails at every increment);
 //  - DefaultIncrement*: the scene's own setting, as CVODE uses it. FAILS with the current step rule
 //    (reported to the lead). With position and angle steps 1e-3 * rel * scale, absolute (tried in a
-//    scratch copy of solver/equations.cpp), it gives 8.7e-5 at both states.
+//    scratch copy of solver/bearing/equations.cpp), it gives 8.7e-5 at both states.
 constexpr double tolerance = 1e-3;
 constexpr double short_run = 0.02;  // s: 0.8 shaft revolutions, roller-bar contacts closed
 const double increments[] = {1e-7, 1e-8, 1e-9, 1e-10};
