@@ -256,7 +256,8 @@ TEST(HarrisJones, SolverReproducesHandChecks) {
 
 TEST(HarrisJones, Seed002At40HzLoadZone) {
   // 0.15 s = 6 shaft revolutions; loads from the second half (about 1.2 cage revolutions, ~15 roller
-  // passages per bin). The lead's full 0.5 s run: HJ peak 316.33 N, simulated mean at psi = 0 316.8 N.
+  // passages per bin). The full 0.5 s (20-revolution) run of docs/validation.md: HJ peak 316.33 N,
+  // simulated mean at psi = 0 316.8 N.
   const RunResult r = run_shortened("seed002_40hz.toml", 0.15);
   const auto& hj = r.hj;
   ASSERT_EQ(hj.psi.size(), 13u);
