@@ -25,6 +25,20 @@ Fixture& fixture() {
   return f;
 }
 
+/// An empty Jacobian of the fixture's model: the rings' and cage's border, one block per roller.
+solver::BorderedMatrix empty_jacobian(const Fixture& f) {
+  const int nb = f.model.border_size, n = f.model.element_count;
+  return solver::BorderedMatrix(nb, n, (f.model.state_size - nb) / n);
+}
+
+/// The Newton matrix I - gamma J at the start-up state, gamma = 1e-6 s (the order of a CVODE step).
+solver::BorderedMatrix newton_matrix(Fixture& f) {
+  solver::BorderedMatrix j = empty_jacobian(f);
+  f.eq.jacobian(0.0, f.z.data(), j);
+  j.scale_add_identity(-1e-6);
+  return j;
+}
+
 void BM_RollerRaceSegment(benchmark::State& state) {
   auto& f = fixture();
   const auto& seg = f.model.segments[0];  // roller 0 (most loaded) on the inner race
@@ -44,18 +58,13 @@ BENCHMARK(BM_RightHandSide);
 
 void BM_Jacobian(benchmark::State& state) {
   auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.element_count;
-  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
+  solver::BorderedMatrix j = empty_jacobian(f);
   for (auto _ : state) benchmark::DoNotOptimize(f.eq.jacobian(0.0, f.z.data(), j));
 }
 BENCHMARK(BM_Jacobian);
 
 void BM_BorderedFactorSolve(benchmark::State& state) {
-  auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.element_count;
-  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
-  f.eq.jacobian(0.0, f.z.data(), j);
-  j.scale_add_identity(-1e-6);
+  const solver::BorderedMatrix j = newton_matrix(fixture());
   solver::BorderedFactorization lu;
   std::vector<double> b(j.size(), 1.0), x(j.size());
   for (auto _ : state) {
@@ -67,12 +76,7 @@ void BM_BorderedFactorSolve(benchmark::State& state) {
 BENCHMARK(BM_BorderedFactorSolve);
 
 void BM_DenseFactorSolve(benchmark::State& state) {
-  auto& f = fixture();
-  const int nb = f.model.border_size, n = f.model.element_count;
-  solver::BorderedMatrix j(nb, n, (f.model.state_size - nb) / n);
-  f.eq.jacobian(0.0, f.z.data(), j);
-  j.scale_add_identity(-1e-6);
-  const Eigen::MatrixXd d = j.to_dense();
+  const Eigen::MatrixXd d = newton_matrix(fixture()).to_dense();
   Eigen::VectorXd b = Eigen::VectorXd::Ones(d.rows());
   for (auto _ : state) {
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(d);

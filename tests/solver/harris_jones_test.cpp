@@ -1,6 +1,7 @@
-// Validation V1 (DESIGN.md section 8): the roller loads of seed 002 against an independent
-// Harris-Jones quasi-static solution with the CONSISTENT equations (not the paper's Table 4, whose
-// eq. (a) applies 2 Fr and whose centrifugal constant belongs to 100 Hz).
+// Validation of the roller loads of seed 002 (docs/validation.md, "Seed 002, 13-roller cylindrical
+// roller bearing") against an independent Harris-Jones quasi-static solution with the CONSISTENT
+// equations (not the paper's Table 4, whose eq. (a) applies 2 Fr and whose centrifugal constant
+// belongs to 100 Hz: docs/references.md, Errata).
 //
 // Harris-Jones (seed 002 section 3, eq. 1-6): unknown radial displacement delta_r of the inner ring
 // along the load; roller j at psi_j = j 360/Z from the load line:
@@ -255,7 +256,8 @@ TEST(HarrisJones, SolverReproducesHandChecks) {
 
 TEST(HarrisJones, Seed002At40HzLoadZone) {
   // 0.15 s = 6 shaft revolutions; loads from the second half (about 1.2 cage revolutions, ~15 roller
-  // passages per bin). The lead's full 0.5 s run: HJ peak 316.33 N, simulated mean at psi = 0 316.8 N.
+  // passages per bin). The full 0.5 s (20-revolution) run of docs/validation.md: HJ peak 316.33 N,
+  // simulated mean at psi = 0 316.8 N.
   const RunResult r = run_shortened("seed002_40hz.toml", 0.15);
   const auto& hj = r.hj;
   ASSERT_EQ(hj.psi.size(), 13u);

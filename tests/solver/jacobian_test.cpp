@@ -33,38 +33,6 @@ const char* class_name(VariableClass c) {
   return "?";
 }
 
-/// Central-difference steps per variable class, from the contact physics rather than from the
-/// solver settings: 1e-11 m is ~1e-5 of the loaded roller deflections (~1 um) and ~2e-3 of the
-/// lightest closed contact (cage on its land under its own weight, ~5 nm), so the O(h^2) error is
-/// <= 1e-5 relative; 1e-7 m/s is ~2e-6 of the traction slip scale (0.05 m/s). Angles and spin rates
-/// use the same surface displacement / speed at the pitch and roller radii.
-double central_step(const Model& m, VariableClass c) {
-  switch (c) {
-    case VariableClass::position: return 1e-11;
-    case VariableClass::angle: return 1e-11 / m.pitch_radius;
-    case VariableClass::velocity: return 1e-7;
-    case VariableClass::angular_velocity: return 1e-7 / m.element_radius;
-  }
-  return 0;
-}
-
-Eigen::MatrixXd central_difference_jacobian(Equations& eq, const Model& m, double t, const std::vector<double>& z) {
-  const int n = m.state_size;
-  Eigen::MatrixXd jac(n, n);
-  std::vector<double> zp = z, fp(n), fm(n);
-  for (int j = 0; j < n; ++j) {
-    const double h = central_step(m, m.state_class[j]);
-    zp[j] = z[j] + h;
-    EXPECT_EQ(eq.rhs(t, zp.data(), fp.data()), 0);
-    zp[j] = z[j] - h;
-    EXPECT_EQ(eq.rhs(t, zp.data(), fm.data()), 0);
-    zp[j] = z[j];
-    const double h2 = (z[j] + h) - (z[j] - h);  // the step actually taken in floating point
-    for (int i = 0; i < n; ++i) jac(i, j) = (fp[i] - fm[i]) / h2;
-  }
-  return jac;
-}
-
 int roller_of(const Model& m, int state) {
   return state < m.border_size ? -1 : (state - m.border_size) / ((m.state_size - m.border_size) / m.element_count);
 }
@@ -133,7 +101,7 @@ double check_state(Equations& eq, const Model& m, double t, const std::vector<do
         eq.segment_records()[s * SegmentRecord::size + SegmentRecord::diagnostics + 1] > 0)
       carrying.push_back(m.segments[s].element);
   EXPECT_FALSE(carrying.empty());
-  const Eigen::MatrixXd fd = central_difference_jacobian(eq, m, t, z);
+  const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, t, z);
 
   // Sparsity of the true Jacobian: no entry couples two different rollers, exactly.
   for (int i = m.border_size; i < m.state_size; ++i)
@@ -183,26 +151,25 @@ std::vector<double> state_after(Seed002& s, double t) {
   return z;
 }
 
-// Tolerance 1e-3 of the column norm. The model Jacobian is a FORWARD difference (contact/
-// segment_jacobian.hpp) with step jacobian_perturbation * max(|z_j|, scale_j), scale = atol/rtol
-// (pitch radius for positions, surface speed for velocities), so its truncation error is the floor of
-// this comparison. Measured worst column errors (Release; the t = 20 ms states differ a little with
-// the increment, since the Jacobian steers CVODE's Newton iterations):
-//   jacobian_perturbation  1e-7 (default)  1e-8     1e-9     1e-10    1e-11
-//   start                  1.79e-2         1.68e-3  1.69e-4  1.31e-4  2.59e-3
-//   t = 20 ms              0.48 (*)        8.9e-3   9.6e-4   1.22e-4  6.0e-4
-// (*) plus a column that is zero in the central differences and 1e10 in the model Jacobian: a
-// contact within one step of its onset. The default's error comes from the position columns: the
-// step 1e-7 * 22.9 mm = 2.3 nm is not small against the approach of the outer contacts carrying the
-// centrifugal force only, (F_c / K)^0.9 = 7.3 nm at 40 Hz; the forward-difference error of
-// K delta^(10/9) is h / (18 delta) = 1.7e-2. From 1e-10 down, round-off in the velocity columns
-// dominates (1.3e-4).
-// So two checks, both against 1e-3 (a factor ~8 above the best the forward differences give):
+// Tolerance 1e-3 of the column norm. The model Jacobian is a FORWARD difference (contact/segments/
+// segment_jacobian.hpp) with the steps of FiniteDifferenceSteps (solver/bearing/equations.cpp):
+// positions and angles 1e-3 jacobian_perturbation scale_j, rates jacobian_perturbation
+// max(|z_j|, scale_j), scale = atol/rtol (pitch radius for positions, surface speed for velocities);
+// its truncation and round-off errors are the floor of this comparison. Measured worst column
+// errors (Release; the t = 20 ms states differ a little with the increment, since the Jacobian
+// steers CVODE's Newton iterations):
+//   jacobian_perturbation  1e-7 (default)  1e-8     1e-9     1e-10
+//   start                  8.7e-5          5.8e-5   3.5e-4   5.4e-3
+//   t = 20 ms              8.4e-5          2.4e-5   4.3e-4   3.7e-3
+// The smallest approach is that of the outer contacts carrying the centrifugal force only,
+// (F_c / K)^0.9 = 7.3 nm at 40 Hz; the default's position step 1e-10 * 22.9 mm = 2.3 pm gives a
+// forward-difference error of K delta^(10/9) of h / (18 delta) = 1.7e-5, and from 1e-9 down
+// round-off in the position columns dominates. (A position step relative to the state, 1e-7 *
+// 22.9 mm = 2.3 nm, gave 1.8e-2 at the start and 0.48 at 20 ms.)
+// So two checks, both against 1e-3 (17 to 42 times the best the forward differences give):
 //  - Assembly*: the best over increments 1e-7 .. 1e-10 (robust to the step rule; a wrong row,
 //    column, mass or sign fails at every increment);
-//  - DefaultIncrement*: the scene's own setting, as CVODE uses it. FAILS with the current step rule
-//    (reported to the lead). With position and angle steps 1e-3 * rel * scale, absolute (tried in a
-//    scratch copy of solver/equations.cpp), it gives 8.7e-5 at both states.
+//  - DefaultIncrement*: the scene's own setting, as CVODE uses it.
 constexpr double tolerance = 1e-3;
 constexpr double short_run = 0.02;  // s: 0.8 shaft revolutions, roller-bar contacts closed
 const double increments[] = {1e-7, 1e-8, 1e-9, 1e-10};

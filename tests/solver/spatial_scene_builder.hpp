@@ -22,7 +22,30 @@ struct BallSceneOptions {
   bool gravity = false;
 };
 
-inline io::Scene ball_scene_common(const BallSceneOptions& o) {
+/// The dimensions of a ball bearing, m (radial_clearance: the diametral clearance P_d).
+struct BallBearingSize {
+  io::BearingType type = io::BearingType::deep_groove_ball;
+  int balls = 0;
+  io::BallGeometry ball;
+  double pitch_diameter = 0, radial_clearance = 0;
+  double inner_bore_diameter = 0, outer_outside_diameter = 0, ring_width = 0;
+};
+
+/// A contact of the cage (ball-pocket or cage-land): normal law `normal`, Hunt-Crossley damping
+/// 0.5 s/m, tanh traction with friction 0.05 and slip scale 0.05 m/s.
+inline io::ContactSpec cage_contact(const char* normal) {
+  io::ContactSpec c;
+  c.normal.name = normal;
+  c.damping.name = "hunt_crossley";
+  c.damping.factor = 0.5;
+  c.traction.name = "tanh";
+  c.traction.friction_coefficient = 0.05;
+  c.traction.slip_velocity_scale = 0.05;
+  return c;
+}
+
+/// A ball bearing of `size` with the contact laws, materials, loads and solver settings of `o`.
+inline io::Scene ball_scene(const BallSceneOptions& o, const BallBearingSize& size) {
   io::Scene s;
   s.source = "<test>";
   s.scene.name = "test ball bearing";
@@ -61,54 +84,38 @@ inline io::Scene ball_scene_common(const BallSceneOptions& o) {
   race.traction.grid_x = race.traction.grid_y = 5;
   race.traction.rolling_resistance = o.lubricated;
   s.lubricant = {"test oil", o.lubricated ? 0.03 : 0.0, 2e-8, 0.07};
-  s.ball_cage.normal.name = "hertz";
-  s.ball_cage.damping.name = "hunt_crossley";
-  s.ball_cage.damping.factor = 0.5;
-  s.ball_cage.traction.name = "tanh";
-  s.ball_cage.traction.friction_coefficient = 0.05;
-  s.ball_cage.traction.slip_velocity_scale = 0.05;
-  s.cage_land.normal.name = "palmgren";
-  s.cage_land.damping.name = "hunt_crossley";
-  s.cage_land.damping.factor = 0.5;
-  s.cage_land.traction.name = "tanh";
-  s.cage_land.traction.friction_coefficient = 0.05;
-  s.cage_land.traction.slip_velocity_scale = 0.05;
+  s.ball_cage = cage_contact("hertz");
+  s.cage_land = cage_contact("palmgren");
   s.solver.rtol = o.rtol;
+  s.bearing.type = size.type;
+  s.bearing.rolling_elements = size.balls;
+  s.bearing.ball = size.ball;
+  s.bearing.pitch_diameter = size.pitch_diameter;
+  s.bearing.radial_clearance = size.radial_clearance;
+  s.bearing.inner_bore_diameter = size.inner_bore_diameter;
+  s.bearing.outer_outside_diameter = size.outer_outside_diameter;
+  s.bearing.ring_width = size.ring_width;
   return s;
 }
 
 /// 6309-size deep-groove ball bearing: 8 balls of 17.462 mm, pitch 72.5 mm, f_i 0.52, f_o 0.53,
 /// 15 um diametral clearance.
 inline io::Scene deep_groove_scene(const BallSceneOptions& o) {
-  io::Scene s = ball_scene_common(o);
-  s.bearing.type = io::BearingType::deep_groove_ball;
-  s.bearing.rolling_elements = 8;
-  s.bearing.ball.ball_diameter = 17.462e-3;
-  s.bearing.ball.inner_conformity = 0.52;
-  s.bearing.ball.outer_conformity = 0.53;
-  s.bearing.pitch_diameter = 72.5e-3;
-  s.bearing.radial_clearance = 15e-6;
-  s.bearing.inner_bore_diameter = 45e-3;
-  s.bearing.outer_outside_diameter = 100e-3;
-  s.bearing.ring_width = 25e-3;
-  return s;
+  return ball_scene(o, {.type = io::BearingType::deep_groove_ball, .balls = 8,
+                        .ball = {.ball_diameter = 17.462e-3, .inner_conformity = 0.52, .outer_conformity = 0.53},
+                        .pitch_diameter = 72.5e-3, .radial_clearance = 15e-6, .inner_bore_diameter = 45e-3,
+                        .outer_outside_diameter = 100e-3, .ring_width = 25e-3});
 }
 
 /// QJ215-size four-point contact bearing (seed 001 Table 1): 15 balls of 17.462 mm, pitch 102.5 mm,
 /// 35 degree arcs, 27 um clearance.
 inline io::Scene four_point_scene(const BallSceneOptions& o) {
-  io::Scene s = ball_scene_common(o);
-  s.bearing.type = io::BearingType::four_point_contact_ball;
-  s.bearing.rolling_elements = 15;
-  s.bearing.ball.ball_diameter = 17.462e-3;
-  s.bearing.ball.inner_conformity = 0.53;
-  s.bearing.ball.outer_conformity = 9.25 / 17.462;
-  s.bearing.ball.arc_contact_angle = 35.0 * std::numbers::pi / 180.0;
-  s.bearing.pitch_diameter = 102.5e-3;
-  s.bearing.radial_clearance = 27e-6;
-  s.bearing.inner_bore_diameter = 75e-3;
-  s.bearing.outer_outside_diameter = 130e-3;
-  s.bearing.ring_width = 25e-3;
+  io::Scene s = ball_scene(o, {.type = io::BearingType::four_point_contact_ball, .balls = 15,
+                               .ball = {.ball_diameter = 17.462e-3, .inner_conformity = 0.53,
+                                        .outer_conformity = 9.25 / 17.462,
+                                        .arc_contact_angle = 35.0 * std::numbers::pi / 180.0},
+                               .pitch_diameter = 102.5e-3, .radial_clearance = 27e-6, .inner_bore_diameter = 75e-3,
+                               .outer_outside_diameter = 130e-3, .ring_width = 25e-3});
   s.materials["steel"] = {"steel", 7810, 2.1e11, 0.29};
   s.materials["brass"] = {"brass", 8500, 1.06e11, 0.324};
   return s;

@@ -1,4 +1,4 @@
-// The consistent initial state (solver/startup.hpp) of seed 002 at 40 Hz: the inner ring in
+// The consistent initial state (solver/bearing/startup.hpp) of seed 002 at 40 Hz: the inner ring in
 // equilibrium under its load, every roller seated at the epicyclic orbit (its net radial force is
 // the centripetal force of that orbit), rollers and cage at the epicyclic speed, pure rolling.
 #include <gtest/gtest.h>
@@ -109,13 +109,13 @@ io::Scene seed002(bool gravity, bool damping_and_traction) {
   return s;
 }
 
-// The scene as it is: ring force below 1e-6 of the load, roller radial accelerations within 1e-3 of
-// -w_c^2 r. FAILS at the time of writing (reported to the lead): net ring force 0.042 N along x
-// (4.2e-5 of the load) and radial accelerations off by up to 4.9 %, from two omissions in
-// solver/startup.cpp, isolated by the two tests below: the rollers' weight is left out of the
-// seating balance (m g = 0.051 N against F_c = 1.21 N: 4.3 % at the bottom roller), and the seating
-// evaluates the contacts at zero velocity while the state it returns rolls, so Hunt-Crossley damping
-// (approach rate w_c x ring offset, +-1.2 % of F_c off the load line) and traction are unbalanced.
+// The scene as it is (gravity, damping and traction on): ring force below 1e-6 of the load, roller
+// radial accelerations within 1e-3 of -w_c^2 r (measured: 2e-8). For this the seating in
+// solver/bearing/roller_startup.cpp must include, as the two tests below isolate, the rollers'
+// weight (m g = 0.051 N against F_c = 1.21 N: 4.3 % at the bottom roller) and the contacts at the
+// velocities of the rolling state it returns, so that Hunt-Crossley damping (approach rate w_c x ring
+// offset, +-1.2 % of F_c off the load line) and traction are balanced too. Without them the net ring
+// force was 0.042 N along x (4.2e-5 of the load) and the radial accelerations were off by up to 4.9 %.
 TEST(Startup, Seed002At40HzIsInEquilibrium) { check_start(seed002(true, true), 1e-3); }
 
 // Elastic contacts only, no gravity: what the seating does balance must balance to round-off.
