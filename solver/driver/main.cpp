@@ -155,26 +155,22 @@ int worker(const std::string& text, const std::string& source, scheduler::MpiExe
   return 1;
 }
 
-/// Runs a command and maps what it throws to the exit code (bad input 2, failed integration 3,
-/// anything else 1), logging the message.
+/// The documented exit code of an error: bad input 2, failed integration 3, anything else 1.
+int exit_code_for(const std::exception& e) {
+  if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
+      dynamic_cast<const solver::OptionsError*>(&e))
+    return 2;
+  if (dynamic_cast<const solver::IntegrationFailure*>(&e)) return 3;
+  return 1;
+}
+
+/// Runs a command and maps what it throws to its exit code, logging the message.
 int exit_code_of(const std::function<int()>& command) {
   try {
     return command();
-  } catch (const io::ReportInputError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const io::SceneError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const solver::OptionsError& e) {
-    spdlog::error("{}", e.what());
-    return 2;
-  } catch (const solver::IntegrationFailure& e) {
-    spdlog::error("{}", e.what());
-    return 3;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
-    return 1;
+    return exit_code_for(e);
   }
 }
 

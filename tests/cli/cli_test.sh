@@ -13,13 +13,7 @@ raceway=${2:?raceway executable}
 source_dir=${3:?source dir}
 version=${4:-}
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/raceway_cli_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
+source "$source_dir/tests/test_lib.sh"
 
 # Runs raceway with stdout and stderr captured in $work/out and $work/err; sets $rc.
 run() {

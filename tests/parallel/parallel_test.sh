@@ -21,13 +21,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
 compare=(/usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py")
 
-work=$(mktemp -d "${TMPDIR:-/tmp}/raceway_parallel_${case_name}.XXXXXX")
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
+source "$source_dir/tests/test_lib.sh"
 # mpirun NP ARGS...: raceway under mpirun, output in $work/log.NP; sets $rc.
 mpi() {
   local np=$1
