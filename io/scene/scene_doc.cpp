@@ -1,4 +1,6 @@
 // docs/scene_keys.md, printed from the schema table and the contact-law registry (scene_schema.hpp).
+#include <cstdlib>
+
 #include <fmt/format.h>
 
 #include "contact/laws/law_registry.hpp"
@@ -25,8 +27,9 @@ roller bearings) and jobs/scenes/6309_R3.toml (spatial, ball bearings).
 - Applies to: "roller" = cylindrical roller bearings (model = "planar"), "ball" = ball bearings
   (model = "spatial"). A key given where it does not apply is an error, not ignored; so is a key
   whose setting makes it meaningless (a speed for a fixed ring, a damping factor without damping).
-- Bounds hold for given values. The rules that tie keys together (the rollers fit, clearances,
-  ring motions, laws that need a lubricant) are in io/scene/scene_rules.cpp.
+- "required" holds where the key applies (see its meaning); bounds hold for given values. The
+  rules that tie keys together (the rollers fit, clearances, ring motions, laws that need a
+  lubricant) are in io/scene/scene_rules.cpp.
 )";
 
 std::string cell(std::string_view text) {
@@ -57,9 +60,29 @@ std::string value_text(const Row& row) {
   return "";
 }
 
+/// SI unit as a fraction of base units: "s/m", "kg/(m s^2)"; "" when dimensionless.
+std::string si_fraction(Dimension d) {
+  struct Base {
+    int exponent;
+    std::string_view symbol;
+  };
+  const Base bases[] = {{d.mass, "kg"}, {d.length, "m"}, {d.time, "s"}, {d.angle, "rad"}};
+  std::string up, down;
+  int down_terms = 0;
+  for (const Base& b : bases) {
+    if (b.exponent == 0) continue;
+    std::string& side = b.exponent > 0 ? up : down;
+    const int e = std::abs(b.exponent);
+    side += fmt::format("{}{}{}", side.empty() ? "" : " ", b.symbol, e == 1 ? "" : fmt::format("^{}", e));
+    down_terms += b.exponent < 0;
+  }
+  if (down.empty()) return up;
+  return fmt::format("{}/{}", up.empty() ? "1" : up, down_terms > 1 ? fmt::format("({})", down) : down);
+}
+
 std::string number_text(double v, Dimension d) {
-  const std::string unit = si_unit(d);
-  return v == 0 || unit == "1" ? fmt::format("{:g}", v) : fmt::format("{:g} {}", v, unit);
+  const std::string unit = si_fraction(d);
+  return v == 0 || unit.empty() ? fmt::format("{:g}", v) : fmt::format("{:g} {}", v, unit);
 }
 
 std::string default_text(const Row& row) {
@@ -74,7 +97,7 @@ std::string default_text(const Row& row) {
   switch (row.kind) {
     case ValueKind::number:
     case ValueKind::time_function: return number_text(d.number, row.dim);
-    case ValueKind::integer: return fmt::format("{:g}", d.number);
+    case ValueKind::integer: return fmt::format("{}", static_cast<long>(d.number));
     case ValueKind::boolean: return d.number != 0 ? "true" : "false";
     case ValueKind::table: return "empty";
     default: return fmt::format("\"{}\"", d.word);
@@ -97,8 +120,8 @@ std::string bounds_text(const Row& row) {
     return "";
   const std::string b = bounds_notation(row.bounds, row.kind == ValueKind::integer);
   const bool si_units = !b.empty() && row.bounds.unit.empty() && row.kind != ValueKind::integer;
-  const std::string unit = si_unit(row.dim);
-  return si_units && unit != "1" && b != "> 0" && b != ">= 0" ? b + " " + unit : b;
+  const std::string unit = si_fraction(row.dim);
+  return si_units && !unit.empty() && b != "> 0" && b != ">= 0" ? b + " " + unit : b;
 }
 
 void section_table(std::string& out, std::string_view section) {
