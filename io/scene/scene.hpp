@@ -207,7 +207,7 @@ struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
 };
 
-/// Where a value came from, for error messages and `raceway check`.
+/// One simulation, validated and in SI units, and where it came from.
 struct Scene {
   std::string source;     ///< file path, or "<built-in default>"
   std::string text;       ///< the scene text as read (stored in the output file)

@@ -17,15 +17,18 @@ namespace {
 
 using namespace test;
 
-// ---- jobs/scenes: every scene parses; the seed scenes carry the seeds' numbers in SI -----------
-
-std::vector<std::string> job_scenes() {
+/// The names (without .toml) of the scene files in a folder, sorted.
+std::vector<std::string> scene_names(const fs::path& folder) {
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(kSourceDir / "jobs" / "scenes"))
+  for (const auto& entry : fs::directory_iterator(folder))
     if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
   std::sort(names.begin(), names.end());
   return names;
 }
+
+// ---- jobs/scenes: every scene parses; the seed scenes carry the seeds' numbers in SI -----------
+
+std::vector<std::string> job_scenes() { return scene_names(kSourceDir / "jobs" / "scenes"); }
 
 fs::path job_path(const std::string& name) { return kSourceDir / "jobs" / "scenes" / (name + ".toml"); }
 Scene job(const std::string& name) { return load_scene(job_path(name).string()); }
@@ -247,13 +250,7 @@ TEST(JobScenes, QJ215SweepsShareTheValidationScene) {
 
 // ---- tests/bad_scenes/*.toml ------------------------------------------------------------------
 
-std::vector<std::string> bad_scenes() {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(kSourceDir / "tests" / "bad_scenes"))
-    if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> bad_scenes() { return scene_names(kSourceDir / "tests" / "bad_scenes"); }
 
 /// The text after "# tag:" on the given line of the file, trimmed.
 std::string header(const std::string& text, int line, std::string_view tag) {
