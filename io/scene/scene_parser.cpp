@@ -56,11 +56,16 @@ const Material kBuiltinMaterials[] = {
 
 void read_section(std::string_view section, const Section& s, Bind& b);
 
-/// Why the row's key does not apply to this bearing, contact or setting; nullopt if it does.
-std::optional<std::string> not_applicable(const Row& row, const Section& s, const Bind& b) {
+/// Whether this bearing (and, in [contact.NAME], this contact) takes the row's key.
+bool takes(const Row& row, const Bind& b) {
   const unsigned bearing = b.ball() ? ball_bearings : roller_bearings;
   const bool contact_takes_it = b.contact_kind == 0 || row.contacts == 0 || (row.contacts & b.contact_kind);
-  if (!(row.bearings & bearing) || !contact_takes_it) return std::string(row.elsewhere);
+  return (row.bearings & bearing) && contact_takes_it;
+}
+
+/// Why the row's key does not apply to this bearing, contact or setting; nullopt if it does.
+std::optional<std::string> not_applicable(const Row& row, const Section& s, const Bind& b) {
+  if (!takes(row, b)) return std::string(row.elsewhere);
   return row.when ? row.when(s, b) : std::nullopt;
 }
 
@@ -227,6 +232,11 @@ void read_section(std::string_view section, const Section& s, Bind& b) {
   Names keys;
   for (const Row& row : rows) keys.push_back(row.key);
   s.allow(keys);
+  // Keys of the other kind of bearing or contact are rejected before any value is read. [bearing]
+  // decides the kind: its own rows are checked one by one (read_row), after `type`.
+  if (b.bearing_known)
+    for (const Row& row : rows)
+      if (!takes(row, b)) s.reject(row.key, row.elsewhere);
   for (const Row& row : rows) read_row(row, s, b);
 }
 
@@ -283,6 +293,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   read_materials(top(file, root, "materials", false), b);
   const Section bearing = top(file, root, "bearing", true);
   read_section("bearing", bearing, b);
+  b.bearing_known = true;
   read_section("cage", top(file, root, "cage", true), b);
   const Section inner = top(file, root, "inner_ring", true);
   const Section outer = top(file, root, "outer_ring", true);

@@ -31,6 +31,7 @@ struct Bind {
   ContactSpec* contact = nullptr;          ///< [contact.NAME]
   contact::ContactKindBit contact_kind{};  ///< which one (0 outside [contact.NAME])
   Material* material = nullptr;            ///< [materials.NAME]
+  bool bearing_known = false;              ///< [bearing] has been read: ball() is the scene's bearing
   bool ball() const { return scene.bearing.is_ball_bearing(); }
 };
 
