@@ -1,10 +1,11 @@
 // raceway scene parser: TOML (toml++) -> validated io::Scene in SI units.
 //
 // One generic reader walks the schema table (scene_schema.cpp) section by section: it rejects keys
-// the section does not know (with a suggestion) before reading any value, so a misspelt key is
-// reported as such and not as a missing one; then, row by row, it rejects a key that does not
-// apply to this bearing, contact or setting, reads the value (type, unit, bounds, default) and
-// runs the row's rule. The rules across sections (scene_rules.cpp) close the parse.
+// the section does not know (with a suggestion) and keys of the other kind of bearing or contact
+// before reading any value, so a misspelt key is reported as such and not as a missing one; then,
+// row by row, it rejects a key that does not apply in this setting, reads the value (type, unit,
+// bounds, default) and runs the row's rule. The rules across sections (scene_rules.cpp) close the
+// parse.
 #include "io/scene/scene_parser.hpp"
 
 #include <algorithm>
@@ -227,11 +228,15 @@ void read_row(const Row& row, const Section& s, Bind& b) {
   if (row.then) row.then(row, s, b);
 }
 
+Names keys_of(std::string_view section) {
+  Names keys;
+  for (const Row& row : rows_of(section)) keys.push_back(row.key);
+  return keys;
+}
+
 void read_section(std::string_view section, const Section& s, Bind& b) {
   const std::span<const Row> rows = rows_of(section);
-  Names keys;
-  for (const Row& row : rows) keys.push_back(row.key);
-  s.allow(keys);
+  s.allow(keys_of(section));
   // Keys of the other kind of bearing or contact are rejected before any value is read. [bearing]
   // decides the kind: its own rows are checked one by one (read_row), after `type`.
   if (b.bearing_known)
@@ -246,11 +251,8 @@ void read_materials(const Section& s, Bind& b) {
   if (!s.present()) return;
   for (const auto& [k, v] : *s.table()) {
     const std::string name(k.str());
-    if (!v.is_table()) {
-      Names keys;
-      for (const Row& row : rows_of("materials.*")) keys.push_back(row.key);
-      s.fail_at(v, name, fmt::format("expected a table [materials.{}] with {}", name, join(keys)));
-    }
+    if (!v.is_table())
+      s.fail_at(v, name, fmt::format("expected a table [materials.{}] with {}", name, join(keys_of("materials.*"))));
     Material material{name, 0, 0, 0};
     Bind into = b;
     into.material = &material;
