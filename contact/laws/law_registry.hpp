@@ -33,6 +33,10 @@ enum ContactKindBit : unsigned {
   ball_cage_contact = 1u << 3,    ///< [contact.ball_cage]
   cage_land_contact = 1u << 4,    ///< [contact.cage_land]
 };
+/// Line contacts (rollers on races and cage bars, the cage on its land) and point contacts (balls).
+inline constexpr unsigned line_contacts = roller_race_contact | roller_cage_contact | cage_land_contact;
+inline constexpr unsigned point_contacts = ball_race_contact | ball_cage_contact;
+inline constexpr unsigned all_contacts = line_contacts | point_contacts;
 
 struct LawEntry {
   LawRole role;
@@ -42,13 +46,28 @@ struct LawEntry {
   std::string_view meaning;  ///< one line, for errors, `raceway check` and docs
 };
 
-/// All registered laws, in a fixed order.
+/// All registered laws, in a fixed order. The first law of a role that a contact accepts is that
+/// contact's default.
 std::span<const LawEntry> registered_laws();
 /// The law of `role` called `name` that `contact` accepts, or nullptr.
 const LawEntry* find_law(LawRole role, std::string_view name, ContactKindBit contact);
+/// The law of `role` called `name`, whatever contacts accept it, or nullptr.
+const LawEntry* find_law(LawRole role, std::string_view name);
 /// The entry of a law id (always exists).
 const LawEntry& law_entry(LawId id);
-/// "a, b or c": the names of `role` that `contact` accepts, for error messages.
+/// The default law of `role` for `contact`: the first registered one it accepts.
+const LawEntry& default_law(LawRole role, ContactKindBit contact);
+/// "a, b, c": the names of `role` that `contact` accepts, in registry order, for error messages.
 std::string known_law_names(LawRole role, ContactKindBit contact);
+
+/// "normal", "damping", "traction".
+std::string_view role_name(LawRole role);
+/// The five contacts, in the order of the ContactKindBit values.
+std::span<const ContactKindBit> contact_kinds();
+/// The scene's name of a contact: "roller_race", ..., "cage_land" (its [contact.NAME] section).
+std::string_view contact_name(ContactKindBit contact);
+/// The contacts of a mask in words: "line contacts (roller_race, roller_cage, cage_land)",
+/// "point contacts (ball_race, ball_cage)", "ball_race contacts".
+std::string contacts_description(unsigned contacts);
 
 }  // namespace raceway::contact

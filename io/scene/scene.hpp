@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "contact/laws/law_registry.hpp"
+
 namespace raceway::io {
 
 /// A scalar function of time: constant, or piecewise linear through (time, value) points and held
@@ -138,18 +140,23 @@ struct RingSpec {
   double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial); 0 = computed
 };
 
-/// Contact laws, chosen by name. Every name is validated against the registry in contact/.
+/// Contact laws, chosen by name in the scene. The parser looks every name up in the law registry
+/// (contact/laws/law_registry.hpp, which lists the laws each contact accepts) and stores its id;
+/// models are built from `id`, `name` is the scene's spelling of it (for printing only).
 struct NormalLaw {
   std::string name = "palmgren";  ///< "palmgren" (line contact, Q = K delta^(10/9)) | "hertz" (point contact)
+  contact::LawId id = contact::LawId::palmgren;
   int slices = 1;                 ///< slices along the roller length (planar: crowning only)
   double crown_drop = 0;          ///< m, profile drop at the roller ends (circular crown); 0 = straight
 };
 struct DampingLaw {
   std::string name = "hunt_crossley";  ///< "hunt_crossley" | "none"
+  contact::LawId id = contact::LawId::hunt_crossley;
   double factor = 0;                   ///< s/m: F = K delta^n (1 + factor * d(delta)/dt)
 };
 struct TractionLaw {
   std::string name = "tanh";       ///< "tanh" | "none" | "limiting_shear" (point contacts, needs a lubricant)
+  contact::LawId id = contact::LawId::tanh_traction;
   double friction_coefficient = 0; ///< - (limit value)
   double slip_velocity_scale = 0;  ///< m/s: mu = mu_max tanh(u / u_scale)
   int grid_x = 5, grid_y = 5;      ///< point contacts: traction grid over the ellipse (rolling x transverse)
@@ -166,12 +173,12 @@ struct Lubricant {
   double viscosity = 0;           ///< Pa s, dynamic viscosity at the bearing temperature
   double pressure_viscosity = 0;  ///< 1/Pa
   double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure
-  double viscosity_exponent_cap = 12;     ///< - : largest alpha p in the Barus law (contact/point_contact.hpp);
+  double viscosity_exponent_cap = 12;     ///< - : largest alpha p in the Barus law (contact/laws/point_contact.hpp);
                                           ///< 12 gives measured traction-curve shapes and practical steps
 };
 
 enum class IntegrationMethod { bdf, adams };
-/// Newton linear solver (solver/newton_backends.hpp). `automatic` picks block elimination or PETSc by
+/// Newton linear solver (solver/numerics/newton_backends.hpp). `automatic` picks block elimination or PETSc by
 /// the number of rolling elements (the measured crossover; README "Newton linear solvers").
 enum class LinearSolverKind { automatic, petsc_bordered, block_elimination, sundials_dense };
 
@@ -200,7 +207,7 @@ struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
 };
 
-/// Where a value came from, for error messages and `raceway check`.
+/// One simulation, validated and in SI units, and where it came from.
 struct Scene {
   std::string source;     ///< file path, or "<built-in default>"
   std::string text;       ///< the scene text as read (stored in the output file)

@@ -1,9 +1,10 @@
 // raceway scene parser: TOML scene file -> validated, SI-unit io::Scene.
 //
-// The schema (sections, keys, units, defaults and the physical checks) is documented in
-// jobs/scenes/default.toml (planar: cylindrical roller bearings) and jobs/scenes/6309_R3.toml
-// (spatial: ball bearings); the parse_* functions in io/scene_parser.cpp are its definition.
-// Every problem is a SceneError that names the file, the line, the dotted key and the reason.
+// The schema (sections, keys, units, bounds, defaults) is the table in io/scene/scene_schema.cpp,
+// printed as docs/scene_keys.md; the rules that tie keys together are io/scene/scene_rules.cpp.
+// Commented examples: jobs/scenes/default.toml (planar: cylindrical roller bearings) and
+// jobs/scenes/6309_R3.toml (spatial: ball bearings). Every problem is a SceneError that names the
+// file, the line, the dotted key and the reason.
 #pragma once
 
 #include <stdexcept>

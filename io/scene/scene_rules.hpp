@@ -1,0 +1,82 @@
+// The rules of a scene that tie keys together, named by the rows of the schema table
+// (scene_schema.cpp) that use them:
+//   defaults that follow from other keys (a bore one element diameter inside the inner race),
+//   conditions under which a key applies (speed only for a driven ring),
+//   checks run after a key is read (the clearance smaller than a roller, a fixed ring does not
+//   tilt freely, limiting-shear traction needs a lubricant), and
+//   check_scene, the checks across sections (the rollers fit on the pitch circle, something
+//   holds the bearing).
+//
+// Internal to raceway::scene.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "io/scene/scene_schema.hpp"
+#include "io/scene/scene_section.hpp"
+
+namespace raceway::io::schema::rules {
+
+// ---- defaults that follow from other keys (nullopt: the key is required here) ------------------
+std::optional<double> inner_bore_default(const Bind& b);
+std::optional<double> outer_outside_default(const Bind& b);
+std::optional<double> ring_width_default(const Bind& b);
+std::optional<double> bar_width_default(const Bind& b);
+std::optional<double> land_width_default(const Bind& b);
+std::optional<double> cage_bore_default(const Bind& b);
+std::optional<double> cage_outside_default(const Bind& b);
+std::optional<double> cage_width_default(const Bind& b);
+std::optional<double> ring_support_stiffness_default(const Bind& b);
+std::optional<double> friction_default(const Bind& b);
+std::optional<double> rolling_resistance_default(const Bind& b);
+std::optional<double> max_order_default(const Bind& b);
+long max_order_limit(const Bind& b);
+
+// ---- conditions: why a key does not apply here, or nullopt -------------------------------------
+std::optional<std::string> four_point_only(const Section& s, const Bind& b);
+std::optional<std::string> unless_ball_material(const Section& s, const Bind& b);
+std::optional<std::string> land_guided_only(const Section& s, const Bind& b);
+std::optional<std::string> driven_ring_only(const Section& s, const Bind& b);
+std::optional<std::string> moving_ring_only(const Section& s, const Bind& b);
+std::optional<std::string> prescribed_tilt_only(const Section& s, const Bind& b);
+std::optional<std::string> force_needs_free_centre(const Section& s, const Bind& b);
+std::optional<std::string> axial_force_needs_axially_free(const Section& s, const Bind& b);
+std::optional<std::string> tilting_moment_needs_free_tilt(const Section& s, const Bind& b);
+std::optional<std::string> moment_needs_free_ring(const Section& s, const Bind& b);
+std::optional<std::string> support_needs_moving_ring(const Section& s, const Bind& b);
+std::optional<std::string> radial_support_needs_free_centre(const Section& s, const Bind& b);
+std::optional<std::string> axial_support_needs_axially_free(const Section& s, const Bind& b);
+std::optional<std::string> tilt_support_needs_free_tilt(const Section& s, const Bind& b);
+std::optional<std::string> damping_law_on(const Section& s, const Bind& b);
+std::optional<std::string> traction_law_on(const Section& s, const Bind& b);
+
+// ---- checks after a key is read ----------------------------------------------------------------
+void output_interval_within_run(const Row& row, const Section& s, Bind& b);
+void model_fits_bearing_type(const Row& row, const Section& s, Bind& b);
+void clearance_fits_elements(const Row& row, const Section& s, Bind& b);
+void bore_inside_inner_race(const Row& row, const Section& s, Bind& b);
+void outside_beyond_outer_race(const Row& row, const Section& s, Bind& b);
+void ring_wider_than_ball(const Row& row, const Section& s, Bind& b);
+void ball_pocket_clearance_fits(const Row& row, const Section& s, Bind& b);
+void land_clearance_fits(const Row& row, const Section& s, Bind& b);
+void land_width_within_rings(const Row& row, const Section& s, Bind& b);
+void cage_bore_between_race_and_pitch(const Row& row, const Section& s, Bind& b);
+void cage_outside_between_pitch_and_race(const Row& row, const Section& s, Bind& b);
+void cage_holds_balls(const Row& row, const Section& s, Bind& b);
+void cage_support_has_spring(const Row& row, const Section& s, Bind& b);
+void damper_has_spring(const Row& row, const Section& s, Bind& b);
+void fixed_ring_tilt_not_free(const Row& row, const Section& s, Bind& b);
+void misalignment_given(const Row& row, const Section& s, Bind& b);
+void ring_support_has_spring(const Row& row, const Section& s, Bind& b);
+void crown_drop_fits(const Row& row, const Section& s, Bind& b);
+void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
+void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
+void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);
+
+// ---- across sections ---------------------------------------------------------------------------
+/// The rolling elements fit on the pitch circle (with room for ball-cage bars), and the rings are
+/// held radially (and, spatial, axially and in tilt). Errors name [bearing] or [outer_ring] keys.
+void check_scene(const Section& bearing, const Section& outer_ring, const Scene& scene);
+
+}  // namespace raceway::io::schema::rules

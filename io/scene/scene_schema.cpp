@@ -1,0 +1,413 @@
+// The scene schema table (scene_schema.hpp): every key of a scene file, in reading order.
+#include "io/scene/scene_schema.hpp"
+
+#include <algorithm>
+#include <numbers>
+
+#include "io/scene/scene_rules.hpp"
+
+namespace raceway::io::schema {
+
+namespace {
+
+using contact::LawRole;
+using enum ValueKind;
+using namespace rules;
+
+/// Where a row's value goes, as a path from the Bind: FIELD(scene.bearing.pitch_diameter).
+#define FIELD(path) [](Bind& b) -> Field { return &b.path; }
+
+/// Tables: an absent one is read as empty, every key at its default.
+constexpr Default empty_table = value(0);
+
+// Why a key is rejected where the bearing or contact does not take it.
+constexpr std::string_view kBallOnly = "only for ball bearings (type = \"deep_groove_ball\" or \"four_point_contact_ball\")";
+constexpr std::string_view kSpatialCage =
+    "only for spatial scenes (model = \"spatial\"): a planar cage moves in x, y and about z";
+constexpr std::string_view kSpatialRing =
+    "only for spatial scenes (model = \"spatial\"): a planar ring moves in x, y and about z";
+constexpr std::string_view kSpatialDirection =
+    "only for spatial scenes (model = \"spatial\"): a planar model has no axial direction and no tilt";
+constexpr std::string_view kRollerContact =
+    "roller-race and roller-cage contacts belong to planar roller bearings; a spatial ball bearing's are "
+    "[contact.ball_race] and [contact.ball_cage]";
+constexpr std::string_view kBallContact =
+    "ball-race and ball-cage contacts belong to spatial ball bearings; a planar roller bearing's are "
+    "[contact.roller_race] and [contact.roller_cage]";
+constexpr std::string_view kLineContact =
+    "slices and crown_drop are for line contacts (roller bearings); a ball contact is a Hertz point contact";
+constexpr std::string_view kBallRaceContact =
+    "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
+    "at the contact centre";
+
+constexpr Bounds kConformity{.lo = 0.5, .hi = 0.6, .lo_open = true,
+                             .note = " (conformity = groove radius / ball diameter: the groove radius must exceed the "
+                                     "ball radius; ball bearing grooves are 0.505 to 0.58)"};
+constexpr Bounds kArcAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg"};
+constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
+                               .note = " (a sanity limit: ball bearings run at a few mrad)"};
+
+constexpr Row kRows[] = {
+    // ---- [scene] --------------------------------------------------------------------------------
+    {.section = "scene", .key = "name", .kind = text, .field = FIELD(scene.scene.name),
+     .meaning = "label stored in the output"},
+    {.section = "scene", .key = "model", .kind = choice, .field = FIELD(scene.scene.model), .options = kModels,
+     .meaning = "planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings (all six "
+                "directions)"},
+    {.section = "scene", .key = "end_time", .kind = number, .field = FIELD(scene.scene.end_time), .dim = dim::time,
+     .bounds = positive, .meaning = "simulated time"},
+    {.section = "scene", .key = "output_interval", .kind = number, .field = FIELD(scene.scene.output_interval),
+     .dim = dim::time, .bounds = positive, .then = output_interval_within_run,
+     .meaning = "time between stored samples (at most end_time)"},
+    {.section = "scene", .key = "gravity", .kind = boolean, .field = FIELD(scene.gravity), .def = value(0),
+     .meaning = "gravity along -y (9.80665 m/s^2)"},
+
+    // ---- [materials.NAME]: steel, brass and polyamide are built in; a section adds or replaces one
+    {.section = "materials.*", .key = "density", .kind = number, .field = FIELD(material->density),
+     .dim = dim::density, .bounds = positive, .meaning = "mass density"},
+    {.section = "materials.*", .key = "youngs_modulus", .kind = number, .field = FIELD(material->youngs_modulus),
+     .dim = dim::pressure, .bounds = positive, .meaning = "Young's modulus"},
+    {.section = "materials.*", .key = "poisson_ratio", .kind = number, .field = FIELD(material->poisson_ratio),
+     .dim = dim::none, .bounds = {.lo = 0, .hi = 0.5, .hi_open = true}, .meaning = "Poisson's ratio"},
+
+    // ---- [bearing] ------------------------------------------------------------------------------
+    {.section = "bearing", .key = "type", .kind = choice, .field = FIELD(scene.bearing.type),
+     .then = model_fits_bearing_type, .options = kBearingTypes, .noun = "bearing type",
+     .meaning = "cylindrical_roller needs model = \"planar\", the ball bearings model = \"spatial\""},
+    {.section = "bearing", .key = "rolling_elements", .kind = integer, .field = FIELD(scene.bearing.rolling_elements),
+     .bounds = {.lo = 3}, .meaning = "number of rollers or balls"},
+    {.section = "bearing", .key = "roller_diameter", .kind = number, .field = FIELD(scene.bearing.roller_diameter),
+     .dim = dim::length, .bounds = positive, .bearings = roller_bearings,
+     .elsewhere = "a ball bearing has no roller diameter: give ball_diameter", .meaning = "roller diameter D"},
+    {.section = "bearing", .key = "roller_length", .kind = number, .field = FIELD(scene.bearing.roller_length),
+     .dim = dim::length, .bounds = positive, .bearings = roller_bearings,
+     .elsewhere = "a ball bearing has no roller length: ring_width gives the width of the rings",
+     .meaning = "effective contact length of a roller"},
+    {.section = "bearing", .key = "ball_diameter", .kind = number, .field = FIELD(scene.bearing.ball.ball_diameter),
+     .dim = dim::length, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .meaning = "ball diameter D"},
+    {.section = "bearing", .key = "inner_conformity", .kind = number,
+     .field = FIELD(scene.bearing.ball.inner_conformity), .dim = dim::none, .bounds = kConformity,
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .meaning = "f_i = inner groove radius / ball diameter"},
+    {.section = "bearing", .key = "outer_conformity", .kind = number,
+     .field = FIELD(scene.bearing.ball.outer_conformity), .dim = dim::none, .bounds = kConformity,
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .meaning = "f_o = outer groove radius / ball diameter"},
+    {.section = "bearing", .key = "arc_contact_angle", .kind = number,
+     .field = FIELD(scene.bearing.ball.arc_contact_angle), .dim = dim::angle, .bounds = kArcAngle,
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .when = four_point_only,
+     .missing = "required for type = \"four_point_contact_ball\": the angle at which a centred ball touches each "
+                "gothic arc, e.g. \"35 deg\"",
+     .example = "35 deg",
+     .meaning = "four-point bearings: angle at which a centred ball touches each gothic arc (sets the arcs' offset)"},
+    {.section = "bearing", .key = "pitch_diameter", .kind = number, .field = FIELD(scene.bearing.pitch_diameter),
+     .dim = dim::length, .bounds = positive, .meaning = "diameter d_m of the circle through the element centres"},
+    {.section = "bearing", .key = "radial_clearance", .kind = number, .field = FIELD(scene.bearing.radial_clearance),
+     .dim = dim::length, .bounds = non_negative, .def = value(0), .then = clearance_fits_elements,
+     .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2)"},
+    {.section = "bearing", .key = "inner_bore_diameter", .kind = number,
+     .field = FIELD(scene.bearing.inner_bore_diameter), .dim = dim::length, .bounds = positive,
+     .def = derived(inner_bore_default, "inner race diameter - D"), .then = bore_inside_inner_race,
+     .meaning = "bore of the inner ring (sets its mass)"},
+    {.section = "bearing", .key = "outer_outside_diameter", .kind = number,
+     .field = FIELD(scene.bearing.outer_outside_diameter), .dim = dim::length, .bounds = positive,
+     .def = derived(outer_outside_default, "outer race diameter + D"), .then = outside_beyond_outer_race,
+     .meaning = "outside diameter of the outer ring (sets its mass)"},
+    {.section = "bearing", .key = "ring_width", .kind = number, .field = FIELD(scene.bearing.ring_width),
+     .dim = dim::length, .bounds = positive,
+     .def = derived(ring_width_default, "roller_length; required for ball bearings"), .then = ring_wider_than_ball,
+     .meaning = "width of both rings"},
+    {.section = "bearing", .key = "roller_material", .kind = material, .field = FIELD(scene.bearing.roller_material),
+     .def = word("steel"), .when = unless_ball_material, .meaning = "material of the rollers (or balls)"},
+    {.section = "bearing", .key = "ball_material", .kind = material, .field = FIELD(scene.bearing.roller_material),
+     .def = absent, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .meaning = "material of the balls (the same as roller_material: give one)"},
+    {.section = "bearing", .key = "ring_material", .kind = material, .field = FIELD(scene.bearing.ring_material),
+     .def = word("steel"), .meaning = "material of both rings"},
+
+    // ---- [cage] ---------------------------------------------------------------------------------
+    {.section = "cage", .key = "guidance", .kind = choice, .field = FIELD(scene.cage.guidance), .options = kGuidances,
+     .meaning = "what guides the cage radially: a ring's land or the rolling elements"},
+    {.section = "cage", .key = "pocket_clearance", .kind = number, .field = FIELD(scene.cage.pocket_clearance),
+     .dim = dim::length, .bounds = positive, .then = ball_pocket_clearance_fits,
+     .meaning = "pocket width (diameter) minus roller (ball) diameter"},
+    {.section = "cage", .key = "land_clearance", .kind = number, .field = FIELD(scene.cage.land_clearance),
+     .dim = dim::length, .bounds = positive, .when = land_guided_only, .then = land_clearance_fits,
+     .meaning = "land-guided cages: radial play between cage and guiding land"},
+    {.section = "cage", .key = "bar_width", .kind = number, .field = FIELD(scene.cage.bar_width), .dim = dim::length,
+     .bounds = positive, .def = derived(bar_width_default, "roller_length"), .bearings = roller_bearings,
+     .elsewhere = "bar_width is for roller cages; a ball pocket is set by pocket_clearance and pocket_shape",
+     .meaning = "axial length of the roller-bar contact"},
+    {.section = "cage", .key = "land_width", .kind = number, .field = FIELD(scene.cage.land_width), .dim = dim::length,
+     .bounds = positive, .def = derived(land_width_default, "roller_length / 2; balls: ring_width - D"),
+     .then = land_width_within_rings, .meaning = "axial width of the guiding land contact"},
+    {.section = "cage", .key = "material", .kind = material, .field = FIELD(scene.cage.material), .def = word("brass"),
+     .meaning = "cage material"},
+    {.section = "cage", .key = "mass", .kind = number, .field = FIELD(scene.cage.mass), .dim = dim::mass,
+     .bounds = positive, .def = value(0), .meaning = "0: computed from geometry and material"},
+    {.section = "cage", .key = "inertia", .kind = number, .field = FIELD(scene.cage.inertia), .dim = dim::inertia,
+     .bounds = positive, .def = value(0), .meaning = "about the bearing axis; 0: computed"},
+    {.section = "cage", .key = "pocket_shape", .kind = choice, .field = FIELD(scene.cage.pocket_shape),
+     .def = word("cylindrical"), .bearings = ball_bearings, .elsewhere = kSpatialCage, .options = kPocketShapes,
+     .noun = "pocket shape", .meaning = "cylindrical (drilled radially: machined cages) or spherical (pressed, snap)"},
+    {.section = "cage", .key = "transverse_inertia", .kind = number, .field = FIELD(scene.cage.transverse_inertia),
+     .dim = dim::inertia, .bounds = positive, .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialCage,
+     .meaning = "about a diameter; 0: computed"},
+    {.section = "cage", .key = "inner_diameter", .kind = number, .field = FIELD(scene.cage.inner_diameter),
+     .dim = dim::length, .bounds = positive, .def = derived(cage_bore_default, "d_m - 0.6 D"),
+     .bearings = ball_bearings, .elsewhere = kSpatialCage, .then = cage_bore_between_race_and_pitch,
+     .meaning = "cage bore"},
+    {.section = "cage", .key = "outer_diameter", .kind = number, .field = FIELD(scene.cage.outer_diameter),
+     .dim = dim::length, .bounds = positive, .def = derived(cage_outside_default, "d_m + 0.6 D"),
+     .bearings = ball_bearings, .elsewhere = kSpatialCage, .then = cage_outside_between_pitch_and_race,
+     .meaning = "cage outside diameter"},
+    {.section = "cage", .key = "width", .kind = number, .field = FIELD(scene.cage.width), .dim = dim::length,
+     .bounds = positive, .def = derived(cage_width_default, "0.8 ring_width"), .bearings = ball_bearings,
+     .elsewhere = kSpatialCage, .then = cage_holds_balls, .meaning = "axial width of the cage"},
+    {.section = "cage", .key = "support", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
+     .elsewhere = kSpatialCage, .then = cage_support_has_spring, .sub = "cage.support",
+     .meaning = "a cage on a spindle: a spring and a damper per direction"},
+
+    // ---- [cage.support] -------------------------------------------------------------------------
+    {.section = "cage.support", .key = "radial_stiffness", .kind = number,
+     .field = FIELD(scene.cage.support.radial_stiffness), .dim = dim::stiffness, .bounds = positive, .def = value(0),
+     .meaning = "in x and y"},
+    {.section = "cage.support", .key = "radial_damping", .kind = number,
+     .field = FIELD(scene.cage.support.radial_damping), .dim = dim::damping, .bounds = non_negative,
+     .def = value(0), .then = damper_has_spring, .meaning = "in x and y (needs radial_stiffness)"},
+    {.section = "cage.support", .key = "axial_stiffness", .kind = number,
+     .field = FIELD(scene.cage.support.axial_stiffness), .dim = dim::stiffness, .bounds = positive, .def = value(0),
+     .meaning = "along z"},
+    {.section = "cage.support", .key = "axial_damping", .kind = number,
+     .field = FIELD(scene.cage.support.axial_damping), .dim = dim::damping, .bounds = non_negative, .def = value(0),
+     .then = damper_has_spring, .meaning = "along z (needs axial_stiffness)"},
+    {.section = "cage.support", .key = "tilt_stiffness", .kind = number,
+     .field = FIELD(scene.cage.support.tilt_stiffness), .dim = dim::angular_stiffness, .bounds = positive,
+     .def = value(0), .meaning = "about x and y"},
+    {.section = "cage.support", .key = "tilt_damping", .kind = number, .field = FIELD(scene.cage.support.tilt_damping),
+     .dim = dim::angular_damping, .bounds = non_negative, .def = value(0), .then = damper_has_spring,
+     .meaning = "about x and y (needs tilt_stiffness)"},
+
+    // ---- [inner_ring] and [outer_ring] ----------------------------------------------------------
+    {.section = "*_ring", .key = "motion", .kind = choice, .field = FIELD(ring->motion), .options = kRingMotions,
+     .meaning = "fixed: held; driven: spun at speed; free: spun by the loads (and mz)"},
+    {.section = "*_ring", .key = "speed", .kind = time_function, .field = FIELD(ring->speed),
+     .dim = dim::angular_speed, .when = driven_ring_only, .missing = "required when motion = \"driven\"",
+     .example = "1500 rpm", .meaning = "driven rings: speed about the axis"},
+    {.section = "*_ring", .key = "translation", .kind = choice, .field = FIELD(ring->translation_free),
+     .def = word("free"), .when = moving_ring_only, .options = kFreeOrFixed, .otherwise = 0,
+     .meaning = "driven and free rings: centre free in x and y, or held"},
+    {.section = "*_ring", .key = "axial", .kind = choice, .field = FIELD(ring->axial_free), .def = word("free"),
+     .bearings = ball_bearings, .elsewhere = kSpatialRing, .when = moving_ring_only, .options = kFreeOrFixed,
+     .otherwise = 0, .meaning = "driven and free rings: free along z, or held"},
+    {.section = "*_ring", .key = "tilt", .kind = choice, .field = FIELD(ring->tilt), .def = word("fixed"),
+     .bearings = ball_bearings, .elsewhere = kSpatialRing, .then = fixed_ring_tilt_not_free, .options = kRingTilts,
+     .meaning = "about x and y: held aligned, free (integrated), or prescribed (misalignment)"},
+    {.section = "*_ring", .key = "misalignment", .kind = table, .field = nullptr, .bearings = ball_bearings,
+     .elsewhere = kSpatialRing, .when = prescribed_tilt_only,
+     .missing = "required with tilt = \"prescribed\": e.g. misalignment = { x = \"1.42 mrad\" } (rotations about "
+                "the x and y axes)",
+     .then = misalignment_given, .sub = "*_ring.misalignment",
+     .meaning = "tilt = \"prescribed\": rotations about x and y"},
+    {.section = "*_ring", .key = "load", .kind = table, .field = nullptr, .def = empty_table, .sub = "*_ring.load",
+     .meaning = "forces and moments on the ring, in the bearing frame"},
+    {.section = "*_ring", .key = "support", .kind = table, .field = nullptr, .def = absent,
+     .when = support_needs_moving_ring, .then = ring_support_has_spring, .sub = "*_ring.support",
+     .meaning = "a linear spring-damper to ground per direction"},
+    {.section = "*_ring", .key = "mass", .kind = number, .field = FIELD(ring->mass), .dim = dim::mass,
+     .bounds = positive, .def = value(0), .meaning = "0: computed from geometry and material"},
+    {.section = "*_ring", .key = "inertia", .kind = number, .field = FIELD(ring->inertia), .dim = dim::inertia,
+     .bounds = positive, .def = value(0), .meaning = "about the bearing axis; 0: computed"},
+    {.section = "*_ring", .key = "transverse_inertia", .kind = number, .field = FIELD(ring->transverse_inertia),
+     .dim = dim::inertia, .bounds = positive, .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialRing,
+     .meaning = "about a diameter; 0: computed"},
+
+    // ---- [*_ring.misalignment] ------------------------------------------------------------------
+    {.section = "*_ring.misalignment", .key = "x", .kind = time_function, .field = FIELD(ring->misalignment_x),
+     .dim = dim::angle, .bounds = kMisalignment, .def = value(0), .example = "1.42 mrad",
+     .meaning = "rotation about x"},
+    {.section = "*_ring.misalignment", .key = "y", .kind = time_function, .field = FIELD(ring->misalignment_y),
+     .dim = dim::angle, .bounds = kMisalignment, .def = value(0), .example = "1.42 mrad",
+     .meaning = "rotation about y"},
+
+    // ---- [*_ring.load]: loads that cannot act are rejected ---------------------------------------
+    {.section = "*_ring.load", .key = "fx", .kind = time_function, .field = FIELD(ring->load.fx), .dim = dim::force,
+     .def = value(0), .when = force_needs_free_centre, .otherwise = 0, .meaning = "force along x"},
+    {.section = "*_ring.load", .key = "fy", .kind = time_function, .field = FIELD(ring->load.fy), .dim = dim::force,
+     .def = value(0), .when = force_needs_free_centre, .otherwise = 0, .meaning = "force along y"},
+    {.section = "*_ring.load", .key = "fz", .kind = time_function, .field = FIELD(ring->load.fz), .dim = dim::force,
+     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .when = axial_force_needs_axially_free, .otherwise = 0, .meaning = "axial force along z"},
+    {.section = "*_ring.load", .key = "mx", .kind = time_function, .field = FIELD(ring->load.mx), .dim = dim::moment,
+     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .when = tilting_moment_needs_free_tilt, .otherwise = 0, .meaning = "tilting moment about x (tilt = \"free\")"},
+    {.section = "*_ring.load", .key = "my", .kind = time_function, .field = FIELD(ring->load.my), .dim = dim::moment,
+     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .when = tilting_moment_needs_free_tilt, .otherwise = 0, .meaning = "tilting moment about y (tilt = \"free\")"},
+    {.section = "*_ring.load", .key = "mz", .kind = time_function, .field = FIELD(ring->load.mz), .dim = dim::moment,
+     .def = value(0), .when = moment_needs_free_ring, .otherwise = 0,
+     .meaning = "moment about the axis (motion = \"free\")"},
+
+    // ---- [*_ring.support]: directions the ring cannot move in are rejected -----------------------
+    {.section = "*_ring.support", .key = "stiffness", .kind = number, .field = FIELD(ring->support.stiffness),
+     .dim = dim::stiffness, .bounds = positive,
+     .def = derived(ring_support_stiffness_default, "required (planar); 0 (spatial)"),
+     .when = radial_support_needs_free_centre, .meaning = "radial, in x and y"},
+    {.section = "*_ring.support", .key = "damping", .kind = number, .field = FIELD(ring->support.damping),
+     .dim = dim::damping, .bounds = non_negative, .def = value(0), .when = radial_support_needs_free_centre,
+     .then = damper_has_spring, .meaning = "radial, in x and y"},
+    {.section = "*_ring.support", .key = "axial_stiffness", .kind = number,
+     .field = FIELD(ring->support.axial_stiffness), .dim = dim::stiffness, .bounds = positive, .def = value(0),
+     .bearings = ball_bearings, .elsewhere = kSpatialDirection, .when = axial_support_needs_axially_free,
+     .meaning = "along z"},
+    {.section = "*_ring.support", .key = "axial_damping", .kind = number, .field = FIELD(ring->support.axial_damping),
+     .dim = dim::damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings,
+     .elsewhere = kSpatialDirection, .when = axial_support_needs_axially_free, .then = damper_has_spring,
+     .meaning = "along z"},
+    {.section = "*_ring.support", .key = "tilt_stiffness", .kind = number,
+     .field = FIELD(ring->support.tilt_stiffness), .dim = dim::angular_stiffness, .bounds = positive,
+     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .when = tilt_support_needs_free_tilt, .meaning = "about x and y (tilt = \"free\")"},
+    {.section = "*_ring.support", .key = "tilt_damping", .kind = number, .field = FIELD(ring->support.tilt_damping),
+     .dim = dim::angular_damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings,
+     .elsewhere = kSpatialDirection, .when = tilt_support_needs_free_tilt, .then = damper_has_spring,
+     .meaning = "about x and y (tilt = \"free\")"},
+
+    // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
+    {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
+     .meaning = "label"},
+    {.section = "lubricant", .key = "viscosity", .kind = number, .field = FIELD(scene.lubricant.viscosity),
+     .dim = dim::viscosity, .bounds = positive, .meaning = "dynamic viscosity at the bearing temperature"},
+    {.section = "lubricant", .key = "pressure_viscosity", .kind = number,
+     .field = FIELD(scene.lubricant.pressure_viscosity), .dim = dim::inverse_pressure, .bounds = non_negative,
+     .def = value(0), .meaning = "Barus pressure-viscosity coefficient alpha"},
+    {.section = "lubricant", .key = "limiting_shear_coefficient", .kind = number,
+     .field = FIELD(scene.lubricant.limiting_shear_coefficient), .dim = dim::none,
+     .bounds = {.lo = 0, .hi = 0.5, .note = " (0.02 to 0.1 for mineral oils)"}, .def = value(0),
+     .meaning = "limiting shear stress / pressure (limiting_shear traction needs it); 0: none given"},
+    {.section = "lubricant", .key = "viscosity_exponent_cap", .kind = number,
+     .field = FIELD(scene.lubricant.viscosity_exponent_cap), .dim = dim::none,
+     .bounds = {.lo = 0, .hi = 40, .lo_open = true, .note = " (exp(40) times the viscosity is beyond any lubricant)"},
+     .def = value(12),
+     .meaning = "largest alpha p in the Barus law (contact/laws/point_contact.hpp); 12 gives measured traction-curve "
+                "shapes and practical steps"},
+
+    // ---- [contact]: one table per contact of the bearing ----------------------------------------
+    {.section = "contact", .key = "roller_race", .kind = table, .field = FIELD(scene.roller_race), .def = empty_table,
+     .bearings = roller_bearings, .contacts = contact::roller_race_contact, .elsewhere = kRollerContact,
+     .sub = "contact.*", .meaning = "roller on the races (line contacts)"},
+    {.section = "contact", .key = "roller_cage", .kind = table, .field = FIELD(scene.roller_cage), .def = empty_table,
+     .bearings = roller_bearings, .contacts = contact::roller_cage_contact, .elsewhere = kRollerContact,
+     .sub = "contact.*", .meaning = "roller on a cage bar (line contacts)"},
+    {.section = "contact", .key = "ball_race", .kind = table, .field = FIELD(scene.ball_race), .def = empty_table,
+     .bearings = ball_bearings, .contacts = contact::ball_race_contact, .elsewhere = kBallContact,
+     .sub = "contact.*", .meaning = "ball in a groove (point contacts)"},
+    {.section = "contact", .key = "ball_cage", .kind = table, .field = FIELD(scene.ball_cage), .def = empty_table,
+     .bearings = ball_bearings, .contacts = contact::ball_cage_contact, .elsewhere = kBallContact,
+     .sub = "contact.*", .meaning = "ball in its pocket (point contact)"},
+    {.section = "contact", .key = "cage_land", .kind = table, .field = FIELD(scene.cage_land), .def = empty_table,
+     .contacts = contact::cage_land_contact, .sub = "contact.*",
+     .meaning = "cage on the guiding land (line contact, land-guided cages)"},
+
+    // ---- [contact.NAME]: laws from the law registry (contact/laws/law_registry.hpp) -------------
+    {.section = "contact.*", .key = "normal", .kind = law, .field = FIELD(contact->normal), .def = registry,
+     .role = LawRole::normal, .meaning = "normal force law"},
+    {.section = "contact.*", .key = "slices", .kind = integer, .field = FIELD(contact->normal.slices),
+     .bounds = {.lo = 1, .hi = 200}, .def = value(1), .contacts = contact::line_contacts, .elsewhere = kLineContact,
+     .meaning = "slices along the roller length (for crowning)"},
+    {.section = "contact.*", .key = "crown_drop", .kind = number, .field = FIELD(contact->normal.crown_drop),
+     .dim = dim::length, .bounds = non_negative, .def = value(0), .contacts = contact::line_contacts,
+     .elsewhere = kLineContact, .then = crown_drop_fits,
+     .meaning = "profile drop at the roller ends (circular crown); 0: straight"},
+    {.section = "contact.*", .key = "damping", .kind = law, .field = FIELD(contact->damping), .def = registry,
+     .role = LawRole::damping, .meaning = "damping law"},
+    {.section = "contact.*", .key = "damping_factor", .kind = number, .field = FIELD(contact->damping.factor),
+     .dim = dim::inverse_speed, .bounds = non_negative, .def = value(0.5), .when = damping_law_on, .otherwise = 0,
+     .meaning = "F = F_elastic (1 + factor d(delta)/dt); 0.5 s/m: restitution about 0.93 at a 0.2 m/s impact"},
+    {.section = "contact.*", .key = "traction", .kind = law, .field = FIELD(contact->traction), .def = registry,
+     .then = limiting_shear_has_lubricant, .role = LawRole::traction, .meaning = "traction (friction) law"},
+    {.section = "contact.*", .key = "friction_coefficient", .kind = number,
+     .field = FIELD(contact->traction.friction_coefficient), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
+     .def = derived(friction_default, "0.1; cage_land 0.05"), .when = traction_law_on,
+     .meaning = "limit of the traction curve"},
+    {.section = "contact.*", .key = "slip_velocity_scale", .kind = number,
+     .field = FIELD(contact->traction.slip_velocity_scale), .dim = dim::speed, .bounds = positive, .def = value(0.05),
+     .when = traction_law_on, .otherwise = 0.05,
+     .meaning = "u_s of the tanh curve: 70 % of the limit at about 1 % slide-to-roll at a few m/s"},
+    {.section = "contact.*", .key = "grid", .kind = cell_grid, .field = FIELD(contact->traction),
+     .def = {.kind = Default::Kind::absent, .text = "[5, 5]"}, .contacts = contact::ball_race_contact, .elsewhere = kBallRaceContact, .when = traction_law_on,
+     .meaning = "traction cells over the contact ellipse (rolling, transverse); 5 x 5 is within about 1 % of a fine "
+                "grid"},
+    {.section = "contact.*", .key = "rolling_resistance", .kind = boolean,
+     .field = FIELD(contact->traction.rolling_resistance),
+     .def = derived(rolling_resistance_default, "true with a [lubricant], else false"),
+     .contacts = contact::ball_race_contact, .elsewhere = kBallRaceContact, .then = rolling_resistance_has_film,
+     .meaning = "EHL rolling resistance (needs a film)"},
+
+    // ---- [solver]: CVODE --------------------------------------------------------------------------
+    {.section = "solver", .key = "method", .kind = choice, .field = FIELD(scene.solver.method), .def = word("bdf"),
+     .options = kMethods, .meaning = "stiff (bdf) or non-stiff (adams) multistep method"},
+    {.section = "solver", .key = "max_order", .kind = integer, .field = FIELD(scene.solver.max_order),
+     .bounds = {.lo = 1, .hi_of = max_order_limit, .hi_text = "5 (bdf), 12 (adams)"},
+     .def = derived(max_order_default, "5 (bdf), 12 (adams)"), .meaning = "largest method order"},
+    {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
+     .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
+    {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",
+     .meaning = "absolute tolerances per kind of variable; 0 or absent: chosen from the physical scales"},
+    {.section = "solver", .key = "linear_solver", .kind = choice, .field = FIELD(scene.solver.linear_solver),
+     .def = word("auto"), .options = kLinearSolvers, .noun = "linear solver",
+     .meaning = "Newton linear solver; auto picks by the number of rolling elements (README \"Newton linear "
+                "solvers\"); bordered and dense are older names"},
+    {.section = "solver", .key = "petsc_options", .kind = text, .field = FIELD(scene.solver.petsc_options),
+     .def = word(""), .then = remember_petsc_options_place,
+     .meaning = "PETSc options for petsc-bordered, checked when the run starts"},
+    {.section = "solver", .key = "max_step", .kind = number, .field = FIELD(scene.solver.max_step), .dim = dim::time,
+     .bounds = non_negative, .def = value(0), .meaning = "largest time step; 0: no limit"},
+    {.section = "solver", .key = "initial_step", .kind = number, .field = FIELD(scene.solver.initial_step),
+     .dim = dim::time, .bounds = non_negative, .def = value(0), .meaning = "first time step; 0: CVODE's estimate"},
+    {.section = "solver", .key = "max_steps", .kind = integer, .field = FIELD(scene.solver.max_steps),
+     .bounds = {.lo = 1}, .def = value(500000000), .meaning = "step budget of the run"},
+    {.section = "solver", .key = "jacobian_perturbation", .kind = number,
+     .field = FIELD(scene.solver.jacobian_perturbation), .dim = dim::none, .bounds = {.lo = 1e-12, .hi = 1e-2},
+     .def = value(1e-7), .meaning = "relative finite-difference increment"},
+
+    // ---- [solver.atol] --------------------------------------------------------------------------
+    {.section = "solver.atol", .key = "position", .kind = number, .field = FIELD(scene.solver.atol_position),
+     .dim = dim::length, .bounds = positive, .def = value(0), .meaning = "positions"},
+    {.section = "solver.atol", .key = "angle", .kind = number, .field = FIELD(scene.solver.atol_angle),
+     .dim = dim::angle, .bounds = positive, .def = value(0), .meaning = "angles"},
+    {.section = "solver.atol", .key = "velocity", .kind = number, .field = FIELD(scene.solver.atol_velocity),
+     .dim = dim::speed, .bounds = positive, .def = value(0), .meaning = "velocities"},
+    {.section = "solver.atol", .key = "angular_velocity", .kind = number,
+     .field = FIELD(scene.solver.atol_angular_velocity), .dim = dim::angular_speed, .bounds = positive,
+     .def = value(0), .meaning = "angular velocities"},
+
+    // ---- [output] -------------------------------------------------------------------------------
+    {.section = "output", .key = "segments", .kind = boolean, .field = FIELD(scene.output.segments), .def = value(1),
+     .meaning = "per-segment (per-contact) diagnostics"},
+};
+
+#undef FIELD
+
+constexpr std::string_view kTopSections[] = {"scene",      "bearing",   "materials", "cage",   "inner_ring",
+                                             "outer_ring", "lubricant", "contact",   "solver", "output"};
+
+}  // namespace
+
+std::string_view option_name(std::span<const Option> options, int value) {
+  for (const Option& o : options)
+    if (o.value == value) return o.name;
+  return "";
+}
+
+std::span<const Row> scene_rows() { return kRows; }
+
+std::span<const Row> rows_of(std::string_view section) {
+  const std::span<const Row> all = kRows;
+  const auto first = std::find_if(all.begin(), all.end(), [&](const Row& r) { return r.section == section; });
+  const auto last = std::find_if(first, all.end(), [&](const Row& r) { return r.section != section; });
+  return {first, last};
+}
+
+std::span<const std::string_view> top_sections() { return kTopSections; }
+
+}  // namespace raceway::io::schema
