@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "contact/laws/law_registry.hpp"
@@ -144,19 +145,19 @@ struct RingSpec {
 /// (contact/laws/law_registry.hpp, which lists the laws each contact accepts) and stores its id;
 /// models are built from `id`, `name` is the scene's spelling of it (for printing only).
 struct NormalLaw {
-  std::string name = "palmgren";  ///< "palmgren" (line contact, Q = K delta^(10/9)) | "hertz" (point contact)
-  contact::LawId id = contact::LawId::palmgren;
+  contact::LawId id = contact::LawId::palmgren;  ///< palmgren (line contact) | hertz (point contact)
+  std::string_view name() const { return contact::law_entry(id).name; }
   int slices = 1;                 ///< slices along the roller length (planar: crowning only)
   double crown_drop = 0;          ///< m, profile drop at the roller ends (circular crown); 0 = straight
 };
 struct DampingLaw {
-  std::string name = "hunt_crossley";  ///< "hunt_crossley" | "none"
-  contact::LawId id = contact::LawId::hunt_crossley;
+  contact::LawId id = contact::LawId::hunt_crossley;  ///< hunt_crossley | none
+  std::string_view name() const { return contact::law_entry(id).name; }
   double factor = 0;                   ///< s/m: F = K delta^n (1 + factor * d(delta)/dt)
 };
 struct TractionLaw {
-  std::string name = "tanh";       ///< "tanh" | "none" | "limiting_shear" (point contacts, needs a lubricant)
-  contact::LawId id = contact::LawId::tanh_traction;
+  contact::LawId id = contact::LawId::tanh_traction;  ///< tanh | none | limiting_shear (ball-race, needs a lubricant)
+  std::string_view name() const { return contact::law_entry(id).name; }
   double friction_coefficient = 0; ///< - (limit value)
   double slip_velocity_scale = 0;  ///< m/s: mu = mu_max tanh(u / u_scale)
   int grid_x = 5, grid_y = 5;      ///< point contacts: traction grid over the ellipse (rolling x transverse)

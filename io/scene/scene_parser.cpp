@@ -135,10 +135,7 @@ void read_law(const Row& row, const Section& s, const Bind& b, const Field& fiel
                                 suggestion(name, known), contact::known_law_names(row.role, kind), hint));
   }
   with_target(field, [&](auto& target) {
-    if constexpr (requires { target.id = law->id; }) {
-      target.name = std::string(law->name);
-      target.id = law->id;
-    }
+    if constexpr (requires { target.id = law->id; }) target.id = law->id;
   });
 }
 

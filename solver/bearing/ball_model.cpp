@@ -96,7 +96,7 @@ void add_balls(Model& m, const io::Scene& scene) {
 double e_star(const io::Material& a, const io::Material& b) {
   return contact::reduced_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
 }
-double damping_of(const io::ContactSpec& spec) { return spec.damping.name == "none" ? 0.0 : spec.damping.factor; }
+double damping_of(const io::ContactSpec& spec) { return spec.damping.id == contact::LawId::no_damping ? 0.0 : spec.damping.factor; }
 /// Validity: an approach of 2 % of the ball radius is far beyond any elastic deflection.
 double max_approach(const Model& m) { return 0.02 * m.element_radius; }
 
@@ -132,9 +132,9 @@ std::vector<Arc> groove_arcs(const Model& m, const io::Scene& scene) {
 contact::PointTraction race_traction(const io::Scene& scene) {
   contact::PointTraction t;
   const auto& rt = scene.ball_race.traction;
-  t.model = rt.name == "none"             ? contact::TractionModel::none
-            : rt.name == "limiting_shear" ? contact::TractionModel::limiting_shear
-                                          : contact::TractionModel::curve;
+  t.model = rt.id == contact::LawId::no_traction      ? contact::TractionModel::none
+            : rt.id == contact::LawId::limiting_shear ? contact::TractionModel::limiting_shear
+                                                      : contact::TractionModel::curve;
   t.friction_coefficient = rt.friction_coefficient;
   t.slip_velocity_scale = rt.slip_velocity_scale > 0 ? rt.slip_velocity_scale : 1.0;
   t.grid_x = rt.grid_x;
@@ -194,7 +194,7 @@ contact::BallPocketSegment pocket_law(const Model& m, const io::Scene& scene) {
   p.normal.damping_factor = damping_of(scene.ball_cage);
   p.normal.max_approach = max_approach(m);
   const auto& friction = scene.ball_cage.traction;
-  if (friction.name != "none") {
+  if (friction.id != contact::LawId::no_traction) {
     p.friction.friction_coefficient = friction.friction_coefficient;
     p.friction.slip_velocity_scale = friction.slip_velocity_scale > 0 ? friction.slip_velocity_scale : 0.01;
   }
@@ -242,7 +242,7 @@ void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo)
   const double e_land = e_star(scene.material(cs.material), scene.material(scene.bearing.ring_material));
   l.law = contact::make_line_contact_law(e_land, l.width / l.stations, 1, 0.0, damping_of(scene.cage_land),
                                          0.02 * m.element_radius);
-  if (scene.cage_land.traction.name != "none") {
+  if (scene.cage_land.traction.id != contact::LawId::no_traction) {
     l.friction.friction_coefficient = scene.cage_land.traction.friction_coefficient;
     l.friction.slip_velocity_scale =
         scene.cage_land.traction.slip_velocity_scale > 0 ? scene.cage_land.traction.slip_velocity_scale : 0.01;
@@ -348,11 +348,11 @@ std::string describe_ball_model(const Model& m) {
   const Segment* land = m.first_segment(SegmentKind::cage_land);
   out += fmt::format("  ball-groove: Hertz (exact ellipticity, tabulated over the contact angle), damping {}, traction {} "
                      "({}x{} grid), rolling resistance {}\n",
-                     sc.ball_race.damping.name, sc.ball_race.traction.name, sc.ball_race.traction.grid_x,
+                     sc.ball_race.damping.name(), sc.ball_race.traction.name(), sc.ball_race.traction.grid_x,
                      sc.ball_race.traction.grid_y, groove && m.law<contact::BallGrooveSegment>(*groove).rolling_resistance ? "on" : "off");
   out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}\n",
                      sc.cage.pocket_shape == io::PocketShape::spherical ? "spherical" : "cylindrical",
-                     1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name);
+                     1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name());
   if (!land)
     out += "  cage-land: none (the cage is guided by the balls" + std::string(sc.cage.support.any() ? " and its spindle support)\n" : ")\n");
   else

@@ -101,14 +101,14 @@ struct LineLaws {
   contact::LineContactLaw law(const io::ContactSpec& spec, const io::Material& a, const io::Material& b,
                               double length) const {
     const double e = contact::reduced_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
-    const double damping = spec.damping.name == "none" ? 0.0 : spec.damping.factor;
+    const double damping = spec.damping.id == contact::LawId::no_damping ? 0.0 : spec.damping.factor;
     // Validity: an approach of 2 % of the roller radius is far beyond any elastic deflection.
     return contact::make_line_contact_law(e, length, spec.normal.slices, spec.normal.crown_drop, damping,
                                           0.02 * m.element_radius);
   }
   static contact::TractionCurve traction(const io::ContactSpec& spec) {
     contact::TractionCurve t;
-    if (spec.traction.name != "none") {
+    if (spec.traction.id != contact::LawId::no_traction) {
       t.friction_coefficient = spec.traction.friction_coefficient;
       t.slip_velocity_scale = spec.traction.slip_velocity_scale;
     }

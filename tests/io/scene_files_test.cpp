@@ -122,12 +122,12 @@ TEST(JobScenes, Seed000Case6309R3InSI) {
   EXPECT_DOUBLE_EQ(s.lubricant.viscosity, 0.03);
   EXPECT_NEAR(s.lubricant.pressure_viscosity, 2e-8, 1e-22);
   EXPECT_DOUBLE_EQ(s.lubricant.limiting_shear_coefficient, 0.07);
-  EXPECT_EQ(s.ball_race.normal.name, "hertz");
-  EXPECT_EQ(s.ball_race.traction.name, "limiting_shear");
+  EXPECT_EQ(s.ball_race.normal.name(), "hertz");
+  EXPECT_EQ(s.ball_race.traction.name(), "limiting_shear");
   EXPECT_EQ(s.ball_race.traction.grid_x, 5);
   EXPECT_EQ(s.ball_race.traction.grid_y, 5);
   EXPECT_TRUE(s.ball_race.traction.rolling_resistance);
-  EXPECT_EQ(s.ball_cage.traction.name, "tanh");
+  EXPECT_EQ(s.ball_cage.traction.name(), "tanh");
   EXPECT_DOUBLE_EQ(s.ball_cage.traction.friction_coefficient, 0.1);
 }
 
@@ -211,7 +211,7 @@ TEST(JobScenes, Seed001QJ215ValidationInSI) {
 
   // the seed's model: friction only, no lubricant
   EXPECT_EQ(s.lubricant.viscosity, 0.0);
-  EXPECT_EQ(s.ball_race.traction.name, "tanh");
+  EXPECT_EQ(s.ball_race.traction.name(), "tanh");
   EXPECT_DOUBLE_EQ(s.ball_race.traction.friction_coefficient, 0.09);
   EXPECT_FALSE(s.ball_race.traction.rolling_resistance);
   EXPECT_DOUBLE_EQ(s.cage_land.traction.friction_coefficient, 0.1);

@@ -60,13 +60,13 @@ TEST(DefaultScene, Parses) {
   EXPECT_EQ(s.outer_ring.motion, RingMotion::fixed);
   EXPECT_FALSE(s.outer_ring.translation_free);
 
-  EXPECT_EQ(s.roller_race.normal.name, "palmgren");
+  EXPECT_EQ(s.roller_race.normal.name(), "palmgren");
   EXPECT_EQ(s.roller_race.normal.id, contact::LawId::palmgren);
   EXPECT_EQ(s.roller_race.normal.slices, 1);
-  EXPECT_EQ(s.roller_race.damping.name, "hunt_crossley");
+  EXPECT_EQ(s.roller_race.damping.name(), "hunt_crossley");
   EXPECT_EQ(s.roller_race.damping.id, contact::LawId::hunt_crossley);
   EXPECT_DOUBLE_EQ(s.roller_race.damping.factor, 0.5);
-  EXPECT_EQ(s.roller_race.traction.name, "tanh");
+  EXPECT_EQ(s.roller_race.traction.name(), "tanh");
   EXPECT_EQ(s.roller_race.traction.id, contact::LawId::tanh_traction);
   EXPECT_DOUBLE_EQ(s.roller_race.traction.friction_coefficient, 0.1);
   EXPECT_DOUBLE_EQ(s.roller_race.traction.slip_velocity_scale, 0.05);
@@ -110,7 +110,7 @@ TEST(SceneParser, MinimalSceneGetsDocumentedDefaults) {
   EXPECT_NEAR(s.outer_ring.speed(1.0), 20.0 * pi, 1e-12);
   EXPECT_NEAR(s.outer_ring.speed.derivative(0.005), 20.0 * pi / 0.01, 1e-9);
   EXPECT_EQ(s.lubricant.viscosity, 0.0);
-  EXPECT_EQ(s.roller_cage.normal.name, "palmgren");
+  EXPECT_EQ(s.roller_cage.normal.name(), "palmgren");
   EXPECT_DOUBLE_EQ(s.roller_cage.traction.friction_coefficient, 0.1);
   EXPECT_EQ(s.solver.max_steps, 500000000);
   EXPECT_DOUBLE_EQ(s.solver.jacobian_perturbation, 1e-7);
@@ -158,14 +158,14 @@ poisson_ratio = 0.34
   EXPECT_DOUBLE_EQ(s.solver.atol_position, 1e-9);
   EXPECT_NEAR(s.solver.atol_angular_velocity, 0.01 * pi / 30.0, 1e-15);
   EXPECT_EQ(s.solver.atol_angle, 0.0);
-  EXPECT_EQ(s.cage_land.traction.name, "none");
+  EXPECT_EQ(s.cage_land.traction.name(), "none");
   EXPECT_EQ(s.cage_land.traction.id, contact::LawId::no_traction);
   EXPECT_EQ(s.cage_land.traction.friction_coefficient, 0.0);
   EXPECT_DOUBLE_EQ(s.cage_land.traction.slip_velocity_scale, 0.05);  // kept at its default, unused
-  EXPECT_EQ(s.cage_land.damping.name, "none");
+  EXPECT_EQ(s.cage_land.damping.name(), "none");
   EXPECT_EQ(s.cage_land.damping.id, contact::LawId::no_damping);
   EXPECT_EQ(s.cage_land.damping.factor, 0.0);
-  EXPECT_EQ(s.roller_race.traction.name, "tanh");
+  EXPECT_EQ(s.roller_race.traction.name(), "tanh");
 }
 
 TEST(SceneParser, ErrorFormat) {
@@ -262,20 +262,20 @@ TEST(SpatialScene, MinimalSceneGetsDocumentedDefaults) {
 
   // Point contacts: Hertz, Hunt-Crossley 0.5 s/m, tanh mu = 0.1 at 0.05 m/s, a 5 x 5 grid; no
   // lubricant, so no rolling resistance.
-  EXPECT_EQ(s.ball_race.normal.name, "hertz");
+  EXPECT_EQ(s.ball_race.normal.name(), "hertz");
   EXPECT_EQ(s.ball_race.normal.id, contact::LawId::hertz);
-  EXPECT_EQ(s.ball_race.damping.name, "hunt_crossley");
+  EXPECT_EQ(s.ball_race.damping.name(), "hunt_crossley");
   EXPECT_DOUBLE_EQ(s.ball_race.damping.factor, 0.5);
-  EXPECT_EQ(s.ball_race.traction.name, "tanh");
+  EXPECT_EQ(s.ball_race.traction.name(), "tanh");
   EXPECT_DOUBLE_EQ(s.ball_race.traction.friction_coefficient, 0.1);
   EXPECT_DOUBLE_EQ(s.ball_race.traction.slip_velocity_scale, 0.05);
   EXPECT_EQ(s.ball_race.traction.grid_x, 5);
   EXPECT_EQ(s.ball_race.traction.grid_y, 5);
   EXPECT_FALSE(s.ball_race.traction.rolling_resistance);
-  EXPECT_EQ(s.ball_cage.normal.name, "hertz");
-  EXPECT_EQ(s.ball_cage.traction.name, "tanh");
+  EXPECT_EQ(s.ball_cage.normal.name(), "hertz");
+  EXPECT_EQ(s.ball_cage.traction.name(), "tanh");
   EXPECT_DOUBLE_EQ(s.ball_cage.traction.friction_coefficient, 0.1);
-  EXPECT_EQ(s.cage_land.normal.name, "palmgren");
+  EXPECT_EQ(s.cage_land.normal.name(), "palmgren");
   EXPECT_EQ(s.cage_land.normal.id, contact::LawId::palmgren);
   EXPECT_DOUBLE_EQ(s.cage_land.traction.friction_coefficient, 0.05);
 
@@ -329,13 +329,13 @@ traction = "none"
   EXPECT_TRUE(s.cage.support.any());
   EXPECT_NEAR(s.lubricant.pressure_viscosity, 2e-8, 1e-22);
   EXPECT_DOUBLE_EQ(s.lubricant.limiting_shear_coefficient, 0.07);
-  EXPECT_EQ(s.ball_race.traction.name, "limiting_shear");
+  EXPECT_EQ(s.ball_race.traction.name(), "limiting_shear");
   EXPECT_EQ(s.ball_race.traction.id, contact::LawId::limiting_shear);
   EXPECT_EQ(s.ball_race.traction.grid_x, 7);
   EXPECT_EQ(s.ball_race.traction.grid_y, 3);
   EXPECT_FALSE(s.ball_race.traction.rolling_resistance);
-  EXPECT_EQ(s.ball_cage.damping.name, "none");
-  EXPECT_EQ(s.ball_cage.traction.name, "none");
+  EXPECT_EQ(s.ball_cage.damping.name(), "none");
+  EXPECT_EQ(s.ball_cage.traction.name(), "none");
   EXPECT_EQ(s.ball_cage.traction.friction_coefficient, 0.0);
 
   // A prescribed misalignment as a function of time, on a fixed ring (a misaligned housing).

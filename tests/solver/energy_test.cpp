@@ -16,11 +16,11 @@ namespace {
 
 void switch_off(io::ContactSpec& c, bool damping, bool traction) {
   if (damping) {
-    c.damping.name = "none";
+    c.damping.id = contact::LawId::no_damping;
     c.damping.factor = 0;
   }
   if (traction) {
-    c.traction.name = "none";
+    c.traction.id = contact::LawId::no_traction;
     c.traction.friction_coefficient = 0;
   }
 }
@@ -40,7 +40,7 @@ RunSummary run(const io::Scene& s) {
   const RunSummary sum = run_scene(s, options);
   std::printf("[ energy ] %s: E0 %.6g J, final %.6g J (change %.3g), max drift %.3g J = %.3g of E0; %ld steps, "
               "wall %.1f s\n",
-              s.roller_race.damping.name.c_str(), sum.energy_initial_j, sum.energy_final_j,
+              std::string(s.roller_race.damping.name()).c_str(), sum.energy_initial_j, sum.energy_final_j,
               (sum.energy_final_j - sum.energy_initial_j) / sum.energy_initial_j, sum.energy_max_drift_j,
               sum.energy_max_drift_j / sum.energy_initial_j, sum.stats.steps, sum.wall_time_s);
   return sum;

@@ -33,12 +33,12 @@ struct BallBearingSize {
 
 /// A contact of the cage (ball-pocket or cage-land): normal law `normal`, Hunt-Crossley damping
 /// 0.5 s/m, tanh traction with friction 0.05 and slip scale 0.05 m/s.
-inline io::ContactSpec cage_contact(const char* normal) {
+inline io::ContactSpec cage_contact(contact::LawId normal) {
   io::ContactSpec c;
-  c.normal.name = normal;
-  c.damping.name = "hunt_crossley";
+  c.normal.id = normal;
+  c.damping.id = contact::LawId::hunt_crossley;
   c.damping.factor = 0.5;
-  c.traction.name = "tanh";
+  c.traction.id = contact::LawId::tanh_traction;
   c.traction.friction_coefficient = 0.05;
   c.traction.slip_velocity_scale = 0.05;
   return c;
@@ -75,17 +75,17 @@ inline io::Scene ball_scene(const BallSceneOptions& o, const BallBearingSize& si
     *f = io::TimeFunction::constant(0.0);
   s.outer_ring.motion = io::RingMotion::fixed;
   auto& race = s.ball_race;
-  race.normal.name = "hertz";
-  race.damping.name = "hunt_crossley";
+  race.normal.id = contact::LawId::hertz;
+  race.damping.id = contact::LawId::hunt_crossley;
   race.damping.factor = o.damping_factor;
-  race.traction.name = o.lubricated ? "limiting_shear" : "tanh";
+  race.traction.id = o.lubricated ? contact::LawId::limiting_shear : contact::LawId::tanh_traction;
   race.traction.friction_coefficient = o.friction;
   race.traction.slip_velocity_scale = 0.05;
   race.traction.grid_x = race.traction.grid_y = 5;
   race.traction.rolling_resistance = o.lubricated;
   s.lubricant = {"test oil", o.lubricated ? 0.03 : 0.0, 2e-8, 0.07};
-  s.ball_cage = cage_contact("hertz");
-  s.cage_land = cage_contact("palmgren");
+  s.ball_cage = cage_contact(contact::LawId::hertz);
+  s.cage_land = cage_contact(contact::LawId::palmgren);
   s.solver.rtol = o.rtol;
   s.bearing.type = size.type;
   s.bearing.rolling_elements = size.balls;

@@ -100,9 +100,9 @@ io::Scene seed002(bool gravity, bool damping_and_traction) {
   s.gravity = gravity;
   if (!damping_and_traction) {
     for (io::ContactSpec* c : {&s.roller_race, &s.roller_cage, &s.cage_land}) {
-      c->damping.name = "none";
+      c->damping.id = contact::LawId::no_damping;
       c->damping.factor = 0;
-      c->traction.name = "none";
+      c->traction.id = contact::LawId::no_traction;
       c->traction.friction_coefficient = 0;
     }
   }
