@@ -21,7 +21,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <mpi.h>
 #include <numbers>
 #include <random>
 #include <string>
@@ -29,6 +28,7 @@
 
 #include "io/scene/scene_parser.hpp"
 #include "scheduler/executor.hpp"
+#include "scheduler/mpi_session.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
@@ -160,7 +160,7 @@ void measure_bearing(const char* name, const io::Scene& scene, double budget, in
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  const scheduler::MpiSession mpi(argc, argv);
   {
     // Optional third argument: PETSc options for petsc-bordered (as raceway run --petsc-options).
     solver::PetscRuntime petsc(argc > 3 ? argv[3] : "");
@@ -176,6 +176,5 @@ int main(int argc, char** argv) {
     measure_bearing("seed002_40hz.toml", io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml"), budget,
                     max_dense);
   }
-  MPI_Finalize();
   return 0;
 }
