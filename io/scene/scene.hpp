@@ -178,14 +178,17 @@ struct Lubricant {
                                           ///< 12 gives measured traction-curve shapes and practical steps
 };
 
-enum class IntegrationMethod { bdf, adams };
+/// CVODE's multistep methods (bdf: stiff, adams: non-stiff), ARKODE's explicit Runge-Kutta pairs (erk) and
+/// its diagonally implicit Runge-Kutta methods with the Newton solve (ark; solver/numerics/integrator.hpp).
+enum class IntegrationMethod { bdf, adams, erk, ark };
 /// Newton linear solver (solver/numerics/newton_backends.hpp). `automatic` picks block elimination or PETSc by
 /// the number of rolling elements (the measured crossover; README "Newton linear solvers").
 enum class LinearSolverKind { automatic, petsc_bordered, block_elimination, sundials_dense };
 
 struct SolverSpec {
   IntegrationMethod method = IntegrationMethod::bdf;
-  int max_order = 5;
+  int max_order = 5;                 ///< bdf, adams: largest order; erk, ark: the order of the pair
+  bool stability_limit_detection = false;  ///< bdf: CVODE's BDF stability-limit detection (order 3 and up)
   double rtol = 1e-6;
   /// Absolute tolerances per variable class (SI).
   double atol_position = 0;          ///< m

@@ -59,8 +59,25 @@ std::optional<double> friction_default(const Bind& b) {
 std::optional<double> rolling_resistance_default(const Bind& b) {
   return b.scene.lubricant.viscosity > 0 ? 1.0 : 0.0;
 }
-std::optional<double> max_order_default(const Bind& b) { return static_cast<double>(max_order_limit(b)); }
-long max_order_limit(const Bind& b) { return b.scene.solver.method == IntegrationMethod::bdf ? 5 : 12; }
+// bdf and adams: CVODE's largest orders; erk: Dormand-Prince 5(4); ark: ARKODE's default implicit order 4.
+std::optional<double> max_order_default(const Bind& b) {
+  switch (b.scene.solver.method) {
+    case IntegrationMethod::bdf: return 5;
+    case IntegrationMethod::adams: return 12;
+    case IntegrationMethod::erk: return 5;
+    case IntegrationMethod::ark: return 4;
+  }
+  return 5;
+}
+long max_order_limit(const Bind& b) {
+  switch (b.scene.solver.method) {
+    case IntegrationMethod::bdf: return 5;
+    case IntegrationMethod::adams: return 12;
+    case IntegrationMethod::erk: return 8;
+    case IntegrationMethod::ark: return 5;
+  }
+  return 5;
+}
 
 // ---- conditions --------------------------------------------------------------------------------
 
@@ -133,6 +150,10 @@ std::optional<std::string> damping_law_on(const Section&, const Bind& b) {
 std::optional<std::string> traction_law_on(const Section&, const Bind& b) {
   if (b.contact->traction.id != contact::LawId::no_traction) return std::nullopt;
   return "has no effect with traction = \"none\"";
+}
+std::optional<std::string> bdf_only(const Section&, const Bind& b) {
+  if (b.scene.solver.method == IntegrationMethod::bdf) return std::nullopt;
+  return "only for method = \"bdf\": the stability-limit detection watches CVODE's BDF orders 3 to 5";
 }
 
 // ---- checks after a key is read ----------------------------------------------------------------
@@ -330,6 +351,16 @@ void rolling_resistance_has_film(const Row&, const Section& s, Bind& b) {
 void remember_petsc_options_place(const Row&, const Section& s, Bind& b) {
   b.scene.solver.petsc_options_file = s.file();
   b.scene.solver.petsc_options_line = s.line("petsc_options");
+}
+// The Runge-Kutta pairs ARKODE has: explicit of order 2 to 6 and 8 (no embedded order-7 pair),
+// diagonally implicit of order 2 to 5; none of order 1.
+void order_exists_for_method(const Row& row, const Section& s, Bind& b) {
+  const SolverSpec& spec = b.scene.solver;
+  const int order = spec.max_order;
+  if (spec.method == IntegrationMethod::erk && (order < 2 || order == 7))
+    s.fail(row.key, fmt::format("method \"erk\" has explicit Runge-Kutta pairs of order 2, 3, 4, 5, 6 and 8, not {}", order));
+  if (spec.method == IntegrationMethod::ark && order < 2)
+    s.fail(row.key, fmt::format("method \"ark\" has implicit Runge-Kutta pairs of order 2 to 5, not {}", order));
 }
 
 // ---- across sections ---------------------------------------------------------------------------

@@ -50,6 +50,7 @@ std::optional<std::string> axial_support_needs_axially_free(const Section& s, co
 std::optional<std::string> tilt_support_needs_free_tilt(const Section& s, const Bind& b);
 std::optional<std::string> damping_law_on(const Section& s, const Bind& b);
 std::optional<std::string> traction_law_on(const Section& s, const Bind& b);
+std::optional<std::string> bdf_only(const Section& s, const Bind& b);
 
 // ---- checks after a key is read ----------------------------------------------------------------
 void output_interval_within_run(const Row& row, const Section& s, Bind& b);
@@ -73,6 +74,7 @@ void crown_drop_fits(const Row& row, const Section& s, Bind& b);
 void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
 void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
 void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);
+void order_exists_for_method(const Row& row, const Section& s, Bind& b);
 
 // ---- across sections ---------------------------------------------------------------------------
 /// The rolling elements fit on the pitch circle (with room for ball-cage bars), and the rings are

@@ -40,6 +40,9 @@ constexpr std::string_view kBallRaceContact =
     "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
     "at the contact centre";
 
+constexpr std::string_view kMaxOrderText = "5 (bdf), 12 (adams), 8 (erk), 5 (ark)";
+constexpr std::string_view kMaxOrderDefaultText = "5 (bdf), 12 (adams), 5 (erk), 4 (ark)";
+
 constexpr Bounds kConformity{.lo = 0.5, .hi = 0.6, .lo_open = true,
                              .note = " (conformity = groove radius / ball diameter: the groove radius must exceed the "
                                      "ball radius; ball bearing grooves are 0.505 to 0.58)"};
@@ -345,10 +348,17 @@ constexpr Row kRows[] = {
 
     // ---- [solver]: CVODE --------------------------------------------------------------------------
     {.section = "solver", .key = "method", .kind = choice, .field = FIELD(scene.solver.method), .def = word("bdf"),
-     .options = kMethods, .meaning = "stiff (bdf) or non-stiff (adams) multistep method"},
+     .options = kMethods,
+     .meaning = "bdf (stiff) or adams (non-stiff) multistep methods of CVODE; erk: explicit Runge-Kutta pairs, ark: "
+                "diagonally implicit Runge-Kutta with the Newton solve (ARKODE)"},
     {.section = "solver", .key = "max_order", .kind = integer, .field = FIELD(scene.solver.max_order),
-     .bounds = {.lo = 1, .hi_of = max_order_limit, .hi_text = "5 (bdf), 12 (adams)"},
-     .def = derived(max_order_default, "5 (bdf), 12 (adams)"), .meaning = "largest method order"},
+     .bounds = {.lo = 1, .hi_of = max_order_limit, .hi_text = kMaxOrderText}, .def = derived(max_order_default, kMaxOrderDefaultText),
+     .then = order_exists_for_method,
+     .meaning = "bdf, adams: largest order; erk: order of the pair (2, 3, 4, 5 Dormand-Prince, 6 Verner, 8 Fehlberg); "
+                "ark: order of the implicit pair (2 to 5)"},
+    {.section = "solver", .key = "stability_limit_detection", .kind = boolean,
+     .field = FIELD(scene.solver.stability_limit_detection), .def = value(0), .when = bdf_only, .otherwise = 0,
+     .meaning = "CVODE's BDF stability-limit detection: lowers the order where order 3 to 5 is unstable"},
     {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
      .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
     {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",

@@ -107,7 +107,10 @@ inline constexpr Option kRingMotions[] = {
 inline constexpr Option kFreeOrFixed[] = {{"free", 1}, {"fixed", 0}};
 inline constexpr Option kRingTilts[] = {
     {"fixed", int(RingTilt::fixed)}, {"free", int(RingTilt::free)}, {"prescribed", int(RingTilt::prescribed)}};
-inline constexpr Option kMethods[] = {{"bdf", int(IntegrationMethod::bdf)}, {"adams", int(IntegrationMethod::adams)}};
+inline constexpr Option kMethods[] = {{"bdf", int(IntegrationMethod::bdf)},
+                                     {"adams", int(IntegrationMethod::adams)},
+                                     {"erk", int(IntegrationMethod::erk)},
+                                     {"ark", int(IntegrationMethod::ark)}};
 /// "bordered" and "dense" are older names of block elimination and SUNDIALS dense, still accepted.
 inline constexpr Option kLinearSolvers[] = {{"auto", int(LinearSolverKind::automatic)},
                                             {"petsc-bordered", int(LinearSolverKind::petsc_bordered)},

@@ -1,21 +1,37 @@
 #include "solver/numerics/integrator.hpp"
 
-#include <cvode/cvode.h>
 #include <fmt/format.h>
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
-#include <cstdlib>
+#include <chrono>
 #include <cmath>
 #include <exception>
+
+#include "solver/numerics/time_stepper.hpp"
+#include "solver/numerics/timed_linear_solver.hpp"
 
 namespace raceway::solver {
 
 namespace {
 
-void check(int flag, const char* what) {
-  if (flag < 0) throw std::runtime_error(fmt::format("CVODE set-up failed in {} (flag {})", what, flag));
-}
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// Adds the time of the enclosing scope to a counter.
+class ScopedTimer {
+ public:
+  explicit ScopedTimer(double& seconds) : seconds_(seconds), start_(Clock::now()) {}
+  ~ScopedTimer() { seconds_ += seconds_since(start_); }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  double& seconds_;
+  Clock::time_point start_;
+};
+
+bool implicit_method(io::IntegrationMethod m) { return m != io::IntegrationMethod::erk; }
 
 }  // namespace
 
@@ -23,24 +39,31 @@ struct Integrator::Impl {
   DynamicSystem& eq;
   io::SolverSpec spec;
   SUNContext ctx = nullptr;
-  void* cvode = nullptr;
   N_Vector y = nullptr;
+  N_Vector error = nullptr, weights = nullptr;  // scratch for the step-limiting accounting
   std::unique_ptr<NewtonLinearSystem> linear;
+  SUNLinearSolver timed_solver = nullptr;  // wraps linear->solver() to time it
+  std::unique_ptr<stepping::TimeStepper> stepper;
   BorderedMatrix scratch;  // the Jacobian is formed here, then loaded into the backend's matrix
   std::exception_ptr callback_error;
-  std::string last_cvode_message;
+  std::string last_message;
   long steps_budget = 0;
+  StepLimitingStates limiting;
+  IntegratorTiming timing;
 
   Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
-    if (cvode) CVodeFree(&cvode);
+    stepper.reset();
+    if (timed_solver) SUNLinSolFree(timed_solver);
     linear.reset();
-    if (y) N_VDestroy(y);
+    for (N_Vector v : {y, error, weights})
+      if (v) N_VDestroy(v);
     if (ctx) SUNContext_Free(&ctx);
   }
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     auto* self = static_cast<Impl*>(user);
+    ScopedTimer timer(self->timing.rhs);
     try {
       return self->eq.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     } catch (...) {
@@ -51,6 +74,7 @@ struct Integrator::Impl {
   static int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
                       N_Vector) {
     auto* self = static_cast<Impl*>(user);
+    ScopedTimer timer(self->timing.jacobian);
     try {
       const int status = self->eq.jacobian(t, N_VGetArrayPointer(y), self->scratch);
       NewtonLinearSystem::load_jacobian(self->scratch, j);
@@ -62,10 +86,11 @@ struct Integrator::Impl {
   }
   static void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
     auto* self = static_cast<Impl*>(user);
-    self->last_cvode_message = fmt::format("{} {} (code {}): {}", module, function, code, msg);
+    self->last_message = fmt::format("{} {} (code {}): {}", module, function, code, msg);
   }
 
-  std::string diagnose(int flag) const;
+  void record_step_error();
+  std::string diagnose(int flag, bool budget_exhausted) const;
 };
 
 Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, double t0,
@@ -73,100 +98,117 @@ Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, dou
     : impl_(std::make_unique<Impl>(equations, spec)) {
   Impl& s = *impl_;
   const auto n = static_cast<sunindextype>(z0.size());
-  check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
+  stepping::check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
   s.y = N_VNew_Serial(n, s.ctx);
   std::copy(z0.begin(), z0.end(), N_VGetArrayPointer(s.y));
-  s.cvode = CVodeCreate(spec.method == io::IntegrationMethod::bdf ? CV_BDF : CV_ADAMS, s.ctx);
-  if (!s.cvode) throw std::runtime_error("CVodeCreate failed");
-  check(CVodeSetErrHandlerFn(s.cvode, Impl::error_handler, &s), "CVodeSetErrHandlerFn");
-  check(CVodeInit(s.cvode, Impl::rhs, t0, s.y), "CVodeInit");
-  check(CVodeSetUserData(s.cvode, &s), "CVodeSetUserData");
+  s.error = N_VClone(s.y);
+  s.weights = N_VClone(s.y);
   N_Vector atol = N_VNew_Serial(n, s.ctx);
   const auto abs_tol = equations.absolute_tolerance();
   std::copy(abs_tol.begin(), abs_tol.end(), N_VGetArrayPointer(atol));
-  check(CVodeSVtolerances(s.cvode, spec.rtol, atol), "CVodeSVtolerances");
-  N_VDestroy(atol);
-  check(CVodeSetMaxOrd(s.cvode, spec.max_order), "CVodeSetMaxOrd");
-  if (spec.max_step > 0) check(CVodeSetMaxStep(s.cvode, spec.max_step), "CVodeSetMaxStep");
-  if (spec.initial_step > 0) check(CVodeSetInitStep(s.cvode, spec.initial_step), "CVodeSetInitStep");
   s.steps_budget = spec.max_steps;
+  s.limiting.share_sum.assign(z0.size(), 0.0);
+  s.limiting.largest.assign(z0.size(), 0);
+  s.limiting.weighted_error_sum.assign(z0.size(), 0.0);
 
-  const BorderedLayout layout{equations.border_size(), equations.block_count(), equations.block_size()};
-  const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
-  // PETSc options are validated here at the latest (run_scene does it before opening the output).
-  if (kind == io::LinearSolverKind::petsc_bordered) configure_petsc_options(spec, layout);
-  s.scratch = BorderedMatrix(layout.border, layout.blocks, layout.block_size);
-  s.linear = std::make_unique<NewtonLinearSystem>(kind, s.ctx, s.y, layout);
-  check(CVodeSetLinearSolver(s.cvode, s.linear->solver(), s.linear->matrix()), "CVodeSetLinearSolver");
-  check(CVodeSetJacFn(s.cvode, Impl::jacobian), "CVodeSetJacFn");
+  if (implicit_method(spec.method)) {
+    const BorderedLayout layout{equations.border_size(), equations.block_count(), equations.block_size()};
+    const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
+    // PETSc options are validated here at the latest (run_scene does it before opening the output).
+    if (kind == io::LinearSolverKind::petsc_bordered) configure_petsc_options(spec, layout);
+    s.scratch = BorderedMatrix(layout.border, layout.blocks, layout.block_size);
+    s.linear = std::make_unique<NewtonLinearSystem>(kind, s.ctx, s.y, layout);
+    s.timed_solver = backend::make_timed_solver(s.ctx, s.linear->solver(), &s.timing.linear_setup,
+                                                &s.timing.linear_solve);
+  }
+  const stepping::StepperSetup setup{spec, s.ctx, s.y, t0, atol,
+                                     {Impl::rhs, Impl::jacobian, Impl::error_handler, &s},
+                                     s.linear.get(), s.timed_solver};
+  try {
+    s.stepper = spec.method == io::IntegrationMethod::bdf || spec.method == io::IntegrationMethod::adams
+                    ? stepping::make_cvode_stepper(setup)
+                    : stepping::make_arkode_stepper(setup);
+  } catch (...) {
+    N_VDestroy(atol);
+    throw;
+  }
+  N_VDestroy(atol);
 }
 
 Integrator::~Integrator() = default;
 
 void Integrator::advance_to(double t_out, std::vector<double>& z) {
   Impl& s = *impl_;
-  long steps = 0;
-  CVodeGetNumSteps(s.cvode, &steps);
+  ScopedTimer timer(s.timing.total);
   // Guard against a run that crawls: at most 200000 steps per output interval, and the scene's
   // total budget. Either ends the run with a diagnosis, never a hang.
-  const long per_call = std::min<long>(200000, std::max<long>(1, s.steps_budget - steps));
-  CVodeSetMaxNumSteps(s.cvode, per_call);
-  sunrealtype t_reached = 0;
-  const int flag = CVode(s.cvode, t_out, s.y, &t_reached, CV_NORMAL);
-  if (s.callback_error) std::rethrow_exception(s.callback_error);
-  if (flag < 0) throw IntegrationFailure(s.diagnose(flag));
+  const long per_call = std::min<long>(200000, std::max<long>(1, s.steps_budget - s.stepper->statistics().steps));
+  // One internal step at a time until t_out is reached, then the interpolant there: what CVODE's
+  // normal mode does inside, with the accounting of each accepted step in between.
+  for (long taken = 0; s.stepper->time() < t_out; ++taken) {
+    if (taken >= per_call) throw IntegrationFailure(s.diagnose(0, true));
+    double t_reached = 0;
+    const int flag = s.stepper->step(t_out, s.y, t_reached);
+    if (s.callback_error) std::rethrow_exception(s.callback_error);
+    if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
+    s.record_step_error();
+  }
+  const int flag = s.stepper->interpolate(t_out, s.y);
+  if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
   const sunrealtype* y = N_VGetArrayPointer(s.y);
   z.assign(y, y + N_VGetLength(s.y));
 }
 
-std::string Integrator::Impl::diagnose(int flag) const {
-  sunrealtype t = 0, h_last = 0, h_cur = 0;
-  CVodeGetCurrentTime(cvode, &t);
-  CVodeGetLastStep(cvode, &h_last);
-  CVodeGetCurrentStep(cvode, &h_cur);
-  long steps = 0;
-  CVodeGetNumSteps(cvode, &steps);
-  char* flag_name = CVodeGetReturnFlagName(flag);  // allocated by CVODE
-  const std::string flag_text = flag_name ? flag_name : "unknown flag";
-  std::free(flag_name);
-  std::string out = fmt::format("integration failed at t = {:.9g} s: {} after {} steps; last step {:.3g} s, "
+void Integrator::Impl::record_step_error() {
+  ScopedTimer timer(timing.accounting);
+  if (!stepper->local_errors(error, weights)) return;
+  const double* e = N_VGetArrayPointer(error);
+  const double* w = N_VGetArrayPointer(weights);
+  const auto n = static_cast<std::size_t>(N_VGetLength(error));
+  double norm2 = 0, worst = -1;
+  std::size_t worst_index = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double we = std::abs(e[i] * w[i]);
+    norm2 += we * we;
+    limiting.weighted_error_sum[i] += we;
+    if (we > worst) worst = we, worst_index = i;
+  }
+  ++limiting.steps;
+  ++limiting.largest[worst_index];
+  if (norm2 > 0)
+    for (std::size_t i = 0; i < n; ++i) limiting.share_sum[i] += e[i] * w[i] * e[i] * w[i] / norm2;
+}
+
+std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
+  const IntegratorStatistics st = stepper->statistics();
+  const std::string what = budget_exhausted ? "too much work" : stepper->flag_name(flag);
+  std::string out = fmt::format("integration failed at t = {:.9g} s ({}): {} after {} steps; last step {:.3g} s, "
                                 "attempted step {:.3g} s",
-                                t, flag_text, steps, h_last, h_cur);
-  if (flag == CV_TOO_MUCH_WORK)
+                                stepper->time(), stepper->method_name(), what, st.steps, st.last_step,
+                                stepper->attempted_step());
+  if (budget_exhausted)
     out += fmt::format(" (step budget exhausted: max_steps = {} in the scene, or 200000 within one output "
                        "interval)", steps_budget);
   // The state with the largest weighted local error, and the contact loading its body the most.
-  const auto n = N_VGetLength(y);
-  N_Vector err = N_VClone(y), w = N_VClone(y);
-  if (CVodeGetEstLocalErrors(cvode, err) == CV_SUCCESS && CVodeGetErrWeights(cvode, w) == CV_SUCCESS) {
-    const double* e = N_VGetArrayPointer(err);
-    const double* wt = N_VGetArrayPointer(w);
+  if (stepper->local_errors(error, weights)) {
+    const double* e = N_VGetArrayPointer(error);
+    const double* wt = N_VGetArrayPointer(weights);
+    const auto n = N_VGetLength(y);
     sunindextype worst = 0;
     for (sunindextype i = 1; i < n; ++i)
       if (std::abs(e[i] * wt[i]) > std::abs(e[worst] * wt[worst])) worst = i;
     out += fmt::format("; largest weighted local error ({:.3g}) in ", std::abs(e[worst] * wt[worst]));
     out += eq.explain_state(static_cast<int>(worst));
   }
-  N_VDestroy(err);
-  N_VDestroy(w);
-  if (!last_cvode_message.empty()) out += "; CVODE: " + last_cvode_message;
-  if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
+  if (!last_message.empty()) out += "; " + last_message;
+  if (linear)
+    if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
   return out;
 }
 
-IntegratorStatistics Integrator::statistics() const {
-  const Impl& s = *impl_;
-  IntegratorStatistics st;
-  CVodeGetNumSteps(s.cvode, &st.steps);
-  CVodeGetNumRhsEvals(s.cvode, &st.rhs_evaluations);
-  CVodeGetNumJacEvals(s.cvode, &st.jacobian_evaluations);
-  CVodeGetNumLinSolvSetups(s.cvode, &st.linear_setups);
-  CVodeGetNumNonlinSolvIters(s.cvode, &st.newton_iterations);
-  CVodeGetNumNonlinSolvConvFails(s.cvode, &st.newton_failures);
-  CVodeGetNumErrTestFails(s.cvode, &st.error_test_failures);
-  CVodeGetLastOrder(s.cvode, &st.last_order);
-  CVodeGetLastStep(s.cvode, &st.last_step);
-  return st;
-}
+IntegratorStatistics Integrator::statistics() const { return impl_->stepper->statistics(); }
+const StepLimitingStates& Integrator::step_limiting_states() const { return impl_->limiting; }
+const IntegratorTiming& Integrator::timing() const { return impl_->timing; }
+std::string Integrator::method_name() const { return impl_->stepper->method_name(); }
 
 }  // namespace raceway::solver
