@@ -22,6 +22,7 @@
 
 #include "io/report/report.hpp"
 #include "raceway/version.hpp"
+#include "io/scene/scene_override.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "io/json/summary_json.hpp"
 #include "scheduler/mpi_executor.hpp"
@@ -179,6 +180,7 @@ struct CommandLine {
   std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
   scheduler::MpiExecutorOptions exec_options;
   std::string schedule = "adaptive", inject;
+  std::string method;  ///< --method: the scene's [solver] method, replaced
   bool replan_every_evaluation = false;
   io::ReportOptions report_options;
   double window_start = NAN;
@@ -196,6 +198,10 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
   run->add_option("--petsc-options", cl.petsc_options,
                   "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
                   "mumps\"; override the scene's [solver] petsc_options");
+  run->add_option("--method", cl.method,
+                  "time integration method, replacing the scene's [solver] method: bdf, adams (CVODE), erk, ark "
+                  "(ARKODE); its max_order then defaults to the method's unless the scene gives one")
+      ->check(CLI::IsMember({"bdf", "adams", "erk", "ark"}));
   run->add_option("--schedule", cl.schedule, "task plan under mpirun: adaptive (re-planned from measured task times) "
                   "or static (one plan from the first measured times)")
       ->check(CLI::IsMember({"adaptive", "static"}))
@@ -253,6 +259,10 @@ int run_on_all_ranks(CommandLine& cl, int rank, int size) {
   if (rank == 0) {
     try {
       scene = load(cl.scene_path);
+      // --method edits the scene text, so the output's stored scene says what ran.
+      if (!cl.method.empty())
+        scene = io::parse_scene(io::override_scene_key(scene.text, "solver", "method", fmt::format("\"{}\"", cl.method)),
+                                scene.source);
       text = scene.text, source = scene.source;
     } catch (const io::SceneError& e) {
       spdlog::error("{}", e.what());
