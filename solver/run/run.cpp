@@ -48,6 +48,9 @@ io::JsonObject RunSummary::to_json() const {
   j.add("energy_final_j", energy_final_j);
   j.add("energy_max_drift_j", energy_max_drift_j);
   j.add("output_samples", static_cast<long long>(output_samples));
+  j.add("method", method);
+  j.add("step_limiting_states", step_limiting_json(step_limiting));
+  j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
   return j;
 }
 
@@ -123,6 +126,9 @@ class SecondHalf {
 void finish_summary(RunSummary& sum, double t, const Integrator& integrator, const Equations& eq,
                     scheduler::Executor& executor, double wall_seconds) {
   sum.stats = integrator.statistics();
+  sum.method = integrator.method_name();
+  sum.step_limiting = step_limiting_classes(eq.model(), integrator.step_limiting_states());
+  sum.timing = integrator.timing();
   sum.simulated_time_s = t;
   sum.wall_time_s = wall_seconds;
   sum.model_rhs_evaluations = eq.rhs_evaluations();
@@ -158,6 +164,7 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   double revolutions = 0, last_t = t0;
 
   auto record = [&](double t) {
+    const auto record_start = std::chrono::steady_clock::now();
     eq.rhs(t, z.data(), zdot.data());
     const double e = eq.energy(t, z.data());
     if (sum.output_samples == 0) sum.energy_initial_j = e;
@@ -169,6 +176,7 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
       revolutions += 0.5 * (drive.speed(last_t) + drive.speed(t)) * (t - last_t) / (2 * std::numbers::pi);
     last_t = t;
     if (t >= 0.5 * end - 1e-12) second_half.add(t, z, eq);
+    sum.output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count();
   };
   auto finish = [&](double t) {
     finish_summary(sum, t, integrator, eq, executor, wall());

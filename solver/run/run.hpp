@@ -10,6 +10,7 @@
 #include "io/json/summary_json.hpp"
 #include "scheduler/executor.hpp"
 #include "solver/numerics/integrator.hpp"
+#include "solver/run/run_profile.hpp"
 
 namespace raceway::solver {
 
@@ -45,6 +46,10 @@ struct RunSummary {
   std::string model_kind = "planar";
   double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
   int output_samples = 0;
+  std::string method;                        ///< the integrator's method ("CVODE BDF", ...)
+  std::vector<StateClassShare> step_limiting;  ///< which states limit the step, largest share first
+  IntegratorTiming timing;                   ///< where the integrator's time went
+  double output_seconds = 0;                 ///< sampling: diagnostics right-hand side and writing
   io::JsonObject to_json() const;
 };
 
