@@ -382,6 +382,13 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
 
 // ---- traction ------------------------------------------------------------------------------------
 
+double film_weight(double film_thickness, const PointLubricant& lubricant) {
+  if (!(film_thickness > 0)) return 0.0;
+  if (!(film_thickness < lubricant.boundary_film)) return 1.0;
+  const double x = film_thickness / lubricant.boundary_film;
+  return x * x * (3 - 2 * x);
+}
+
 TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
                                   double normal_force, double ax, double ay, double film_thickness,
                                   const ContactSliding& sliding) {
@@ -391,6 +398,9 @@ TractionResult integrate_traction(const PointTraction& traction, const PointLubr
     throw std::invalid_argument("integrate_traction: grid_x and grid_y must be >= 1");
   const bool limiting =
       traction.model == TractionModel::limiting_shear && film_thickness > 0 && lubricant.viscosity > 0;
+  // Below the boundary film the film's shear (weight w) and the curve (1 - w) share the traction.
+  const double film_share = limiting ? film_weight(film_thickness, lubricant) : 0.0;
+  const bool blended = limiting && film_share < 1;
   if (!limiting && traction.friction_coefficient == 0) return out;
 
   const TractionGrid& grid = traction_grid(traction.grid_x, traction.grid_y);
@@ -413,6 +423,8 @@ TractionResult integrate_traction(const PointTraction& traction, const PointLubr
           lubricant.viscosity * std::exp(std::min(lubricant.pressure_viscosity * p, lubricant.viscosity_exponent_cap));
       const double area = c.area * area_scale;
       g = tau_limit > 0 ? eta * inverse_h * area * tanh_over_x(eta * inverse_h * s / tau_limit) : 0;
+      if (blended)
+        g = film_share * g + (1 - film_share) * mu_over_scale * normal_force * c.load * tanh_over_x(s * inverse_scale);
     } else {
       g = mu_over_scale * normal_force * c.load * tanh_over_x(s * inverse_scale);
     }

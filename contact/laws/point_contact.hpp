@@ -72,7 +72,19 @@ struct PointLubricant {
   /// (saturation below 1e-5 m/s), which costs the integrator tiny steps; 10-12 gives saturation
   /// at mm/s, the shape of measured traction curves.
   double viscosity_exponent_cap = 20;
+  /// Film thickness [m] at and above which the film carries the whole traction. Below it, as the
+  /// film vanishes (the entrainment speed going to zero: standstill, start and stop), the film's
+  /// shear hands over to the friction curve by film_weight, so that the traction stays continuous
+  /// with a bounded slope: the film's own slope eta / h grows without bound as h -> 0, and it
+  /// saturates at Lambda p, not at the curve's mu p. 10 nm is below any running film (tenths of
+  /// a micrometre) and below the roughness of ground races, where the film model no longer holds.
+  double boundary_film = 1e-8;
 };
+
+/// The share of a point contact's traction carried by the film of central thickness h [m]:
+/// 0 at h <= 0, 1 at h >= boundary_film, and x^2 (3 - 2x), x = h / boundary_film, between
+/// (C1 at both ends). Its product with the film's shear slope, w eta / h, stays bounded as h -> 0.
+double film_weight(double film_thickness, const PointLubricant& lubricant);
 
 /// Hamrock-Dowson EHL film thicknesses for a point contact [m] (fully flooded, isothermal):
 ///   H_c = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 e^(-0.73 k)),
@@ -95,7 +107,9 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
 ///  - limiting_shear: Newtonian shear limited by tau_L = Lambda p (Eyring-like smooth limit):
 ///      tau = tau_L tanh(eta(p) s / (h tau_L)),  eta(p) = eta0 exp(min(alpha p, alpha_p_cap)),
 ///    alpha_p_cap = 20 (eta at most e^20 ~ 5e8 times eta0), with the central film h; falls back to
-///    the curve where the film is zero (h <= 0) or the viscosity is 0. Lambda <= 0 gives no shear.
+///    the curve where the film is zero (h <= 0) or the viscosity is 0, and hands over to it
+///    continuously below lubricant.boundary_film: w tau_film + (1 - w) tau_curve with
+///    w = film_weight(h) (so it works at standstill). Lambda <= 0 gives no shear.
 /// Both are smooth at zero slip: the shear is -(tau/s) times the slip vector, tau/s finite at s = 0.
 enum class TractionModel { none, curve, limiting_shear };
 struct PointTraction {

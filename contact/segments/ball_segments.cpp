@@ -184,7 +184,9 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   if (s.rolling_resistance && film.central > 0) {
     const double houpert =
         ehl_rolling_resistance(entrainment, q, rx, ry, s.normal.reduced_modulus, s.lubricant);
-    const double f_r = houpert > 0 ? houpert * q / (houpert + q) : 0.0;
+    // Handed over with the traction as the film vanishes (Houpert's F_R ~ u^0.66 has an unbounded
+    // slope at zero entrainment; film_weight ~ h^2 ~ u^1.34 there makes the couple C1).
+    const double f_r = houpert > 0 ? film_weight(film.central, s.lubricant) * houpert * q / (houpert + q) : 0.0;
     const double rolling_rate = w_rel.dot(ey);
     const double scale = s.traction.slip_velocity_scale > 0 ? s.traction.slip_velocity_scale : 1.0;
     const double m = -f_r * rx * std::tanh(rolling_rate * rx / scale);

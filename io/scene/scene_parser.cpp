@@ -293,7 +293,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   const Section bearing = top(file, root, "bearing", true);
   read_section("bearing", bearing, b);
   b.bearing_known = true;
-  read_section("cage", top(file, root, "cage", true), b);
+  const Section cage = top(file, root, "cage", true);
+  read_section("cage", cage, b);
   const Section inner = top(file, root, "inner_ring", true);
   const Section outer = top(file, root, "outer_ring", true);
   for (const auto& [section, ring] : {std::pair{&inner, &scene.inner_ring}, std::pair{&outer, &scene.outer_ring}}) {
@@ -307,6 +308,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   read_section("solver", top(file, root, "solver", false), b);
   read_section("output", top(file, root, "output", false), b);
   rules::check_scene(bearing, outer, scene);
+  rules::check_cage_held(cage, scene);
   return scene;
 }
 

@@ -420,4 +420,16 @@ void check_scene(const Section& bearing, const Section& outer_ring, const Scene&
   rings_held(outer_ring, scene);
 }
 
+void check_cage_held(const Section& cage, const Scene& scene) {
+  const CageSpec& c = scene.cage;
+  if (!scene.bearing.is_ball_bearing() || c.guidance != CageGuidance::rolling_element) return;
+  if (c.pocket_shape == PocketShape::spherical || c.support.radial_stiffness > 0) return;
+  cage.fail(cage.has("pocket_shape") ? "pocket_shape" : "guidance",
+            "nothing holds this cage radially: it is ball-guided (guidance = \"rolling_element\") with cylindrical "
+            "pockets, whose radial axes let the balls slide through them, and once the balls bunch the cage drifts "
+            "through the rings; give pocket_shape = \"spherical\" (pressed and snap cages, held by the balls), "
+            "guidance = \"inner_land\" or \"outer_land\" with a land_clearance (machined cages), or a [cage.support] "
+            "with radial_stiffness (a cage on a spindle)");
+}
+
 }  // namespace raceway::io::schema::rules

@@ -80,5 +80,10 @@ void order_exists_for_method(const Row& row, const Section& s, Bind& b);
 /// The rolling elements fit on the pitch circle (with room for ball-cage bars), and the rings are
 /// held radially (and, spatial, axially and in tilt). Errors name [bearing] or [outer_ring] keys.
 void check_scene(const Section& bearing, const Section& outer_ring, const Scene& scene);
+/// Something holds the cage radially: a land, a support with radial stiffness, or (ball-guided)
+/// spherical pockets. A ball-guided cage in cylindrical (radially drilled) pockets is held only
+/// while the balls stay spread around it: they slide along the pockets' radial axes, and once they
+/// bunch the cage drifts through the rings. Errors name [cage] keys; checked after every section.
+void check_cage_held(const Section& cage, const Scene& scene);
 
 }  // namespace raceway::io::schema::rules

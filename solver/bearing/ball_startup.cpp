@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -307,6 +308,49 @@ double set_rolling_velocities(const Model& m, double t0, double epicyclic, std::
   return cage_speed;
 }
 
+/// The cage starts where its pockets hold the balls. Each ball allows the cage's axial position
+/// within its pocket's play: |z_k - z_c| <= sqrt((c/2)^2 - r_k^2), r_k the ball's other offset from
+/// the pocket centre (radial, spherical pockets; none for cylindrical ones, whose axis is radial).
+/// The cage stays at the bearing's mid-plane (z = 0, where its supports hold it) when every ball
+/// allows that, and moves only as far as it must otherwise; when no single axial position holds
+/// every ball (the ball set tilted, a misaligned ring), the cage takes the plane fitted to the
+/// balls' centres: its offset and tilt. Returns the largest pocket force of the start.
+double place_cage(const Model& m, std::vector<double>& z) {
+  const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  const Segment* pocket_segment = m.first_segment(SegmentKind::ball_pocket);
+  if (pocket_segment == nullptr) return 0.0;
+  const auto& pocket = m.law<contact::BallPocketSegment>(*pocket_segment);
+  const bool spherical = pocket.shape == contact::PocketShape::spherical;
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd plane(m.element_count, 3);
+  Eigen::VectorXd heights(m.element_count);
+  for (int k = 0; k < m.element_count; ++k) {
+    const Vec3 x = ball_position(m, z, k);
+    const double radial = spherical ? std::hypot(x.x(), x.y()) - m.pitch_radius : 0.0;
+    const double play = std::sqrt(std::max(0.0, 0.25 * pocket.clearance * pocket.clearance - radial * radial));
+    lo = std::max(lo, x.z() - play), hi = std::min(hi, x.z() + play);
+    plane.row(k) << 1.0, x.x(), x.y();
+    heights[k] = x.z();
+  }
+  auto at = [&](Coordinate c) -> double& { return z[static_cast<std::size_t>(cage.slot[c])]; };
+  if (lo <= hi) {
+    at(sz) = std::clamp(0.0, lo, hi);
+  } else {
+    const Eigen::Vector3d fit = plane.colPivHouseholderQr().solve(heights);  // z = z0 + a x + b y
+    at(sz) = fit[0];
+    at(sax) = std::atan(fit[2]);   // pocket heights z0 + r_p (ax sin - ay cos) of its angle
+    at(say) = -std::atan(fit[1]);
+  }
+  double largest = 0;
+  for (const Segment& seg : m.segments)
+    if (seg.kind == SegmentKind::ball_pocket)
+      largest = std::max(largest, contact::evaluate(m.law<contact::BallPocketSegment>(seg),
+                                                    m.kinematics(seg.body_a, 0.0, z.data()),
+                                                    m.kinematics(seg.body_b, 0.0, z.data()))
+                                      .diagnostics.normal_force);
+  return largest;
+}
+
 }  // namespace
 
 StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset) {
@@ -332,6 +376,7 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
         iterations, rep.residual));
   std::vector<double> z = seat.state(u);
   z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[saz])] = azimuth_offset;
+  rep.pocket_force = place_cage(m, z);
   rep.inner_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
   rep.outer_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
   const double cage_speed = set_rolling_velocities(m, t0, seat.orbit, z, rep);
@@ -342,6 +387,12 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
       "start-up: quasi-static seating in {} iterations (largest unbalanced force {:.3g} N); largest inner-groove "
       "ball load {:.4g} N; cage at {:.4g} rpm (rolling balls; epicyclic at the nominal contact angle {:.4g} rpm)",
       rep.iterations, rep.residual, q_max, cage_speed * 30.0 / pi, seat.orbit * 30.0 / pi);
+  const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  const auto cage_at = [&](Coordinate c) { return rep.state[static_cast<std::size_t>(cage.slot[c])]; };
+  if (cage_at(sz) != 0.0 || cage_at(sax) != 0.0 || cage_at(say) != 0.0)
+    rep.summary += fmt::format("; cage at the balls: {:.4g} mm off the mid-plane, tilted ({:.3g}, {:.3g}) mrad, "
+                               "largest pocket force {:.3g} N",
+                               1e3 * cage_at(sz), 1e3 * cage_at(sax), 1e3 * cage_at(say), rep.pocket_force);
   return rep;
 }
 

@@ -57,6 +57,9 @@ struct Seating {
     // The outer race alone bounds rho from above (residual < 0 deep in the outer race); search down.
     double hi = m.outer_race_radius - m.element_radius + 1e-2 * m.element_radius;
     double lo = m.inner_race_radius + m.element_radius - 1e-2 * m.element_radius;
+    // A displaced ring (clearance taken up) moves its race by its centre's offset along psi.
+    if (residual(hi) > 0) hi += std::max(0.0, outer[0] * std::cos(psi) + outer[1] * std::sin(psi)) + 1e-2 * m.element_radius;
+    if (residual(lo) < 0) lo += std::min(0.0, inner[0] * std::cos(psi) + inner[1] * std::sin(psi)) - 1e-2 * m.element_radius;
     if (residual(hi) > 0 || residual(lo) < 0)
       throw std::runtime_error(fmt::format("start-up: cannot seat roller {} between the races", k));
     for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
@@ -97,6 +100,108 @@ struct Seating {
   }
 };
 
+/// The free rings' centres at x(a): each moved by a along the load (the inner ring with it, the
+/// outer ring against it).
+Eigen::VectorXd along_load(const Seating& s, const std::vector<int>& free_rings, double a) {
+  Eigen::VectorXd x(2 * static_cast<Eigen::Index>(free_rings.size()));
+  for (std::size_t i = 0; i < free_rings.size(); ++i) {
+    const double sign = free_rings[i] == 0 ? 1 : -1;
+    x[2 * static_cast<Eigen::Index>(i)] = a * std::cos(s.load_direction) * sign;
+    x[2 * static_cast<Eigen::Index>(i) + 1] = a * std::sin(s.load_direction) * sign;
+  }
+  return x;
+}
+
+/// The net force along the load on the rings at x(a): > 0 while the load is not yet carried.
+double force_along_load(const Seating& s, const std::vector<int>& free_rings, double a) {
+  const Eigen::VectorXd r = s.ring_residual(along_load(s, free_rings, a), free_rings);
+  return r.dot(along_load(s, free_rings, 1.0));
+}
+
+/// With clearance the contacts under the load close one by one as the rings take up the play: the
+/// rings are first moved along the load until the force along it balances (bisection: that force
+/// falls monotonically as the contacts close), so that the Newton iteration starts with the load
+/// shared by the rollers that carry it in the end. `touch` is the play along the load; a load
+/// the rollers do not have to carry (none, or held by a support within the play) leaves the
+/// rings where the force along it vanishes inside the play.
+double take_up_play(const Seating& s, const std::vector<int>& free_rings, double touch) {
+  double lo = 0, hi = touch + 1e-7;
+  if (force_along_load(s, free_rings, lo) <= 0) return 0.0;
+  for (int grow = 0; grow < 60 && force_along_load(s, free_rings, hi) > 0; ++grow) lo = hi, hi *= 2;
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (force_along_load(s, free_rings, mid) > 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// Newton with finite differences and backtracking on the ring translations x, on the net ring
+/// forces plus a spring `spring` (N/m) that pulls the rings to `anchor`. Returns the residual.
+Eigen::VectorXd newton_on_rings(const Seating& s, const std::vector<int>& free_rings, double spring,
+                                const Eigen::VectorXd& anchor, double tolerance, Eigen::VectorXd& x, int& iterations) {
+  const auto n = x.size();
+  auto residual = [&](const Eigen::VectorXd& at) {
+    Eigen::VectorXd r = s.ring_residual(at, free_rings);
+    if (spring > 0) r -= spring * (at - anchor);
+    return r;
+  };
+  Eigen::VectorXd r = residual(x);
+  for (int it = 0; it < 100; ++it, ++iterations) {
+    if (r.cwiseAbs().maxCoeff() < tolerance) break;
+    Eigen::MatrixXd jac(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      Eigen::VectorXd xp = x;
+      const double h = 1e-10;
+      xp[j] += h;
+      jac.col(j) = (residual(xp) - r) / h;
+    }
+    const Eigen::VectorXd dx = jac.fullPivLu().solve(-r);
+    double lambda = 1.0;
+    for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
+      Eigen::VectorXd xn = x + lambda * dx;
+      Eigen::VectorXd rn = residual(xn);
+      if (rn.norm() < r.norm()) {
+        x = xn;
+        r = rn;
+        break;
+      }
+    }
+  }
+  return r;
+}
+
+/// The free rings' centres in equilibrium under their loads. Throws naming the keys when there
+/// is none.
+///
+/// Zero clearance: Newton from a tiny initial approach, so the contacts are closed (Palmgren has
+/// zero stiffness at onset). With clearance the inner ring first takes up the play along the load
+/// (it moves by P_d / 2 before it touches the roller under the load; two free rings share it).
+/// There one roller may carry the whole load, and a ring on one roller is an inverted pendulum:
+/// across the load its stiffness is negative (-Q / R) until a neighbour engages, so Newton steps
+/// across the load go the wrong way. As in the ball start-up, a spring to that point keeps the
+/// problem regular and is relaxed in stages (1e9 to 1e3 N/m, then none), each stage starting next
+/// to its solution.
+Eigen::VectorXd seat_rings(const Seating& s, const std::vector<int>& free_rings, double load_scale,
+                           StartupReport& rep) {
+  const double clearance = s.m.scene->bearing.radial_clearance;
+  const double share = 0.5 * clearance / static_cast<double>(free_rings.size());
+  Eigen::VectorXd x = along_load(s, free_rings, clearance > 0 ? take_up_play(s, free_rings, share) : 1e-7);
+  const Eigen::VectorXd anchor = x;
+  rep.iterations = 0;
+  if (clearance > 0)
+    for (const double spring : {1e9, 1e8, 1e7, 1e6, 1e5, 1e4, 1e3})
+      newton_on_rings(s, free_rings, spring, anchor, 1e-8 * load_scale, x, rep.iterations);
+  const Eigen::VectorXd r = newton_on_rings(s, free_rings, 0.0, anchor, 1e-10 * load_scale, x, rep.iterations);
+  rep.residual = r.cwiseAbs().maxCoeff();
+  if (!(rep.residual < 1e-6 * load_scale))
+    throw std::runtime_error(fmt::format(
+        "start-up: no quasi-static equilibrium of the rings under their loads (largest unbalanced force {:.3g} N "
+        "after {} Newton iterations); the keys involved: bearing.radial_clearance ({:.4g} um), inner_ring.load, "
+        "outer_ring.load, the rings' support.stiffness and translation, scene.gravity",
+        rep.residual, rep.iterations, 1e6 * clearance));
+  return x;
+}
+
 }  // namespace
 
 StartupReport seat_roller_bearing(const Model& m, double t0) {
@@ -123,46 +228,10 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
     s.ring_speed[1] = speed(m.outer_ring);
     s.spin = s.orbit - (s.ring_speed[0] - s.orbit) * m.inner_race_radius / m.element_radius;
   }
-  // Newton with finite differences and backtracking on the ring translations.
   const int n = 2 * static_cast<int>(free_rings.size());
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
   double load_scale = 1.0;
   for (const auto* l : {&in, &out}) load_scale = std::max({load_scale, std::abs(l->fx(t0)), std::abs(l->fy(t0))});
-  if (n > 0) {
-    Eigen::VectorXd r = s.ring_residual(x, free_rings);
-    // A tiny initial approach so the contacts are closed (Palmgren has zero stiffness at onset).
-    for (int i = 0; i < n; i += 2) {
-      x[i] = 1e-7 * std::cos(s.load_direction) * (free_rings[i / 2] == 0 ? 1 : -1);
-      x[i + 1] = 1e-7 * std::sin(s.load_direction) * (free_rings[i / 2] == 0 ? 1 : -1);
-    }
-    r = s.ring_residual(x, free_rings);
-    for (rep.iterations = 0; rep.iterations < 100; ++rep.iterations) {
-      if (r.cwiseAbs().maxCoeff() < 1e-10 * load_scale) break;
-      Eigen::MatrixXd jac(n, n);
-      for (int j = 0; j < n; ++j) {
-        Eigen::VectorXd xp = x;
-        const double h = 1e-10;
-        xp[j] += h;
-        jac.col(j) = (s.ring_residual(xp, free_rings) - r) / h;
-      }
-      Eigen::VectorXd dx = jac.fullPivLu().solve(-r);
-      double lambda = 1.0;
-      for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
-        Eigen::VectorXd xn = x + lambda * dx;
-        Eigen::VectorXd rn = s.ring_residual(xn, free_rings);
-        if (rn.norm() < r.norm()) {
-          x = xn;
-          r = rn;
-          break;
-        }
-      }
-    }
-    rep.residual = r.cwiseAbs().maxCoeff();
-    if (!(rep.residual < 1e-6 * load_scale))
-      throw std::runtime_error(fmt::format(
-          "start-up: no quasi-static equilibrium of the rings under their loads (residual {:.3g} N)",
-          rep.residual));
-  }
+  const Eigen::VectorXd x = n > 0 ? seat_rings(s, free_rings, load_scale, rep) : Eigen::VectorXd::Zero(0);
 
   // Assemble the state.
   rep.state.assign(m.state_size, 0.0);

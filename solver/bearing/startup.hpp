@@ -16,6 +16,7 @@ struct StartupReport {
   double residual = 0;       ///< N, largest unbalanced force at the solution
   std::vector<double> inner_contact_force;  ///< N, per rolling element: its inner-race normal forces (spatial)
   std::vector<double> outer_contact_force;  ///< N, per rolling element: its outer-race normal forces (spatial)
+  double pocket_force = 0;   ///< N, largest pocket force of the start (spatial: the cage placed on the balls)
   std::string summary;
 };
 
@@ -32,8 +33,8 @@ StartupReport seat_roller_bearing(const Model& model, double t0);
 /// Spatial ball bearing, quasi-static seating with the same contact functions the dynamics use:
 /// unknowns are the free ring coordinates (translation, tilt) and each ball's radial and axial
 /// position in its azimuthal plane; Levenberg-Marquardt on the force balance (robust from open
-/// contacts). The cage is centred with its pockets on the balls, turning at the load-weighted mean
-/// of the balls' orbits. Ball spin: least-squares rolling without sliding at its loaded contacts.
+/// contacts). The cage is centred with its pockets on the balls (axially and in tilt as far as the
+/// pockets' play requires), turning at the load-weighted mean of the balls' orbits. Ball spin: least-squares rolling without sliding at its loaded contacts.
 StartupReport seat_ball_bearing(const Model& model, double t0, double azimuth_offset);
 
 }  // namespace raceway::solver

@@ -581,6 +581,53 @@ TEST(PointTraction, FallsBackAndSwitchesOff) {
   EXPECT_THROW(integrate_traction(bad, oil(), load, ax, ay, 0, s), std::invalid_argument);
 }
 
+// As the film vanishes (zero entrainment: standstill, start, stop) the film's shear hands over to
+// the friction curve: continuous in h at h -> 0 and at the boundary film, identical to the film law
+// above it, and with a small-slip slope that stays bounded (the film's own, eta / h, does not).
+TEST(PointTraction, FilmHandsOverToTheCurveAsItVanishes) {
+  const PointLubricant lub = oil();
+  const double hb = lub.boundary_film;
+  EXPECT_EQ(film_weight(0.0, lub), 0.0);
+  EXPECT_EQ(film_weight(-1e-9, lub), 0.0);
+  EXPECT_EQ(film_weight(hb, lub), 1.0);
+  EXPECT_EQ(film_weight(10 * hb, lub), 1.0);
+  EXPECT_NEAR(film_weight(0.5 * hb, lub), 0.5, 1e-15);
+  // C1 at both ends: the slope of x^2 (3 - 2x) vanishes at x = 0 and x = 1.
+  EXPECT_LT(film_weight(1e-6 * hb, lub), 1e-11);
+  EXPECT_GT(film_weight((1 - 1e-6) * hb, lub), 1 - 1e-11);
+
+  PointTraction limiting = curve_traction(6);
+  limiting.model = TractionModel::limiting_shear;
+  const ContactSliding s{0.004, 0.001, 20};
+  const TractionResult curve = integrate_traction(curve_traction(6), lub, load, ax, ay, 0, s);
+  const TractionResult thin = integrate_traction(limiting, lub, load, ax, ay, 1e-9 * hb, s);
+  EXPECT_NEAR(thin.force_x, curve.force_x, 1e-9 * std::abs(curve.force_x));
+  EXPECT_NEAR(thin.spin_moment, curve.spin_moment, 1e-9 * std::abs(curve.spin_moment));
+  const TractionResult below = integrate_traction(limiting, lub, load, ax, ay, (1 - 1e-9) * hb, s);
+  const TractionResult at = integrate_traction(limiting, lub, load, ax, ay, hb, s);
+  EXPECT_NEAR(below.force_x, at.force_x, 1e-6 * std::abs(at.force_x));
+  // At the boundary film and above: the film law itself, saturating at Lambda Q.
+  EXPECT_NEAR(-integrate_traction(limiting, lub, load, ax, ay, hb, {50.0, 0, 0}).force_x, 0.08 * load, 1e-9 * load);
+
+  // Small-slip slope over h in (0, 2 h_b]: at most the curve's mu Q / s_scale plus the film's
+  // largest eta / h times w(h) <= 9/8 / h_b, times the contact area.
+  const double eta_max = lub.viscosity * std::exp(lub.viscosity_exponent_cap);
+  const double bound = 0.1 * load / 0.01 + 1.125 / hb * eta_max * pi * ax * ay;
+  const double slip = 1e-12;
+  double previous = 0, steepest = 0;
+  for (int i = 1; i <= 400; ++i) {
+    const double h = 2 * hb * i / 400;
+    const double slope = -integrate_traction(limiting, lub, load, ax, ay, h, {slip, 0, 0}).force_x / slip;
+    EXPECT_LE(slope, bound) << h;
+    if (i > 1) {
+      EXPECT_LT(std::abs(slope - previous), 0.05 * bound) << "a jump at h = " << h;
+    }
+    previous = slope;
+    steepest = std::max(steepest, slope);
+  }
+  EXPECT_GT(steepest, 0.5 * 0.1 * load / 0.01);
+}
+
 // Coulomb spin on a circle: M = mu times the integral of p r dA = (3 pi / 16) mu Q a for the Hertz
 // pressure p0 sqrt(1 - r^2/a^2), p0 = 3 Q / (2 pi a^2). The grid converges to it.
 TEST(PointTraction, GridConvergesForSpin) {

@@ -1,0 +1,156 @@
+// Start-up from any clearance (solver/bearing/roller_startup.cpp, ball_startup.cpp): bearings with
+// the radial clearances real bearings have seat in quasi-static equilibrium and then run.
+//  - cylindrical roller bearing (seed 002's 13-roller bearing): 0, 2, 10, 25, 50 um diametral
+//    clearance under its 1 kN load and under a light 30 N load at 30 deg (where one or two rollers
+//    carry it);
+//  - deep groove ball bearing (6309 size, 45 mm bore): 0 to 51 um, the top of ISO 5753's C4 class
+//    for that bore (C2 1-11, CN 6-23, C3 18-36, C4 30-51 um), under radial and combined loads.
+// Each start is checked against what a quasi-static start must be (the free ring's net force
+// vanishes while the rolling elements carry the load; every roller's radial force is the
+// centripetal force of its orbit) and then run for a few milliseconds, which must end normally.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "scheduler/executor.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/startup.hpp"
+#include "solver/run/run.hpp"
+#include "solver_test_support.hpp"
+#include "spatial_scene_builder.hpp"
+
+namespace raceway::solver {
+namespace {
+
+using test::pi;
+
+constexpr double um = 1e-6;
+
+/// Runs the scene for its end time into a temporary file; the run must end normally.
+RunSummary run_briefly(const io::Scene& scene) {
+  test::TempDir dir;
+  RunOptions options;
+  options.output_path = dir.file("clearance.h5");
+  return run_scene(scene, options);
+}
+
+// ---- cylindrical roller bearing ---------------------------------------------------------------
+
+io::Scene roller_scene(double clearance, double load, double load_angle) {
+  io::Scene s = test::load_job_scene("seed002_40hz.toml");
+  s.bearing.radial_clearance = clearance;
+  s.inner_ring.load.fx = io::TimeFunction::constant(load * std::cos(load_angle));
+  s.inner_ring.load.fy = io::TimeFunction::constant(load * std::sin(load_angle));
+  s.scene.end_time = 5e-3;  // a fifth of a shaft revolution at 40 Hz
+  s.scene.output_interval = 1e-4;
+  return s;
+}
+
+void check_roller_start(double clearance, double load, double load_angle) {
+  const io::Scene scene = roller_scene(clearance, load, load_angle);
+  const Model m = build_model(scene);
+  StartupReport start;
+  ASSERT_NO_THROW(start = initial_state(m, 0.0)) << clearance / um << " um";
+  scheduler::SerialExecutor executor;
+  Equations eq(m, executor);
+  std::vector<double> zdot(start.state.size());
+  ASSERT_EQ(eq.rhs(0.0, start.state.data(), zdot.data()), 0);
+  const auto& ring = eq.body_loads()[static_cast<std::size_t>(m.inner_ring)];
+  EXPECT_LT(std::hypot(ring.force.x(), ring.force.y()), 1e-6 * load) << clearance / um << " um";
+  // The rollers carry the load: the ring moved along it by at least the radial play P_d / 2.
+  const Body& inner = m.bodies[static_cast<std::size_t>(m.inner_ring)];
+  const double along = start.state[static_cast<std::size_t>(inner.slot[sx])] * std::cos(load_angle) +
+                       start.state[static_cast<std::size_t>(inner.slot[sy])] * std::sin(load_angle);
+  EXPECT_GT(along, 0.5 * clearance);
+  // Every roller seated: its radial force is the centripetal force of the epicyclic orbit.
+  const double wc = m.epicyclic_cage_speed(0.0);
+  for (int k = 0; k < m.element_count; ++k) {
+    const Body& b = m.bodies[static_cast<std::size_t>(m.first_element + k)];
+    const double x = start.state[static_cast<std::size_t>(b.slot[sx])];
+    const double y = start.state[static_cast<std::size_t>(b.slot[sy])];
+    const double r = std::hypot(x, y);
+    const double radial = (zdot[static_cast<std::size_t>(b.slot[svx])] * x + zdot[static_cast<std::size_t>(b.slot[svy])] * y) / r;
+    EXPECT_NEAR(radial, -wc * wc * r, 1e-3 * wc * wc * r) << "roller " << k << ", " << clearance / um << " um";
+  }
+  const RunSummary sum = run_briefly(scene);
+  EXPECT_NEAR(sum.simulated_time_s, scene.scene.end_time, 1e-12);
+  std::printf("[ clearance ] roller bearing, P_d %4.0f um, %6.0f N at %3.0f deg: seated in %d iterations (%.2g N), "
+              "ring %.2f um along the load; %.0f ms run in %ld steps\n",
+              clearance / um, load, load_angle * 180 / pi, start.iterations, start.residual, along / um,
+              1e3 * sum.simulated_time_s, sum.stats.steps);
+}
+
+TEST(ClearanceStartup, RollerBearingUnderItsLoad) {
+  for (double clearance : {0.0, 2 * um, 10 * um, 25 * um, 50 * um}) check_roller_start(clearance, 1000, -pi / 2);
+}
+
+TEST(ClearanceStartup, RollerBearingUnderALightObliqueLoad) {
+  for (double clearance : {0.0, 2 * um, 10 * um, 25 * um, 50 * um}) check_roller_start(clearance, 30, -pi / 3);
+}
+
+// ---- deep groove ball bearing -----------------------------------------------------------------
+
+void check_ball_start(double clearance, double fy, double fz) {
+  test::BallSceneOptions o;
+  o.fy = fy;
+  o.fz = fz;
+  o.speed_rpm = 3000;
+  o.end_time = 2e-3;
+  io::Scene scene = test::deep_groove_scene(o);
+  scene.bearing.radial_clearance = clearance;
+  const Model m = build_model(scene);
+  StartupReport start;
+  ASSERT_NO_THROW(start = initial_state(m, 0.0)) << clearance / um << " um";
+  const double load = std::hypot(fy, fz);
+  EXPECT_LT(start.residual, 1e-6 * load) << clearance / um << " um";
+  // The balls carry the load: the inner-groove forces along it add up to at least the load.
+  double carried_y = 0, carried_z = 0;
+  for (const auto& seg : m.segments) {
+    if (seg.kind != SegmentKind::ball_inner_groove) continue;
+    const auto& g = m.law<contact::BallGrooveSegment>(seg);
+    const auto ring = m.kinematics(seg.body_a, 0.0, start.state.data());
+    auto ball = m.kinematics(seg.body_b, 0.0, start.state.data());
+    ball.velocity.setZero();
+    ball.angular_velocity.setZero();
+    auto at_rest = ring;
+    at_rest.velocity.setZero();
+    at_rest.angular_velocity.setZero();
+    const auto r = contact::evaluate(g, at_rest, ball);
+    carried_y -= r.on_a.force.y();
+    carried_z -= r.on_a.force.z();
+  }
+  // The seating's regularization spring (1e3 N/m on every unknown, ball_startup.cpp) carries the
+  // rest: 1e3 N/m times the ring's displacement.
+  const Body& inner = m.bodies[static_cast<std::size_t>(m.inner_ring)];
+  const auto position = [&](Coordinate c) { return start.state[static_cast<std::size_t>(inner.slot[c])]; };
+  const double spring = 1e3 * std::hypot(position(sx), position(sy), position(sz));
+  EXPECT_NEAR(carried_y, fy, spring + 1e-6 * load) << clearance / um << " um";
+  EXPECT_NEAR(carried_z, fz, spring + 1e-6 * load) << clearance / um << " um";
+  const RunSummary sum = run_briefly(scene);
+  EXPECT_NEAR(sum.simulated_time_s, scene.scene.end_time, 1e-12);
+  std::printf("[ clearance ] 6309 ball bearing, P_d %4.0f um, Fr %5.0f N, Fa %5.0f N: seated in %d iterations "
+              "(%.2g N), largest ball load %.0f N; %.0f ms run in %ld steps\n",
+              clearance / um, -fy, fz, start.iterations, start.residual, sum.max_ball_load_n,
+              1e3 * sum.simulated_time_s, sum.stats.steps);
+}
+
+const double ball_clearances[] = {0.0, 6 * um, 15 * um, 23 * um, 36 * um, 51 * um};
+
+TEST(ClearanceStartup, BallBearingUnderRadialLoad) {
+  for (double clearance : ball_clearances) check_ball_start(clearance, -1000, 0);
+}
+
+TEST(ClearanceStartup, BallBearingUnderCombinedLoad) {
+  for (double clearance : ball_clearances) check_ball_start(clearance, -1000, 1000);
+}
+
+TEST(ClearanceStartup, BallBearingUnderALightLoad) {
+  for (double clearance : ball_clearances) check_ball_start(clearance, -20, 0);
+}
+
+}  // namespace
+}  // namespace raceway::solver
