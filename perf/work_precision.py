@@ -2,11 +2,12 @@
 """Work-precision of the integration methods: error against cost for each method over rtol.
 
   perf/work_precision.py [--binary build/raceway] [--scenes seed002_40hz 6309_R3 qj215_validation]
-                         [--methods bdf adams erk ark] [--rtols 1e-3 ... 1e-10] [--out perf/results]
+                         [--methods bdf bdf_sld adams erk ark] [--rtols 1e-3 ... 1e-10] [--out perf/results]
+  perf/work_precision.py --winners     the winners tables of the CSV files already written
 
 For each scene (jobs/scenes/NAME.toml, its end time shortened so that the whole sweep runs in
 minutes) it runs every method at every rtol (`raceway run --method M` on a copy of the scene with
-rtol set), and compares each run with a reference solution, the run of the reference method at the
+rtol set; bdf_sld is bdf with stability_limit_detection = true), and compares each run with a reference solution, the run of the reference method at the
 tightest rtol. The reference is checked against a second method at the same rtol: their difference
 (the reference's own uncertainty) is written beside the errors and drawn as a dashed line; errors
 below it are not resolved.
@@ -51,6 +52,9 @@ SCENES = {
     # QJ215: its cage starts at the kinematic speed and first touches the balls after about 0.2 s.
     "qj215_validation": {"end_time": "0.3 s", "output_interval": "0.1 ms"},  # 5 revolutions at 1000 rpm
 }
+# Method variants: a name for the tables and charts -> the --method and further [solver] keys.
+VARIANTS = {"bdf": ("bdf", {}), "bdf_sld": ("bdf", {"stability_limit_detection": "true"}),
+            "adams": ("adams", {}), "erk": ("erk", {}), "ark": ("ark", {})}
 MEASURES = ["trajectory", "cage_speed", "max_load", "pocket_impulse"]
 MEASURE_TITLES = {"trajectory": "body trajectories (RMS, physical scales)", "cage_speed": "mean cage speed",
                   "max_load": "mean of the largest rolling-element load", "pocket_impulse": "pocket-force impulse"}
@@ -71,10 +75,12 @@ def set_key(text, section, key, value):
     return "\n".join(lines) + "\n"
 
 
-def scene_text(name, rtol):
+def scene_text(name, rtol, solver_keys=None):
     text = open(os.path.join(ROOT, "jobs", "scenes", name + ".toml")).read()
     for key, value in SCENES[name].items():
         text = set_key(text, "scene", key, f'"{value}"')
+    for key, value in (solver_keys or {}).items():
+        text = set_key(text, "solver", key, value)
     return set_key(text, "solver", "rtol", repr(rtol))
 
 
@@ -82,12 +88,13 @@ def run(binary, name, method, rtol, workdir, timeout):
     """One run; returns its summary (with 'h5' the output path) or a dict with 'failed'."""
     tag = f"{name}_{method}_{rtol:.0e}"
     scene = os.path.join(workdir, tag + ".toml")
+    cli_method, solver_keys = VARIANTS[method]
     with open(scene, "w") as f:
-        f.write(scene_text(name, rtol))
+        f.write(scene_text(name, rtol, solver_keys))
     out, summary = os.path.join(workdir, tag + ".h5"), os.path.join(workdir, tag + ".json")
     start = time.monotonic()
     try:
-        p = subprocess.run([binary, "run", scene, "--method", method, "-o", out, "--summary-json", summary],
+        p = subprocess.run([binary, "run", scene, "--method", cli_method, "-o", out, "--summary-json", summary],
                            capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return {"failed": f"longer than {timeout:.0f} s"}
@@ -174,7 +181,7 @@ def plot(name, rows, floor, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(2, len(MEASURES), figsize=(5 * len(MEASURES), 8.5))
-    methods = sorted({r["method"] for r in rows}, key=["bdf", "adams", "erk", "ark"].index)
+    methods = sorted({r["method"] for r in rows}, key=list(VARIANTS).index)
     for col, m in enumerate(MEASURES):
         for row, (cost, label) in enumerate([("wall_time_s", "wall time [s]"), ("rhs_evaluations", "right-hand sides")]):
             ax = axes[row][col]
@@ -244,22 +251,74 @@ def write_csv(path, rows, floor, info):
             w.writerow(r)
 
 
+def read_csv(path):
+    """Rows and the reference uncertainty (floor) of a table this script wrote."""
+    with open(path) as f:
+        first = f.readline()
+        floor = {m: float(v) for m, v in re.findall(r"(\w+) ([-+.\deE]+)(?:,|$)", first.split(":", 2)[2])}
+        lines = [l for l in f if not l.startswith("#")]
+    rows = []
+    for r in csv.DictReader(lines):
+        row = {"method": r["method"], "rtol": float(r["rtol"]), "failed": r["failed"]}
+        if not r["failed"]:
+            for k in ["wall_time_s", "rhs_evaluations"] + MEASURES:
+                row[k] = float(r[k])
+        rows.append(row)
+    return rows, floor
+
+
+def winners(name, rows, floor):
+    """Text: for each measure and accuracy target, the cheapest run (by wall time and by right-hand sides)
+    that meets it together with every tighter rtol of its method (so a lucky loose run does not count);
+    targets below twice the reference uncertainty are not resolved and left out."""
+    out = [f"{name}: the cheapest run meeting each error target, with every tighter rtol of its method "
+           "(by wall time; by right-hand sides)"]
+    for m in MEASURES:
+        for target in [1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7]:
+            if target <= 2 * floor.get(m, 0):
+                continue
+            ok = []
+            for method in {r["method"] for r in rows}:
+                runs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["rtol"])
+                for i, r in enumerate(runs):  # tightest first
+                    if all(not q["failed"] and q[m] <= target for q in runs[: i + 1]):
+                        ok.append(r)
+            if not ok:
+                out.append(f"  {m:15s} <= {target:.0e}: none")
+                continue
+            w = min(ok, key=lambda r: r["wall_time_s"])
+            h = min(ok, key=lambda r: r["rhs_evaluations"])
+            out.append(f"  {m:15s} <= {target:.0e}: {w['method']} rtol {w['rtol']:.0e} ({w['wall_time_s']:.2f} s); "
+                       f"{h['method']} rtol {h['rtol']:.0e} ({h['rhs_evaluations']:.0f} rhs)")
+    return "\n".join(out) + "\n"
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
     p.add_argument("--scenes", nargs="+", default=list(SCENES))
-    p.add_argument("--methods", nargs="+", default=["bdf", "adams", "erk", "ark"])
+    p.add_argument("--methods", nargs="+", default=list(VARIANTS), choices=list(VARIANTS),
+                   help="bdf_sld: bdf with CVODE's stability-limit detection")
     p.add_argument("--rtols", nargs="+", type=float, default=[10.0 ** -k for k in range(3, 11)])
     p.add_argument("--reference", default="erk", help="method of the reference run (at the tightest rtol)")
     p.add_argument("--check", default="bdf", help="second method the reference is checked against")
     p.add_argument("--timeout", type=float, default=300, help="seconds per run")
     p.add_argument("--out", default=os.path.join(ROOT, "perf", "results"))
+    p.add_argument("--winners", action="store_true",
+                   help="only print the winners table of the CSV files already in --out (no runs)")
     args = p.parse_args()
+    if args.winners:
+        for name in args.scenes:
+            path = os.path.join(args.out, f"work_precision_{name}.csv")
+            if os.path.exists(path):
+                print(winners(name, *read_csv(path)))
+        return
     os.makedirs(args.out, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="work_precision_") as workdir:
         for name in args.scenes:
             rows, floor, info = sweep(args, name, workdir)
             write_csv(os.path.join(args.out, f"work_precision_{name}.csv"), rows, floor, info)
+            print(winners(name, rows, floor), flush=True)
             plot(name, rows, floor, os.path.join(args.out, f"work_precision_{name}.png"))
 
 

@@ -59,25 +59,25 @@ std::optional<double> friction_default(const Bind& b) {
 std::optional<double> rolling_resistance_default(const Bind& b) {
   return b.scene.lubricant.viscosity > 0 ? 1.0 : 0.0;
 }
-// bdf and adams: CVODE's largest orders; erk: Dormand-Prince 5(4); ark: ARKODE's default implicit order 4.
-std::optional<double> max_order_default(const Bind& b) {
-  switch (b.scene.solver.method) {
-    case IntegrationMethod::bdf: return 5;
-    case IntegrationMethod::adams: return 12;
-    case IntegrationMethod::erk: return 5;
-    case IntegrationMethod::ark: return 4;
-  }
-  return 5;
+// Per method: the default and the largest max_order. bdf and adams: CVODE's largest orders; erk:
+// Dormand-Prince 5(4) by default, Fehlberg 8(7) the highest; ark: ARKODE's default implicit order 4.
+namespace {
+struct MethodOrders {
+  IntegrationMethod method;
+  int default_order, largest_order;
+};
+constexpr MethodOrders kMethodOrders[] = {{IntegrationMethod::bdf, 5, 5},
+                                          {IntegrationMethod::adams, 12, 12},
+                                          {IntegrationMethod::erk, 5, 8},
+                                          {IntegrationMethod::ark, 4, 5}};
+const MethodOrders& orders_of(IntegrationMethod m) {
+  for (const MethodOrders& o : kMethodOrders)
+    if (o.method == m) return o;
+  return kMethodOrders[0];
 }
-long max_order_limit(const Bind& b) {
-  switch (b.scene.solver.method) {
-    case IntegrationMethod::bdf: return 5;
-    case IntegrationMethod::adams: return 12;
-    case IntegrationMethod::erk: return 8;
-    case IntegrationMethod::ark: return 5;
-  }
-  return 5;
-}
+}  // namespace
+std::optional<double> max_order_default(const Bind& b) { return orders_of(b.scene.solver.method).default_order; }
+long max_order_limit(const Bind& b) { return orders_of(b.scene.solver.method).largest_order; }
 
 // ---- conditions --------------------------------------------------------------------------------
 

@@ -19,26 +19,23 @@ namespace raceway::solver::stepping {
 
 namespace {
 
-struct ErkTable {
+/// A Runge-Kutta pair of ARKODE: its order, its table's id and its name.
+template <class Id>
+struct RkTable {
   int order;
-  ARKODE_ERKTableID id;
+  Id id;
   const char* name;
 };
-constexpr ErkTable kErkTables[] = {{2, ARKODE_HEUN_EULER_2_1_2, "Heun-Euler 2(1)"},
-                                   {3, ARKODE_BOGACKI_SHAMPINE_4_2_3, "Bogacki-Shampine 3(2)"},
-                                   {4, ARKODE_ZONNEVELD_5_3_4, "Zonneveld 4(3)"},
-                                   {5, ARKODE_DORMAND_PRINCE_7_4_5, "Dormand-Prince 5(4)"},
-                                   {6, ARKODE_VERNER_8_5_6, "Verner 6(5)"},
-                                   {8, ARKODE_FEHLBERG_13_7_8, "Fehlberg 8(7)"}};
-struct DirkTable {
-  int order;
-  ARKODE_DIRKTableID id;
-  const char* name;
-};
-constexpr DirkTable kDirkTables[] = {{2, ARKODE_SDIRK_2_1_2, "SDIRK 2(1)"},
-                                     {3, ARKODE_ARK324L2SA_DIRK_4_2_3, "ARK3(2)4L[2]SA DIRK"},
-                                     {4, ARKODE_SDIRK_5_3_4, "SDIRK 4(3)"},
-                                     {5, ARKODE_ARK548L2SA_DIRK_8_4_5, "ARK5(4)8L[2]SA DIRK"}};
+constexpr RkTable<ARKODE_ERKTableID> kErkTables[] = {{2, ARKODE_HEUN_EULER_2_1_2, "Heun-Euler 2(1)"},
+                                                     {3, ARKODE_BOGACKI_SHAMPINE_4_2_3, "Bogacki-Shampine 3(2)"},
+                                                     {4, ARKODE_ZONNEVELD_5_3_4, "Zonneveld 4(3)"},
+                                                     {5, ARKODE_DORMAND_PRINCE_7_4_5, "Dormand-Prince 5(4)"},
+                                                     {6, ARKODE_VERNER_8_5_6, "Verner 6(5)"},
+                                                     {8, ARKODE_FEHLBERG_13_7_8, "Fehlberg 8(7)"}};
+constexpr RkTable<ARKODE_DIRKTableID> kDirkTables[] = {{2, ARKODE_SDIRK_2_1_2, "SDIRK 2(1)"},
+                                                       {3, ARKODE_ARK324L2SA_DIRK_4_2_3, "ARK3(2)4L[2]SA DIRK"},
+                                                       {4, ARKODE_SDIRK_5_3_4, "SDIRK 4(3)"},
+                                                       {5, ARKODE_ARK548L2SA_DIRK_8_4_5, "ARK5(4)8L[2]SA DIRK"}};
 
 template <class Table, std::size_t N>
 const Table& table_of_order(const Table (&tables)[N], int order, const char* method) {
@@ -78,7 +75,7 @@ class ArkodeStepper final : public TimeStepper {
     const io::SolverSpec& spec = s.spec;
     const Callbacks& cb = s.callbacks;
     if (implicit_) {
-      const DirkTable& t = table_of_order(kDirkTables, spec.max_order, "ark");
+      const auto& t = table_of_order(kDirkTables, spec.max_order, "ark");
       name_ = std::string("ARKODE ARKStep ") + t.name;
       mem_ = ARKStepCreate(nullptr, cb.rhs, s.t0, s.y0, s.ctx);
       if (!mem_) throw std::runtime_error("ARKStepCreate failed");
@@ -91,7 +88,7 @@ class ArkodeStepper final : public TimeStepper {
       check(ARKStepSetLinearSolver(mem_, s.linear_solver, s.linear->matrix()), "ARKStepSetLinearSolver");
       check(ARKStepSetJacFn(mem_, cb.jacobian), "ARKStepSetJacFn");
     } else {
-      const ErkTable& t = table_of_order(kErkTables, spec.max_order, "erk");
+      const auto& t = table_of_order(kErkTables, spec.max_order, "erk");
       name_ = std::string("ARKODE ERKStep ") + t.name;
       mem_ = ERKStepCreate(cb.rhs, s.t0, s.y0, s.ctx);
       if (!mem_) throw std::runtime_error("ERKStepCreate failed");

@@ -79,13 +79,7 @@ SUNLinearSolver make_custom_solver(SUNContext ctx, std::unique_ptr<SolverContent
     return flagged(sc, [&] { return sc.solve(N_VGetArrayPointer(b), N_VGetArrayPointer(x)); });
   };
   ops->lastflag = [](SUNLinearSolver ls) { return solver_content(ls).last_flag; };
-  ops->free = [](SUNLinearSolver ls) {
-    if (!ls) return 0;
-    delete static_cast<SolverContent*>(ls->content);
-    ls->content = nullptr;
-    SUNLinSolFreeEmpty(ls);
-    return 0;
-  };
+  ops->free = free_owned_content<SolverContent>;
   s->content = solver_object.release();
   return s;
 }

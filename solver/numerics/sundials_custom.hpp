@@ -46,6 +46,16 @@ SolverContent& solver_content(SUNLinearSolver s);
 
 /// A SUNMatrix of type SUNMATRIX_CUSTOM owning `c`.
 SUNMatrix make_custom_matrix(SUNContext ctx, std::unique_ptr<MatrixContent> c);
+/// The `free` op of a SUNLinearSolver made by SUNLinSolNewEmpty whose content is a `Content` it owns.
+template <class Content>
+int free_owned_content(SUNLinearSolver ls) {
+  if (!ls) return 0;
+  delete static_cast<Content*>(ls->content);
+  ls->content = nullptr;
+  SUNLinSolFreeEmpty(ls);
+  return 0;
+}
+
 /// A direct SUNLinearSolver of type SUNLINEARSOLVER_CUSTOM owning `c`.
 SUNLinearSolver make_custom_solver(SUNContext ctx, std::unique_ptr<SolverContent> c);
 

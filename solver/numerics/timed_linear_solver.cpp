@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "solver/numerics/sundials_custom.hpp"
+
 namespace raceway::solver::backend {
 
 namespace {
@@ -40,13 +42,7 @@ SUNLinearSolver make_timed_solver(SUNContext ctx, SUNLinearSolver inner, double*
     return timed_call(c.solve_seconds, [&] { return SUNLinSolSolve(c.inner, a, x, b, tol); });
   };
   ops->lastflag = [](SUNLinearSolver ls) { return SUNLinSolLastFlag(timed(ls).inner); };
-  ops->free = [](SUNLinearSolver ls) {
-    if (!ls) return 0;
-    delete static_cast<TimedContent*>(ls->content);
-    ls->content = nullptr;
-    SUNLinSolFreeEmpty(ls);
-    return 0;
-  };
+  ops->free = free_owned_content<TimedContent>;
   s->content = new TimedContent{inner, setup_seconds, solve_seconds};
   return s;
 }
