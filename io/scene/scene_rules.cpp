@@ -52,14 +52,6 @@ std::optional<double> cage_width_default(const Bind& b) { return 0.8 * b.scene.b
 std::optional<double> ring_support_stiffness_default(const Bind& b) {
   return b.ball() ? std::optional<double>(0.0) : std::nullopt;
 }
-// An angular contact bearing's groove geometry: the grooves' curvature centres A = (f_i + f_o - 1) D
-// apart; a clearance P_d taken up axially puts them at cos(alpha_0) = 1 - P_d / (2 A).
-std::optional<double> free_contact_angle_default(const Bind& b) {
-  const BearingGeometry& g = b.scene.bearing;
-  const double a = (g.ball.inner_conformity + g.ball.outer_conformity - 1) * g.ball.ball_diameter;
-  if (!(g.radial_clearance > 0) || !(a > 0)) return std::nullopt;
-  return std::acos(std::clamp(1 - g.radial_clearance / (2 * a), -1.0, 1.0));
-}
 // Lubricated steel and brass on the rolling elements; less on the cage land.
 std::optional<double> friction_default(const Bind& b) {
   return b.contact_kind == contact::cage_land_contact ? 0.05 : 0.1;
@@ -78,10 +70,14 @@ std::optional<std::string> four_point_only(const Section&, const Bind& b) {
   return "only for type = \"four_point_contact_ball\": a deep groove ball bearing's contact angle comes out of its "
          "clearance, conformities and loads";
 }
-std::optional<std::string> angular_contact_only(const Section&, const Bind& b) {
-  if (b.scene.bearing.type == BearingType::angular_contact_ball) return std::nullopt;
-  return "only for type = \"angular_contact_ball\": a deep groove or four-point bearing's contact angle comes out of "
-         "its clearance, conformities (and arc angle) and loads";
+std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b) {
+  if (b.scene.bearing.type != BearingType::angular_contact_ball)
+    return "only for type = \"angular_contact_ball\": a deep groove or four-point bearing's contact angle comes out "
+           "of its clearance, conformities (and arc angle) and loads";
+  if (s.has("radial_clearance"))
+    return "the free contact angle follows here from radial_clearance (cos alpha_0 = 1 - P_d / (2 (f_i + f_o - 1) "
+           "D)): give one of them";
+  return std::nullopt;
 }
 std::optional<std::string> axially_held_only(const Section&, const Bind& b) {
   if (!(b.ring->motion != RingMotion::fixed && b.ring->axial_free)) return std::nullopt;
@@ -190,25 +186,23 @@ void clearance_fits_elements(const Row&, const Section& s, Bind& b) {
                          "a few to a few tens of micrometres",
                          mm(g.radial_clearance), mm(dw));
     });
+  // An angular contact bearing given by its groove geometry: the grooves' curvature centres are
+  // A = (f_i + f_o - 1) D apart, and the clearance taken up axially puts them at the free contact
+  // angle, cos(alpha_0) = 1 - P_d / (2 A).
+  if (g.type == BearingType::angular_contact_ball && s.has("radial_clearance")) {
+    const double a = (g.ball.inner_conformity + g.ball.outer_conformity - 1) * dw;
+    const double angle = std::acos(std::clamp(1 - g.radial_clearance / (2 * a), -1.0, 1.0));
+    s.check(angle > 0 && angle < kPi / 3, "radial_clearance", [&] {
+      return fmt::format("a clearance of {} gives a free contact angle of {:.3g} deg with these conformities; angular "
+                         "contact bearings are made with 15 to 40 deg (at most 60)",
+                         mm(g.radial_clearance), angle * 180 / kPi);
+    });
+    b.scene.bearing.ball.free_contact_angle = angle;
+  }
   const double inner_race = g.inner_race_diameter();
   s.check(inner_race > 0, b.ball() ? "ball_diameter" : "roller_diameter", [&] {
     return fmt::format("{} {}s on a {} pitch diameter (clearance {}) leave no inner race: its diameter would be {}",
                        mm(dw), element(b), mm(g.pitch_diameter), mm(g.radial_clearance), mm(inner_race));
-  });
-}
-
-// The free contact angle comes from contact_angle or from the groove geometry's clearance, not both;
-// one from the clearance must lie in the range a given one may.
-void free_contact_angle_fits(const Row&, const Section& s, Bind& b) {
-  const BearingGeometry& g = b.scene.bearing;
-  if (s.has("contact_angle") && s.has("radial_clearance"))
-    s.fail("contact_angle", "give either contact_angle or radial_clearance: for an angular contact bearing both set "
-                            "the free contact angle (cos alpha_0 = 1 - P_d / (2 (f_i + f_o - 1) D))");
-  const double angle = g.ball.free_contact_angle;
-  s.check(angle > 0 && angle < kPi / 3, "radial_clearance", [&] {
-    return fmt::format("a clearance of {} gives a free contact angle of {:.3g} deg with these conformities; angular "
-                       "contact bearings are made with 15 to 40 deg (at most 60)",
-                       mm(g.radial_clearance), angle * 180 / kPi);
   });
 }
 

@@ -28,7 +28,6 @@ std::optional<double> cage_bore_default(const Bind& b);
 std::optional<double> cage_outside_default(const Bind& b);
 std::optional<double> cage_width_default(const Bind& b);
 std::optional<double> ring_support_stiffness_default(const Bind& b);
-std::optional<double> free_contact_angle_default(const Bind& b);
 std::optional<double> friction_default(const Bind& b);
 std::optional<double> rolling_resistance_default(const Bind& b);
 std::optional<double> max_order_default(const Bind& b);
@@ -36,7 +35,7 @@ long max_order_limit(const Bind& b);
 
 // ---- conditions: why a key does not apply here, or nullopt -------------------------------------
 std::optional<std::string> four_point_only(const Section& s, const Bind& b);
-std::optional<std::string> angular_contact_only(const Section& s, const Bind& b);
+std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b);
 std::optional<std::string> axially_held_only(const Section& s, const Bind& b);
 std::optional<std::string> unless_ball_material(const Section& s, const Bind& b);
 std::optional<std::string> land_guided_only(const Section& s, const Bind& b);
@@ -58,7 +57,6 @@ std::optional<std::string> traction_law_on(const Section& s, const Bind& b);
 void output_interval_within_run(const Row& row, const Section& s, Bind& b);
 void model_fits_bearing_type(const Row& row, const Section& s, Bind& b);
 void clearance_fits_elements(const Row& row, const Section& s, Bind& b);
-void free_contact_angle_fits(const Row& row, const Section& s, Bind& b);
 void bore_inside_inner_race(const Row& row, const Section& s, Bind& b);
 void outside_beyond_outer_race(const Row& row, const Section& s, Bind& b);
 void ring_wider_than_ball(const Row& row, const Section& s, Bind& b);

@@ -111,11 +111,10 @@ constexpr Row kRows[] = {
      .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2)"},
     {.section = "bearing", .key = "contact_angle", .kind = number,
      .field = FIELD(scene.bearing.ball.free_contact_angle), .dim = dim::angle, .bounds = kFreeContactAngle,
-     .def = derived(free_contact_angle_default, "from radial_clearance: acos(1 - P_d / (2 (f_i + f_o - 1) D))"),
-     .bearings = ball_bearings, .elsewhere = kBallOnly, .when = angular_contact_only,
-     .missing = "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or the "
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .when = contact_angle_applies,
+     .missing = "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or give the "
                 "groove geometry's radial_clearance, from which it follows)",
-     .then = free_contact_angle_fits, .example = "40 deg",
+     .example = "40 deg",
      .meaning = "angular contact bearings: the free (nominal) contact angle, at which the unloaded ball touches both "
                 "grooves; the contact line runs from the inner groove at -z to the outer at +z"},
     {.section = "bearing", .key = "inner_bore_diameter", .kind = number,
