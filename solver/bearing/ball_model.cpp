@@ -181,6 +181,7 @@ contact::BallGrooveSegment groove_law(const Model& m, const io::Scene& scene, co
   s.traction = race_traction(scene);
   s.lubricant = lubricant(scene);
   s.rolling_resistance = scene.ball_race.traction.rolling_resistance && s.lubricant.viscosity > 0;
+  if (scene.bearing.type == io::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
   return s;
 }
 

@@ -5,7 +5,8 @@
 //  - under a combined load (F_a 1500 N along +z, F_r 1000 N) at 120 rpm: the start-up state and a
 //    run, ball by ball: loads and contact angles, and the inner ring's displacement;
 //  - preloaded by displacement (the inner ring held 15 um along +z, no load): every ball carries
-//    the same load at the same angle, from the geometry alone.
+//    the same load at the same angle, from the geometry alone;
+//  - loaded the wrong way: no equilibrium, and the start-up names the keys.
 // The bearing: 7206 B size (jobs/scenes/7206B_angular_contact.toml): 12 balls of 9.525 mm on a
 // 46 mm pitch circle, f_i 0.52, f_o 0.53, 40 deg free contact angle.
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "solver/bearing/model.hpp"
@@ -185,6 +188,23 @@ TEST(AngularContact, PreloadByAxialDisplacement) {
               b.load, expected_angle / deg, qs.z * b.load * std::sin(expected_angle),
               std::abs(sim.load[0] - b.load) / b.load, sum.stats.steps, worst);
   EXPECT_LT(worst, 1e-2);
+}
+
+// An axial load the wrong way (-z on the inner ring) pushes the balls past the grooves' bottoms
+// towards the low shoulders: they leave the grooves (a full torus would instead give a mirrored
+// contact 0.6 mm further on). There is no equilibrium, and the start-up says so naming the keys.
+TEST(AngularContact, LoadTheWrongWayHasNoEquilibrium) {
+  const io::Scene scene = angular_scene(-1000, -1500, 0.01);
+  const Model model = build_model(scene);
+  try {
+    (void)initial_state(model, 0.0);
+    ADD_FAILURE() << "a start-up under an axial load the bearing cannot carry";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
+    EXPECT_NE(what.find("inner_ring.load"), std::string::npos) << what;
+    EXPECT_NE(what.find("bearing.contact_angle"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
