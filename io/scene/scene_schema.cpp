@@ -45,6 +45,9 @@ constexpr Bounds kConformity{.lo = 0.5, .hi = 0.6, .lo_open = true,
                              .note = " (conformity = groove radius / ball diameter: the groove radius must exceed the "
                                      "ball radius; ball bearing grooves are 0.505 to 0.58)"};
 constexpr Bounds kArcAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg"};
+constexpr std::string_view kContactAngleMissing =
+    "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or give the groove "
+    "geometry's radial_clearance, from which it follows)";
 constexpr Bounds kFreeContactAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg",
                                    .note = " (angular contact bearings are made with 15 to 40 deg)"};
 constexpr Bounds kAxialPosition{.lo = -1e-3, .hi = 1e-3, .unit = "um",
@@ -109,12 +112,9 @@ constexpr Row kRows[] = {
     {.section = "bearing", .key = "radial_clearance", .kind = number, .field = FIELD(scene.bearing.radial_clearance),
      .dim = dim::length, .bounds = non_negative, .def = value(0), .then = clearance_fits_elements,
      .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2)"},
-    {.section = "bearing", .key = "contact_angle", .kind = number,
-     .field = FIELD(scene.bearing.ball.free_contact_angle), .dim = dim::angle, .bounds = kFreeContactAngle,
-     .bearings = ball_bearings, .elsewhere = kBallOnly, .when = contact_angle_applies,
-     .missing = "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or give the "
-                "groove geometry's radial_clearance, from which it follows)",
-     .example = "40 deg",
+    {.section = "bearing", .key = "contact_angle", .kind = number, .field = FIELD(scene.bearing.ball.free_contact_angle),
+     .dim = dim::angle, .bounds = kFreeContactAngle, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .when = contact_angle_applies, .missing = kContactAngleMissing, .example = "40 deg",
      .meaning = "angular contact bearings: the free (nominal) contact angle, at which the unloaded ball touches both "
                 "grooves; the contact line runs from the inner groove at -z to the outer at +z"},
     {.section = "bearing", .key = "inner_bore_diameter", .kind = number,
