@@ -128,7 +128,7 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) return invalid_result(approach);
   if (len > 0) r.diagnostics.contact_angle = std::atan2(d_ax, std::abs(d_rad));
-  if (approach <= 0) return r;
+  if (approach <= 0 || s.groove_side * d_ax < 0) return r;
 
   // Geometry of the contact: normal n from the ball centre into the ring (body 1), the contact point
   // on the groove, and the contact frame (x rolling = e_theta, y = n x x, z = n).

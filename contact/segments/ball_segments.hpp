@@ -116,6 +116,11 @@ struct BallGrooveSegment {
   PointTraction traction;
   PointLubricant lubricant;
   bool rolling_resistance = true;  ///< add EHL rolling resistance where there is a film
+  /// The groove's extent: 0 a full groove (deep groove, four-point); +1 or -1 an angular contact
+  /// bearing's groove, which runs from its bottom (contact angle 0) up its high shoulder on the +z
+  /// or -z side only: a ball pushed past the bottom towards the low shoulder leaves the groove (no
+  /// force), as it lifts off a real counterbored ring instead of finding a mirrored contact.
+  int groove_side = 0;
 };
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball);

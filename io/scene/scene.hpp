@@ -44,10 +44,11 @@ struct SceneInfo {
   double output_interval = 0;  ///< s
 };
 
-enum class BearingType { cylindrical_roller, deep_groove_ball, four_point_contact_ball };
+enum class BearingType { cylindrical_roller, deep_groove_ball, four_point_contact_ball, angular_contact_ball };
 
 /// Ball-bearing geometry (spatial scenes). Groove radii are conformity * ball diameter. The contact
-/// angle is never an input: it comes out of the groove geometry, the clearance and the loads.
+/// angle under load is never an input: it comes out of the groove geometry, the clearance and the
+/// loads; an angular contact bearing's free contact angle is part of its groove geometry.
 struct BallGeometry {
   double ball_diameter = 0;         ///< m
   double inner_conformity = 0;      ///< f_i = inner groove radius / ball diameter (> 0.5)
@@ -56,6 +57,13 @@ struct BallGeometry {
   /// clearance is taken up symmetrically (sets the axial offset of the arcs' curvature centres:
   /// e = (r_groove - D/2) sin(angle) measured from the groove's mid-plane). 0 for deep groove.
   double arc_contact_angle = 0;     ///< rad
+  /// Angular contact bearings only: the free contact angle alpha_0, at which the ball touches both
+  /// grooves without load when the rings are centred: the grooves' curvature centres lie on the line
+  /// through the ball centre at alpha_0 to the radial plane, A = (f_i + f_o - 1) D apart, the outer
+  /// one on the +z side. Axial load on the inner ring along +z (or on the outer along -z) closes it.
+  /// Equivalent to a deep groove bearing of clearance P_d = 2 A (1 - cos alpha_0) with its rings
+  /// pushed together axially.
+  double free_contact_angle = 0;    ///< rad
 };
 
 struct BearingGeometry {
@@ -134,6 +142,7 @@ struct RingSpec {
   bool axial_free = true;        ///< spatial, driven/free rings: z integrated (false = held)
   RingTilt tilt = RingTilt::fixed;  ///< spatial
   TimeFunction misalignment_x, misalignment_y;  ///< rad, rotation about x and y (tilt = prescribed)
+  double axial_position = 0;     ///< m, spatial: where a ring held axially is held (preload by displacement)
   RingLoad load;
   RingSupport support;
   double mass = 0;          ///< kg; 0 = computed from geometry and material

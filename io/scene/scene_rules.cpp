@@ -1,6 +1,7 @@
 // The rules of a scene that tie keys together (scene_rules.hpp).
 #include "io/scene/scene_rules.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -85,6 +86,20 @@ std::optional<std::string> four_point_only(const Section&, const Bind& b) {
   if (b.scene.bearing.type == BearingType::four_point_contact_ball) return std::nullopt;
   return "only for type = \"four_point_contact_ball\": a deep groove ball bearing's contact angle comes out of its "
          "clearance, conformities and loads";
+}
+std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b) {
+  if (b.scene.bearing.type != BearingType::angular_contact_ball)
+    return "only for type = \"angular_contact_ball\": a deep groove or four-point bearing's contact angle comes out "
+           "of its clearance, conformities (and arc angle) and loads";
+  if (s.has("radial_clearance"))
+    return "the free contact angle follows here from radial_clearance (cos alpha_0 = 1 - P_d / (2 (f_i + f_o - 1) "
+           "D)): give one of them";
+  return std::nullopt;
+}
+std::optional<std::string> axially_held_only(const Section&, const Bind& b) {
+  if (!(b.ring->motion != RingMotion::fixed && b.ring->axial_free)) return std::nullopt;
+  return "only for a ring held axially (motion = \"fixed\" or axial = \"fixed\"): a ring free along z finds its "
+         "axial position from its loads";
 }
 std::optional<std::string> unless_ball_material(const Section& s, const Bind& b) {
   if (!(b.ball() && s.has("ball_material"))) return std::nullopt;
@@ -192,6 +207,19 @@ void clearance_fits_elements(const Row&, const Section& s, Bind& b) {
                          "a few to a few tens of micrometres",
                          mm(g.radial_clearance), mm(dw));
     });
+  // An angular contact bearing given by its groove geometry: the grooves' curvature centres are
+  // A = (f_i + f_o - 1) D apart, and the clearance taken up axially puts them at the free contact
+  // angle, cos(alpha_0) = 1 - P_d / (2 A).
+  if (g.type == BearingType::angular_contact_ball && s.has("radial_clearance")) {
+    const double a = (g.ball.inner_conformity + g.ball.outer_conformity - 1) * dw;
+    const double angle = std::acos(std::clamp(1 - g.radial_clearance / (2 * a), -1.0, 1.0));
+    s.check(angle > 0 && angle < kPi / 3, "radial_clearance", [&] {
+      return fmt::format("a clearance of {} gives a free contact angle of {:.3g} deg with these conformities; angular "
+                         "contact bearings are made with 15 to 40 deg (at most 60)",
+                         mm(g.radial_clearance), angle * 180 / kPi);
+    });
+    b.scene.bearing.ball.free_contact_angle = angle;
+  }
   const double inner_race = g.inner_race_diameter();
   s.check(inner_race > 0, b.ball() ? "ball_diameter" : "roller_diameter", [&] {
     return fmt::format("{} {}s on a {} pitch diameter (clearance {}) leave no inner race: its diameter would be {}",

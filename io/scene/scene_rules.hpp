@@ -35,6 +35,8 @@ long max_order_limit(const Bind& b);
 
 // ---- conditions: why a key does not apply here, or nullopt -------------------------------------
 std::optional<std::string> four_point_only(const Section& s, const Bind& b);
+std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b);
+std::optional<std::string> axially_held_only(const Section& s, const Bind& b);
 std::optional<std::string> unless_ball_material(const Section& s, const Bind& b);
 std::optional<std::string> land_guided_only(const Section& s, const Bind& b);
 std::optional<std::string> driven_ring_only(const Section& s, const Bind& b);

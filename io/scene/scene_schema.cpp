@@ -21,7 +21,8 @@ using namespace rules;
 constexpr Default empty_table = value(0);
 
 // Why a key is rejected where the bearing or contact does not take it.
-constexpr std::string_view kBallOnly = "only for ball bearings (type = \"deep_groove_ball\" or \"four_point_contact_ball\")";
+constexpr std::string_view kBallOnly =
+    "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
 constexpr std::string_view kSpatialCage =
     "only for spatial scenes (model = \"spatial\"): a planar cage moves in x, y and about z";
 constexpr std::string_view kSpatialRing =
@@ -47,6 +48,13 @@ constexpr Bounds kConformity{.lo = 0.5, .hi = 0.6, .lo_open = true,
                              .note = " (conformity = groove radius / ball diameter: the groove radius must exceed the "
                                      "ball radius; ball bearing grooves are 0.505 to 0.58)"};
 constexpr Bounds kArcAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg"};
+constexpr std::string_view kContactAngleMissing =
+    "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or give the groove "
+    "geometry's radial_clearance, from which it follows)";
+constexpr Bounds kFreeContactAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg",
+                                   .note = " (angular contact bearings are made with 15 to 40 deg)"};
+constexpr Bounds kAxialPosition{.lo = -1e-3, .hi = 1e-3, .unit = "um",
+                                .note = " (preload displacements are micrometres to some tens of them)"};
 constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
                                .note = " (a sanity limit: ball bearings run at a few mrad)"};
 
@@ -107,6 +115,11 @@ constexpr Row kRows[] = {
     {.section = "bearing", .key = "radial_clearance", .kind = number, .field = FIELD(scene.bearing.radial_clearance),
      .dim = dim::length, .bounds = non_negative, .def = value(0), .then = clearance_fits_elements,
      .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2)"},
+    {.section = "bearing", .key = "contact_angle", .kind = number, .field = FIELD(scene.bearing.ball.free_contact_angle),
+     .dim = dim::angle, .bounds = kFreeContactAngle, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .when = contact_angle_applies, .missing = kContactAngleMissing, .example = "40 deg",
+     .meaning = "angular contact bearings: the free (nominal) contact angle, at which the unloaded ball touches both "
+                "grooves; the contact line runs from the inner groove at -z to the outer at +z"},
     {.section = "bearing", .key = "inner_bore_diameter", .kind = number,
      .field = FIELD(scene.bearing.inner_bore_diameter), .dim = dim::length, .bounds = positive,
      .def = derived(inner_bore_default, "inner race diameter - D"), .then = bore_inside_inner_race,
@@ -202,6 +215,11 @@ constexpr Row kRows[] = {
     {.section = "*_ring", .key = "axial", .kind = choice, .field = FIELD(ring->axial_free), .def = word("free"),
      .bearings = ball_bearings, .elsewhere = kSpatialRing, .when = moving_ring_only, .options = kFreeOrFixed,
      .otherwise = 0, .meaning = "driven and free rings: free along z, or held"},
+    {.section = "*_ring", .key = "axial_position", .kind = number, .field = FIELD(ring->axial_position),
+     .dim = dim::length, .bounds = kAxialPosition, .def = value(0), .bearings = ball_bearings,
+     .elsewhere = kSpatialRing, .when = axially_held_only, .example = "20 um",
+     .meaning = "rings held axially: where (preload by displacement: an angular contact bearing's inner ring held "
+                "at +z)"},
     {.section = "*_ring", .key = "tilt", .kind = choice, .field = FIELD(ring->tilt), .def = word("fixed"),
      .bearings = ball_bearings, .elsewhere = kSpatialRing, .then = fixed_ring_tilt_not_free, .options = kRingTilts,
      .meaning = "about x and y: held aligned, free (integrated), or prescribed (misalignment)"},

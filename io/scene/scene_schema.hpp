@@ -96,7 +96,8 @@ std::string_view option_name(std::span<const Option> options, int value);
 inline constexpr Option kModels[] = {{"planar", int(ModelKind::planar)}, {"spatial", int(ModelKind::spatial)}};
 inline constexpr Option kBearingTypes[] = {{"cylindrical_roller", int(BearingType::cylindrical_roller)},
                                            {"deep_groove_ball", int(BearingType::deep_groove_ball)},
-                                           {"four_point_contact_ball", int(BearingType::four_point_contact_ball)}};
+                                           {"four_point_contact_ball", int(BearingType::four_point_contact_ball)},
+                                           {"angular_contact_ball", int(BearingType::angular_contact_ball)}};
 inline constexpr Option kGuidances[] = {{"inner_land", int(CageGuidance::inner_land)},
                                         {"outer_land", int(CageGuidance::outer_land)},
                                         {"rolling_element", int(CageGuidance::rolling_element)}};

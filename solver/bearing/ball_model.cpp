@@ -109,18 +109,22 @@ struct Arc {
 
 /// Groove arcs. u: unit vector from the ball centre to the design contact point in the (radial,
 /// axial) plane; the arc centre lies at (R_b - r_groove) u from a centred ball, and the clearance
-/// moves the outer arcs out and the inner arcs in by P_d / 4 each (radial play P_d / 2).
+/// moves the outer arcs out and the inner arcs in by P_d / 4 each (radial play P_d / 2). An angular
+/// contact bearing's design contact points lie on one line through the ball centre at its free
+/// contact angle (outer at +z, inner at -z), touching without load: its free contact angle is its
+/// play, so no clearance shift.
 std::vector<Arc> groove_arcs(const Model& m, const io::Scene& scene) {
   const auto& g = scene.bearing;
   const bool four_point = g.type == io::BearingType::four_point_contact_ball;
+  const bool angular = g.type == io::BearingType::angular_contact_ball;
   const double D = g.ball.ball_diameter, rb = m.element_radius, rp = m.pitch_radius, a0 = m.nominal_contact_angle;
   std::vector<Arc> arcs;
   for (int ring = 0; ring < 2; ++ring) {
     const bool outer = ring == 1;
     const double rg = (outer ? g.ball.outer_conformity : g.ball.inner_conformity) * D;
-    const double shift = (outer ? 1.0 : -1.0) * 0.25 * g.radial_clearance;
+    const double shift = angular ? 0.0 : (outer ? 1.0 : -1.0) * 0.25 * g.radial_clearance;
     for (int side = 0; side < m.arcs_per_ring; ++side) {
-      const double sign_axial = four_point ? (side == 0 ? 1.0 : -1.0) : 0.0;
+      const double sign_axial = four_point ? (side == 0 ? 1.0 : -1.0) : angular ? (outer ? 1.0 : -1.0) : 0.0;
       const double u_r = (outer ? 1.0 : -1.0) * std::cos(a0), u_z = sign_axial * std::sin(a0);
       const char* label = four_point ? (side == 0 ? "a" : "b") : "";
       arcs.push_back({outer, rp + (rb - rg) * u_r + shift, (rb - rg) * u_z, rg, label});
@@ -177,6 +181,7 @@ contact::BallGrooveSegment groove_law(const Model& m, const io::Scene& scene, co
   s.traction = race_traction(scene);
   s.lubricant = lubricant(scene);
   s.rolling_resistance = scene.ball_race.traction.rolling_resistance && s.lubricant.viscosity > 0;
+  if (scene.bearing.type == io::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
   return s;
 }
 
@@ -265,7 +270,9 @@ void set_geometry(Model& m, const io::Scene& scene) {
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.ball.ball_diameter;
-  m.nominal_contact_angle = four_point ? g.ball.arc_contact_angle : 0.0;
+  m.nominal_contact_angle = four_point                                    ? g.ball.arc_contact_angle
+                            : g.type == io::BearingType::angular_contact_ball ? g.ball.free_contact_angle
+                                                                              : 0.0;
   m.arcs_per_ring = four_point ? 2 : 1;
 }
 
@@ -316,7 +323,11 @@ std::string describe_ball_model(const Model& m) {
   out += fmt::format("scene '{}' ({}): spatial model, {} bodies, {} states, {} contact segments\n", sc.scene.name,
                      sc.source, m.bodies.size(), m.state_size, m.segments.size());
   out += fmt::format("  {} {} balls, D = {:.4g} mm, pitch diameter {:.5g} mm, nominal contact angle {:.3g} deg\n",
-                     m.element_count, m.arcs_per_ring == 2 ? "four-point contact" : "deep groove", 2e3 * m.element_radius,
+                     m.element_count,
+                     m.arcs_per_ring == 2                                           ? "four-point contact"
+                     : sc.bearing.type == io::BearingType::angular_contact_ball ? "angular contact"
+                                                                                    : "deep groove",
+                     2e3 * m.element_radius,
                      2e3 * m.pitch_radius, m.nominal_contact_angle * 180 / std::numbers::pi);
   out += "bodies (states integrated; prescribed motions are functions of time, not states):\n";
   for (const auto& b : m.bodies) {

@@ -372,8 +372,10 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
   if (!(rep.residual <= 1e-6 * seat.force_scale + 1e-6))
     throw std::runtime_error(fmt::format(
         "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
-        "check the loads, supports and clearance",
-        iterations, rep.residual));
+        "the keys involved: bearing.radial_clearance ({:.4g} um){}, inner_ring.load, outer_ring.load, the rings' "
+        "support, axial and tilt, scene.gravity",
+        iterations, rep.residual, 1e6 * m.scene->bearing.radial_clearance,
+        m.scene->bearing.type == io::BearingType::angular_contact_ball ? " or bearing.contact_angle" : ""));
   std::vector<double> z = seat.state(u);
   z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[saz])] = azimuth_offset;
   rep.pocket_force = place_cage(m, z);

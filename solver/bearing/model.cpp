@@ -120,6 +120,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
   for (int c = 0; c < coordinate_count; ++c)
     if (body.slot[c] >= 0) v[c] = z[body.slot[c]];
   contact::SpatialKinematics k;
+  if (body.ring && body.slot[sz] < 0) v[sz] = body.ring->axial_position;  // held axially: where it is held
   k.position = Vec3(v[sx], v[sy], v[sz]);
   k.velocity = Vec3(v[svx], v[svy], v[svz]);
   switch (body.kind) {

@@ -239,7 +239,7 @@ TEST(SpatialScene, MinimalSceneGetsDocumentedDefaults) {
 
   const CageSpec& c = s.cage;
   EXPECT_EQ(c.guidance, CageGuidance::rolling_element);
-  EXPECT_EQ(c.pocket_shape, PocketShape::cylindrical);
+  EXPECT_EQ(c.pocket_shape, PocketShape::spherical);  // given: a ball-guided cage needs pockets that hold it
   EXPECT_DOUBLE_EQ(c.pocket_clearance, 0.4e-3);
   EXPECT_EQ(c.bar_width, 0.0);
   EXPECT_NEAR(c.land_width, 25e-3 - 17.462e-3, 1e-15);  // the two shoulders beside the groove
@@ -309,7 +309,7 @@ traction = "none"
 )");
   const auto pos = text.find("pocket_clearance = \"0.4 mm\"");
   ASSERT_NE(pos, std::string::npos);
-  text.insert(pos, "pocket_shape = \"spherical\"\nsupport = { axial_stiffness = \"1e7 N/m\" }\n");
+  text.insert(pos, "support = { axial_stiffness = \"1e7 N/m\" }\n");  // pocket_shape: spherical, as given
   const Scene s = parse(text);
   const RingSpec& o = s.outer_ring;
   EXPECT_EQ(o.motion, RingMotion::free);

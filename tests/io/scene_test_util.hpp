@@ -96,6 +96,7 @@ ring_width = "25 mm"
 [cage]
 guidance = "rolling_element"
 pocket_clearance = "0.4 mm"
+pocket_shape = "spherical"
 [inner_ring]
 motion = "driven"
 speed = "3000 rpm"
@@ -104,6 +105,8 @@ load = { fy = "-1000 N" }
 motion = "fixed"
 )";
 
+/// (Its ball-guided cage has spherical pockets: in cylindrical ones nothing would hold it radially,
+/// scene_rules.cpp check_cage_held.)
 /// The minimal spatial scene with one substring replaced (it must occur) or text appended.
 inline std::string spatial(std::string_view from = {}, std::string_view to = {}) {
   return replaced(kSpatialMinimal, from, to);

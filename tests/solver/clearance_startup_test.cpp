@@ -4,7 +4,8 @@
 //    clearance under its 1 kN load and under a light 30 N load at 30 deg (where one or two rollers
 //    carry it);
 //  - deep groove ball bearing (6309 size, 45 mm bore): 0 to 51 um, the top of ISO 5753's C4 class
-//    for that bore (C2 1-11, CN 6-23, C3 18-36, C4 30-51 um), under radial and combined loads.
+//    for that bore (C2 1-11, CN 6-23, C3 18-36, C4 30-51 um), under radial and combined loads;
+//  - four-point contact ball bearing (QJ215 size): 0 to 90 um under a combined load.
 // Each start is checked against what a quasi-static start must be (the free ring's net force
 // vanishes while the rolling elements carry the load; every roller's radial force is the
 // centripetal force of its orbit) and then run for a few milliseconds, which must end normally.
@@ -94,13 +95,14 @@ TEST(ClearanceStartup, RollerBearingUnderALightObliqueLoad) {
 
 // ---- deep groove ball bearing -----------------------------------------------------------------
 
-void check_ball_start(double clearance, double fy, double fz) {
+void check_ball_start(double clearance, double fy, double fz, io::Scene (*bearing)(const test::BallSceneOptions&) =
+                                                                      test::deep_groove_scene) {
   test::BallSceneOptions o;
   o.fy = fy;
   o.fz = fz;
   o.speed_rpm = 3000;
   o.end_time = 2e-3;
-  io::Scene scene = test::deep_groove_scene(o);
+  io::Scene scene = bearing(o);
   scene.bearing.radial_clearance = clearance;
   const Model m = build_model(scene);
   StartupReport start;
@@ -132,9 +134,9 @@ void check_ball_start(double clearance, double fy, double fz) {
   EXPECT_NEAR(carried_z, fz, spring + 1e-6 * load) << clearance / um << " um";
   const RunSummary sum = run_briefly(scene);
   EXPECT_NEAR(sum.simulated_time_s, scene.scene.end_time, 1e-12);
-  std::printf("[ clearance ] 6309 ball bearing, P_d %4.0f um, Fr %5.0f N, Fa %5.0f N: seated in %d iterations "
+  std::printf("[ clearance ] %s, P_d %4.0f um, Fr %5.0f N, Fa %5.0f N: seated in %d iterations "
               "(%.2g N), largest ball load %.0f N; %.0f ms run in %ld steps\n",
-              clearance / um, -fy, fz, start.iterations, start.residual, sum.max_ball_load_n,
+              m.arcs_per_ring == 2 ? "QJ215 four-point" : "6309 deep groove", clearance / um, -fy, fz, start.iterations, start.residual, sum.max_ball_load_n,
               1e3 * sum.simulated_time_s, sum.stats.steps);
 }
 
@@ -150,6 +152,13 @@ TEST(ClearanceStartup, BallBearingUnderCombinedLoad) {
 
 TEST(ClearanceStartup, BallBearingUnderALightLoad) {
   for (double clearance : ball_clearances) check_ball_start(clearance, -20, 0);
+}
+
+// The QJ215-size four-point bearing (seed 001 gives it 27 um) from 0 to 90 um, under the combined
+// load of jobs/scenes/qj215_validation.toml.
+TEST(ClearanceStartup, FourPointBearingUnderCombinedLoad) {
+  for (double clearance : {0.0, 10 * um, 27 * um, 50 * um, 90 * um})
+    check_ball_start(clearance, -500, 2000, test::four_point_scene);
 }
 
 }  // namespace
