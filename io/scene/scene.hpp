@@ -40,6 +40,9 @@ enum class ModelKind { planar, spatial };
 struct SceneInfo {
   std::string name;
   ModelKind model = ModelKind::planar;
+  /// Dotted keys ("inner_ring.speed") whose values may lie beyond the sane range of their kind of
+  /// quantity (io/scene/units.hpp: QuantityKind); every value is finite all the same.
+  std::vector<std::string> allow_out_of_range;
   double end_time = 0;         ///< s
   double output_interval = 0;  ///< s
 };
@@ -227,8 +230,16 @@ struct Scene {
   SolverSpec solver;
   OutputSpec output;
   bool gravity = false;   ///< gravity along -y (9.80665 m/s^2)
+  /// Line of every key of the scene text ("inner_ring.load.fy" -> 31), for errors found after
+  /// parsing (start-up, output size) that name the keys involved.
+  std::map<std::string, int, std::less<>> key_lines;
 
   const Material& material(const std::string& key) const { return materials.at(key); }
+  /// Line of a dotted key in the scene text; 0 when the key is not in it (a default).
+  int line_of(std::string_view key) const {
+    const auto it = key_lines.find(key);
+    return it == key_lines.end() ? 0 : it->second;
+  }
 };
 
 }  // namespace raceway::io

@@ -364,7 +364,7 @@ TEST(SpatialScene, MoreRules) {
             std::string::npos);
   EXPECT_EQ(error_of(spatial("", "[contact.cage_land]\nnormal = \"hertz\"\n")).key(), "contact.cage_land.normal");
   // lubricant and cage sanity limits
-  EXPECT_EQ(error_of(spatial("", "[lubricant]\nviscosity = 0.03\nlimiting_shear_coefficient = 0.7\n")).key(),
+  EXPECT_EQ(error_of(spatial("", "[lubricant]\nviscosity = \"0.03 Pa s\"\nlimiting_shear_coefficient = 0.7\n")).key(),
             "lubricant.limiting_shear_coefficient");
   EXPECT_EQ(error_of(spatial("pocket_clearance = \"0.4 mm\"", "pocket_clearance = \"2 mm\"")).key(),
             "cage.pocket_clearance");
