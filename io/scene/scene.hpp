@@ -204,11 +204,13 @@ struct SolverSpec {
   double max_step = 0;               ///< s; 0 = no limit
   double initial_step = 0;           ///< s; 0 = CVODE's estimate
   long max_steps = 500000000;        ///< total step budget for the run
+  double max_wall_time = 0;          ///< s of wall-clock time for the integration; 0 = no limit
   double jacobian_perturbation = 1e-7;  ///< relative finite-difference increment
 };
 
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
+  double max_size = 4e9;  ///< bytes: a run whose series would be larger is refused before it starts
 };
 
 /// One simulation, validated and in SI units, and where it came from.

@@ -357,4 +357,23 @@ Scene load_scene(const std::string& path) {
 
 Scene default_scene() { return parse_scene(default_scene_text(), "<built-in default>"); }
 
+std::string keys_with_lines(const Scene& scene, std::span<const std::string_view> keys) {
+  const auto& lines = scene.key_lines;
+  const auto under = [](std::string_view key, std::string_view prefix) {
+    return key.starts_with(prefix) && key.size() > prefix.size() && key[prefix.size()] == '.';
+  };
+  std::vector<std::pair<int, std::string_view>> found;
+  for (auto it = lines.begin(); it != lines.end(); ++it) {
+    const std::string_view key = it->first;
+    const auto next = std::next(it);
+    if (next != lines.end() && under(next->first, key)) continue;  // a table: its keys are listed
+    if (std::any_of(keys.begin(), keys.end(), [&](std::string_view k) { return key == k || under(key, k); }))
+      found.emplace_back(it->second, key);
+  }
+  std::sort(found.begin(), found.end());
+  std::string out;
+  for (const auto& [line, key] : found) out += fmt::format("{}{} (line {})", out.empty() ? "" : ", ", key, line);
+  return out;
+}
+
 }  // namespace raceway::io

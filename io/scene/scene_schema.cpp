@@ -371,6 +371,9 @@ constexpr Row kRows[] = {
      .meaning = "first time step (at most end_time); 0: CVODE's estimate"},
     {.section = "solver", .key = "max_steps", .kind = integer, .field = FIELD(scene.solver.max_steps),
      .bounds = {.lo = 1}, .def = value(500000000), .meaning = "step budget of the run"},
+    {.section = "solver", .key = "max_wall_time", .kind = number, .field = FIELD(scene.solver.max_wall_time),
+     .dim = dim::time, .bounds = non_negative, .def = value(0), .example = "2 h",
+     .meaning = "wall-clock budget of the integration: past it the run ends with a diagnosis (exit 3); 0: no limit"},
     {.section = "solver", .key = "jacobian_perturbation", .kind = number,
      .field = FIELD(scene.solver.jacobian_perturbation), .dim = dim::none, .bounds = {.lo = 1e-12, .hi = 1e-2},
      .def = value(1e-7), .meaning = "relative finite-difference increment"},
@@ -389,6 +392,10 @@ constexpr Row kRows[] = {
     // ---- [output] -------------------------------------------------------------------------------
     {.section = "output", .key = "segments", .kind = boolean, .field = FIELD(scene.output.segments), .def = value(1),
      .meaning = "per-segment (per-contact) diagnostics"},
+    {.section = "output", .key = "max_size", .kind = number, .field = FIELD(scene.output.max_size),
+     .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
+     .meaning = "largest output (its series: samples x values x 8 bytes, estimated by `raceway check`); a larger "
+                "run is refused before it starts"},
 };
 
 #undef FIELD

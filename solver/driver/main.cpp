@@ -27,6 +27,7 @@
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/run/output_writer.hpp"
 #include "solver/run/run.hpp"
 
 namespace {
@@ -239,6 +240,9 @@ int check_command(const std::string& scene_path) {
   std::fputs(model.describe().c_str(), stdout);
   const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
   std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
+  const solver::OutputEstimate output = solver::estimate_output(model, scene);
+  std::puts(output.describe(scene.output.max_size).c_str());
+  solver::check_output_size(output, scene);
   std::puts("scene OK");
   return 0;
 }

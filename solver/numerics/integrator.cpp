@@ -5,6 +5,7 @@
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cmath>
 #include <exception>
@@ -30,6 +31,17 @@ struct Integrator::Impl {
   std::exception_ptr callback_error;
   std::string last_cvode_message;
   long steps_budget = 0;
+  // Wall-clock budget ([solver] max_wall_time): checked at every right-hand side and Jacobian, so
+  // a run that crawls ends within one evaluation of its budget.
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  bool out_of_wall_time = false;
+  double wall_seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+  bool wall_time_exhausted() {
+    if (spec.max_wall_time > 0 && wall_seconds() > spec.max_wall_time) out_of_wall_time = true;
+    return out_of_wall_time;
+  }
 
   Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
@@ -41,6 +53,7 @@ struct Integrator::Impl {
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     auto* self = static_cast<Impl*>(user);
+    if (self->wall_time_exhausted()) return -1;  // unrecoverable: CVode returns, advance_to diagnoses
     try {
       return self->eq.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     } catch (...) {
@@ -51,6 +64,7 @@ struct Integrator::Impl {
   static int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
                       N_Vector) {
     auto* self = static_cast<Impl*>(user);
+    if (self->wall_time_exhausted()) return -1;
     try {
       const int status = self->eq.jacobian(t, N_VGetArrayPointer(y), self->scratch);
       NewtonLinearSystem::load_jacobian(self->scratch, j);
@@ -127,7 +141,11 @@ std::string Integrator::Impl::diagnose(int flag) const {
   long steps = 0;
   CVodeGetNumSteps(cvode, &steps);
   char* flag_name = CVodeGetReturnFlagName(flag);  // allocated by CVODE
-  const std::string flag_text = flag_name ? flag_name : "unknown flag";
+  const std::string flag_text =
+      out_of_wall_time ? fmt::format("wall-time budget exhausted ({:.4g} s of [solver] max_wall_time = {:g} s)",
+                                     wall_seconds(), spec.max_wall_time)
+      : flag_name      ? flag_name
+                       : "unknown flag";
   std::free(flag_name);
   std::string out = fmt::format("integration failed at t = {:.9g} s: {} after {} steps; last step {:.3g} s, "
                                 "attempted step {:.3g} s",
@@ -149,7 +167,7 @@ std::string Integrator::Impl::diagnose(int flag) const {
   }
   N_VDestroy(err);
   N_VDestroy(w);
-  if (!last_cvode_message.empty()) out += "; CVODE: " + last_cvode_message;
+  if (!last_cvode_message.empty() && !out_of_wall_time) out += "; CVODE: " + last_cvode_message;
   if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
   return out;
 }

@@ -131,6 +131,75 @@ version)
   fi
   ;;
 
+output_size)
+  # (g) `raceway check` prints the output's size, from the writer's own tables: the file a run
+  # writes has exactly that many samples and values per sample (its series, /scheduler aside).
+  sed 's/^end_time *=.*/end_time = "2 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/short.toml"
+  run check "$work/short.toml"
+  [[ $rc -eq 0 ]] || { fail "check: exit code $rc"; cat "$work/err" >&2; }
+  pattern='^output: ([0-9]+) samples x ([0-9]+) values = .* \(limit 4 GB, \[output\] max_size\)$'
+  line=$(grep '^output: ' "$work/out")
+  [[ "$line" =~ $pattern ]] || fail "check prints no output estimate: '$line'"
+  samples=${BASH_REMATCH[1]:-0} values=${BASH_REMATCH[2]:-0}
+  run run "$work/short.toml" -o "$work/s.h5"
+  [[ $rc -eq 0 ]] || fail "run: exit code $rc"
+  /usr/bin/python3 - "$work/s.h5" "$samples" "$values" <<'PY' || fail "the estimate differs from the file"
+import sys, h5py
+path, samples, values = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+with h5py.File(path, "r") as f:
+    t = f["time"].shape[0]
+    found = []
+    f.visititems(lambda name, o: found.append(o.size // t) if isinstance(o, h5py.Dataset) and
+                 not name.startswith("scheduler") and o.maxshape and o.maxshape[0] is None else None)
+print(f"file: {t} samples x {sum(found)} values; estimate: {samples} x {values}")
+sys.exit(0 if (t, sum(found)) == (samples, values) else 1)
+PY
+  # Over the limit: refused at check and at run (exit 2, no file), naming the key and the numbers.
+  sed 's/^output_interval *=.*/output_interval = "1 us"/; s/^end_time *=.*/end_time = "20 s"/' \
+    "$source_dir/jobs/scenes/default.toml" >"$work/huge.toml"
+  for command in check run; do
+    if [[ $command == run ]]; then run run "$work/huge.toml" -o "$work/huge.h5"; else run check "$work/huge.toml"; fi
+    [[ $rc -eq 2 ]] || fail "$command of a 48 GB output: exit code $rc, expected 2"
+    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 48 GB \(2e\+07 samples.*x 300 values x 8 bytes\), more than \[output\] max_size = 4 GB" "$work/err" ||
+      fail "$command: no size, key and limit in: $(cat "$work/err")"
+  done
+  [[ -e "$work/huge.h5" || -e "$work/huge.h5.partial" ]] && fail "a refused run created an output file"
+  # The limit is the scene's: 100 kB refuses the default scene's 482 kB, 1 MB lets it run.
+  sed 's/^segments = true.*/segments = true\nmax_size = "100 kB"/' "$source_dir/jobs/scenes/default.toml" >"$work/small.toml"
+  run check "$work/small.toml"
+  [[ $rc -eq 2 ]] && grep -q "more than \[output\] max_size = 100 kB" "$work/err" || fail "max_size = 100 kB: exit $rc"
+  sed -i 's/max_size = "100 kB"/max_size = "1 MB"/' "$work/small.toml"
+  run check "$work/small.toml"
+  [[ $rc -eq 0 ]] || fail "max_size = 1 MB: exit $rc: $(cat "$work/err")"
+  ;;
+
+wall_time)
+  # (h) [solver] max_wall_time ends a run that would take longer with a diagnosis (exit 3), soon.
+  sed 's/^\[solver\]/[solver]\nmax_wall_time = "0.3 s"/; s/^end_time *=.*/end_time = "10 s"/; s/^output_interval *=.*/output_interval = "10 ms"/' \
+    "$source_dir/jobs/scenes/default.toml" >"$work/slow.toml"
+  start=$(date +%s%N)
+  run run "$work/slow.toml" -o "$work/w.h5"
+  elapsed_ms=$((($(date +%s%N) - start) / 1000000))
+  [[ $rc -eq 3 ]] || fail "exit code $rc, expected 3"
+  grep -qE "integration failed at t = [0-9.e-]+ s: wall-time budget exhausted \(0\.3[0-9]* s of \[solver\] max_wall_time = 0\.3 s\)" "$work/err" ||
+    fail "no wall-time diagnosis: $(tail -2 "$work/err")"
+  echo "ended after $elapsed_ms ms"
+  [[ $elapsed_ms -lt 10000 ]] || fail "took $elapsed_ms ms"
+  [[ -e "$work/w.h5" ]] && fail "w.h5 written by a failed run"
+  ;;
+
+startup_keys)
+  # (i) a start-up that cannot seat the bearing (1 GN on 6 mm rollers) says so with the keys
+  # that set it and their lines; bad input, exit 2, no output.
+  sed 's/fy = "-500 N"/fy = "-1e9 N"/' "$source_dir/jobs/scenes/default.toml" >"$work/crushed.toml"
+  run run "$work/crushed.toml" -o "$work/c.h5"
+  [[ $rc -eq 2 ]] || fail "exit code $rc, expected 2"
+  line=$(grep -n 'fy = "-1e9 N"' "$work/crushed.toml" | cut -d: -f1)
+  grep -q "crushed.toml: start-up: .*; the keys that set the start-up: .*inner_ring.load.fy (line $line)" "$work/err" ||
+    fail "the start-up failure names no keys: $(cat "$work/err")"
+  [[ -e "$work/c.h5" || -e "$work/c.h5.partial" ]] && fail "a failed start-up created an output file"
+  ;;
+
 *)
   echo "unknown case '$case_name'" >&2
   exit 2
