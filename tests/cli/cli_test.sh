@@ -200,6 +200,47 @@ startup_keys)
   [[ -e "$work/c.h5" || -e "$work/c.h5.partial" ]] && fail "a failed start-up created an output file"
   ;;
 
+bad_options)
+  # (j) every bad option or argument: exit 2 and one line on stderr that names it (never CLI11's
+  # own codes 105, 106, 109, an abort on a non-finite value, or a 309-digit range).
+  while IFS='|' read -r args expected; do
+    read -ra argv <<<"$args"
+    run "${argv[@]}"
+    [[ $rc -eq 2 ]] || fail "raceway $args: exit code $rc, expected 2"
+    [[ $(wc -l <"$work/err") -eq 1 ]] || fail "raceway $args: not one line on stderr: $(cat "$work/err")"
+    grep -qF -- "$expected" "$work/err" || fail "raceway $args: '$expected' not in: $(cat "$work/err")"
+    [[ $(wc -c <"$work/err") -lt 200 ]] || fail "raceway $args: a long message: $(cat "$work/err")"
+    [[ -s "$work/out" ]] && fail "raceway $args: wrote to stdout"
+  done <<'CASES'
+run --master-share nan|--master-share: expected a finite number >= 0, got 'nan'
+run --master-share inf|--master-share: expected a finite number >= 0, got 'inf'
+run --master-share -1|--master-share: expected a finite number >= 0, got '-1'
+run --master-share 1e400|got '1e400'
+run --master-share 2x|got '2x'
+run --schedule-sample-every 0|--schedule-sample-every: expected a whole number > 0
+run --schedule-sample-every 2.5|--schedule-sample-every: expected a whole number > 0
+run --schedule-sample-every 1e400|--schedule-sample-every: expected a whole number > 0
+run --schedule sometimes|--schedule: sometimes not in {adaptive,static}
+run --rank-timeout nan|--rank-timeout: expected a finite number > 0, got 'nan'
+run --rank-timeout 0|--rank-timeout: expected a finite number > 0, got '0'
+run --inject-failure 1|--inject-failure expects RANK:EVALUATION
+run -o|--output
+run --no-such-option|--no-such-option
+check one.toml two.toml|two.toml
+report|output_file is required
+report x.h5 --bin-width nan|--bin-width: expected a finite number > 0, got 'nan'
+report x.h5 --bin-width -5|--bin-width: expected a finite number > 0, got '-5'
+report x.h5 --window-start inf|--window-start: expected a finite number >= 0, got 'inf'
+simulate|simulate
+|A subcommand is required
+CASES
+  # --help and --version are not errors.
+  run --help
+  [[ $rc -eq 0 ]] || fail "--help: exit code $rc"
+  run run --help
+  [[ $rc -eq 0 ]] || fail "run --help: exit code $rc"
+  ;;
+
 *)
   echo "unknown case '$case_name'" >&2
   exit 2
