@@ -93,7 +93,10 @@ const char* schedule_policy_name(SchedulePolicy p) {
 MpiExecutor::MpiExecutor(MPI_Comm comm, MpiExecutorOptions options) : comm_(comm), options_(std::move(options)) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
-  if (!(options_.master_share >= 0)) throw std::invalid_argument("master share must be >= 0");
+  if (!(options_.master_share >= 0 && std::isfinite(options_.master_share)))
+    throw std::invalid_argument("master share must be finite and >= 0");
+  if (!(options_.rank_timeout > 0 && std::isfinite(options_.rank_timeout)))
+    throw std::invalid_argument("rank timeout must be finite and > 0");
   capacity_.assign(static_cast<std::size_t>(size_), 1.0);
   // With workers, rank 0 takes master_share of a worker's work; alone it must take everything.
   if (size_ > 1) capacity_[0] = options_.master_share;
@@ -115,6 +118,41 @@ void MpiExecutor::fail(const std::string& what) const {
   std::abort();  // MPI_Abort does not return; this keeps [[noreturn]] honest
 }
 
+void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::vector<int>& ranks,
+                               const std::string& what) {
+  // MPI_Waitall cannot be bounded; a worker stopped by a signal would hold the master (at 100 %
+  // CPU) for ever. Polling with MPI_Testsome costs what MPI_Waitall's own progress loop does.
+  const auto n = static_cast<int>(requests.size());
+  std::vector<int> done(requests.size()), indices(requests.size());
+  const auto deadline = clock_type::now() + std::chrono::duration<double>(options_.rank_timeout);
+  int completed = 0;
+  while (completed < n) {
+    int count = 0;
+    MPI_Testsome(n, requests.data(), &count, indices.data(), MPI_STATUSES_IGNORE);
+    if (count == MPI_UNDEFINED) break;  // every request is inactive
+    for (int i = 0; i < count; ++i) done[static_cast<std::size_t>(indices[static_cast<std::size_t>(i)])] = 1;
+    completed += count;
+    if (completed < n && clock_type::now() > deadline) {
+      std::string silent;
+      for (std::size_t i = 0; i < requests.size(); ++i)
+        if (!done[i] && ranks[i] >= 0) silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+      char timeout[32];
+      std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
+      fail((silent.empty() ? std::string("the workers") : "rank " + silent) + " did not answer " + what + " within " +
+           timeout + " s (--rank-timeout): stopped, hung or lost; ending the job");
+    }
+  }
+}
+
+void MpiExecutor::broadcast(double* buffer, int count, const std::string& what) {
+  std::vector<MPI_Request> request(1);
+  MPI_Ibcast(buffer, count, MPI_DOUBLE, 0, comm_, request.data());
+  if (is_master())
+    wait_bounded(request, {-1}, what);
+  else
+    MPI_Wait(request.data(), MPI_STATUS_IGNORE);  // a worker waits for its master as long as it takes
+}
+
 void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   if (!is_master()) throw std::logic_error("MpiExecutor::attach is for rank 0");
   if (attached_) throw std::logic_error("MpiExecutor::attach called twice");
@@ -122,7 +160,7 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   catalogue_.function = {};  // the master runs the function run() is given; keep no references
   double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
                                static_cast<double>(catalogue.context_size), 0, 0};
-  MPI_Bcast(start, header_size, MPI_DOUBLE, 0, comm_);
+  broadcast(start, header_size, "the start of the run");
   attached_ = true;
   message_size_ = header_size + static_cast<std::size_t>(std::max(catalogue.context_size, catalogue.task_count));
   message_.assign(message_size_, 0.0);
@@ -144,7 +182,7 @@ void MpiExecutor::stop() {
   stopped_ = true;
   std::vector<double> msg(attached_ ? message_size_ : header_size, 0.0);
   msg[0] = command_stop;
-  MPI_Bcast(msg.data(), static_cast<int>(msg.size()), MPI_DOUBLE, 0, comm_);
+  broadcast(msg.data(), static_cast<int>(msg.size()), "the end of the run");
 }
 
 void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
@@ -182,7 +220,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     message_[2] = catalogue_.task_count;
     message_[4] = version_[phase];
     for (std::size_t t = 0; t < plan.owner.size(); ++t) message_[header_size + t] = plan.owner[t];
-    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
+    broadcast(message_.data(), static_cast<int>(message_size_), "a new plan");
   }
   PlanEvent e;
   e.evaluation = evaluation_ + 1;
@@ -303,15 +341,22 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     message_[3] = record_size;
     message_[4] = static_cast<double>(evaluation_);
     std::copy(context.begin(), context.end(), message_.begin() + header_size);
-    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
   }
-  // Receives posted before the master's own share, so worker records land while it computes.
+  // The command and the receives are posted before the master's own share, so worker records land
+  // while it computes; all are waited for together (bounded: wait_bounded).
   std::vector<MPI_Request> requests;
+  std::vector<int> request_rank;
+  if (size_ > 1) {
+    requests.emplace_back();
+    request_rank.push_back(-1);
+    MPI_Ibcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_, &requests.back());
+  }
   for (int w = 1; w < size_; ++w) {
     const auto n = tasks_of_[phase][static_cast<std::size_t>(w)].size();
     auto& buf = receive_[static_cast<std::size_t>(w)];
     buf.resize(n * (rs + 1));
     requests.emplace_back();
+    request_rank.push_back(w);
     MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, w, phase, comm_, &requests.back());
   }
   records.resize(static_cast<std::size_t>(task_count) * rs);
@@ -327,7 +372,8 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     seconds[t] = own_seconds[i];
     busy[0] += own_seconds[i];
   }
-  if (!requests.empty()) MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  if (!requests.empty())
+    wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (int w = 1; w < size_; ++w) {
     const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
     const auto& buf = receive_[static_cast<std::size_t>(w)];
@@ -393,7 +439,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
 bool MpiExecutor::await_start() {
   if (is_master()) throw std::logic_error("MpiExecutor::await_start is for workers");
   double start[header_size];
-  MPI_Bcast(start, header_size, MPI_DOUBLE, 0, comm_);
+  broadcast(start, header_size, "the start of the run");
   if (start[0] == command_stop) return false;
   if (start[0] != command_start) fail("protocol error: expected start or stop from rank 0");
   catalogue_.task_count = static_cast<int>(start[2]);
@@ -412,7 +458,7 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue) {
          std::to_string(catalogue_.context_size) + " (different scene or build?)");
   std::vector<double> reply;
   for (;;) {
-    MPI_Bcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_);
+    broadcast(message_.data(), static_cast<int>(message_size_), "a command");
     const double command = message_[0];
     const int phase = static_cast<int>(message_[1]);
     if (command == command_stop) return;

@@ -7,8 +7,9 @@
 //                                 their records and measured seconds (one message);
 //   plan (phase, owner per task) -> adopt a new plan for that phase;
 //   stop                       -> leave serve().
-// Every command is one MPI_Bcast of a fixed-size buffer (header + max(context, task count)), so a
-// worker never needs to know in advance which command comes. The master places the records in
+// Every command is one broadcast of a fixed-size buffer (header + max(context, task count)), so a
+// worker never needs to know in advance which command comes. Broadcasts are non-blocking
+// (MPI_Ibcast) on every rank, so the master can bound its waits. The master places the records in
 // task order; the equations sum them in that order, so results are bitwise identical for any rank
 // count and any plan.
 //
@@ -20,7 +21,9 @@
 // rank's stderr and calls MPI_Abort (exit code 1): every rank ends within seconds, never a hang. An
 // exception on the master outside tasks (integration failure, output error) unwinds normally; the
 // destructor then sends stop, so the workers leave serve() and the job ends with the master's exit
-// code.
+// code. A worker that stops answering (stopped, hung, lost) is found by the master's waits, each
+// bounded by rank_timeout: the master names the rank(s) and calls MPI_Abort (exit code 1), which
+// ends every rank.
 #pragma once
 
 #include <mpi.h>
@@ -51,6 +54,8 @@ struct MpiExecutorOptions {
   long inject_failure_evaluation = 0;
   /// Every n-th evaluation's balance goes into ScheduleLog::samples.
   int sample_every = 1;
+  /// Master: seconds to wait for the workers' answer to one command before ending the job.
+  double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).
   std::function<void(const std::string&)> on_event;
 };
@@ -91,6 +96,11 @@ class MpiExecutor final : public Executor {
   static constexpr int header_size = 6;
 
   [[noreturn]] void fail(const std::string& what) const;
+  /// Master: waits for the requests, at most rank_timeout seconds; ranks[i] is the rank that
+  /// completes requests[i] (-1: a broadcast). Past the timeout, fails naming the silent ranks.
+  void wait_bounded(std::vector<MPI_Request>& requests, const std::vector<int>& ranks, const std::string& what);
+  /// A command from the master to every rank (MPI_Ibcast); the master's send is bounded.
+  void broadcast(double* buffer, int count, const std::string& what);
   void set_owner(int phase, const std::vector<int>& owner);
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds);

@@ -6,8 +6,8 @@ namespace raceway::io {
 namespace {
 constexpr const char* kDefaultScene = R"TOML(# raceway default scene: a small cylindrical roller bearing that runs in seconds.
 #
-# Units: a bare number is SI (m, kg, s, N, Pa, rad, rad/s); a string is "<number> <unit>", e.g.
-# "6 mm", "1500 rpm", "208 GPa", "5 N s/m", "0.02 1/GPa". "Hz" means revolutions per second.
+# Units: a quantity is a string "<number> <unit>", e.g. "6 mm", "1500 rpm", "208 GPa", "5 N s/m",
+# "0.02 1/GPa"; a bare number is a plain number (0.3), or 0. "Hz" means revolutions per second.
 # Copy this file and edit it; `raceway check FILE` validates a scene without running it.
 
 # [scene]: what to simulate and for how long.

@@ -40,6 +40,9 @@ enum class ModelKind { planar, spatial };
 struct SceneInfo {
   std::string name;
   ModelKind model = ModelKind::planar;
+  /// Dotted keys ("inner_ring.speed") whose values may lie beyond the sane range of their kind of
+  /// quantity (io/scene/units.hpp: QuantityKind); every value is finite all the same.
+  std::vector<std::string> allow_out_of_range;
   double end_time = 0;         ///< s
   double output_interval = 0;  ///< s
 };
@@ -213,11 +216,13 @@ struct SolverSpec {
   double max_step = 0;               ///< s; 0 = no limit
   double initial_step = 0;           ///< s; 0 = CVODE's estimate
   long max_steps = 500000000;        ///< total step budget for the run
+  double max_wall_time = 0;          ///< s of wall-clock time for the integration; 0 = no limit
   double jacobian_perturbation = 1e-7;  ///< relative finite-difference increment
 };
 
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
+  double max_size = 4e9;  ///< bytes: a run whose series would be larger is refused before it starts
 };
 
 /// One simulation, validated and in SI units, and where it came from.
@@ -239,8 +244,16 @@ struct Scene {
   SolverSpec solver;
   OutputSpec output;
   bool gravity = false;   ///< gravity along -y (9.80665 m/s^2)
+  /// Line of every key of the scene text ("inner_ring.load.fy" -> 31), for errors found after
+  /// parsing (start-up, output size) that name the keys involved.
+  std::map<std::string, int, std::less<>> key_lines;
 
   const Material& material(const std::string& key) const { return materials.at(key); }
+  /// Line of a dotted key in the scene text; 0 when the key is not in it (a default).
+  int line_of(std::string_view key) const {
+    const auto it = key_lines.find(key);
+    return it == key_lines.end() ? 0 : it->second;
+  }
 };
 
 }  // namespace raceway::io

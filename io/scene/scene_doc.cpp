@@ -19,9 +19,13 @@ run `build/io/scene/scene_keys_doc > docs/scene_keys.md` (the test io.scene_keys
 fails when it is out of date). Commented examples: jobs/scenes/default.toml (planar, cylindrical
 roller bearings) and jobs/scenes/6309_R3.toml (spatial, ball bearings).
 
-- A quantity is a bare number in SI units or a string "<number> <unit>": "17.462 mm", "3000 rpm",
-  "5 N s/m". "Hz" is revolutions per second. A time function is a quantity or
-  { time = [...], value = [...] }: piecewise linear, held constant outside the table.
+- A quantity is a string "<number> <unit>": "17.462 mm", "3000 rpm", "5 N s/m", "0.02 1/GPa";
+  "Hz" is revolutions per second; r/min, RPM, in, lbf, psi and the other spellings of Units are
+  accepted. A bare number is a plain number: for a dimensional key it is an error (except 0)
+  that shows the form to write. A time function is a quantity or { time = [...], value = [...] }:
+  piecewise linear, held constant outside the table.
+- Every value is finite and within the sane range of its quantity (see Sane ranges), unless
+  [scene] allow_out_of_range names its key; the bounds below hold besides.
 - `*_ring` stands for `inner_ring` and `outer_ring`; `contact.*` for the contacts of [contact];
   `materials.*` for any material name.
 - Applies to: "roller" = cylindrical roller bearings (model = "planar"), "ball" = ball bearings
@@ -50,6 +54,7 @@ std::string value_text(const Row& row) {
     case ValueKind::integer: return "an integer";
     case ValueKind::boolean: return "true or false";
     case ValueKind::text: return "a string";
+    case ValueKind::key_list: return "an array of dotted keys";
     case ValueKind::choice: return options_text(row);
     case ValueKind::material: return "a material name";
     case ValueKind::law: return fmt::format("a {} law (see Contact laws)", contact::role_name(row.role));
@@ -66,7 +71,7 @@ std::string si_fraction(Dimension d) {
     int exponent;
     std::string_view symbol;
   };
-  const Base bases[] = {{d.mass, "kg"}, {d.length, "m"}, {d.time, "s"}, {d.angle, "rad"}};
+  const Base bases[] = {{d.mass, "kg"}, {d.length, "m"}, {d.time, "s"}, {d.angle, "rad"}, {d.information, "B"}};
   std::string up, down;
   int down_terms = 0;
   for (const Base& b : bases) {
@@ -149,6 +154,23 @@ void contact_laws(std::string& out) {
                        contact::contacts_description(law.contacts), cell(law.meaning));
 }
 
+/// The unit symbols and the sane range of every kind of quantity (io/scene/units.cpp).
+void units_and_ranges(std::string& out) {
+  out += "\n## Units\n\n";
+  std::string symbols;
+  for (const std::string_view u : unit_symbols()) symbols += fmt::format("{}`{}`", symbols.empty() ? "" : " ", u);
+  out += "Unit symbols (io/scene/units.cpp), combined by spaces or `*`, one `/` and exponents `^-9` to `^9`: " +
+         symbols + ".\n";
+  out += "\n## Sane ranges\n\n";
+  out += "Non-zero magnitudes a bearing's value of each quantity can sanely have; a value outside is refused unless "
+         "[scene] allow_out_of_range names its key.\n\n";
+  out += "| quantity | units | smallest | largest | covers |\n|---|---|---|---|---|\n";
+  for (const QuantityKind& k : quantity_kinds())
+    if (k.smallest > 0)
+      out += fmt::format("| {} | {} | {:g} {} | {:g} {} | {} |\n", k.name, k.examples, k.smallest, k.si, k.largest,
+                         k.si, cell(k.why));
+}
+
 }  // namespace
 
 std::string scene_keys_markdown() {
@@ -160,6 +182,7 @@ std::string scene_keys_markdown() {
     section_table(out, row.section);
   }
   contact_laws(out);
+  units_and_ranges(out);
   return out;
 }
 

@@ -182,15 +182,38 @@ void read_table(const Row& row, const Section& s, const Bind& b, const Field& fi
   read_section(row.sub, s.sub(row.key), inner);
 }
 
+/// Whether the key's values must lie within the sane range of their quantity: unless the scene
+/// names the key (or one of its parts, "inner_ring.speed.time") in [scene] allow_out_of_range.
+bool sane_range_checked(const Row& row, const Section& s, const Bind& b) {
+  const std::string key = s.dotted(row.key);
+  for (const std::string& name : b.scene.scene.allow_out_of_range)
+    if (name == key || (name.size() > key.size() && name.starts_with(key) && name[key.size()] == '.')) return false;
+  return true;
+}
+
+/// An array of dotted keys, each a string.
+void read_key_list(const Row& row, const Section& s, std::vector<std::string>& keys) {
+  if (!s.has(row.key)) return;
+  for (const toml::node& n : s.array(row.key)) {
+    const auto* name = n.as_string();
+    if (!name)
+      s.fail_at(n, row.key, fmt::format("expected a string naming a key (e.g. \"inner_ring.speed\"), found {} ({})",
+                                        type_name(n), shown(n)));
+    keys.push_back(name->get());
+  }
+}
+
 void read_value(const Row& row, const Section& s, Bind& b) {
   const Field field = row.field ? row.field(b) : Field();
   switch (row.kind) {
     case ValueKind::number:
-      *std::get<double*>(field) = s.quantity(row.key, row.dim, row.bounds, number_default(row, b), row.example);
+      *std::get<double*>(field) = s.quantity(row.key, row.dim, row.bounds, number_default(row, b), row.example,
+                                             sane_range_checked(row, s, b));
       break;
     case ValueKind::integer: read_integer(row, s, b, field); break;
     case ValueKind::boolean: *std::get<bool*>(field) = s.boolean(row.key, number_default(row, b).value_or(0) != 0); break;
     case ValueKind::text: *std::get<std::string*>(field) = s.string(row.key, word_default(row)); break;
+    case ValueKind::key_list: read_key_list(row, s, *std::get<std::vector<std::string>*>(field)); break;
     case ValueKind::choice: {
       const std::size_t i = s.choice(row.key, option_names(row), word_default(row),
                                      row.noun.empty() ? row.key : row.noun);
@@ -202,8 +225,8 @@ void read_value(const Row& row, const Section& s, Bind& b) {
       break;
     case ValueKind::law: read_law(row, s, b, field); break;
     case ValueKind::time_function:
-      *std::get<TimeFunction*>(field) =
-          s.time_function(row.key, row.dim, row.bounds, number_default(row, b), row.example);
+      *std::get<TimeFunction*>(field) = s.time_function(row.key, row.dim, row.bounds, number_default(row, b),
+                                                        row.example, sane_range_checked(row, s, b));
       break;
     case ValueKind::cell_grid: read_grid(row, s, *std::get<TractionLaw*>(field)); break;
     case ValueKind::table: read_table(row, s, b, field); break;
@@ -258,6 +281,15 @@ void read_materials(const Section& s, Bind& b) {
   }
 }
 
+/// The line of every key and table of the scene text, by dotted path (arrays are not entered).
+void record_key_lines(const toml::table& table, const std::string& prefix, Scene& scene) {
+  for (const auto& [k, v] : table) {
+    const std::string path = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    scene.key_lines[path] = std::max(line_of(v), 1);
+    if (const auto* t = v.as_table()) record_key_lines(*t, path, scene);
+  }
+}
+
 /// Rejects unknown top-level sections and keys outside any section.
 void check_top_level(const std::string& file, const toml::table& root) {
   const Names sections(top_sections().begin(), top_sections().end());
@@ -286,6 +318,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   Scene scene;
   scene.source = source_name;
   scene.text = std::string(text);
+  record_key_lines(root, "", scene);
   const Section info = top(file, root, "scene", true);
   Bind b{scene, &info};
   read_section("scene", info, b);
@@ -325,5 +358,24 @@ Scene load_scene(const std::string& path) {
 }
 
 Scene default_scene() { return parse_scene(default_scene_text(), "<built-in default>"); }
+
+std::string keys_with_lines(const Scene& scene, std::span<const std::string_view> keys) {
+  const auto& lines = scene.key_lines;
+  const auto under = [](std::string_view key, std::string_view prefix) {
+    return key.starts_with(prefix) && key.size() > prefix.size() && key[prefix.size()] == '.';
+  };
+  std::vector<std::pair<int, std::string_view>> found;
+  for (auto it = lines.begin(); it != lines.end(); ++it) {
+    const std::string_view key = it->first;
+    const auto next = std::next(it);
+    if (next != lines.end() && under(next->first, key)) continue;  // a table: its keys are listed
+    if (std::any_of(keys.begin(), keys.end(), [&](std::string_view k) { return key == k || under(key, k); }))
+      found.emplace_back(it->second, key);
+  }
+  std::sort(found.begin(), found.end());
+  std::string out;
+  for (const auto& [line, key] : found) out += fmt::format("{}{} (line {})", out.empty() ? "" : ", ", key, line);
+  return out;
+}
 
 }  // namespace raceway::io

@@ -7,6 +7,7 @@
 // file, the line, the dotted key and the reason.
 #pragma once
 
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -47,5 +48,10 @@ Scene default_scene();
 
 /// TOML text of the default scene (identical to jobs/scenes/default.toml).
 std::string default_scene_text();
+
+/// "inner_ring.load.fy (line 31), bearing.radial_clearance (line 20)": the keys of the scene text
+/// at or under the given dotted keys ("inner_ring.load"), in the order of the text; "" when none
+/// is in it. For errors found after parsing (start-up) that name the keys involved.
+std::string keys_with_lines(const Scene& scene, std::span<const std::string_view> keys);
 
 }  // namespace raceway::io

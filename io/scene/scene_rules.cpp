@@ -173,11 +173,31 @@ std::optional<std::string> bdf_only(const Section&, const Bind& b) {
 
 // ---- checks after a key is read ----------------------------------------------------------------
 
+// Every name must be a key of this scene file: a misspelt one would silently allow nothing.
+void allowed_keys_in_scene(const Row& row, const Section& s, Bind& b) {
+  const Scene& scene = b.scene;
+  Names keys;
+  for (const auto& [key, line] : scene.key_lines) keys.push_back(key);
+  for (const std::string& name : scene.scene.allow_out_of_range)
+    s.check(scene.key_lines.contains(name), row.key, [&] {
+      return fmt::format("'{}' is not a key of this scene file{} (name keys as section.key, e.g. "
+                         "\"inner_ring.speed\")",
+                         name, suggestion(name, keys));
+    });
+}
+
 void output_interval_within_run(const Row&, const Section& s, Bind& b) {
   const SceneInfo& info = b.scene.scene;
   s.check(info.output_interval <= info.end_time, "output_interval", [&] {
     return fmt::format("output interval of {:g} s is longer than end_time ({:g} s)", info.output_interval,
                        info.end_time);
+  });
+}
+
+void initial_step_within_run(const Row&, const Section& s, Bind& b) {
+  const double step = b.scene.solver.initial_step, end = b.scene.scene.end_time;
+  s.check(step <= end, "initial_step", [&] {
+    return fmt::format("initial step of {:g} s is longer than the run (end_time = {:g} s)", step, end);
   });
 }
 
@@ -274,11 +294,23 @@ void land_clearance_fits(const Row&, const Section& s, Bind& b) {
   });
 }
 
+// A land is a shoulder of a ring: it cannot be wider than the ring.
 void land_width_within_rings(const Row&, const Section& s, Bind& b) {
   const double land = b.scene.cage.land_width, ring = b.scene.bearing.ring_width;
-  if (b.ball())
-    s.check(land <= ring, "land_width",
-            [&] { return fmt::format("land width of {} is wider than the rings ({})", mm(land), mm(ring)); });
+  s.check(land <= ring, "land_width", [&] {
+    return fmt::format("land width of {} is wider than the rings ({}{})", mm(land), mm(ring),
+                       b.ball() ? "" : "; ring_width defaults to roller_length");
+  });
+}
+
+// A roller touches a bar over its length at most: a longer bar contact has no roller to touch.
+void bars_within_rollers(const Row&, const Section& s, Bind& b) {
+  const double bar = b.scene.cage.bar_width, roller = b.scene.bearing.roller_length;
+  s.check(bar <= roller, "bar_width", [&] {
+    return fmt::format("bar contact of {} is longer than the rollers ({}): the cage's pockets hold rollers of "
+                       "roller_length",
+                       mm(bar), mm(roller));
+  });
 }
 
 namespace {
@@ -309,12 +341,17 @@ void cage_outside_between_pitch_and_race(const Row&, const Section& s, Bind& b) 
   });
 }
 
-void cage_holds_balls(const Row&, const Section& s, Bind& b) {
-  const double width = b.scene.cage.width, dw = element_diameter(b);
+// Wide enough to hold the balls, and within the rings (the cage runs between them).
+void cage_width_fits(const Row&, const Section& s, Bind& b) {
+  const double width = b.scene.cage.width, dw = element_diameter(b), ring = b.scene.bearing.ring_width;
   s.check(width > 0.5 * dw, "width", [&] {
     return fmt::format("cage width of {} must exceed half the ball diameter ({}): narrower pockets cannot hold the "
                        "balls",
                        mm(width), mm(0.5 * dw));
+  });
+  s.check(width <= ring, "width", [&] {
+    return fmt::format("cage width of {} is wider than the rings ({}): the cage runs between them", mm(width),
+                       mm(ring));
   });
 }
 
@@ -422,6 +459,9 @@ void rings_held(const Section& outer, const Scene& scene) {
   const auto held = [](const RingSpec& r) {
     return r.motion == RingMotion::fixed || !r.translation_free || r.support.stiffness > 0;
   };
+  if (scene.inner_ring.motion == RingMotion::fixed && scene.outer_ring.motion == RingMotion::fixed)
+    outer.fail("motion", "both rings are fixed: nothing turns the bearing (make one ring motion = \"driven\" or "
+                         "\"free\")");
   if (!held(scene.inner_ring) && !held(scene.outer_ring))
     outer.fail("motion",
                "both rings float: nothing holds the bearing (make one ring motion = \"fixed\", give it "

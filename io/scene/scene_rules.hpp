@@ -55,7 +55,9 @@ std::optional<std::string> traction_law_on(const Section& s, const Bind& b);
 std::optional<std::string> bdf_only(const Section& s, const Bind& b);
 
 // ---- checks after a key is read ----------------------------------------------------------------
+void allowed_keys_in_scene(const Row& row, const Section& s, Bind& b);
 void output_interval_within_run(const Row& row, const Section& s, Bind& b);
+void initial_step_within_run(const Row& row, const Section& s, Bind& b);
 void model_fits_bearing_type(const Row& row, const Section& s, Bind& b);
 void clearance_fits_elements(const Row& row, const Section& s, Bind& b);
 void bore_inside_inner_race(const Row& row, const Section& s, Bind& b);
@@ -66,7 +68,8 @@ void land_clearance_fits(const Row& row, const Section& s, Bind& b);
 void land_width_within_rings(const Row& row, const Section& s, Bind& b);
 void cage_bore_between_race_and_pitch(const Row& row, const Section& s, Bind& b);
 void cage_outside_between_pitch_and_race(const Row& row, const Section& s, Bind& b);
-void cage_holds_balls(const Row& row, const Section& s, Bind& b);
+void cage_width_fits(const Row& row, const Section& s, Bind& b);
+void bars_within_rollers(const Row& row, const Section& s, Bind& b);
 void cage_support_has_spring(const Row& row, const Section& s, Bind& b);
 void damper_has_spring(const Row& row, const Section& s, Bind& b);
 void fixed_ring_tilt_not_free(const Row& row, const Section& s, Bind& b);

@@ -65,6 +65,10 @@ constexpr Row kRows[] = {
     {.section = "scene", .key = "model", .kind = choice, .field = FIELD(scene.scene.model), .options = kModels,
      .meaning = "planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings (all six "
                 "directions)"},
+    {.section = "scene", .key = "allow_out_of_range", .kind = key_list, .field = FIELD(scene.scene.allow_out_of_range),
+     .def = absent, .then = allowed_keys_in_scene,
+     .meaning = "dotted keys (\"materials.rubber.youngs_modulus\") whose values may lie beyond the sane range of their "
+                "quantity (see Sane ranges); read before the keys after it"},
     {.section = "scene", .key = "end_time", .kind = number, .field = FIELD(scene.scene.end_time), .dim = dim::time,
      .bounds = positive, .meaning = "simulated time"},
     {.section = "scene", .key = "output_interval", .kind = number, .field = FIELD(scene.scene.output_interval),
@@ -86,7 +90,7 @@ constexpr Row kRows[] = {
      .then = model_fits_bearing_type, .options = kBearingTypes, .noun = "bearing type",
      .meaning = "cylindrical_roller needs model = \"planar\", the ball bearings model = \"spatial\""},
     {.section = "bearing", .key = "rolling_elements", .kind = integer, .field = FIELD(scene.bearing.rolling_elements),
-     .bounds = {.lo = 3}, .meaning = "number of rollers or balls"},
+     .bounds = {.lo = 3, .hi = 1000}, .meaning = "number of rollers or balls (large slewing rings have a few hundred)"},
     {.section = "bearing", .key = "roller_diameter", .kind = number, .field = FIELD(scene.bearing.roller_diameter),
      .dim = dim::length, .bounds = positive, .bearings = roller_bearings,
      .elsewhere = "a ball bearing has no roller diameter: give ball_diameter", .meaning = "roller diameter D"},
@@ -152,7 +156,7 @@ constexpr Row kRows[] = {
     {.section = "cage", .key = "bar_width", .kind = number, .field = FIELD(scene.cage.bar_width), .dim = dim::length,
      .bounds = positive, .def = derived(bar_width_default, "roller_length"), .bearings = roller_bearings,
      .elsewhere = "bar_width is for roller cages; a ball pocket is set by pocket_clearance and pocket_shape",
-     .meaning = "axial length of the roller-bar contact"},
+     .then = bars_within_rollers, .meaning = "axial length of the roller-bar contact"},
     {.section = "cage", .key = "land_width", .kind = number, .field = FIELD(scene.cage.land_width), .dim = dim::length,
      .bounds = positive, .def = derived(land_width_default, "roller_length / 2; balls: ring_width - D"),
      .then = land_width_within_rings, .meaning = "axial width of the guiding land contact"},
@@ -178,7 +182,7 @@ constexpr Row kRows[] = {
      .meaning = "cage outside diameter"},
     {.section = "cage", .key = "width", .kind = number, .field = FIELD(scene.cage.width), .dim = dim::length,
      .bounds = positive, .def = derived(cage_width_default, "0.8 ring_width"), .bearings = ball_bearings,
-     .elsewhere = kSpatialCage, .then = cage_holds_balls, .meaning = "axial width of the cage"},
+     .elsewhere = kSpatialCage, .then = cage_width_fits, .meaning = "axial width of the cage (at most ring_width)"},
     {.section = "cage", .key = "support", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
      .elsewhere = kSpatialCage, .then = cage_support_has_spring, .sub = "cage.support",
      .meaning = "a cage on a spindle: a spring and a damper per direction"},
@@ -391,9 +395,13 @@ constexpr Row kRows[] = {
     {.section = "solver", .key = "max_step", .kind = number, .field = FIELD(scene.solver.max_step), .dim = dim::time,
      .bounds = non_negative, .def = value(0), .meaning = "largest time step; 0: no limit"},
     {.section = "solver", .key = "initial_step", .kind = number, .field = FIELD(scene.solver.initial_step),
-     .dim = dim::time, .bounds = non_negative, .def = value(0), .meaning = "first time step; 0: CVODE's estimate"},
+     .dim = dim::time, .bounds = non_negative, .def = value(0), .then = initial_step_within_run,
+     .meaning = "first time step (at most end_time); 0: CVODE's estimate"},
     {.section = "solver", .key = "max_steps", .kind = integer, .field = FIELD(scene.solver.max_steps),
      .bounds = {.lo = 1}, .def = value(500000000), .meaning = "step budget of the run"},
+    {.section = "solver", .key = "max_wall_time", .kind = number, .field = FIELD(scene.solver.max_wall_time),
+     .dim = dim::time, .bounds = non_negative, .def = value(0), .example = "2 h",
+     .meaning = "wall-clock budget of the integration: past it the run ends with a diagnosis (exit 3); 0: no limit"},
     {.section = "solver", .key = "jacobian_perturbation", .kind = number,
      .field = FIELD(scene.solver.jacobian_perturbation), .dim = dim::none, .bounds = {.lo = 1e-12, .hi = 1e-2},
      .def = value(1e-7), .meaning = "relative finite-difference increment"},
@@ -412,6 +420,10 @@ constexpr Row kRows[] = {
     // ---- [output] -------------------------------------------------------------------------------
     {.section = "output", .key = "segments", .kind = boolean, .field = FIELD(scene.output.segments), .def = value(1),
      .meaning = "per-segment (per-contact) diagnostics"},
+    {.section = "output", .key = "max_size", .kind = number, .field = FIELD(scene.output.max_size),
+     .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
+     .meaning = "largest output (its series: samples x values x 8 bytes, estimated by `raceway check`); a larger "
+                "run is refused before it starts"},
 };
 
 #undef FIELD

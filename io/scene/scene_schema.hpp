@@ -36,15 +36,17 @@ struct Bind {
 };
 
 /// Where a row's value goes.
-using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, TimeFunction*, ModelKind*,
+using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
+                           TimeFunction*, ModelKind*,
                            BearingType*, CageGuidance*, PocketShape*, RingMotion*, RingTilt*, IntegrationMethod*,
                            LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*>;
 
 enum class ValueKind {
-  number,         ///< a quantity: bare number in SI or "<number> <unit>", converted to SI
+  number,         ///< a quantity "<number> <unit>" (a bare number if plain, or 0), converted to SI
   integer,        ///< a TOML integer
   boolean,        ///< true or false
   text,           ///< a string
+  key_list,       ///< an array of dotted scene keys ("inner_ring.speed")
   choice,         ///< one of the row's options
   material,       ///< the name of a built-in or [materials.NAME] material
   law,            ///< a contact law of the row's role, from the law registry

@@ -179,33 +179,38 @@ long Section::integer(std::string_view key, long lo, long hi, bool has_hi, std::
 }
 
 void Section::check_bounds(const toml::node& n, std::string_view key, double v, const Bounds& b, Dimension d,
-                           std::string_view example) const {
+                           bool sane_range) const {
   const bool low = std::isfinite(b.lo) && !(b.lo_open ? v > b.lo : v >= b.lo);
   const bool high = std::isfinite(b.hi) && !(b.hi_open ? v < b.hi : v <= b.hi);
-  if (!low && !high) return;
-  // Bounds shown in a unit other than SI ("60 deg"): a bare number is the likely slip.
-  const std::string hint = !b.unit.empty() && n.is_number() && !example.empty()
-                               ? fmt::format(" (a bare number is in {}; write e.g. \"{}\")", si_unit(d), example)
-                               : "";
-  fail(key, fmt::format("{}{}, found '{}'{}", must_be(b), b.note, shown(n), hint));
+  if (low || high) fail_at(n, key, fmt::format("{}{}, found '{}'", must_be(b), b.note, shown(n)));
+  if (sane_range) check_sane_range(n, key, v, d);
+}
+
+void Section::check_sane_range(const toml::node& n, std::string_view key, double v, Dimension d) const {
+  if (within_sane_range(v, d)) return;
+  const QuantityKind& kind = *quantity_kind(d);
+  fail_at(n, key,
+          fmt::format("'{}' is beyond the sane range of {} ({:g} to {:g} {}: {}); if it is meant, name the key in "
+                      "[scene] allow_out_of_range = [\"{}\"]",
+                      shown(n), kind.name, kind.smallest, kind.largest, kind.si, kind.why, dotted(key)));
 }
 
 double Section::quantity(std::string_view key, Dimension d, const Bounds& bounds, std::optional<double> fallback,
-                         std::string_view example) const {
+                         std::string_view example, bool sane_range) const {
   const toml::node* n = given_or_required(key, fallback.has_value());
   if (!n) return *fallback;
-  const double v = to_si(*n, key, d);
-  check_bounds(*n, key, v, bounds, d, example);
+  const double v = to_si(*n, key, d, example);
+  check_bounds(*n, key, v, bounds, d, sane_range);
   return v;
 }
 
 TimeFunction Section::time_function(std::string_view key, Dimension d, const Bounds& bounds,
-                                    std::optional<double> fallback, std::string_view example) const {
+                                    std::optional<double> fallback, std::string_view example, bool sane_range) const {
   const toml::node* n = given_or_required(key, fallback.has_value());
   if (!n) return TimeFunction::constant(*fallback);
   if (!n->is_table()) {
-    const TimeFunction f = TimeFunction::constant(to_si(*n, key, d));
-    check_bounds(*n, key, f.values[0], bounds, d, example);
+    const TimeFunction f = TimeFunction::constant(to_si(*n, key, d, example));
+    check_bounds(*n, key, f.values[0], bounds, d, sane_range);
     return f;
   }
   const Section t = sub(key);
@@ -217,14 +222,15 @@ TimeFunction Section::time_function(std::string_view key, Dimension d, const Bou
     t.fail("value", fmt::format("{} values for {} times; the lengths must be equal", values.size(), times.size()));
   TimeFunction f;
   for (std::size_t i = 0; i < times.size(); ++i) {
-    f.times.push_back(t.to_si(*times.get(i), "time", dim::time));
-    f.values.push_back(t.to_si(*values.get(i), "value", d));
+    f.times.push_back(t.to_si(*times.get(i), "time", dim::time, "10 ms"));
+    f.values.push_back(t.to_si(*values.get(i), "value", d, example));
+    if (sane_range) t.check_sane_range(*times.get(i), "time", f.times[i], dim::time);
     if (i > 0 && !(f.times[i] > f.times[i - 1]))
       t.fail_at(*times.get(i), "time",
                 fmt::format("times must be strictly increasing: '{}' follows '{}'", shown(*times.get(i)),
                             shown(*times.get(i - 1))));
   }
-  for (std::size_t i = 0; i < values.size(); ++i) check_bounds(*values.get(i), key, f.values[i], bounds, d, example);
+  for (std::size_t i = 0; i < values.size(); ++i) check_bounds(*values.get(i), key, f.values[i], bounds, d, sane_range);
   return f;
 }
 
@@ -241,9 +247,9 @@ Section Section::sub(std::string_view key) const {
   fail_at(*n, key, fmt::format("expected a table, found {} ({})", type_name(*n), shown(*n)));
 }
 
-double Section::to_si(const toml::node& n, std::string_view key, Dimension d) const {
+double Section::to_si(const toml::node& n, std::string_view key, Dimension d, std::string_view example) const {
   try {
-    return parse_quantity(n, d);
+    return parse_quantity(n, d, example);
   } catch (const UnitError& e) {
     fail_at(n, key, e.what());
   }

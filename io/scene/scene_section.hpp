@@ -72,16 +72,18 @@ class Section {
   bool boolean(std::string_view key, bool fallback) const;
   long integer(std::string_view key, long lo, long hi, bool has_hi, std::optional<long> fallback) const;
   /// A quantity converted to SI; absent -> fallback (not bound-checked), or an error when required.
-  /// `example` ("35 deg") is suggested when a bare number (SI) for bounds shown in another unit fails.
+  /// `example` ("35 deg") is the form suggested for a bare number. Given values must lie within
+  /// bounds and, when `sane_range`, within the sane range of their kind (units.hpp: QuantityKind).
   double quantity(std::string_view key, Dimension d, const Bounds& bounds, std::optional<double> fallback,
-                  std::string_view example = {}) const;
-  /// A constant quantity or { time = [...], value = [...] }; every value within bounds.
+                  std::string_view example = {}, bool sane_range = true) const;
+  /// A constant quantity or { time = [...], value = [...] }; every value within bounds (and the
+  /// times and values within their sane ranges when `sane_range`).
   TimeFunction time_function(std::string_view key, Dimension d, const Bounds& bounds, std::optional<double> fallback,
-                             std::string_view example = {}) const;
+                             std::string_view example = {}, bool sane_range = true) const;
   const toml::array& array(std::string_view key) const;
   /// A nested table (inline or [a.b] header); an absent one is an empty Section at this header line.
   Section sub(std::string_view key) const;
-  double to_si(const toml::node& n, std::string_view key, Dimension d) const;
+  double to_si(const toml::node& n, std::string_view key, Dimension d, std::string_view example = {}) const;
   /// The name of a known material (built-in or [materials.NAME]).
   std::string material(std::string_view key, std::optional<std::string_view> fallback,
                        const std::map<std::string, Material>& materials) const;
@@ -89,7 +91,8 @@ class Section {
  private:
   const toml::node* given_or_required(std::string_view key, bool has_fallback) const;
   void check_bounds(const toml::node& n, std::string_view key, double v, const Bounds& b, Dimension d,
-                    std::string_view example) const;
+                    bool sane_range) const;
+  void check_sane_range(const toml::node& n, std::string_view key, double v, Dimension d) const;
 
   const std::string& file_;
   const toml::table* table_;

@@ -1,13 +1,17 @@
 // raceway units: quantities with units in scene files, converted to SI at the io boundary.
 //
-// A quantity in a scene file is either a bare TOML number, taken as SI, or a string
-// "<number> <unit expression>", e.g. "17.462 mm", "3000 rpm", "0.02 1/GPa", "5 N s/m".
+// A quantity in a scene file is a string "<number> <unit expression>", e.g. "17.462 mm", "3000 rpm",
+// "0.02 1/GPa", "5 N s/m". A bare TOML number is a plain (dimensionless) number: given for a
+// dimensional key it is an error that shows the form to write ("3000 rpm" or "3000 rad/s"), except
+// 0, which is the same in every unit.
 //
 // Unit expressions: products by spaces or '*', one '/' at most (everything after it is the
 // denominator: "N s/m" = N s / m, "J/kg m" = J / (kg m)), integer exponents with '^'
-// ("kg/m^3", "m^-1"), and the factor "1" ("1/GPa"). Symbols: see unit_symbols().
+// ("kg/m^3", "m^-1") from -9 to 9, and the factor "1" ("1/GPa"). Symbols: see unit_symbols(); the
+// common spellings r/min, RPM, rev/min, in, ft, lbf, lb, psi are among them. Every result is finite:
+// a number that overflows or underflows in its unit ("1e307 h") is an error.
 //
-// Dimensions tracked: mass, length, time and angle. Angle is a dimension of its own, so an angular
+// Dimensions tracked: mass, length, time, angle and information (bytes, for output sizes). Angle is a dimension of its own, so an angular
 // speed (rad/s, rpm, deg/s, Hz) cannot be given where a plain 1/s or a length is expected.
 // Note: "Hz" means revolutions per second here (1 Hz = 2 pi rad/s); it is an angular speed, not a
 // plain frequency.
@@ -15,6 +19,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -22,21 +27,24 @@
 
 namespace raceway::io {
 
-/// Exponents of mass, length, time and angle.
+/// Exponents of mass, length, time, angle and information. Unit expressions keep them small
+/// (exponents -9 to 9 per term, at most max_exponent in all).
 struct Dimension {
   int mass = 0;
   int length = 0;
   int time = 0;
   int angle = 0;
+  int information = 0;
 
+  static constexpr int max_exponent = 64;
   friend constexpr bool operator==(const Dimension&, const Dimension&) = default;
   constexpr Dimension operator*(const Dimension& o) const {
-    return {mass + o.mass, length + o.length, time + o.time, angle + o.angle};
+    return {mass + o.mass, length + o.length, time + o.time, angle + o.angle, information + o.information};
   }
   constexpr Dimension operator/(const Dimension& o) const {
-    return {mass - o.mass, length - o.length, time - o.time, angle - o.angle};
+    return {mass - o.mass, length - o.length, time - o.time, angle - o.angle, information - o.information};
   }
-  constexpr Dimension pow(int e) const { return {mass * e, length * e, time * e, angle * e}; }
+  constexpr Dimension pow(int e) const { return {mass * e, length * e, time * e, angle * e, information * e}; }
 };
 
 /// The dimensions the scene schema uses.
@@ -61,6 +69,7 @@ inline constexpr Dimension inertia{1, 2, 0, 0};          ///< kg m^2
 inline constexpr Dimension inverse_speed{0, -1, 1, 0};   ///< s/m
 inline constexpr Dimension angular_stiffness{1, 2, -2, -1};  ///< N m/rad (tilt stiffness)
 inline constexpr Dimension angular_damping{1, 2, -1, -1};    ///< N m s/rad (tilt damping)
+inline constexpr Dimension information{0, 0, 0, 0, 1};       ///< bytes (output sizes)
 }  // namespace dim
 
 /// A value in SI units with its dimension.
@@ -76,15 +85,37 @@ class UnitError : public std::runtime_error {
 };
 
 /// Parses "<number> [unit expression]" to SI. A string without unit is dimensionless.
-/// Throws UnitError for garbage (no number, unknown unit, dangling operator, ...).
+/// Throws UnitError for garbage (no number, unknown unit, dangling operator, an exponent beyond 9,
+/// a value that is not finite in SI or underflows to zero, ...).
 Quantity parse_quantity(std::string_view text);
 
 /// Parses text and checks its dimension; returns the SI value. Throws UnitError, e.g.
 /// "'3000 mm' is a length; expected an angular speed (rpm, rad/s, Hz, deg/s)".
 double parse_quantity(std::string_view text, Dimension expected);
 
-/// A TOML value: a bare number (SI) or a quantity string. Throws UnitError on a wrong type too.
-double parse_quantity(const toml::node& node, Dimension expected);
+/// A TOML value: a quantity string, or a bare number where a plain number is expected (or 0).
+/// Throws UnitError on a wrong type, a non-finite number, and a bare non-zero number for a
+/// dimensional quantity (the message shows the form to write, with `example` when given).
+double parse_quantity(const toml::node& node, Dimension expected, std::string_view example = {});
+
+/// What the scene knows of a kind of quantity: its name, typical units, its SI spelling, and the
+/// range of magnitudes a rolling bearing's value of it can sanely have (zero is always allowed).
+struct QuantityKind {
+  Dimension dimension;
+  std::string_view name;      ///< "an angular speed"
+  std::string_view examples;  ///< "rpm, rad/s, Hz, deg/s"
+  std::string_view si;        ///< the SI unit as written in a scene: "rad/s"
+  std::string_view usual;     ///< a usual unit for bearings: "rpm" (may be the SI one)
+  double smallest = 0;        ///< smallest sane non-zero magnitude in SI; 0: no sane range
+  double largest = 0;         ///< largest sane magnitude in SI
+  std::string_view why{};     ///< where the limits come from, for the docs
+};
+/// The kind of a dimension, or nullptr for one without a name (e.g. kg m s^-1).
+const QuantityKind* quantity_kind(Dimension d);
+/// Every named kind, in table order (docs/scene_keys.md prints the sane ranges).
+std::span<const QuantityKind> quantity_kinds();
+/// Whether |value| is zero or within the kind's sane range (true for kinds without one).
+bool within_sane_range(double value, Dimension d);
 
 /// "a length", "an angular speed", or "a quantity in kg m s^-2" for unnamed dimensions.
 std::string dimension_name(Dimension d);

@@ -2,8 +2,10 @@
 // lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`,
 // `raceway --version`.
 //
-// Exit codes: 0 success; 2 bad input (scene, report input file); 3 integration failure (diagnosed); 1 other errors
-// (including an error inside a contact task on any rank, which ends all ranks through MPI_Abort).
+// Exit codes: 0 success; 2 bad input (scene, output too large, start-up impossible, report input
+// file, command-line option: one line naming it); 3 integration failure (diagnosed, also past
+// [solver] max_wall_time); 1 other errors (including an error inside a contact task on any rank,
+// or a rank that stops answering for --rank-timeout, which end all ranks through MPI_Abort).
 //
 // `mpirun -np P raceway run SCENE`: every rank parses the scene rank 0 read (its text is broadcast);
 // rank 0 integrates and evaluates its share of the contact tasks, ranks 1.. evaluate theirs
@@ -12,7 +14,11 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <optional>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -28,6 +34,7 @@
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/run/output_writer.hpp"
 #include "solver/run/run.hpp"
 
 namespace {
@@ -175,6 +182,50 @@ int exit_code_of(const std::function<int()>& command) {
   }
 }
 
+// ---- option values: every number finite and within its range, or a one-line reason (exit 2) ----
+// CLI11's own range validators accept nan and print their bounds with 309 digits; these say what
+// is expected in words.
+
+/// The option's text as a finite number, or nullopt (trailing text, nan, inf, overflow).
+std::optional<double> finite_number(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// A finite number >= lo (> lo when open); `whole`: an integer, at most hi.
+CLI::Validator number_at_least(double lo, bool open, bool whole = false, double hi = 1e9) {
+  const std::string wanted = fmt::format("{} {} {}{}", whole ? "a whole number" : "a finite number",
+                                         open ? ">" : ">=", lo, whole ? fmt::format(" and <= {:g}", hi) : "");
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        const std::optional<double> v = finite_number(text);
+        const bool ok = v && (open ? *v > lo : *v >= lo) && (!whole || (*v == std::floor(*v) && *v <= hi));
+        return ok ? std::string() : fmt::format("expected {}, got '{}'", wanted, text);
+      },
+      whole ? "INT" : "NUMBER");
+}
+
+/// A command-line error as one line on rank 0: "[raceway] error: --master-share: expected ...".
+int command_line_error(const CLI::App& app, const CLI::ParseError& e, int rank, int argc, char** argv) {
+  if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+  if (rank == 0) {
+    std::string what = e.what();
+    // CLI11 reports an unknown command as a missing one.
+    const auto known = [&](const char* word) {
+      return !app.get_subcommands([&](const CLI::App* c) { return c->check_name(word); }).empty();
+    };
+    if (argc > 1 && argv[1][0] != '-' && !known(argv[1]))
+      what = fmt::format("unknown command '{}'; the commands are run, check (or plan) and report", argv[1]);
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::fprintf(stderr, "[raceway] error: %s (see raceway --help)\n", what.c_str());
+  }
+  return 2;
+}
+
 /// The command line: its subcommands and the values of their options.
 struct CommandLine {
   std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
@@ -208,11 +259,15 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
       ->capture_default_str();
   run->add_option("--master-share", cl.exec_options.master_share,
                   "rank 0's share of the contact tasks relative to a worker's (0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(number_at_least(0, false))
+      ->capture_default_str();
+  run->add_option("--rank-timeout", cl.exec_options.rank_timeout,
+                  "seconds rank 0 waits for a worker's answer before it ends the job naming the rank")
+      ->check(number_at_least(0, true))
       ->capture_default_str();
   run->add_option("--schedule-sample-every", cl.exec_options.sample_every,
                   "keep every n-th evaluation's imbalance in /scheduler/imbalance")
-      ->check(CLI::PositiveNumber)
+      ->check(number_at_least(0, true, true))
       ->capture_default_str();
   // Test-only options (hidden: empty group).
   run->add_flag("--replan-every-step", cl.replan_every_evaluation, "test only: a new plan before every evaluation")
@@ -233,8 +288,11 @@ void add_report_command(CLI::App& app, CommandLine& cl) {
   report->add_option("output_file", cl.report_options.input, "HDF5 output of a spatial run")->required();
   report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json and the PNGs "
                      "(default: <stem>_report beside the file)");
-  report->add_option("--window-start", cl.window_start, "start of the analysis window in s (default: second half)");
-  report->add_option("--bin-width", cl.report_options.bin_width_deg, "azimuth bin width in deg")->capture_default_str();
+  report->add_option("--window-start", cl.window_start, "start of the analysis window in s (default: second half)")
+      ->check(number_at_least(0, false));
+  report->add_option("--bin-width", cl.report_options.bin_width_deg, "azimuth bin width in deg (0 to 360]")
+      ->check(number_at_least(0, true))
+      ->capture_default_str();
   report->add_flag("--no-plots", cl.no_plots, "write summary.json only");
 }
 
@@ -245,6 +303,9 @@ int check_command(const std::string& scene_path) {
   std::fputs(model.describe().c_str(), stdout);
   const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
   std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
+  const solver::OutputEstimate output = solver::estimate_output(model, scene);
+  std::puts(output.describe(scene.output.max_size).c_str());
+  solver::check_output_size(output, scene);
   std::puts("scene OK");
   return 0;
 }
@@ -325,7 +386,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {  // also --help and --version, with code 0
-    const int code = app.exit(e);
+    const int code = command_line_error(app, e, rank, argc, argv);
     MPI_Finalize();
     return code;
   }

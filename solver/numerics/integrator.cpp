@@ -50,6 +50,17 @@ struct Integrator::Impl {
   long steps_budget = 0;
   StepLimitingStates limiting;
   IntegratorTiming timing;
+  // Wall-clock budget ([solver] max_wall_time): checked at every right-hand side and Jacobian, so
+  // a run that crawls ends within one evaluation of its budget.
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  bool out_of_wall_time = false;
+  double wall_seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+  bool wall_time_exhausted() {
+    if (spec.max_wall_time > 0 && wall_seconds() > spec.max_wall_time) out_of_wall_time = true;
+    return out_of_wall_time;
+  }
 
   Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
@@ -63,6 +74,7 @@ struct Integrator::Impl {
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     auto* self = static_cast<Impl*>(user);
+    if (self->wall_time_exhausted()) return -1;  // unrecoverable: the step returns, advance_to diagnoses
     ScopedTimer timer(self->timing.rhs);
     try {
       return self->eq.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
@@ -74,6 +86,7 @@ struct Integrator::Impl {
   static int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix j, void* user, N_Vector, N_Vector,
                       N_Vector) {
     auto* self = static_cast<Impl*>(user);
+    if (self->wall_time_exhausted()) return -1;
     ScopedTimer timer(self->timing.jacobian);
     try {
       const int status = self->eq.jacobian(t, N_VGetArrayPointer(y), self->scratch);
@@ -181,7 +194,11 @@ void Integrator::Impl::record_step_error() {
 
 std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
   const IntegratorStatistics st = stepper->statistics();
-  const std::string what = budget_exhausted ? "too much work" : stepper->flag_name(flag);
+  const std::string what =
+      out_of_wall_time ? fmt::format("wall-time budget exhausted ({:.4g} s of [solver] max_wall_time = {:g} s)",
+                                     wall_seconds(), spec.max_wall_time)
+      : budget_exhausted ? std::string("too much work")
+                         : stepper->flag_name(flag);
   std::string out = fmt::format("integration failed at t = {:.9g} s ({}): {} after {} steps; last step {:.3g} s, "
                                 "attempted step {:.3g} s",
                                 stepper->time(), stepper->method_name(), what, st.steps, st.last_step,
@@ -200,7 +217,7 @@ std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
     out += fmt::format("; largest weighted local error ({:.3g}) in ", std::abs(e[worst] * wt[worst]));
     out += eq.explain_state(static_cast<int>(worst));
   }
-  if (!last_message.empty()) out += "; " + last_message;
+  if (!last_message.empty() && !out_of_wall_time) out += "; " + last_message;
   if (linear)
     if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
   return out;

@@ -2,6 +2,10 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "io/scene/scene_parser.hpp"
+
 namespace raceway::solver {
 
 using contact::Vec3;
@@ -83,7 +87,59 @@ void append_diagnostics(io::H5SeriesWriter& file, const std::string& group, cons
   }
 }
 
+long columns(const std::vector<BodySeries>& series) {
+  long n = 0;
+  for (const BodySeries& s : series) n += static_cast<long>(s.components.size());
+  return n;
+}
+
+/// "1.99 MB", "4 GB": a byte count in decimal units.
+std::string bytes_text(double bytes) {
+  constexpr std::pair<double, const char*> units[] = {{1e12, "TB"}, {1e9, "GB"}, {1e6, "MB"}, {1e3, "kB"}};
+  for (const auto& [size, name] : units)
+    if (bytes >= size) return fmt::format("{:.3g} {}", bytes / size, name);
+  return fmt::format("{:.0f} B", bytes);
+}
+
 }  // namespace
+
+std::string OutputEstimate::describe(double limit) const {
+  return fmt::format("output: {} samples x {} values = {} (limit {}, [output] max_size)", samples, values_per_sample,
+                     bytes_text(bytes), bytes_text(limit));
+}
+
+OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
+  OutputEstimate e;
+  const double end = scene.scene.end_time, dt = scene.scene.output_interval;
+  // As run_scene counts them: t = 0 and every whole interval up to end_time. Held as a double
+  // first: a scene that passed the sane ranges can still ask for 1e17 samples.
+  const double samples = std::floor(end / dt + 1e-9) + 1;
+  long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m.kind));
+  if (m.kind == io::ModelKind::spatial) values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
+  if (scene.output.segments)
+    for (const Segment& s : m.segments)
+      values += static_cast<long>(is_line_family(m.laws[static_cast<std::size_t>(s.law)])
+                                      ? contact::line_diagnostic_fields.size()
+                                      : contact::point_diagnostic_fields.size());
+  e.values_per_sample = values;
+  e.bytes = samples * static_cast<double>(values) * sizeof(double);
+  e.samples = samples < 9e18 ? static_cast<long>(samples) : -1;
+  return e;
+}
+
+void check_output_size(const OutputEstimate& e, const io::Scene& scene) {
+  const double limit = scene.output.max_size;
+  if (e.bytes <= limit) return;
+  const std::string key = "scene.output_interval";
+  throw io::SceneError(
+      scene.source, scene.line_of(key), key,
+      fmt::format("the output would be {} ({:.4g} samples, one every {:g} s over end_time = {:g} s, x {} values x 8 "
+                  "bytes), more than [output] max_size = {}: raise output_interval, shorten end_time{}, or raise "
+                  "max_size",
+                  bytes_text(e.bytes), e.bytes / (8.0 * static_cast<double>(e.values_per_sample)),
+                  scene.scene.output_interval, scene.scene.end_time, e.values_per_sample, bytes_text(limit),
+                  scene.output.segments ? ", set [output] segments = false" : ""));
+}
 
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
                        const Wrench& net) {

@@ -21,6 +21,21 @@ struct BodySample {
   double force[6] = {0, 0, 0, 0, 0, 0};         ///< N x y z, N m about x y z: net, at the centre
 };
 
+/// The size of a run's output series (docs/output_layout.md), from the same tables the writer
+/// uses: `raceway check` prints it, and run_scene holds it against [output] max_size before it
+/// creates the file. Fixed parts (names, attributes, the bounded /scheduler log) are not counted.
+struct OutputEstimate {
+  long samples = 0;            ///< output times, t = 0 included
+  long values_per_sample = 0;  ///< doubles appended per output time
+  double bytes = 0;            ///< samples x values x 8
+  /// "output: 201 samples x 1234 values = 1.99 MB (limit 4 GB, [output] max_size)".
+  std::string describe(double limit) const;
+};
+OutputEstimate estimate_output(const Model& m, const io::Scene& scene);
+/// Throws io::SceneError (bad input) naming output_interval, end_time and max_size, with the
+/// numbers, when the estimate exceeds [output] max_size.
+void check_output_size(const OutputEstimate& estimate, const io::Scene& scene);
+
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
                        const Wrench& net);
 

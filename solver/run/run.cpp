@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "io/h5/h5_series.hpp"
+#include "io/scene/scene_parser.hpp"
 #include "raceway/version.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
@@ -138,18 +139,36 @@ void finish_summary(RunSummary& sum, double t, const Integrator& integrator, con
   sum.jacobian_seconds = executor.total_seconds(scheduler::Phase::jacobian);
 }
 
+/// The start-up state; a start-up that fails names the scene keys that set it (file, lines).
+StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset) {
+  try {
+    return initial_state(model, t0, azimuth_offset);
+  } catch (const std::runtime_error& e) {
+    static constexpr std::string_view keys[] = {
+        "bearing.radial_clearance", "inner_ring.motion", "outer_ring.motion", "inner_ring.translation",
+        "outer_ring.translation", "inner_ring.axial", "outer_ring.axial", "inner_ring.tilt", "outer_ring.tilt",
+        "inner_ring.load", "outer_ring.load", "inner_ring.support", "outer_ring.support", "inner_ring.speed",
+        "outer_ring.speed", "scene.gravity"};
+    const std::string named = io::keys_with_lines(scene, keys);
+    throw io::SceneError(scene.source, 0, "",
+                         fmt::format("{}; the keys that set the start-up: {}", e.what(),
+                                     named.empty() ? "none given (the defaults of [bearing] and the rings)" : named));
+  }
+}
+
 }  // namespace
 
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
+  check_output_size(estimate_output(model, scene), scene);  // before any work or file
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
   Equations eq(model, executor);
   executor.attach(eq.task_catalogue());
   const double t0 = 0.0, end = scene.scene.end_time, dt = scene.scene.output_interval;
-  const StartupReport start = initial_state(model, t0, options.azimuth_offset);
+  const StartupReport start = startup_naming_keys(model, scene, t0, options.azimuth_offset);
   if (options.on_info) options.on_info(start.summary);
 
   auto file = open_run_output(scene, options, eq);

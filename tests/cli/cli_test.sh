@@ -131,6 +131,116 @@ version)
   fi
   ;;
 
+output_size)
+  # (g) `raceway check` prints the output's size, from the writer's own tables: the file a run
+  # writes has exactly that many samples and values per sample (its series, /scheduler aside).
+  sed 's/^end_time *=.*/end_time = "2 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/short.toml"
+  run check "$work/short.toml"
+  [[ $rc -eq 0 ]] || { fail "check: exit code $rc"; cat "$work/err" >&2; }
+  pattern='^output: ([0-9]+) samples x ([0-9]+) values = .* \(limit 4 GB, \[output\] max_size\)$'
+  line=$(grep '^output: ' "$work/out")
+  [[ "$line" =~ $pattern ]] || fail "check prints no output estimate: '$line'"
+  samples=${BASH_REMATCH[1]:-0} values=${BASH_REMATCH[2]:-0}
+  run run "$work/short.toml" -o "$work/s.h5"
+  [[ $rc -eq 0 ]] || fail "run: exit code $rc"
+  /usr/bin/python3 - "$work/s.h5" "$samples" "$values" <<'PY' || fail "the estimate differs from the file"
+import sys, h5py
+path, samples, values = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+with h5py.File(path, "r") as f:
+    t = f["time"].shape[0]
+    found = []
+    f.visititems(lambda name, o: found.append(o.size // t) if isinstance(o, h5py.Dataset) and
+                 not name.startswith("scheduler") and o.maxshape and o.maxshape[0] is None else None)
+print(f"file: {t} samples x {sum(found)} values; estimate: {samples} x {values}")
+sys.exit(0 if (t, sum(found)) == (samples, values) else 1)
+PY
+  # Over the limit: refused at check and at run (exit 2, no file), naming the key and the numbers.
+  sed 's/^output_interval *=.*/output_interval = "1 us"/; s/^end_time *=.*/end_time = "20 s"/' \
+    "$source_dir/jobs/scenes/default.toml" >"$work/huge.toml"
+  for command in check run; do
+    if [[ $command == run ]]; then run run "$work/huge.toml" -o "$work/huge.h5"; else run check "$work/huge.toml"; fi
+    [[ $rc -eq 2 ]] || fail "$command of a 48 GB output: exit code $rc, expected 2"
+    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 48 GB \(2e\+07 samples.*x 300 values x 8 bytes\), more than \[output\] max_size = 4 GB" "$work/err" ||
+      fail "$command: no size, key and limit in: $(cat "$work/err")"
+  done
+  [[ -e "$work/huge.h5" || -e "$work/huge.h5.partial" ]] && fail "a refused run created an output file"
+  # The limit is the scene's: 100 kB refuses the default scene's 482 kB, 1 MB lets it run.
+  sed 's/^segments = true.*/segments = true\nmax_size = "100 kB"/' "$source_dir/jobs/scenes/default.toml" >"$work/small.toml"
+  run check "$work/small.toml"
+  [[ $rc -eq 2 ]] && grep -q "more than \[output\] max_size = 100 kB" "$work/err" || fail "max_size = 100 kB: exit $rc"
+  sed -i 's/max_size = "100 kB"/max_size = "1 MB"/' "$work/small.toml"
+  run check "$work/small.toml"
+  [[ $rc -eq 0 ]] || fail "max_size = 1 MB: exit $rc: $(cat "$work/err")"
+  ;;
+
+wall_time)
+  # (h) [solver] max_wall_time ends a run that would take longer with a diagnosis (exit 3), soon.
+  sed 's/^\[solver\]/[solver]\nmax_wall_time = "0.3 s"/; s/^end_time *=.*/end_time = "10 s"/; s/^output_interval *=.*/output_interval = "10 ms"/' \
+    "$source_dir/jobs/scenes/default.toml" >"$work/slow.toml"
+  start=$(date +%s%N)
+  run run "$work/slow.toml" -o "$work/w.h5"
+  elapsed_ms=$((($(date +%s%N) - start) / 1000000))
+  [[ $rc -eq 3 ]] || fail "exit code $rc, expected 3"
+  grep -qE "integration failed at t = [0-9.e-]+ s: wall-time budget exhausted \(0\.3[0-9]* s of \[solver\] max_wall_time = 0\.3 s\)" "$work/err" ||
+    fail "no wall-time diagnosis: $(tail -2 "$work/err")"
+  echo "ended after $elapsed_ms ms"
+  [[ $elapsed_ms -lt 10000 ]] || fail "took $elapsed_ms ms"
+  [[ -e "$work/w.h5" ]] && fail "w.h5 written by a failed run"
+  ;;
+
+startup_keys)
+  # (i) a start-up that cannot seat the bearing (1 GN on 6 mm rollers) says so with the keys
+  # that set it and their lines; bad input, exit 2, no output.
+  sed 's/fy = "-500 N"/fy = "-1e9 N"/' "$source_dir/jobs/scenes/default.toml" >"$work/crushed.toml"
+  run run "$work/crushed.toml" -o "$work/c.h5"
+  [[ $rc -eq 2 ]] || fail "exit code $rc, expected 2"
+  line=$(grep -n 'fy = "-1e9 N"' "$work/crushed.toml" | cut -d: -f1)
+  grep -q "crushed.toml: start-up: .*; the keys that set the start-up: .*inner_ring.load.fy (line $line)" "$work/err" ||
+    fail "the start-up failure names no keys: $(cat "$work/err")"
+  [[ -e "$work/c.h5" || -e "$work/c.h5.partial" ]] && fail "a failed start-up created an output file"
+  ;;
+
+bad_options)
+  # (j) every bad option or argument: exit 2 and one line on stderr that names it (never CLI11's
+  # own codes 105, 106, 109, an abort on a non-finite value, or a 309-digit range).
+  while IFS='|' read -r args expected; do
+    read -ra argv <<<"$args"
+    run "${argv[@]}"
+    [[ $rc -eq 2 ]] || fail "raceway $args: exit code $rc, expected 2"
+    [[ $(wc -l <"$work/err") -eq 1 ]] || fail "raceway $args: not one line on stderr: $(cat "$work/err")"
+    grep -qF -- "$expected" "$work/err" || fail "raceway $args: '$expected' not in: $(cat "$work/err")"
+    [[ $(wc -c <"$work/err") -lt 200 ]] || fail "raceway $args: a long message: $(cat "$work/err")"
+    [[ -s "$work/out" ]] && fail "raceway $args: wrote to stdout"
+  done <<'CASES'
+run --master-share nan|--master-share: expected a finite number >= 0, got 'nan'
+run --master-share inf|--master-share: expected a finite number >= 0, got 'inf'
+run --master-share -1|--master-share: expected a finite number >= 0, got '-1'
+run --master-share 1e400|got '1e400'
+run --master-share 2x|got '2x'
+run --schedule-sample-every 0|--schedule-sample-every: expected a whole number > 0
+run --schedule-sample-every 2.5|--schedule-sample-every: expected a whole number > 0
+run --schedule-sample-every 1e400|--schedule-sample-every: expected a whole number > 0
+run --schedule sometimes|--schedule: sometimes not in {adaptive,static}
+run --rank-timeout nan|--rank-timeout: expected a finite number > 0, got 'nan'
+run --rank-timeout 0|--rank-timeout: expected a finite number > 0, got '0'
+run --inject-failure 1|--inject-failure expects RANK:EVALUATION
+run -o|--output
+run --no-such-option|--no-such-option
+check one.toml two.toml|two.toml
+report|output_file is required
+report x.h5 --bin-width nan|--bin-width: expected a finite number > 0, got 'nan'
+report x.h5 --bin-width -5|--bin-width: expected a finite number > 0, got '-5'
+report x.h5 --window-start inf|--window-start: expected a finite number >= 0, got 'inf'
+simulate|simulate
+|A subcommand is required
+CASES
+  # --help and --version are not errors.
+  run --help
+  [[ $rc -eq 0 ]] || fail "--help: exit code $rc"
+  run run --help
+  [[ $rc -eq 0 ]] || fail "run --help: exit code $rc"
+  ;;
+
 *)
   echo "unknown case '$case_name'" >&2
   exit 2

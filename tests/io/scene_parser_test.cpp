@@ -199,7 +199,7 @@ TEST(SceneParser, MoreRules) {
             "contact.roller_race.friction_coefficient");
   EXPECT_EQ(error_of(edited("gravity = false", "gravity = \"no\"")).key(), "scene.gravity");
   EXPECT_EQ(error_of(edited("\n[output]\n", "\n[output]\nframes = 3\n")).reason(),
-            "unknown key 'frames' in [output]; allowed keys: segments");
+            "unknown key 'frames' in [output]; allowed keys: segments, max_size");
 }
 
 TEST(SceneParser, UnreadableFile) {
@@ -364,7 +364,7 @@ TEST(SpatialScene, MoreRules) {
             std::string::npos);
   EXPECT_EQ(error_of(spatial("", "[contact.cage_land]\nnormal = \"hertz\"\n")).key(), "contact.cage_land.normal");
   // lubricant and cage sanity limits
-  EXPECT_EQ(error_of(spatial("", "[lubricant]\nviscosity = 0.03\nlimiting_shear_coefficient = 0.7\n")).key(),
+  EXPECT_EQ(error_of(spatial("", "[lubricant]\nviscosity = \"0.03 Pa s\"\nlimiting_shear_coefficient = 0.7\n")).key(),
             "lubricant.limiting_shear_coefficient");
   EXPECT_EQ(error_of(spatial("pocket_clearance = \"0.4 mm\"", "pocket_clearance = \"2 mm\"")).key(),
             "cage.pocket_clearance");
@@ -403,6 +403,71 @@ TEST(SpatialScene, MoreRules) {
   // an axial force needs an axially free ring
   EXPECT_EQ(error_of(spatial("load = { fy = \"-1000 N\" }", "load = { fy = \"-1000 N\", fz = \"100 N\" }\naxial = \"fixed\"")).key(),
             "inner_ring.load.fz");
+}
+
+}  // namespace
+}  // namespace raceway::io
+
+namespace raceway::io {
+namespace {
+
+using namespace test;
+
+// ---- units, sane ranges and their override ----------------------------------------------------
+
+TEST(SceneUnits, BareNumbersOnlyForPlainKeysAndZero) {
+  // A dimensional key with a bare number is refused and shown in its unit form ...
+  const SceneError e = error_of(edited("speed = \"1500 rpm\"", "speed = 1500"));
+  EXPECT_EQ(e.key(), "inner_ring.speed");
+  EXPECT_NE(e.reason().find("\"1500 rpm\""), std::string::npos) << e.reason();
+  // ... also inside a time function's table;
+  EXPECT_EQ(error_of(edited("speed = \"1500 rpm\"", "speed = { time = [0, 0.01], value = [\"0 rpm\", \"1500 rpm\"] }"))
+                .key(),
+            "inner_ring.speed.time");
+  // 0 is the same in every unit; plain numbers stay plain.
+  const Scene s = parse(edited("radial_clearance = \"0 mm\"", "radial_clearance = 0"));
+  EXPECT_EQ(s.bearing.radial_clearance, 0.0);
+  const Scene ramp = parse(edited("speed = \"1500 rpm\"", "speed = { time = [0, \"10 ms\"], value = [0, \"1500 r/min\"] }"));
+  EXPECT_NEAR(ramp.inner_ring.speed(0.01), 1500 * pi / 30, 1e-12);
+  EXPECT_EQ(ramp.inner_ring.speed(0.0), 0.0);
+}
+
+TEST(SceneUnits, OutOfRangeValuesNeedTheirKeyNamed) {
+  const std::string fast = edited("speed = \"1500 rpm\"", "speed = \"2e6 rpm\"");
+  const SceneError e = error_of(fast);
+  EXPECT_EQ(e.key(), "inner_ring.speed");
+  EXPECT_NE(e.reason().find("allow_out_of_range = [\"inner_ring.speed\"]"), std::string::npos) << e.reason();
+  // Named: accepted as written (finite, and within the key's own bounds).
+  const std::string allowed = replaced(fast, "model = \"planar\"", "model = \"planar\"\nallow_out_of_range = [\"inner_ring.speed\"]");
+  EXPECT_NEAR(parse(allowed).inner_ring.speed(0.0), 2e6 * pi / 30, 1e-3);
+  // A time function's parts are covered by its key.
+  const std::string long_ramp = edited("speed = \"1500 rpm\"",
+                                       "speed = { time = [\"0 s\", \"1e6 s\"], value = [\"0 rpm\", \"1500 rpm\"] }");
+  EXPECT_EQ(error_of(long_ramp).key(), "inner_ring.speed.time");
+  EXPECT_NO_THROW(parse(replaced(long_ramp, "model = \"planar\"",
+                                 "model = \"planar\"\nallow_out_of_range = [\"inner_ring.speed\"]")));
+  // Names must be keys of the file, and strings.
+  EXPECT_EQ(error_of(edited("model = \"planar\"", "model = \"planar\"\nallow_out_of_range = [\"inner_ring.speeed\"]"))
+                .key(),
+            "scene.allow_out_of_range");
+  EXPECT_EQ(error_of(edited("model = \"planar\"", "model = \"planar\"\nallow_out_of_range = [3]")).key(),
+            "scene.allow_out_of_range");
+  // Overflow is never allowed.
+  EXPECT_NE(error_of(replaced(allowed, "\"2e6 rpm\"", "\"1e308 rev/ms\"")).reason().find("overflows"), std::string::npos);
+}
+
+TEST(SceneUnits, KeyLinesNameWhereEachKeyIs) {
+  const Scene s = default_scene();
+  const std::string& text = s.text;
+  const auto line_of_text = [&](std::string_view needle) {
+    const auto pos = text.find(needle);
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+  };
+  EXPECT_EQ(s.line_of("scene.end_time"), line_of_text("end_time = "));
+  EXPECT_EQ(s.line_of("inner_ring.speed"), line_of_text("speed = \"1500 rpm\""));
+  EXPECT_EQ(s.line_of("inner_ring.load.fy"), line_of_text("load = {"));
+  EXPECT_EQ(s.line_of("contact.cage_land.friction_coefficient"), line_of_text("friction_coefficient = 0.05"));
+  EXPECT_EQ(s.line_of("output.max_size"), 0);  // not in the text: a default
 }
 
 }  // namespace

@@ -56,14 +56,14 @@ inline constexpr const char* kPlanarMinimal = R"(
 [scene]
 name = "minimal"
 model = "planar"
-end_time = 0.01
-output_interval = 0.001
+end_time = "0.01 s"
+output_interval = "0.001 s"
 [bearing]
 type = "cylindrical_roller"
 rolling_elements = 10
-roller_diameter = 0.005
-roller_length = 0.008
-pitch_diameter = 0.04
+roller_diameter = "5 mm"
+roller_length = "8 mm"
+pitch_diameter = "40 mm"
 radial_clearance = "20 um"
 [cage]
 guidance = "rolling_element"

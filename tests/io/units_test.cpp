@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -55,15 +56,75 @@ TEST(Units, ConvertsToSI) {
   EXPECT_DOUBLE_EQ(si("2.5 N m s/rad", dim::angular_damping), 2.5);
 }
 
+std::string node_error(const toml::node& n, Dimension d, std::string_view example = {}) {
+  try {
+    (void)parse_quantity(n, d, example);
+  } catch (const UnitError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 TEST(Units, TomlNodes) {
   const toml::value<double> f(2.5);
-  const toml::value<int64_t> i(3);
+  const toml::value<int64_t> i(3000);
   const toml::value<std::string> s(std::string("2.5 mm"));
   const toml::value<bool> b(true);
-  EXPECT_DOUBLE_EQ(parse_quantity(f, dim::length), 2.5);  // bare number = SI
-  EXPECT_DOUBLE_EQ(parse_quantity(i, dim::angular_speed), 3.0);
+  EXPECT_DOUBLE_EQ(parse_quantity(f, dim::none), 2.5);  // a bare number is a plain number
+  EXPECT_DOUBLE_EQ(parse_quantity(i, dim::none), 3000.0);
   EXPECT_DOUBLE_EQ(parse_quantity(s, dim::length), 2.5e-3);
   EXPECT_THROW(parse_quantity(b, dim::length), UnitError);
+  // 0 is 0 in every unit; any other bare number for a dimensional quantity shows the form to write.
+  EXPECT_DOUBLE_EQ(parse_quantity(toml::value<int64_t>(0), dim::length), 0.0);
+  EXPECT_DOUBLE_EQ(parse_quantity(toml::value<double>(0.0), dim::force), 0.0);
+  EXPECT_EQ(node_error(i, dim::angular_speed),
+            "3000 has no unit: an angular speed needs one, e.g. \"3000 rad/s\" or \"3000 rpm\"; units: rpm, rad/s, Hz, "
+            "deg/s");
+  EXPECT_EQ(node_error(f, dim::length), "2.5 has no unit: a length needs one, e.g. \"2.5 m\" or \"2.5 mm\"; units: m, mm, um");
+  EXPECT_EQ(node_error(f, dim::time), "2.5 has no unit: a time needs one, e.g. \"2.5 s\"; units: s, ms, min");
+  EXPECT_NE(node_error(f, dim::angle, "1.42 mrad").find("(like \"1.42 mrad\")"), std::string::npos);
+  EXPECT_NE(node_error(toml::value<double>(std::numeric_limits<double>::infinity()), dim::none).find("not a finite"),
+            std::string::npos);
+  EXPECT_NE(node_error(toml::value<double>(std::nan("")), dim::none).find("not a finite"), std::string::npos);
+}
+
+TEST(Units, CommonSpellings) {
+  const double rpm = 2.0 * pi / 60.0;
+  for (const char* text : {"3000 rpm", "3000 RPM", "3000 r/min", "3000 rev/min", "50 rev/s", "50 Hz"})
+    EXPECT_NEAR(si(text, dim::angular_speed), 3000 * rpm, 1e-9) << text;
+  EXPECT_DOUBLE_EQ(si("1 in", dim::length), 0.0254);
+  EXPECT_DOUBLE_EQ(si("2 ft", dim::length), 0.6096);
+  EXPECT_NEAR(si("1 thou", dim::length), 25.4e-6, 1e-20);
+  EXPECT_NEAR(si("1 lbf", dim::force), 4.4482216152605, 1e-12);  // 0.45359237 kg x 9.80665 m/s^2
+  EXPECT_DOUBLE_EQ(si("1 lb", dim::mass), 0.45359237);
+  EXPECT_NEAR(si("1 psi", dim::pressure), 6894.757293168, 1e-8);
+  EXPECT_NEAR(si("30e3 ksi", dim::pressure), 206.8427e9, 1e5);
+  EXPECT_NEAR(si("10 lbf in", dim::moment), 1.12985, 1e-5);
+  EXPECT_DOUBLE_EQ(si("3 Nm", dim::moment), 3.0);
+  EXPECT_DOUBLE_EQ(si("2 MN", dim::force), 2e6);
+  EXPECT_NEAR(si("90 \xC2\xB0", dim::angle), pi / 2, 1e-15);  // DEGREE SIGN
+  EXPECT_DOUBLE_EQ(si("4 GB", dim::information), 4e9);
+  EXPECT_DOUBLE_EQ(si("1 GiB", dim::information), 1073741824.0);
+}
+
+TEST(Units, SaneRanges) {
+  EXPECT_TRUE(within_sane_range(0.0, dim::time));
+  EXPECT_TRUE(within_sane_range(0.1, dim::time));
+  EXPECT_FALSE(within_sane_range(1e-300, dim::time));
+  EXPECT_FALSE(within_sane_range(1e300, dim::time));
+  EXPECT_FALSE(within_sane_range(si("1e12 rpm", dim::angular_speed), dim::angular_speed));
+  EXPECT_TRUE(within_sane_range(si("300000 rpm", dim::angular_speed), dim::angular_speed));
+  EXPECT_FALSE(within_sane_range(1e39, dim::pressure));
+  EXPECT_TRUE(within_sane_range(208e9, dim::pressure));
+  EXPECT_TRUE(within_sane_range(-5e4, dim::force));
+  EXPECT_TRUE(within_sane_range(1e300, dim::none));  // plain numbers have their keys' own bounds
+  for (const QuantityKind& k : quantity_kinds()) {
+    if (k.smallest <= 0) continue;
+    EXPECT_LT(k.smallest, k.largest) << k.name;
+    EXPECT_FALSE(k.why.empty()) << k.name;
+    EXPECT_EQ(parse_quantity(std::string_view("1 " + std::string(k.si))).dimension, k.dimension) << k.name;
+    EXPECT_EQ(parse_quantity(std::string_view("1 " + std::string(k.usual))).dimension, k.dimension) << k.name;
+  }
 }
 
 std::string error_of(const char* text, Dimension d) {
@@ -95,6 +156,20 @@ TEST(Units, RejectsGarbage) {
   EXPECT_NE(error_of("mm", dim::length).find("does not start with a number"), std::string::npos);
   EXPECT_NE(error_of("", dim::length).find("empty"), std::string::npos);
   EXPECT_NE(error_of("1e3 m m/", dim::length).find("ends with an operator"), std::string::npos);
+}
+
+TEST(Units, ExponentsAndMagnitudesAreBounded) {
+  // Exponents beyond 9 (a 2^31 exponent once overflowed an int) and results that overflow or
+  // underflow in SI are errors, never inf or 0.
+  for (const char* bad : {"1 m^2147483648", "1 m^2147483647", "1 m^-2147483648", "1 m^10", "1 s^-10",
+                          "1 m^99999999999999999999", "1e307 h", "1e308 km", "1e-320 nm", "1e300 GPa^2",
+                          "1 m^9 m^9 m^9 m^9 m^9 m^9 m^9 m^9"})
+    EXPECT_THROW(parse_quantity(std::string_view(bad)), UnitError) << bad;
+  EXPECT_NE(error_of("1 m^2147483648", dim::length).find("bad exponent"), std::string::npos);
+  EXPECT_NE(error_of("1 m^12", dim::length).find("exponent 12 after 'm^' is out of range (-9 to 9)"), std::string::npos);
+  EXPECT_NE(error_of("1e307 h", dim::time).find("overflows"), std::string::npos);
+  EXPECT_NE(error_of("1e-320 nm", dim::length).find("underflows"), std::string::npos);
+  EXPECT_NEAR(si("1 m^9/m^8", dim::length), 1.0, 1e-15);
 }
 
 TEST(Units, DimensionNames) {

@@ -12,6 +12,9 @@
 #     (test-only --inject-failure): the job ends within the timeout, non-zero, with the rank's
 #     message.
 #   integration_failure: rank 0's integration fails (step budget 50): exit 3, the workers leave too.
+#   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
+#     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
+#   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
 set -u
 case_name=${1:?case}
 raceway=${2:?raceway}
@@ -83,6 +86,46 @@ injected() {
   [[ $elapsed -le 60 ]] || fail "took $elapsed s to end"
 }
 
+# The raceway processes (ranks) of an mpirun started by this script: "PID RANK" lines.
+ranks_of() {
+  local child
+  for child in $(pgrep -P "$1"); do
+    [[ -r /proc/$child/environ ]] || continue
+    echo "$child $(tr '\0' '\n' </proc/"$child"/environ | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')"
+  done
+}
+
+stopped_worker() {
+  sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/s.h5" --rank-timeout 3 \
+    >"$work/log" 2>&1 &
+  local job=$!
+  # Wait for the integration to start (the linear solver is announced just before), then stop rank 1.
+  for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
+  sleep 1
+  local mpirun_pid victim=""
+  mpirun_pid=$(pgrep -P "$job" -f "$mpiexec" | head -n 1)
+  [[ -n "$mpirun_pid" ]] || mpirun_pid=$job
+  while read -r pid rank; do [[ "$rank" == 1 ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
+  [[ -n "$victim" ]] || { fail "rank 1 not found under mpirun $mpirun_pid"; kill "$job"; wait "$job"; return; }
+  local start=$(date +%s)
+  kill -STOP "$victim"
+  wait "$job"
+  rc=$?
+  local elapsed=$(($(date +%s) - start))
+  echo "stopped rank 1 (pid $victim): exit $rc after $elapsed s"
+  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
+  grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
+    fail "no message naming rank 1: $(tail -3 "$work/log")"
+  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end"
+  # No rank is left behind (a zombie, reaped with its parent, is gone).
+  if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
+    fail "the stopped rank $victim is still alive"
+    kill -CONT "$victim"; kill -KILL "$victim"
+  fi
+  [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
+}
+
 case "$case_name" in
 bitwise_planar) bitwise "$work/planar.toml" ;;
 bitwise_spatial) bitwise "$work/spatial.toml" ;;
@@ -93,6 +136,14 @@ integration_failure)
   mpi 2 run "$work/fails.toml" -o "$work/f.h5"
   [[ $rc -eq 3 ]] || fail "exit code $rc, expected 3: $(tail -5 "$work/log")"
   grep -q "integration failed at t = " "$work/log" || fail "no diagnosis in the output"
+  ;;
+stopped_worker) stopped_worker ;;
+bad_option)
+  mpi 2 run "$work/planar.toml" -o "$work/b.h5" --master-share nan
+  [[ $rc -eq 2 ]] || fail "exit code $rc, expected 2: $(tail -5 "$work/log")"
+  [[ $(grep -c "error: --master-share: expected a finite number >= 0, got 'nan'" "$work/log") -eq 1 ]] ||
+    fail "not one message from rank 0: $(cat "$work/log")"
+  grep -qE "MPI_ABORT|Signal: Aborted|terminate called" "$work/log" && fail "an abort: $(cat "$work/log")"
   ;;
 *) echo "unknown case $case_name" >&2; exit 2 ;;
 esac
