@@ -30,8 +30,6 @@ using h5::Handle;
 
 namespace {
 
-constexpr std::size_t kChunkTargetBytes = 64 * 1024;
-
 // Durability: without it a power loss could leave final_path pointing at an incompletely written
 // file, or a checkpoint pointing past the rows on disk. Best effort (a failure does not make the
 // data wrong).
@@ -74,10 +72,10 @@ std::size_t product(const std::vector<std::size_t>& shape) {
   return n;
 }
 
-// Chunk of about kChunkTargetBytes: fill the trailing (row) dimensions first, whole rows if they
-// fit, then as many rows as the remaining budget allows.
-std::vector<hsize_t> chunk_shape(const std::vector<hsize_t>& row_shape) {
-  std::size_t budget = std::max<std::size_t>(1, kChunkTargetBytes / sizeof(double));
+// Chunk of about `bytes`: fill the trailing (row) dimensions first, whole rows if they fit, then as
+// many rows as the remaining budget allows.
+std::vector<hsize_t> chunk_shape(const std::vector<hsize_t>& row_shape, std::size_t bytes) {
+  std::size_t budget = std::max<std::size_t>(1, bytes / sizeof(double));
   std::vector<hsize_t> chunk(row_shape.size() + 1);
   for (std::size_t d = row_shape.size(); d-- > 0;) {
     chunk[d + 1] = std::min<std::size_t>(row_shape[d], budget);
@@ -214,7 +212,7 @@ H5SeriesWriter::Hid H5SeriesWriter::create_series_dataset(const std::string& key
   const Handle space(h5::make_dataspace(dims, &max_dims), H5Sclose);
   if (!space.ok()) fail("H5Screate_simple", key);
   const Handle dcpl(h5::make_dcpl(), H5Pclose);
-  const std::vector<hsize_t> chunk = chunk_shape(s.row_shape);
+  const std::vector<hsize_t> chunk = chunk_shape(s.row_shape, options_.chunk_bytes);
   const double nan = std::numeric_limits<double>::quiet_NaN();  // unwritten rows read as NaN, not 0
   if (!dcpl.ok() || H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
       H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &nan) < 0 ||
@@ -263,7 +261,7 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   Series s;
   s.row_shape.assign(row_shape.begin(), row_shape.end());
   s.row_size = product(row_shape);
-  s.chunk_rows = chunk_shape(s.row_shape)[0];
+  s.chunk_rows = chunk_shape(s.row_shape, options_.chunk_bytes)[0];
   const int exists = resuming_ ? h5::link_exists(file_, key) : 0;
   if (exists < 0) fail("H5Lexists", key);
   s.dataset = exists > 0 ? open_series_dataset(key, s) : create_series_dataset(key, s);

@@ -158,8 +158,8 @@ using H5Series = TempDir;
 
 namespace {
 
-// Chunked, about 64 KiB per chunk, shuffled and gzip-compressed.
-void expect_chunked_about_64k(hid_t file, const std::string& path, std::size_t rank) {
+// Chunked, about 16 KiB per chunk, shuffled and gzip-compressed.
+void expect_chunked_about_16k(hid_t file, const std::string& path, std::size_t rank) {
   H5Id d{H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose};
   H5Id dcpl{H5Dget_create_plist(d), H5Pclose};
   EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
@@ -173,8 +173,8 @@ void expect_chunked_about_64k(hid_t file, const std::string& path, std::size_t r
   ASSERT_EQ(H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), static_cast<int>(chunk.size()));
   hsize_t bytes = sizeof(double);
   for (const hsize_t c : chunk) bytes *= c;
-  EXPECT_LE(bytes, 64u * 1024u);
-  EXPECT_GE(bytes, 32u * 1024u);
+  EXPECT_LE(bytes, 16u * 1024u);
+  EXPECT_GE(bytes, 8u * 1024u);
 }
 
 // A 1-D dataset of variable-length strings, read back (and its type checked).
@@ -246,7 +246,7 @@ TEST_F(H5Series, RoundTripSeries) {
     EXPECT_TRUE(bit_equal(a.values, expected[s]));
     EXPECT_EQ(read_string_attr(f, p, "units"), std::vector<std::string>{"m"});
     EXPECT_EQ(read_string_attr(f, p, "description"), std::vector<std::string>{"description of " + defs[s].path});
-    expect_chunked_about_64k(f, p, dims.size());
+    expect_chunked_about_16k(f, p, dims.size());
   }
 }
 
