@@ -7,3 +7,11 @@ fail() {
   echo "FAIL: $*" >&2
   failures=$((failures + 1))
 }
+# The last lines of a case: its verdict ("CASE: passed", which ctest looks for) and exit code.
+finish() {
+  if [[ $failures -gt 0 ]]; then
+    echo "$case_name: $failures failure(s)" >&2
+    exit 1
+  fi
+  echo "$case_name: passed"
+}

@@ -4,6 +4,8 @@
 
 #include <hdf5.h>
 
+#include <utility>
+
 namespace raceway::io::h5 {
 
 /// Owns one HDF5 identifier; closes it with the matching H5?close.
@@ -17,6 +19,8 @@ class Handle {
   Handle& operator=(const Handle&) = delete;
   hid_t get() const { return id_; }
   bool ok() const { return id_ >= 0; }
+  /// Gives up ownership: the caller closes the id.
+  hid_t release() { return std::exchange(id_, -1); }
 
  private:
   hid_t id_;

@@ -5,31 +5,36 @@
 // files it writes are in docs/output_layout.md.
 //
 // Crash safety (one file per run, written as "<final>.partial" then renamed):
-//   * create(final_path) writes to final_path + ".partial" (truncating a stale one); a file that
-//     already exists at final_path is never opened or touched by the writer.
+//   * create(final_path) writes to final_path + ".partial" (truncating a stale one: the caller
+//     holds the output's OutputLock, io/h5/output_lock.hpp, so no other run is writing it); a file
+//     that already exists at final_path is never opened or touched by the writer.
+//   * Appended rows stay in memory until flush() (or until options.max_buffered_bytes are buffered,
+//     which flushes): between two flushes the file on disk is not written at all, so after a hard
+//     kill (SIGKILL, out of memory, power loss after the fsync of the last flush) the .partial file
+//     is the consistent file of the last flush and opens in h5py.
 //   * commit() writes the buffered rows, flushes, closes the file and renames the .partial file
 //     over final_path (std::filesystem::rename: atomic on POSIX, same directory), so final_path is
 //     always either the old complete output or the new complete output.
 //   * Destroying the writer without commit() (an exception unwinding, an early return) writes
-//     the buffered rows as far as it can, closes the file and leaves "<final>.partial" in place, so
-//     a failed run leaves a readable partial file and the previous output intact.
-//   * After a hard kill (signal, abort) the .partial file is consistent as of the last flush():
-//     HDF5 1.10 gives no guarantee for changes after it. Callers that want a readable partial file
-//     after a hard kill call flush() now and then (e.g. every N outputs).
+//     the buffered rows as far as it can, closes the file and leaves "<final>.partial" in place.
+//   * reopen(final_path, rows) continues an interrupted run's .partial file: the series defined
+//     afterwards are its existing datasets cut to `rows` rows.
+//
+// Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous.
 //
 // Errors: every HDF5 failure throws std::runtime_error naming the file, the object and the
-// innermost HDF5 error message; misuse (unknown series, wrong row size, bad shape) throws
-// std::invalid_argument; using a writer after commit() or after a move throws std::logic_error.
-// HDF5's automatic error-stack printing is switched off while the writer's methods run (and
-// restored on exit), so failures are reported once, by the exception.
+// innermost HDF5 error message (e.g. "No space left on device" at the flush that hits a full disk);
+// after one the writer is closed as far as HDF5 allows and every later call throws. Misuse
+// (unknown series, wrong row size, bad shape) throws std::invalid_argument; using a writer after
+// commit() or after a move throws std::logic_error. HDF5's automatic error-stack printing is
+// switched off while the writer's methods run, so failures are reported once, by the exception.
 //
 // Paths are absolute or relative to the root ("bodies/cage/position" == "/bodies/cage/position");
 // missing intermediate groups are created.
 //
 // Parallel output (later): the file access and data transfer property lists are each made in one
 // place (make_file_access_plist() and the constructor, see h5_series.cpp); switching to the MPI-IO
-// driver with collective transfers changes those two places only. All datasets are chunked and
-// extended by H5Dset_extent, which is valid collectively.
+// driver with collective transfers changes those two places only.
 #pragma once
 
 #include <concepts>
@@ -45,11 +50,25 @@
 
 namespace raceway::io {
 
+/// How series are stored and how much is kept in memory between flushes.
+struct H5WriterOptions {
+  int gzip_level = 1;          ///< deflate level of every series (0: no compression)
+  bool shuffle = true;         ///< byte shuffle before deflate (doubles compress about 10 % better)
+  std::size_t chunk_bytes = 16 * 1024;  ///< target chunk size of a series (whole rows when a row fits)
+  std::size_t max_buffered_bytes = std::size_t{32} << 20;  ///< buffered rows beyond this: flush()
+};
+
 class H5SeriesWriter {
  public:
   /// Creates (truncates) final_path + ".partial" and returns a writer for it. final_path itself is
   /// only replaced by commit(). Throws std::runtime_error if the file cannot be created.
-  static H5SeriesWriter create(const std::string& final_path);
+  static H5SeriesWriter create(const std::string& final_path, const H5WriterOptions& options = {});
+
+  /// Opens final_path + ".partial", the file of an interrupted run, to continue it: every
+  /// define_series() then opens the existing dataset (same row shape, at least `rows` rows, else
+  /// std::runtime_error) and cuts it to `rows` rows. Throws std::runtime_error naming the file if
+  /// it is missing or not an HDF5 file.
+  static H5SeriesWriter reopen(const std::string& final_path, std::size_t rows, const H5WriterOptions& options = {});
 
   H5SeriesWriter(const H5SeriesWriter&) = delete;
   H5SeriesWriter& operator=(const H5SeriesWriter&) = delete;
@@ -67,9 +86,13 @@ class H5SeriesWriter {
                      const std::string& units, const std::string& description);
 
   /// Appends one row (row.size() must be the product of the series' row_shape, else
-  /// std::invalid_argument; unknown series: std::invalid_argument). Rows are buffered and written
-  /// in chunk-sized blocks; they are all in the file after flush() or commit().
+  /// std::invalid_argument; unknown series: std::invalid_argument). Rows are buffered in memory and
+  /// written by the next flush() or commit() (or when max_buffered_bytes are reached).
   void append(const std::string& path, std::span<const double> row);
+
+  /// Makes the series at `scale_path` (a [T] series, e.g. /time) the HDF5 dimension scale of the
+  /// first dimension of every series defined so far (H5DS: h5py's ds.dims[0][0] is then it).
+  void set_time_scale(const std::string& scale_path, const std::string& scale_name);
 
   /// Number of rows appended to a series so far (written or still buffered).
   std::size_t rows(const std::string& path) const;
@@ -95,7 +118,8 @@ class H5SeriesWriter {
   }
 
   /// A fixed (non-time) double dataset of the given shape (row-major data; empty shape: scalar),
-  /// with "units" and "description" attributes. data.size() must equal the product of shape.
+  /// with "units" and "description" attributes. data.size() must equal the product of shape. An
+  /// existing dataset at `path` is replaced.
   void write_array(const std::string& path, std::vector<std::size_t> shape,
                    std::span<const double> data, const std::string& units,
                    const std::string& description);
@@ -104,8 +128,11 @@ class H5SeriesWriter {
   void write_array(const std::string& path, const std::vector<std::string>& values,
                    const std::string& description);
 
-  /// Writes all buffered rows and flushes the file to disk (H5Fflush).
+  /// Writes all buffered rows, flushes the file (H5Fflush) and waits for the disk (fsync).
   void flush();
+
+  /// Bytes of appended rows not yet in the file.
+  std::size_t buffered_bytes() const noexcept { return buffered_bytes_; }
 
   /// Writes buffered rows, closes the file and renames the .partial file over the final path.
   /// After commit() the writer is closed; any further call except the destructor throws
@@ -124,20 +151,28 @@ class H5SeriesWriter {
     Hid dataset = -1;
     std::vector<Hsize> row_shape;
     std::size_t row_size = 1;              // product of row_shape
-    std::size_t chunk_rows = 1;            // rows per chunk = rows per block write
+    std::size_t chunk_rows = 1;            // rows per chunk
     std::size_t rows_written = 0;          // rows in the file
     std::vector<double> buffer;            // rows not yet written, row-major
   };
 
-  explicit H5SeriesWriter(std::string final_path);
+  H5SeriesWriter(std::string final_path, const H5WriterOptions& options);
+  static H5SeriesWriter open_file(const std::string& final_path, const H5WriterOptions& options, bool resume,
+                                  std::size_t rows);
+  Hid create_series_dataset(const std::string& key, const Series& s);
+  Hid open_series_dataset(const std::string& key, Series& s);
   void require_open(const char* what) const;
   void write_buffer(const std::string& path, Series& s);
   void write_all_buffers();
   void close_all() noexcept;
+  void abandon() noexcept;     // after a failed write: nothing more reaches the file; close
+  void reserve_for_flush();    // disk for the next flush, or abandon() and throw
   void close_uncommitted() noexcept;  // destructor body: best-effort write, close, keep .partial
   void put_attribute(const std::string& object_path, const std::string& name, Hid file_type, Hid mem_type,
                      Hid space, const void* buf);
-  [[noreturn]] void fail(const std::string& what, const std::string& object) const;
+  /// Throws the HDF5 failure as std::runtime_error; a failure while writing data closes the file
+  /// first (best effort), so a full disk never leaves HDF5 half-open at exit.
+  [[noreturn]] void fail(const std::string& what, const std::string& object);
   /// The dataset `key` of a write_array with its parent groups (no timestamps); the caller closes it.
   Hid create_array(const std::string& key, Hid type, Hid space);
 
@@ -145,6 +180,10 @@ class H5SeriesWriter {
   std::string partial_path_;
   Hid file_ = -1;
   Hid dxpl_ = -1;  // data transfer property list for every H5Dwrite (collective later)
+  H5WriterOptions options_;
+  bool resuming_ = false;       // reopen(): define_series opens existing datasets
+  std::size_t resume_rows_ = 0;
+  std::size_t buffered_bytes_ = 0;
   std::map<std::string, Series, std::less<>> series_;
 };
 

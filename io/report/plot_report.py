@@ -3,7 +3,8 @@
 
     plot_report.py OUT.h5 SUMMARY_JSON OUTDIR
 
-Reads the run's HDF5 file (layout: docs/output_layout.md, "Spatial (ball-bearing) runs") and the
+Reads the run's HDF5 file (layout: docs/output_layout.md, "Spatial (ball-bearing) runs") through
+raceway_output.py (numpy arrays with their units, beside this script) and the
 summary.json that `raceway report` wrote (time window, cage direction, contact threshold, azimuth
 bins) and writes small PNGs into OUTDIR:
 
@@ -25,12 +26,12 @@ import sys
 import traceback
 
 try:
-    import h5py
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
+    from raceway_output import RacewayOutput
 except ImportError as err:  # the report reads exit code 3 as "modules missing"
     print(f"plot_report.py: {err}; install python3-matplotlib python3-h5py python3-numpy", file=sys.stderr)
     sys.exit(3)
@@ -47,7 +48,7 @@ def thin(n, limit=MAX_POINTS):
 
 
 def series(f, path):
-    return np.asarray(f[path][...], dtype=float) if path in f else None
+    return np.asarray(f[path], dtype=float) if path in f else None
 
 
 def window_mask(t, summary):
@@ -67,10 +68,10 @@ def save(fig, outdir, name):
 
 
 def cage_speed(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
     cage = series(f, "cage/angular_velocity")[:n, 2]
-    epi = series(f, "cage/epicyclic_speed").reshape(-1)[:n]
+    epi = series(f, "cage/epicyclic_speed")[:n]
     rpm = 60.0 / (2 * math.pi)
     s = thin(n)
     fig, ax = plt.subplots(figsize=SIZE)
@@ -89,11 +90,9 @@ def cage_speed(f, summary, outdir):
 
 def guidance(f):
     """'inner_land', 'outer_land', 'rolling_element' or None, from the scene text."""
-    text = f.attrs.get("scene_text")
-    if text is None:
+    text = f.scene_text
+    if not text:
         return None
-    if isinstance(text, bytes):
-        text = text.decode("utf-8", "replace")
     try:
         import tomllib
 
@@ -103,7 +102,7 @@ def guidance(f):
 
 
 def cage_centroid(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
     pos = series(f, "cage/position")[:n]
     m = window_mask(t, summary)
@@ -137,10 +136,10 @@ def cage_centroid(f, summary, outdir):
 
 def bar_forces(f, summary, n):
     """front, rear: [T x pockets] normal force on each bar (docs/output_layout.md sign convention)."""
-    g = f["segments/ball_pocket"]
-    fn = np.asarray(g["normal_force"][...], dtype=float)[:n]
-    fc = np.asarray(g["circumferential_force"][...], dtype=float)[:n]
-    ball = np.asarray(g["ball"][...]).astype(int)
+    g = f.segments("ball_pocket")
+    fn = np.asarray(g["normal_force"], dtype=float)[:n]
+    fc = np.asarray(g["circumferential_force"], dtype=float)[:n]
+    ball = np.asarray(g["ball"]).astype(int)
     pockets = int(summary["ball_count"])
     direction = summary["pocket_forces"]["direction"]
     front = np.zeros((fn.shape[0], pockets))
@@ -154,7 +153,7 @@ def bar_forces(f, summary, n):
 
 
 def pocket_force_time(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
     front, rear = bar_forces(f, summary, n)
     m = window_mask(t, summary)
@@ -182,7 +181,7 @@ def pocket_force_time(f, summary, outdir):
 
 
 def ball_azimuth_deg(f, n):
-    p = np.asarray(f["balls/position"][...], dtype=float)[:n]
+    p = series(f, "balls/position")[:n]
     return np.degrees(np.mod(np.arctan2(p[:, :, 1], p[:, :, 0]), 2 * math.pi))
 
 
@@ -205,7 +204,7 @@ def finish_azimuth_plot(fig, ax, outdir, what, ylabel, name):
 
 
 def pocket_force_azimuth(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
     front, rear = bar_forces(f, summary, n)
     m = window_mask(t, summary)
@@ -223,11 +222,10 @@ def pocket_force_azimuth(f, summary, outdir):
 
 
 def ball_load_azimuth(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
-    g = f["segments/ball_inner_groove"]
-    fn = np.asarray(g["normal_force"][...], dtype=float)[:n]
-    ball = np.asarray(g["ball"][...]).astype(int)
+    fn = series(f, "segments/ball_inner_groove/normal_force")[:n]
+    ball = np.asarray(f["segments/ball_inner_groove/ball"]).astype(int)
     balls = int(summary["ball_count"])
     q = np.zeros((fn.shape[0], balls))
     for c, k in enumerate(ball):
@@ -251,16 +249,15 @@ def ball_load_azimuth(f, summary, outdir):
 
 
 def power_loss(f, summary, outdir):
-    t = series(f, "time").reshape(-1)
+    t = series(f, "time")
     n = len(t)
     s = thin(n)
     fig, ax = plt.subplots(figsize=SIZE)
     total = np.zeros(n)
-    for kind in sorted(f["segments"].keys()):
-        g = f["segments"][kind]
-        if "power_loss" not in g:
+    for kind in f.segment_kinds():
+        if f"segments/{kind}/power_loss" not in f:
             continue
-        p = np.asarray(g["power_loss"][...], dtype=float)[:n].sum(axis=1)
+        p = series(f, f"segments/{kind}/power_loss")[:n].sum(axis=1)
         total += p
         ax.plot(t[::s], p[::s], lw=0.7, label=kind)
     ax.plot(t[::s], total[::s], lw=1.0, color="k", label="total")
@@ -272,7 +269,7 @@ def power_loss(f, summary, outdir):
 
 
 def has_power_loss(f):
-    return "segments" in f and any("power_loss" in f["segments"][k] for k in f["segments"].keys())
+    return any(f"segments/{k}/power_loss" in f for k in f.segment_kinds())
 
 
 def main(argv):
@@ -284,7 +281,7 @@ def main(argv):
         summary = json.load(fh)
     os.makedirs(outdir, exist_ok=True)
     failures = 0
-    with h5py.File(h5_path, "r") as f:
+    with RacewayOutput(h5_path) as f:
         plots = [cage_speed, cage_centroid]
         if "pocket_forces" in summary and "segments/ball_pocket" in f:
             plots += [pocket_force_time, pocket_force_azimuth]

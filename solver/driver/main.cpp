@@ -3,9 +3,10 @@
 // `raceway --version`.
 //
 // Exit codes: 0 success; 2 bad input (scene, output too large, start-up impossible, report input
-// file, command-line option: one line naming it); 3 integration failure (diagnosed, also past
-// [solver] max_wall_time); 1 other errors (including an error inside a contact task on any rank,
-// or a rank that stops answering for --rank-timeout, which end all ranks through MPI_Abort).
+// file, command-line option: one line naming it, an output path that cannot be written or is held
+// by another run); 3 integration failure (diagnosed, also past [solver] max_wall_time); 1 other
+// errors (including an error inside a contact task on any rank, or a rank that stops answering for
+// --rank-timeout, which end all ranks through MPI_Abort).
 //
 // `mpirun -np P raceway run SCENE`: every rank parses the scene rank 0 read (its text is broadcast);
 // rank 0 integrates and evaluates its share of the contact tasks, ranks 1.. evaluate theirs
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <optional>
 #include <cstdio>
@@ -26,6 +28,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "io/h5/output_lock.hpp"
 #include "io/report/report.hpp"
 #include "raceway/version.hpp"
 #include "io/scene/scene_override.hpp"
@@ -75,12 +78,24 @@ class ProgressReporter {
   double next_ = 0.1;
 };
 
+/// The MPI library's own version line (e.g. "Open MPI v4.1.4, ..."), for the build attributes.
+std::string mpi_library_version() {
+  char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};
+  int length = 0;
+  MPI_Get_library_version(text, &length);
+  std::string s(text, static_cast<std::size_t>(length));
+  return s.substr(0, s.find_first_of(",\n"));
+}
+
 int run_command(const io::Scene& scene, const std::string& output, const std::string& summary_json,
-                scheduler::Executor& executor) {
+                bool scheduler_log, scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
+  if (!summary_json.empty()) io::check_output_path(summary_json, "run summary (--summary-json)");
   solver::RunOptions options;
   options.executor = &executor;
   options.output_path = output;
+  options.scheduler_log = scheduler_log;
+  options.mpi_library = mpi_library_version();
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
   options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
@@ -166,7 +181,7 @@ int worker(const std::string& text, const std::string& source, scheduler::MpiExe
 /// The documented exit code of an error: bad input 2, failed integration 3, anything else 1.
 int exit_code_for(const std::exception& e) {
   if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
-      dynamic_cast<const solver::OptionsError*>(&e))
+      dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e))
     return 2;
   if (dynamic_cast<const solver::IntegrationFailure*>(&e)) return 3;
   return 1;
@@ -232,7 +247,7 @@ struct CommandLine {
   scheduler::MpiExecutorOptions exec_options;
   std::string schedule = "adaptive", inject;
   std::string method;  ///< --method: the scene's [solver] method, replaced
-  bool replan_every_evaluation = false;
+  bool replan_every_evaluation = false, scheduler_log = false;
   io::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false;
@@ -269,6 +284,8 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                   "keep every n-th evaluation's imbalance in /scheduler/imbalance")
       ->check(number_at_least(0, true, true))
       ->capture_default_str();
+  run->add_flag("--scheduler-log", cl.scheduler_log,
+                "write the task scheduler's log (/scheduler) also for a serial run (always with several ranks)");
   // Test-only options (hidden: empty group).
   run->add_flag("--replan-every-step", cl.replan_every_evaluation, "test only: a new plan before every evaluation")
       ->group("");
@@ -349,7 +366,7 @@ int run_on_all_ranks(CommandLine& cl, int rank, int size) {
   return exit_code_of([&] {
     // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
     const solver::PetscRuntime petsc(cl.petsc_options);
-    return run_command(scene, cl.output, cl.summary_json, executor);
+    return run_command(scene, cl.output, cl.summary_json, cl.scheduler_log, executor);
   });
 }
 
@@ -369,6 +386,9 @@ int check_or_report(CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f, a quota) is reported by the write that hits it, as an error with
+  // the file's name, rather than ending the process with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -55,6 +55,13 @@ const std::vector<BodySeries>& element_series(io::ModelKind kind) {
   return kind == io::ModelKind::spatial ? spatial : planar;
 }
 
+/// The row shape of a series: `leading` (the rolling elements, or none), then the components unless
+/// there is one (a scalar per body is stored [T], not [T x 1]).
+std::vector<std::size_t> row_shape(const BodySeries& s, std::vector<std::size_t> leading) {
+  if (s.components.size() > 1) leading.push_back(s.components.size());
+  return leading;
+}
+
 double component(const BodySample& s, Quantity q, int c) {
   switch (q) {
     case Quantity::position: return s.position[c];
@@ -166,25 +173,23 @@ BodySample sample_body(const Model& m, int b, double t, const std::vector<double
 
 OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments)
     : file_(file), m_(m), segments_(segments) {
-  file_.define_series("/time", {1}, "s", "output times (interpolated, not solver steps)");
-  file_.define_series("/energy", {1}, "J", "kinetic + elastic + support + load potential energy");
+  file_.define_series("/time", {}, "s", "output times (interpolated, not solver steps)");
+  file_.define_series("/energy", {}, "J", "kinetic + elastic + support + load potential energy");
   for (int b = 0; b < m.first_element; ++b)
     for (const BodySeries& s : border_series(m.kind))
-      file_.define_series("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name, {s.components.size()}, s.unit,
+      file_.define_series("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name, row_shape(s, {}), s.unit,
                           s.meaning);
   if (m.kind == io::ModelKind::spatial) {
-    file_.define_series("/cage/epicyclic_speed", {1}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
-    file_.define_series("/cage/rolling_speed", {1}, "rad/s",
+    file_.define_series("/cage/epicyclic_speed", {}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
+    file_.define_series("/cage/rolling_speed", {}, "rad/s",
                         "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
                         "(nominal angle when none is loaded)");
   }
   const auto n = static_cast<std::size_t>(m.element_count);
-  for (const BodySeries& s : element_series(m.kind)) {
-    std::vector<std::size_t> shape{n};
-    if (s.components.size() > 1) shape.push_back(s.components.size());
-    file_.define_series(std::string("/") + m.element_group + "/" + s.name, shape, s.unit, s.meaning);
-  }
+  for (const BodySeries& s : element_series(m.kind))
+    file_.define_series(std::string("/") + m.element_group + "/" + s.name, row_shape(s, {n}), s.unit, s.meaning);
   if (segments_) define_segment_groups();
+  file_.set_time_scale("/time", "time");
   file_.set_attribute("/", "state_names", m.state_name);
 }
 

@@ -12,6 +12,8 @@
 #include "io/h5/h5_series.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "raceway/version.hpp"
+#include "io/h5/output_lock.hpp"
+#include "solver/run/build_info.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/newton_backends.hpp"
@@ -67,8 +69,8 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   auto file = io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
-  file.set_attribute("/", "raceway_version", std::string(kVersion));
-  file.set_attribute("/", "raceway_commit", std::string(kGitCommit));
+  file.set_attribute("/", "layout_version", kOutputLayoutVersion);
+  for (const auto& [name, value] : build_info(options.mpi_library)) file.set_attribute("/", name, value);
   file.set_attribute("/", "model", model.describe());
   if (model.kind == io::ModelKind::spatial) {
     file.set_attribute("/", "model_kind", std::string("spatial"));
@@ -159,6 +161,8 @@ StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, do
 }  // namespace
 
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
+  io::check_output_path(options.output_path, "output file (-o)");
+  const io::OutputLock lock(options.output_path);  // before anything of the output is touched
   const auto wall_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
@@ -173,6 +177,7 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
 
   auto file = open_run_output(scene, options, eq);
   OutputWriter out(file, model, scene.output.segments);
+  file.flush();  // the layout on disk: from here on the .partial file is readable after any kill
   Integrator integrator(eq, scene.solver, t0, start.state);
   RunSummary sum;
   sum.model_kind = model.kind == io::ModelKind::spatial ? "spatial" : "planar";
@@ -202,7 +207,8 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
     sum.driven_ring_revolutions = revolutions;
     second_half.summarize(sum);
     file.set_attribute("/", "summary_json", sum.to_json().dump());
-    if (const auto* log = executor.schedule_log()) write_schedule_log(file, *log);
+    if (const auto* log = executor.schedule_log(); log && (log->ranks > 1 || options.scheduler_log))
+      write_schedule_log(file, *log);
   };
 
   record(t0);

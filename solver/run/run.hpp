@@ -29,6 +29,10 @@ struct RunOptions {
   /// Evaluates the contact tasks (not owned). nullptr: a serial executor on this process. The run
   /// attach()es the equations' task catalogue to it and writes its schedule_log() to /scheduler.
   scheduler::Executor* executor = nullptr;
+  /// Write the scheduler's log (/scheduler) also when one rank ran (with P > 1 it is always written).
+  bool scheduler_log = false;
+  /// The MPI library's version text (MPI_Get_library_version) for the build attributes; "" without MPI.
+  std::string mpi_library;
 };
 
 struct RunSummary {

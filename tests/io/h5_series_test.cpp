@@ -20,6 +20,7 @@
 
 #include "io/h5/h5_series.hpp"
 #include "io/json/summary_json.hpp"
+#include "tests/io/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using raceway::io::H5SeriesWriter;
@@ -27,29 +28,8 @@ using raceway::io::JsonObject;
 
 namespace {
 
-class TempDir : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("raceway_h5_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using raceway::test::read_text;
+using raceway::test::TempDir;
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
@@ -178,18 +158,23 @@ using H5Series = TempDir;
 
 namespace {
 
-// Chunked, about 64 KiB per chunk, not compressed.
-void expect_chunked_about_64k(hid_t file, const std::string& path, std::size_t rank) {
+// Chunked, about 16 KiB per chunk, shuffled and gzip-compressed.
+void expect_chunked_about_16k(hid_t file, const std::string& path, std::size_t rank) {
   H5Id d{H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose};
   H5Id dcpl{H5Dget_create_plist(d), H5Pclose};
   EXPECT_EQ(H5Pget_layout(dcpl), H5D_CHUNKED);
-  EXPECT_EQ(H5Pget_nfilters(dcpl), 0);
+  ASSERT_EQ(H5Pget_nfilters(dcpl), 2);
+  unsigned flags = 0, values[4] = {};
+  std::size_t n = 4;
+  EXPECT_EQ(H5Pget_filter2(dcpl, 0, &flags, &n, values, 0, nullptr, nullptr), H5Z_FILTER_SHUFFLE);
+  n = 4;
+  EXPECT_EQ(H5Pget_filter2(dcpl, 1, &flags, &n, values, 0, nullptr, nullptr), H5Z_FILTER_DEFLATE);
   std::vector<hsize_t> chunk(rank);
   ASSERT_EQ(H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()), static_cast<int>(chunk.size()));
   hsize_t bytes = sizeof(double);
   for (const hsize_t c : chunk) bytes *= c;
-  EXPECT_LE(bytes, 64u * 1024u);
-  EXPECT_GE(bytes, 32u * 1024u);
+  EXPECT_LE(bytes, 16u * 1024u);
+  EXPECT_GE(bytes, 8u * 1024u);
 }
 
 // A 1-D dataset of variable-length strings, read back (and its type checked).
@@ -261,7 +246,7 @@ TEST_F(H5Series, RoundTripSeries) {
     EXPECT_TRUE(bit_equal(a.values, expected[s]));
     EXPECT_EQ(read_string_attr(f, p, "units"), std::vector<std::string>{"m"});
     EXPECT_EQ(read_string_attr(f, p, "description"), std::vector<std::string>{"description of " + defs[s].path});
-    expect_chunked_about_64k(f, p, dims.size());
+    expect_chunked_about_16k(f, p, dims.size());
   }
 }
 

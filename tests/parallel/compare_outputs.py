@@ -18,12 +18,30 @@ TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s", "time_spl
 SKIPPED_GROUPS = ("/scheduler",)
 
 
+def dereferenced(f, value):
+    """An attribute holding object references (the dimension-scale lists DIMENSION_LIST and
+    REFERENCE_LIST) as the names the references point to: their bytes are addresses."""
+    if isinstance(value, h5py.Reference):
+        return f[value].name if value else None
+    if isinstance(value, (np.ndarray, list, tuple, np.void)):
+        return tuple(dereferenced(f, v) for v in value)
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def has_references(v):
+    return isinstance(v, np.ndarray) and (v.dtype.kind == "O" or (v.dtype.names and any(
+        v.dtype.fields[n][0].kind == "O" for n in v.dtype.names)))
+
+
 def collect(path):
     items = {}
     with h5py.File(path, "r") as f:
         def attrs_of(name, obj):
             out = {}
             for k, v in obj.attrs.items():
+                if has_references(v):
+                    out[k] = repr(dereferenced(f, v))
+                    continue
                 if name == "/" and k == "summary_json":
                     d = json.loads(v)
                     for key in TIMING_KEYS:

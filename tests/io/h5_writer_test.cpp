@@ -1,0 +1,154 @@
+// Tests of the HDF5 writer's run-survival features (io/h5/h5_series.hpp): rows kept in memory until a
+// flush, continuing an interrupted file (reopen), the time dimension scale, replacing fixed arrays,
+// and the small reader (io/h5/h5_reader.hpp).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/h5/h5_reader.hpp"
+#include "io/h5/h5_series.hpp"
+#include "tests/io/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using raceway::io::H5Reader;
+using raceway::io::H5SeriesWriter;
+
+namespace {
+
+using H5Writer = raceway::test::TempDir;
+
+std::string bytes_of(const std::string& path) { return raceway::test::read_text(path); }
+
+// Writes rows [first, last) of a [T] series "/time" (value 0.5 * row) and a [T x 2] series "/xy".
+void append_rows(H5SeriesWriter& w, int first, int last, double offset = 0) {
+  for (int r = first; r < last; ++r) {
+    const double t = 0.5 * r + offset;
+    const double xy[2] = {t, -t};
+    w.append("/time", std::span<const double>(&t, 1));
+    w.append("/xy", xy);
+  }
+}
+
+void define(H5SeriesWriter& w) {
+  w.define_series("/time", {}, "s", "time");
+  w.define_series("/xy", {2}, "m", "position");
+}
+
+}  // namespace
+
+TEST_F(H5Writer, RowsStayInMemoryUntilFlushSoTheFileOnDiskIsTheLastFlushed) {
+  auto w = H5SeriesWriter::create(path("a.h5"));
+  define(w);
+  w.flush();
+  const std::string after_flush = bytes_of(path("a.h5.partial"));
+  append_rows(w, 0, 5000);
+  EXPECT_EQ(w.buffered_bytes(), 5000u * 3 * sizeof(double));
+  EXPECT_EQ(bytes_of(path("a.h5.partial")), after_flush) << "the file changed between flushes";
+  w.flush();
+  EXPECT_EQ(w.buffered_bytes(), 0u);
+  EXPECT_NE(bytes_of(path("a.h5.partial")), after_flush);
+  const H5Reader r(path("a.h5.partial"));  // readable while the writer has it open
+  EXPECT_EQ(r.doubles("/time").size(), 5000u);
+}
+
+TEST_F(H5Writer, ReopenCutsTheSeriesToTheCheckpointAndContinuesThem) {
+  {
+    auto w = H5SeriesWriter::create(path("r.h5"));
+    define(w);
+    append_rows(w, 0, 10);
+    w.flush();
+    append_rows(w, 10, 15, 100.0);  // written after the "checkpoint" at 10 rows: must go
+    w.flush();
+  }  // destroyed without commit: an interrupted run
+  ASSERT_TRUE(fs::exists(path("r.h5.partial")));
+  {
+    auto w = H5SeriesWriter::reopen(path("r.h5"), 10);
+    define(w);
+    EXPECT_EQ(w.rows("/time"), 10u);
+    append_rows(w, 10, 16);
+    w.commit();
+  }
+  const H5Reader r(path("r.h5"));
+  std::vector<std::size_t> shape;
+  const auto t = r.doubles("/time", &shape);
+  ASSERT_EQ(shape, std::vector<std::size_t>{16});
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(t[static_cast<std::size_t>(i)], 0.5 * i) << i;
+  const auto xy = r.doubles("/xy", &shape);
+  EXPECT_EQ(shape, (std::vector<std::size_t>{16, 2}));
+  EXPECT_EQ(xy[31], -7.5);
+  EXPECT_EQ(r.string_attribute("/xy", "units"), "m");
+}
+
+TEST_F(H5Writer, ReopenRefusesAMissingFileAShorterSeriesOrAnotherShape) {
+  EXPECT_THROW((void)H5SeriesWriter::reopen(path("none.h5"), 3), std::runtime_error);
+  {
+    auto w = H5SeriesWriter::create(path("s.h5"));
+    define(w);
+    append_rows(w, 0, 4);
+    w.flush();
+  }
+  {
+    auto w = H5SeriesWriter::reopen(path("s.h5"), 5);
+    try {
+      define(w);
+      ADD_FAILURE() << "a series with fewer rows than the checkpoint was continued";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("has 4 rows, the checkpoint needs 5"), std::string::npos) << e.what();
+    }
+  }
+  auto w = H5SeriesWriter::reopen(path("s.h5"), 2);
+  w.define_series("/time", {}, "s", "time");
+  try {
+    w.define_series("/xy", {3}, "m", "another shape");
+    ADD_FAILURE() << "a series of another shape was continued";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another shape"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(H5Writer, TimeIsTheDimensionScaleOfEverySeries) {
+  {
+    auto w = H5SeriesWriter::create(path("d.h5"));
+    define(w);
+    w.define_series("/g/matrix", {2, 3}, "N", "m");
+    w.set_time_scale("/time", "time");
+    append_rows(w, 0, 3);
+    for (int r = 0; r < 3; ++r) w.append("/g/matrix", std::vector<double>(6, r));
+    w.commit();
+  }
+  const hid_t f = H5Fopen(path("d.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t time = H5Dopen2(f, "/time", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(time), 0);
+  char name[16] = {};
+  H5DSget_scale_name(time, name, sizeof name);
+  EXPECT_STREQ(name, "time");
+  for (const char* p : {"/xy", "/g/matrix"}) {
+    const hid_t d = H5Dopen2(f, p, H5P_DEFAULT);
+    EXPECT_GT(H5DSis_attached(d, time, 0), 0) << p;
+    EXPECT_EQ(H5DSget_num_scales(d, 1), 0) << p;
+    H5Dclose(d);
+  }
+  H5Dclose(time);
+  H5Fclose(f);
+}
+
+TEST_F(H5Writer, WriteArrayReplacesAFixedArrayButNotASeries) {
+  auto w = H5SeriesWriter::create(path("w.h5"));
+  define(w);
+  w.write_array("/fixed", {2}, std::vector<double>{1, 2}, "s", "first");
+  w.write_array("/fixed", {3}, std::vector<double>{4, 5, 6}, "m", "second");
+  EXPECT_THROW(w.write_array("/xy", {1}, std::vector<double>{1}, "m", "clash"), std::runtime_error);
+  w.commit();
+  const H5Reader r(path("w.h5"));
+  EXPECT_EQ(r.doubles("/fixed"), (std::vector<double>{4, 5, 6}));
+  EXPECT_EQ(r.string_attribute("/fixed", "description"), "second");
+  EXPECT_TRUE(r.has("/xy"));
+  EXPECT_FALSE(r.has("/nothing/here"));
+  EXPECT_THROW((void)r.doubles("/nothing"), std::runtime_error);
+}
