@@ -243,7 +243,7 @@ def main():
             near(s["pocket_forces"]["rear"]["events"], 6, 0, "--window-start 0: rear pulses 20, ..., 520")
             check(len(s["azimuth"]["bin_centre_deg"]) == 36, "--bin-width 10: 36 bins")
             rc, out, err = run(raceway, h5, "-o", out_dir, "--bin-width", "0", "--no-plots")
-            check(rc == 1, f"--bin-width 0: exit code {rc}, expected 1")
+            check(rc == 2, f"--bin-width 0: exit code {rc}, expected 2 (a bad option)")
             check("bin" in err, f"--bin-width 0: stderr does not mention the bin width:\n{err}")
         elif case == "bad_inputs":
             rc, out, err = run(raceway, os.path.join(work, "missing.h5"))

@@ -23,7 +23,7 @@ using test::pi;
 struct Outcome {
   RunSummary summary;
   std::vector<double> cage_speed;  ///< per sample: about the axis [rad/s]
-  test::Dataset epicyclic;         ///< [T x 1] (spatial runs)
+  test::Dataset epicyclic;         ///< [T] (spatial runs)
 };
 
 Outcome run(const io::Scene& scene) {
@@ -96,10 +96,10 @@ TEST(Standstill, LubricatedBallBearingStartStopCycle) {
   // Running (the last 5 ms of the hold): the cage within 3 % of the epicyclic speed.
   double worst_running = 0;
   for (std::size_t i = 350; i <= 400; ++i)
-    worst_running = std::max(worst_running, std::abs(o.cage_speed[i] / o.epicyclic.at(i, 0) - 1));
+    worst_running = std::max(worst_running, std::abs(o.cage_speed[i] / o.epicyclic.values.at(i) - 1));
   EXPECT_LT(worst_running, 0.03);
   // Stopped (the last 5 ms): the cage at rest, below 1 % of its running speed.
-  const double running = o.epicyclic.at(400, 0);
+  const double running = o.epicyclic.values.at(400);
   double fastest_stopped = 0;
   for (std::size_t i = 750; i < samples; ++i) fastest_stopped = std::max(fastest_stopped, std::abs(o.cage_speed[i]));
   EXPECT_LT(fastest_stopped, 0.01 * running);
