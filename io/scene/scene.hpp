@@ -206,6 +206,8 @@ struct SolverSpec {
 
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
+  double checkpoint_interval = 0;         ///< s simulated, between periodic checkpoints (0: none)
+  double checkpoint_wall_interval = 300;  ///< s wall clock, after which a checkpoint is written (0: none)
 };
 
 /// One simulation, validated and in SI units, and where it came from.
