@@ -86,23 +86,6 @@ double H5Reader::number_attribute(const std::string& object, const std::string& 
   return v;
 }
 
-std::vector<std::string> H5Reader::dataset_paths(const std::string& group) const {
-  h5::ErrorSilencer quiet;
-  const Handle g(H5Oopen(file_, group.c_str(), H5P_DEFAULT), H5Oclose);
-  if (!g.ok()) fail("H5Oopen", group);
-  struct Found {
-    std::string prefix;
-    std::vector<std::string> paths;
-  } found{h5::normalize(group) == "/" ? std::string() : h5::normalize(group), {}};
-  auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-    auto* f = static_cast<Found*>(data);
-    if (info->type == H5O_TYPE_DATASET) f->paths.push_back(f->prefix + "/" + name);
-    return 0;
-  };
-  if (H5Ovisit(g.get(), H5_INDEX_NAME, H5_ITER_INC, visit, &found) < 0) fail("H5Ovisit", group);
-  return found.paths;
-}
-
 std::vector<std::string> H5Reader::attribute_names(const std::string& object) const {
   h5::ErrorSilencer quiet;
   const Handle obj(H5Oopen(file_, object.c_str(), H5P_DEFAULT), H5Oclose);

@@ -26,8 +26,6 @@ class H5Reader {
   std::string string_attribute(const std::string& object, const std::string& name) const;
   /// A scalar numeric attribute.
   double number_attribute(const std::string& object, const std::string& name) const;
-  /// The paths of every dataset under a group, recursively ("/g/a", "/g/sub/b").
-  std::vector<std::string> dataset_paths(const std::string& group) const;
   /// The names of an object's attributes, in name order.
   std::vector<std::string> attribute_names(const std::string& object) const;
 
