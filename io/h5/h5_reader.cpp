@@ -86,4 +86,18 @@ double H5Reader::number_attribute(const std::string& object, const std::string& 
   return v;
 }
 
+std::vector<std::string> H5Reader::attribute_names(const std::string& object) const {
+  h5::ErrorSilencer quiet;
+  const Handle obj(H5Oopen(file_, object.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!obj.ok()) fail("H5Oopen", object);
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+  };
+  hsize_t index = 0;
+  if (H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, &index, collect, &names) < 0) fail("H5Aiterate2", object);
+  return names;
+}
+
 }  // namespace raceway::io

@@ -26,6 +26,8 @@ class H5Reader {
   std::string string_attribute(const std::string& object, const std::string& name) const;
   /// A scalar numeric attribute.
   double number_attribute(const std::string& object, const std::string& name) const;
+  /// The names of an object's attributes, in name order.
+  std::vector<std::string> attribute_names(const std::string& object) const;
 
  private:
   [[noreturn]] void fail(const std::string& what, const std::string& object) const;

@@ -103,11 +103,15 @@ static hid_t make_file_access_plist() {
   return fapl;
 }
 
+void prepare_hdf5_library() {
+  H5dont_atexit();
+  H5open();
+}
+
 H5SeriesWriter::H5SeriesWriter(std::string final_path, const H5WriterOptions& options)
     : final_path_(std::move(final_path)), partial_path_(final_path_ + ".partial"), options_(options) {}
 
-H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5WriterOptions& options, bool resume,
-                                         std::size_t rows) {
+H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5WriterOptions& options, bool resume) {
   ErrorSilencer quiet;
   H5SeriesWriter w(final_path, options);
   const Handle fapl(make_file_access_plist(), H5Pclose);
@@ -119,7 +123,7 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
                                            w.partial_path_));
     w.file_ = H5Fopen(w.partial_path_.c_str(), H5F_ACC_RDWR, fapl.get());
     if (w.file_ < 0) w.fail("H5Fopen", "/");
-    w.resuming_ = true, w.resume_rows_ = rows;
+    w.resuming_ = true;
   } else {
     w.file_ = H5Fcreate(w.partial_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
     if (w.file_ < 0) w.fail("H5Fcreate", "/");
@@ -130,12 +134,16 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
 }
 
 H5SeriesWriter H5SeriesWriter::create(const std::string& final_path, const H5WriterOptions& options) {
-  return open_file(final_path, options, false, 0);
+  return open_file(final_path, options, false);
 }
 
 H5SeriesWriter H5SeriesWriter::reopen(const std::string& final_path, std::size_t rows,
+                                      std::map<std::string, std::vector<double>> unwritten,
                                       const H5WriterOptions& options) {
-  return open_file(final_path, options, true, rows);
+  H5SeriesWriter w = open_file(final_path, options, true);
+  w.resume_rows_ = rows;
+  w.resume_unwritten_ = std::move(unwritten);
+  return w;
 }
 
 H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
@@ -146,7 +154,9 @@ H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
       options_(other.options_),
       resuming_(other.resuming_),
       resume_rows_(other.resume_rows_),
+      resume_unwritten_(std::move(other.resume_unwritten_)),
       buffered_bytes_(std::exchange(other.buffered_bytes_, 0)),
+      flushed_(other.flushed_),
       series_(std::move(other.series_)) {
   other.series_.clear();
 }
@@ -161,7 +171,9 @@ H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
     options_ = other.options_;
     resuming_ = other.resuming_;
     resume_rows_ = other.resume_rows_;
+    resume_unwritten_ = std::move(other.resume_unwritten_);
     buffered_bytes_ = std::exchange(other.buffered_bytes_, 0);
+    flushed_ = other.flushed_;
     series_ = std::move(other.series_);
     other.series_.clear();
   }
@@ -174,7 +186,7 @@ void H5SeriesWriter::close_uncommitted() noexcept {
   if (!is_open()) return;
   ErrorSilencer quiet;
   try {
-    write_all_buffers();
+    write_all_buffers(false);
     H5Fflush(file_, H5F_SCOPE_LOCAL);
   } catch (...) {
     // Destructors must not throw; the .partial file keeps what was written. (A failed write has
@@ -236,12 +248,21 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
   if (dims.size() != s.row_shape.size() + 1 || !std::equal(s.row_shape.begin(), s.row_shape.end(), dims.begin() + 1))
     throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': series '{}' has another shape than "
                                          "this run writes", partial_path_, key));
-  if (dims[0] < resume_rows_)
+  std::vector<double> tail;
+  if (const auto u = resume_unwritten_.find(key); u != resume_unwritten_.end()) tail = u->second;
+  const std::size_t tail_rows = tail.size() / s.row_size;
+  if (tail.size() % s.row_size != 0 || tail_rows > resume_rows_)
+    throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': the checkpoint's unwritten rows of '{}' "
+                                         "do not fit its rows", partial_path_, key));
+  const std::size_t file_rows = resume_rows_ - tail_rows;
+  if (dims[0] < file_rows)
     throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': series '{}' has {} rows, the "
-                                         "checkpoint needs {}", partial_path_, key, dims[0], resume_rows_));
-  dims[0] = resume_rows_;
+                                         "checkpoint needs {}", partial_path_, key, dims[0], file_rows));
+  dims[0] = file_rows;
   if (H5Dset_extent(dataset, dims.data()) < 0) fail("cutting the series to the checkpoint (H5Dset_extent)", key);
-  s.rows_written = resume_rows_;
+  s.rows_written = file_rows;
+  s.buffer = std::move(tail);
+  buffered_bytes_ += s.buffer.size() * sizeof(double);
   return keep.release();
 }
 
@@ -296,8 +317,12 @@ std::size_t H5SeriesWriter::rows(const std::string& path) const {
   return it->second.rows_written + it->second.buffer.size() / it->second.row_size;
 }
 
-void H5SeriesWriter::write_buffer(const std::string& path, Series& s) {
-  const std::size_t n = s.buffer.size() / s.row_size;
+void H5SeriesWriter::write_buffer(const std::string& path, Series& s, bool whole_chunks_only) {
+  std::size_t n = s.buffer.size() / s.row_size;
+  if (whole_chunks_only) {
+    const std::size_t end = (s.rows_written + n) / s.chunk_rows * s.chunk_rows;  // the last whole chunk's end
+    n = end > s.rows_written ? end - s.rows_written : 0;
+  }
   if (n == 0) return;
   std::vector<hsize_t> new_dims{static_cast<hsize_t>(s.rows_written + n)};
   new_dims.insert(new_dims.end(), s.row_shape.begin(), s.row_shape.end());
@@ -318,25 +343,30 @@ void H5SeriesWriter::write_buffer(const std::string& path, Series& s) {
     fail("H5Dwrite", path);
   }
   s.rows_written += n;
-  buffered_bytes_ -= std::min(buffered_bytes_, s.buffer.size() * sizeof(double));
-  s.buffer.clear();
+  const std::size_t written = n * s.row_size;
+  buffered_bytes_ -= std::min(buffered_bytes_, written * sizeof(double));
+  s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(written));
 }
 
-void H5SeriesWriter::write_all_buffers() {
-  for (auto& [path, s] : series_) write_buffer(path, s);
-  buffered_bytes_ = 0;
+void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
+  for (auto& [path, s] : series_) write_buffer(path, s, whole_chunks_only);
+}
+
+std::map<std::string, std::vector<double>> H5SeriesWriter::unwritten_rows() const {
+  std::map<std::string, std::vector<double>> rows;
+  for (const auto& [path, s] : series_)
+    if (!s.buffer.empty()) rows.emplace(path, s.buffer);
+  return rows;
 }
 
 void H5SeriesWriter::reserve_for_flush() {
-  // The buffered rows, the partly filled last chunk of each series that grows (it is compressed and
-  // stored again) and the metadata.
-  std::size_t bytes = buffered_bytes_ + (std::size_t{256} << 10);
-  for (const auto& [path, s] : series_)
-    if (!s.buffer.empty()) bytes += (s.rows_written % s.chunk_rows) * s.row_size * sizeof(double);
+  // The buffered rows (at most: compressed they take less) and the metadata.
+  const std::size_t bytes = buffered_bytes_ + (std::size_t{256} << 10);
   if (const std::string error = reserve_disk(partial_path_, bytes); !error.empty()) {
-    const std::string message = fmt::format("H5SeriesWriter: no room to write the next {:.1f} MB of '{}': {}; the "
-                                            "file keeps the rows of its last flush",
-                                            static_cast<double>(bytes) / 1e6, partial_path_, error);
+    const std::string message = fmt::format("H5SeriesWriter: no room to write the next {:.1f} MB of '{}': {}; {}",
+                                            static_cast<double>(bytes) / 1e6, partial_path_, error,
+                                            flushed_ ? "the file keeps the rows of its last flush"
+                                                     : "the file was never complete (nothing to keep)");
     abandon();
     throw std::runtime_error(message);
   }
@@ -346,10 +376,11 @@ void H5SeriesWriter::flush() {
   require_open("flush");
   ErrorSilencer quiet;
   reserve_for_flush();
-  write_all_buffers();
+  write_all_buffers(true);
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) fail("writing to disk (H5Fflush)", "/");
   release_disk(partial_path_);
   fsync_file(partial_path_);
+  flushed_ = true;
 }
 
 void H5SeriesWriter::abandon() noexcept {
@@ -385,7 +416,7 @@ void H5SeriesWriter::commit() {
   {
     ErrorSilencer quiet;
     reserve_for_flush();
-    write_all_buffers();
+    write_all_buffers(false);
     for (auto& [path, s] : series_) {
       if (H5Dclose(s.dataset) < 0) fail("H5Dclose", path);
       s.dataset = -1;
@@ -404,6 +435,8 @@ void H5SeriesWriter::commit() {
     throw std::runtime_error(fmt::format("H5SeriesWriter::commit: renaming '{}' to '{}' failed: {}", partial_path_,
                                          final_path_, ec.message()));
   }
+  const std::filesystem::path folder = std::filesystem::path(final_path_).parent_path();
+  fsync_file(folder.empty() ? "." : folder.string());  // the rename itself on disk
 }
 
 }  // namespace raceway::io

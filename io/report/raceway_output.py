@@ -14,7 +14,8 @@
         out.series()                                # every time series' path
 
 A Quantity is a numpy array with two attributes, `units` and `description`, as the file states
-them. Arithmetic keeps the attributes of the left operand unchanged (this is not a units library):
+them. In an interrupted run's .partial file the series may stop at different samples (each at its
+last whole chunk): the reader cuts every series to the shortest (`rows`), so rows still match. Arithmetic keeps the attributes of the left operand unchanged (this is not a units library):
 read them, do not rely on them after computing. Files written before layout version 2 stored
 scalar series as [T x 1]; the reader returns them as [T] like newer files.
 
@@ -56,6 +57,9 @@ class RacewayOutput:
         self.path = path
         self.file = h5py.File(path, "r")
         self.layout_version = int(self.file.attrs.get("layout_version", 1))
+        lengths = [self.file[p.strip("/")].shape[0] for p in self.series()]
+        #: Output times every series holds (the file's /time length unless a .partial cut them).
+        self.rows = min(lengths) if lengths else 0
         if self.layout_version > LAYOUT_VERSION:
             raise ValueError(f"{path}: layout version {self.layout_version} is newer than this reader "
                              f"({LAYOUT_VERSION}); use the raceway_output.py of the raceway that wrote it")
@@ -80,8 +84,10 @@ class RacewayOutput:
         if ds.dtype.kind in ("O", "S", "U"):
             return [_text(v) for v in ds[()]]
         values = ds[()]
-        if self.layout_version < 2 and self.is_series(path) and values.ndim == 2 and values.shape[1] == 1:
-            values = values[:, 0]
+        if self.is_series(path):
+            values = values[:self.rows]
+            if self.layout_version < 2 and values.ndim == 2 and values.shape[1] == 1:
+                values = values[:, 0]
         return Quantity(values, _text(ds.attrs.get("units", "")), _text(ds.attrs.get("description", "")))
 
     def is_series(self, path):

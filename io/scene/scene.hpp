@@ -223,6 +223,8 @@ struct SolverSpec {
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
   double max_size = 4e9;  ///< bytes: a run whose series would be larger is refused before it starts
+  double checkpoint_interval = 0;         ///< s simulated, between periodic checkpoints (0: none)
+  double checkpoint_wall_interval = 300;  ///< s wall clock, after which a checkpoint is written (0: none)
 };
 
 /// One simulation, validated and in SI units, and where it came from.

@@ -424,6 +424,14 @@ constexpr Row kRows[] = {
      .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
      .meaning = "largest output (its series: samples x values x 8 bytes, estimated by `raceway check`); a larger "
                 "run is refused before it starts"},
+    {.section = "output", .key = "checkpoint_interval", .kind = number, .field = FIELD(scene.output.checkpoint_interval),
+     .dim = dim::time, .bounds = non_negative, .def = value(0),
+     .meaning = "simulated time between checkpoints, rounded to whole output intervals; CVODE restarts at each, so a "
+                "resumed run repeats the uninterrupted one bitwise (0: none)"},
+    {.section = "output", .key = "checkpoint_wall_interval", .kind = number,
+     .field = FIELD(scene.output.checkpoint_wall_interval), .dim = dim::time, .bounds = non_negative, .def = value(300),
+     .meaning = "wall-clock time after which a checkpoint is also written at the next output time (no restart of "
+                "CVODE: a resume from it agrees with an uninterrupted run to the tolerances, not bitwise; 0: none)"},
 };
 
 #undef FIELD

@@ -2,11 +2,13 @@
 // lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`,
 // `raceway --version`.
 //
-// Exit codes: 0 success; 2 bad input (scene, output too large, start-up impossible, report input
-// file, command-line option: one line naming it, an output path that cannot be written or is held
-// by another run); 3 integration failure (diagnosed, also past [solver] max_wall_time); 1 other
-// errors (including an error inside a contact task on any rank, or a rank that stops answering for
-// --rank-timeout, which end all ranks through MPI_Abort).
+// Exit codes (every rank of `raceway run` exits with rank 0's): 0 success; 2 bad input (scene,
+// output too large, start-up impossible, report input file, command-line option: one line naming
+// it, an output path that cannot be written or is held by another run, a refused --resume);
+// 3 integration failure (diagnosed, also past [solver] max_wall_time); 4 stopped by SIGINT,
+// SIGTERM or SIGUSR1 after writing a checkpoint (continue with --resume); 1 other errors (including
+// an error inside a contact task on any rank, or a rank that stops answering for --rank-timeout,
+// which end all ranks through MPI_Abort).
 //
 // `mpirun -np P raceway run SCENE`: every rank parses the scene rank 0 read (its text is broadcast);
 // rank 0 integrates and evaluates its share of the contact tasks, ranks 1.. evaluate theirs
@@ -28,6 +30,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "io/h5/h5_series.hpp"
 #include "io/h5/output_lock.hpp"
 #include "io/report/report.hpp"
 #include "raceway/version.hpp"
@@ -38,11 +41,28 @@
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/run/output_writer.hpp"
+#include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
 
 namespace {
 
 using namespace raceway;
+
+/// The signal that asked the run to stop (0: none), set by on_stop_signal on every rank; rank 0's
+/// run loop checkpoints and stops at the next output time.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
+
+/// SIGINT, SIGTERM and SIGUSR1 (what batch schedulers send before a time limit) ask for a checkpoint
+/// and a stop; a second one of them ends the process at once (SA_RESETHAND: the default action).
+void install_stop_signals() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) sigaction(signal, &action, nullptr);
+}
 
 io::Scene load(const std::string& path) { return path.empty() ? io::default_scene() : io::load_scene(path); }
 
@@ -87,14 +107,24 @@ std::string mpi_library_version() {
   return s.substr(0, s.find_first_of(",\n"));
 }
 
-int run_command(const io::Scene& scene, const std::string& output, const std::string& summary_json,
-                bool scheduler_log, scheduler::Executor& executor) {
+/// What `raceway run` was asked for besides the scene.
+struct RunRequest {
+  std::string output, summary_json, result_options;
+  bool scheduler_log = false, resume = false;
+};
+
+int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
+  const std::string& output = request.output;
+  const std::string& summary_json = request.summary_json;
   if (!summary_json.empty()) io::check_output_path(summary_json, "run summary (--summary-json)");
   solver::RunOptions options;
   options.executor = &executor;
   options.output_path = output;
-  options.scheduler_log = scheduler_log;
+  options.scheduler_log = request.scheduler_log;
+  options.resume = request.resume;
+  options.result_options = request.result_options;
+  options.stop_signal = &g_stop_signal;
   options.mpi_library = mpi_library_version();
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
@@ -164,26 +194,27 @@ void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& opt
 
 /// A worker rank of `raceway run`: builds the model and evaluates tasks until rank 0 stops it.
 /// Any error here ends the whole job (MPI_Abort) with this rank's message.
-int worker(const std::string& text, const std::string& source, scheduler::MpiExecutor& executor) {
+void worker(const std::string& text, const std::string& source, scheduler::MpiExecutor& executor) {
   try {
     const io::Scene scene = io::parse_scene(text, source);
-    if (!executor.await_start()) return 0;  // rank 0 failed before it had a model and says why
+    if (!executor.await_start()) return;  // rank 0 failed before it had a model and says why
     solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c) { executor.serve(c); });
-    return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "[raceway] rank %d: error: %s\n", executor.rank(), e.what());
     std::fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);
   }
-  return 1;
 }
 
-/// The documented exit code of an error: bad input 2, failed integration 3, anything else 1.
+/// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
+/// anything else 1.
 int exit_code_for(const std::exception& e) {
   if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
-      dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e))
+      dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e) ||
+      dynamic_cast<const solver::ResumeRefused*>(&e))
     return 2;
   if (dynamic_cast<const solver::IntegrationFailure*>(&e)) return 3;
+  if (dynamic_cast<const solver::RunInterrupted*>(&e)) return 4;
   return 1;
 }
 
@@ -191,6 +222,9 @@ int exit_code_for(const std::exception& e) {
 int exit_code_of(const std::function<int()>& command) {
   try {
     return command();
+  } catch (const solver::RunInterrupted& e) {
+    spdlog::warn("{}", e.what());
+    return exit_code_for(e);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return exit_code_for(e);
@@ -247,7 +281,7 @@ struct CommandLine {
   scheduler::MpiExecutorOptions exec_options;
   std::string schedule = "adaptive", inject;
   std::string method;  ///< --method: the scene's [solver] method, replaced
-  bool replan_every_evaluation = false, scheduler_log = false;
+  bool replan_every_evaluation = false, scheduler_log = false, resume = false;
   io::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false;
@@ -284,6 +318,8 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                   "keep every n-th evaluation's imbalance in /scheduler/imbalance")
       ->check(number_at_least(0, true, true))
       ->capture_default_str();
+  run->add_flag("--resume", cl.resume,
+                "continue OUT.h5.partial from its last checkpoint (OUT.h5.checkpoint); start afresh when there is none");
   run->add_flag("--scheduler-log", cl.scheduler_log,
                 "write the task scheduler's log (/scheduler) also for a serial run (always with several ranks)");
   // Test-only options (hidden: empty group).
@@ -358,16 +394,24 @@ int run_on_all_ranks(CommandLine& cl, int rank, int size) {
     return 2;
   }
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
-  // The executor's destructor (on return) releases the workers if rank 0 failed.
+  install_stop_signals();
   scheduler::MpiExecutor executor(MPI_COMM_WORLD, cl.exec_options);
-  if (rank != 0) return worker(text, source, executor);
-  if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
-                             scheduler::schedule_policy_name(cl.exec_options.policy));
-  return exit_code_of([&] {
-    // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
-    const solver::PetscRuntime petsc(cl.petsc_options);
-    return run_command(scene, cl.output, cl.summary_json, cl.scheduler_log, executor);
-  });
+  if (rank != 0) {
+    worker(text, source, executor);
+  } else {
+    if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
+                               scheduler::schedule_policy_name(cl.exec_options.policy));
+    code = exit_code_of([&] {
+      // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
+      const solver::PetscRuntime petsc(cl.petsc_options);
+      const RunRequest request{cl.output, cl.summary_json, cl.petsc_options, cl.scheduler_log, cl.resume};
+      return run_command(scene, request, executor);
+    });
+    executor.stop();  // releases the workers (also after a failure)
+  }
+  // Every rank exits with rank 0's code (a stop by a signal, a failed integration).
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return code;
 }
 
 /// `raceway check` or `raceway report`, on rank 0 only.
@@ -389,6 +433,7 @@ int main(int argc, char** argv) {
   // A file-size limit (ulimit -f, a quota) is reported by the write that hits it, as an error with
   // the file's name, rather than ending the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
+  io::prepare_hdf5_library();  // before MPI_Init
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

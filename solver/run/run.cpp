@@ -1,13 +1,16 @@
 // One simulation from a validated scene to an output file (docs/output_layout.md) and a summary:
-// model, start-up state, CVODE, output at fixed times by interpolation. One loop for every bearing
-// kind; what a sample writes comes from the output table (solver/run/output_writer.hpp).
+// model, start-up state (or a checkpoint), CVODE, output at fixed times by interpolation,
+// checkpoints. One loop for every bearing kind; what a sample writes comes from the output table
+// (solver/run/output_writer.hpp), what the summary sums from solver/run/run_totals.hpp.
 #include "solver/run/run.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
+#include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "io/h5/h5_series.hpp"
 #include "io/scene/scene_parser.hpp"
@@ -17,12 +20,13 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/run/checkpoint.hpp"
 #include "solver/run/output_writer.hpp"
+#include "solver/run/run_profile.hpp"
+#include "solver/run/run_totals.hpp"
 #include "solver/run/schedule_output.hpp"
 
 namespace raceway::solver {
-
-using contact::Vec3;
 
 io::JsonObject RunSummary::to_json() const {
   io::JsonObject j;
@@ -54,19 +58,24 @@ io::JsonObject RunSummary::to_json() const {
   j.add("method", method);
   j.add("step_limiting_states", step_limiting_json(step_limiting));
   j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
+  j.add("output_time_s", output_seconds);
   return j;
 }
 
 namespace {
 
-/// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates
-/// the output (OUT.h5.partial) with the attributes every run has.
-io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& options, const Equations& eq) {
+/// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates the
+/// output (OUT.h5.partial), or opens it to continue from a checkpoint, with the attributes every
+/// run has.
+io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& options, const Equations& eq,
+                                   const Checkpoint* resumed) {
   const std::string solver_line =
       prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
   if (options.on_info) options.on_info(solver_line);
   const Model& model = eq.model();
-  auto file = io::H5SeriesWriter::create(options.output_path);
+  auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
+                                                   resumed->unwritten_rows)
+                      : io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
   file.set_attribute("/", "layout_version", kOutputLayoutVersion);
@@ -83,62 +92,186 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   return file;
 }
 
-/// The summary's figures of the run's second half, accumulated over the output samples.
-class SecondHalf {
- public:
-  explicit SecondHalf(const Model& m) : m_(m) {}
-
-  void add(double t, const std::vector<double>& z, const Equations& eq) {
-    force_sum_ += eq.contact_loads()[static_cast<std::size_t>(m_.inner_ring)].force;
-    const auto& l = m_.scene->inner_ring.load;
-    load_sum_ += Vec3(l.fx(t), l.fy(t), l.fz(t));
-    constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
-    std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);
-    for (std::size_t s = 0; s < m_.segments.size(); ++s)
-      if (m_.segments[s].kind == SegmentKind::ball_inner_groove)
-        element_load[static_cast<std::size_t>(m_.segments[s].element)] += eq.diagnostic(s, normal_force);
-    for (double q : element_load) max_element_load_ = std::max(max_element_load_, q);
-    const std::vector<double> none(z.size(), 0.0);
-    cage_sum_ += sample_body(m_, m_.cage, t, z, none, Wrench{}).angular_velocity.z();
-    epicyclic_sum_ += m_.epicyclic_cage_speed(t);
-    ++count_;
+/// The checkpoint to continue from, or none (a fresh run). Says which through on_info; a checkpoint
+/// of an earlier run is removed when the run starts fresh, so that it can never be matched with the
+/// new run's .partial file.
+std::optional<Checkpoint> checkpoint_to_resume(const RunOptions& options, const RunFingerprint& now) {
+  const std::string path = checkpoint_path(options.output_path);
+  auto say = [&](const std::string& s) {
+    if (options.on_info) options.on_info(s);
+  };
+  if (!options.resume) {
+    std::error_code ec;
+    if (std::filesystem::remove(path, ec))
+      say(fmt::format("discarded the checkpoint of an earlier run ({}); --resume would have continued it", path));
+    return std::nullopt;
   }
-
-  void summarize(RunSummary& sum) const {
-    if (count_ == 0) return;
-    constexpr double rpm = 30.0 / std::numbers::pi;
-    sum.cage_speed_rpm = cage_sum_ / count_ * rpm;
-    sum.epicyclic_cage_speed_rpm = epicyclic_sum_ / count_ * rpm;
-    sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
-    sum.max_ball_load_n = max_element_load_;
-    const int dims = m_.kind == io::ModelKind::spatial ? 3 : 2;
-    for (int d = 0; d < dims; ++d) {
-      sum.inner_ring_contact_force_n.push_back(force_sum_[d] / count_);
-      sum.inner_ring_load_n.push_back(load_sum_[d] / count_);
-    }
+  std::optional<Checkpoint> cp = read_checkpoint(path);
+  if (!cp) {
+    say(fmt::format("--resume: no checkpoint of {} ({}): starting from the beginning", options.output_path, path));
+    return std::nullopt;
   }
+  require_same_run(cp->fingerprint, now, path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(options.output_path + ".partial", ec))
+    throw ResumeRefused(fmt::format("cannot resume: the checkpoint {} belongs to {}.partial, which is missing; run "
+                                    "without --resume to start again", path, options.output_path));
+  say(fmt::format("resuming {} from its {} checkpoint at t = {:.9g} s (output sample {}){}", options.output_path,
+                  checkpoint_kind_name(cp->kind), cp->time, cp->sample,
+                  cp->kind == CheckpointKind::periodic
+                      ? ""
+                      : ": CVODE restarts there, so the rest agrees with an uninterrupted run to the tolerances, "
+                        "not bitwise"));
+  return cp;
+}
 
- private:
-  const Model& m_;
-  Vec3 force_sum_ = Vec3::Zero(), load_sum_ = Vec3::Zero();
-  double cage_sum_ = 0, epicyclic_sum_ = 0, max_element_load_ = 0;
-  int count_ = 0;
+/// When checkpoints are due: every `every` output samples (periodic, CVODE restarts), after
+/// `wall_interval` seconds of wall clock, and at a stop signal; never at the last sample (the run
+/// ends there and commits its output).
+struct CheckpointPlan {
+  long every = 0;            // output samples; 0: no periodic checkpoints
+  double wall_interval = 0;  // s; 0: none
+  const volatile std::sig_atomic_t* stop_signal = nullptr;
+
+  std::optional<CheckpointKind> due(long sample, long samples, double wall_since_last) const {
+    if (sample >= samples) return std::nullopt;
+    if (stop_signal && *stop_signal != 0) return CheckpointKind::signal;
+    if (every > 0 && sample % every == 0) return CheckpointKind::periodic;
+    if (wall_interval > 0 && wall_since_last >= wall_interval) return CheckpointKind::wall_clock;
+    return std::nullopt;
+  }
 };
 
-/// Counters and times of the run into the summary, which is stored as the file's summary_json.
-void finish_summary(RunSummary& sum, double t, const Integrator& integrator, const Equations& eq,
-                    scheduler::Executor& executor, double wall_seconds) {
-  sum.stats = integrator.statistics();
-  sum.method = integrator.method_name();
-  sum.step_limiting = step_limiting_classes(eq.model(), integrator.step_limiting_states());
-  sum.timing = integrator.timing();
-  sum.simulated_time_s = t;
-  sum.wall_time_s = wall_seconds;
-  sum.model_rhs_evaluations = eq.rhs_evaluations();
-  sum.model_jacobian_evaluations = eq.jacobian_evaluations();
-  sum.segment_evaluations = eq.segment_evaluations();
-  sum.rhs_seconds = executor.total_seconds(scheduler::Phase::rhs);
-  sum.jacobian_seconds = executor.total_seconds(scheduler::Phase::jacobian);
+/// One run from its first sample (0, or the one after a checkpoint) to the end: integration, output
+/// samples, checkpoints and the summary.
+class RunLoop {
+ public:
+  RunLoop(const io::Scene& scene, const RunOptions& options, const Model& model, Equations& eq,
+          scheduler::Executor& executor, const RunFingerprint& fingerprint)
+      : scene_(scene), options_(options), model_(model), eq_(eq), executor_(executor), fingerprint_(fingerprint),
+        dt_(scene.scene.output_interval), samples_(std::lround(std::floor(scene.scene.end_time / dt_ + 1e-9))),
+        plan_{scene.output.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.output.checkpoint_interval / dt_))
+                                                   : 0,
+              scene.output.checkpoint_wall_interval, options.stop_signal},
+        totals_(model, scene.scene.end_time) {}
+
+  RunSummary run(const std::optional<Checkpoint>& resumed);
+
+ private:
+  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  void record(double t);
+  void checkpoint(CheckpointKind kind, long sample, double t);
+  RunSummary finish(double t);
+
+  const io::Scene& scene_;
+  const RunOptions& options_;
+  const Model& model_;
+  Equations& eq_;
+  scheduler::Executor& executor_;
+  const RunFingerprint& fingerprint_;
+  const double dt_;
+  const long samples_;
+  const CheckpointPlan plan_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  RunTotals totals_;
+  std::optional<io::H5SeriesWriter> file_;
+  std::optional<OutputWriter> out_;
+  std::unique_ptr<Integrator> integrator_;
+  std::vector<double> z_, zdot_, restart_times_;
+  double output_seconds_ = 0, last_checkpoint_wall_ = 0;
+};
+
+void RunLoop::record(double t) {
+  const double before = wall();
+  eq_.rhs(t, z_.data(), zdot_.data());
+  const double e = eq_.energy(t, z_.data());
+  out_->append(t, z_, zdot_, eq_, e);
+  totals_.record(t, z_, eq_, e);
+  output_seconds_ += wall() - before;
+}
+
+void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
+  const double before = wall();
+  file_->flush();  // first the rows, then the checkpoint that names them
+  Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_};
+  totals_.save(cp, integrator_->statistics(), eq_, executor_, wall());
+  write_checkpoint(checkpoint_path(options_.output_path), cp);
+  if (kind == CheckpointKind::periodic) {  // every run restarts CVODE here: a resume repeats it bitwise
+    totals_.add_finished_integrator(integrator_->statistics());
+    integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t, z_);
+  }
+  last_checkpoint_wall_ = wall();
+  output_seconds_ += last_checkpoint_wall_ - before;
+}
+
+RunSummary RunLoop::finish(double t) {
+  RunSummary sum;
+  sum.model_kind = model_.kind == io::ModelKind::spatial ? "spatial" : "planar";
+  totals_.summarize(sum, t, integrator_->statistics(), eq_, executor_, wall());
+  // The integrator since the last restart (a checkpoint restarts it): its method, the states that
+  // limit its step and the split of its time.
+  sum.method = integrator_->method_name();
+  sum.step_limiting = step_limiting_classes(model_, integrator_->step_limiting_states());
+  sum.timing = integrator_->timing();
+  sum.output_seconds = output_seconds_;
+  file_->set_attribute("/", "summary_json", sum.to_json().dump());
+  if (const auto* log = executor_.schedule_log(); log && (log->ranks > 1 || options_.scheduler_log))
+    write_schedule_log(*file_, *log);
+  return sum;
+}
+
+RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
+  const double t0 = 0.0;
+  long first = 1;  // the first sample integrated to
+  if (resumed) {
+    totals_.restore(*resumed, eq_, executor_);
+    z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
+    if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
+  } else {
+    const StartupReport start = initial_state(model_, t0, options_.azimuth_offset);
+    if (options_.on_info) options_.on_info(start.summary);
+    z_ = start.state;
+  }
+  zdot_.resize(z_.size());
+  double t_last = resumed ? resumed->time : t0;
+  file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
+  out_.emplace(*file_, model_, scene_.output.segments);
+  file_->set_attribute("/", "restart_times", restart_times_);
+  file_->flush();  // the layout on disk: from here on the .partial file is readable after any kill
+  integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
+  last_checkpoint_wall_ = wall();
+  if (!resumed) record(t0);
+  for (long i = first; i <= samples_; ++i) {
+    const double t = t0 + static_cast<double>(i) * dt_;
+    try {
+      integrator_->advance_to(t, z_);
+    } catch (const IntegrationFailure&) {
+      finish(t_last);
+      file_->flush();
+      throw;  // the .partial file stays, the previous output is untouched
+    }
+    record(t);
+    t_last = t;
+    if (options_.on_progress)
+      options_.on_progress({t, scene_.scene.end_time, totals_.revolutions(), wall(),
+                            totals_.steps(integrator_->statistics())});
+    const auto kind = plan_.due(i, samples_, wall() - last_checkpoint_wall_);
+    if (!kind) continue;
+    checkpoint(*kind, i, t);
+    if (*kind != CheckpointKind::signal) continue;
+    finish(t);
+    file_->flush();
+    throw RunInterrupted(fmt::format("stopped by signal {} at t = {:.9g} s (output sample {} of {}): checkpoint written; "
+                                     "continue with raceway run ... -o {} --resume",
+                                     static_cast<int>(*options_.stop_signal), t, i, samples_, options_.output_path));
+  }
+  const double before_commit = wall();
+  RunSummary sum = finish(t_last);
+  std::error_code ec;
+  std::filesystem::remove(checkpoint_path(options_.output_path), ec);  // first: never a checkpoint without its .partial
+  file_->commit();
+  sum.output_seconds = output_seconds_ + (wall() - before_commit);
+  return sum;
 }
 
 /// The start-up state; a start-up that fails names the scene keys that set it (file, lines).
@@ -163,70 +296,16 @@ StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, do
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   io::check_output_path(options.output_path, "output file (-o)");
   const io::OutputLock lock(options.output_path);  // before anything of the output is touched
-  const auto wall_start = std::chrono::steady_clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count(); };
   const Model model = build_model(scene);
   check_output_size(estimate_output(model, scene), scene);  // before any work or file
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
   Equations eq(model, executor);
   executor.attach(eq.task_catalogue());
-  const double t0 = 0.0, end = scene.scene.end_time, dt = scene.scene.output_interval;
-  const StartupReport start = startup_naming_keys(model, scene, t0, options.azimuth_offset);
-  if (options.on_info) options.on_info(start.summary);
-
-  auto file = open_run_output(scene, options, eq);
-  OutputWriter out(file, model, scene.output.segments);
-  file.flush();  // the layout on disk: from here on the .partial file is readable after any kill
-  Integrator integrator(eq, scene.solver, t0, start.state);
-  RunSummary sum;
-  sum.model_kind = model.kind == io::ModelKind::spatial ? "spatial" : "planar";
-  SecondHalf second_half(model);
-  const long samples = std::lround(std::floor(end / dt + 1e-9));
-  const io::RingSpec& drive = scene.inner_ring.motion == io::RingMotion::driven ? scene.inner_ring : scene.outer_ring;
-  std::vector<double> z = start.state, zdot(z.size());
-  double revolutions = 0, last_t = t0;
-
-  auto record = [&](double t) {
-    const auto record_start = std::chrono::steady_clock::now();
-    eq.rhs(t, z.data(), zdot.data());
-    const double e = eq.energy(t, z.data());
-    if (sum.output_samples == 0) sum.energy_initial_j = e;
-    sum.energy_final_j = e;
-    sum.energy_max_drift_j = std::max(sum.energy_max_drift_j, std::abs(e - sum.energy_initial_j));
-    out.append(t, z, zdot, eq, e);
-    ++sum.output_samples;
-    if (drive.motion == io::RingMotion::driven)
-      revolutions += 0.5 * (drive.speed(last_t) + drive.speed(t)) * (t - last_t) / (2 * std::numbers::pi);
-    last_t = t;
-    if (t >= 0.5 * end - 1e-12) second_half.add(t, z, eq);
-    sum.output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count();
-  };
-  auto finish = [&](double t) {
-    finish_summary(sum, t, integrator, eq, executor, wall());
-    sum.driven_ring_revolutions = revolutions;
-    second_half.summarize(sum);
-    file.set_attribute("/", "summary_json", sum.to_json().dump());
-    if (const auto* log = executor.schedule_log(); log && (log->ranks > 1 || options.scheduler_log))
-      write_schedule_log(file, *log);
-  };
-
-  record(t0);
-  for (long i = 1; i <= samples; ++i) {
-    const double t = t0 + static_cast<double>(i) * dt;
-    try {
-      integrator.advance_to(t, z);
-    } catch (const IntegrationFailure&) {
-      finish(last_t);
-      file.flush();
-      throw;  // the .partial file stays, the previous output is untouched
-    }
-    record(t);
-    if (options.on_progress) options.on_progress({t, end, revolutions, wall(), integrator.statistics().steps});
-  }
-  finish(last_t);
-  file.commit();
-  return sum;
+  const RunFingerprint fingerprint{scene.text, build_fingerprint(options.mpi_library), options.result_options};
+  const std::optional<Checkpoint> resumed = checkpoint_to_resume(options, fingerprint);
+  RunLoop loop(scene, options, model, eq, executor, fingerprint);
+  return loop.run(resumed);
 }
 
 void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve) {

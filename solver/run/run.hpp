@@ -2,7 +2,9 @@
 // CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/driver) owns it.
 #pragma once
 
+#include <csignal>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,22 @@ struct RunOptions {
   bool scheduler_log = false;
   /// The MPI library's version text (MPI_Get_library_version) for the build attributes; "" without MPI.
   std::string mpi_library;
+  /// Continue OUT.h5.partial from its checkpoint OUT.h5.checkpoint (docs/output_layout.md): refused
+  /// (ResumeRefused) when the scene, the build or result_options differ; a fresh run, said so
+  /// through on_info, when there is no checkpoint.
+  bool resume = false;
+  /// Command-line options that change the results (e.g. PETSc options), part of a checkpoint's
+  /// fingerprint.
+  std::string result_options;
+  /// Set (by a signal handler) to a signal number: the run writes a checkpoint at the next output
+  /// time, flushes and closes the output and throws RunInterrupted.
+  const volatile std::sig_atomic_t* stop_signal = nullptr;
+};
+
+/// A run stopped by a signal after writing a checkpoint (continue it with --resume).
+class RunInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RunSummary {
@@ -40,6 +58,7 @@ struct RunSummary {
   IntegratorStatistics stats;
   long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
   double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
+  double output_seconds = 0;  ///< wall time of the output: diagnostics at output times, writing, checkpoints
   double cage_speed_rpm = 0;            ///< mean over the second half of the run
   double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
   double cage_slip = 0;                 ///< 1 - cage / epicyclic
@@ -58,8 +77,10 @@ struct RunSummary {
 };
 
 /// Runs the scene and writes `options.output_path` (via a .partial file: an existing output is
-/// replaced only when the run ends). On an integration failure the partial output is kept as
-/// OUT.h5.partial and IntegrationFailure is rethrown with its diagnosis.
+/// replaced only when the run ends), with checkpoints (solver/run/checkpoint.hpp) as the scene's
+/// [output] section asks. On an integration failure the partial output is kept as OUT.h5.partial
+/// and IntegrationFailure is rethrown with its diagnosis. A bad output path throws
+/// io::OutputPathError, a refused resume ResumeRefused, a stop by a signal RunInterrupted.
 RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
 
 /// The worker side of a run: builds the same model and equations as run_scene does on the

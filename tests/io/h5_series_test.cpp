@@ -320,18 +320,25 @@ TEST_F(H5Series, RoundTripFixedArrays) {
   EXPECT_TRUE(read_string_dataset(f, "/geometry/empty_names").empty());
 }
 
-TEST_F(H5Series, FlushMakesRowsVisibleToAReader) {
+TEST_F(H5Series, FlushMakesWholeChunksVisibleToAReader) {
   const std::string file = path("flush.h5");
   auto w = H5SeriesWriter::create(file);
   w.define_series("/x", {2}, "s", "x");
-  for (int r = 0; r < 10; ++r) w.append("/x", std::vector<double>{1.0 * r, 2.0 * r});
+  for (int r = 0; r < 1030; ++r) w.append("/x", std::vector<double>{1.0 * r, 2.0 * r});
   w.flush();
-  // The buffer (one chunk = 4096 rows) is far from full: only flush() can have written the rows.
-  H5Id f{H5Fopen(w.partial_path().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
-  ASSERT_GE(f.id, 0);
+  // One chunk = 1024 rows of 2 doubles: flush() writes it; the 6 rows of the next wait for the end.
+  {
+    H5Id f{H5Fopen(w.partial_path().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+    ASSERT_GE(f.id, 0);
+    const Array a = read_doubles(f, "/x");
+    EXPECT_EQ(a.dims, (std::vector<hsize_t>{1024, 2}));
+    ASSERT_EQ(a.values.size(), 2048u);
+    EXPECT_EQ(a.values[2047], 2046.0);
+  }
+  w.commit();
+  H5Id f{H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
   const Array a = read_doubles(f, "/x");
-  EXPECT_EQ(a.dims, (std::vector<hsize_t>{10, 2}));
-  EXPECT_EQ(a.values[19], 18.0);
+  EXPECT_EQ(a.dims, (std::vector<hsize_t>{1030, 2}));
 }
 
 TEST_F(H5Series, ExistingFileUntouchedUntilCommit) {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,37 +51,52 @@ TEST_F(H5Writer, RowsStayInMemoryUntilFlushSoTheFileOnDiskIsTheLastFlushed) {
   EXPECT_EQ(w.buffered_bytes(), 5000u * 3 * sizeof(double));
   EXPECT_EQ(bytes_of(path("a.h5.partial")), after_flush) << "the file changed between flushes";
   w.flush();
-  EXPECT_EQ(w.buffered_bytes(), 0u);
   EXPECT_NE(bytes_of(path("a.h5.partial")), after_flush);
+  // A flush writes whole chunks (16 KiB: 2048 rows of /time, 1024 of /xy); the rest stays buffered.
   const H5Reader r(path("a.h5.partial"));  // readable while the writer has it open
-  EXPECT_EQ(r.doubles("/time").size(), 5000u);
+  EXPECT_EQ(r.doubles("/time").size(), 4096u);
+  EXPECT_EQ(r.doubles("/xy").size(), 4096u * 2);
+  const auto unwritten = w.unwritten_rows();
+  ASSERT_EQ(unwritten.size(), 2u);
+  EXPECT_EQ(unwritten.at("/time").size(), 904u);
+  EXPECT_EQ(unwritten.at("/time").front(), 0.5 * 4096);
+  EXPECT_EQ(unwritten.at("/xy").size(), 904u * 2);
+  EXPECT_EQ(w.buffered_bytes(), 904u * 3 * sizeof(double));
+  const std::string after_second = bytes_of(path("a.h5.partial"));
+  w.flush();  // nothing new to write: whole chunks once written are never written again
+  EXPECT_EQ(bytes_of(path("a.h5.partial")), after_second);
+  w.commit();
+  const H5Reader done(path("a.h5"));
+  EXPECT_EQ(done.doubles("/time").size(), 5000u);
 }
 
 TEST_F(H5Writer, ReopenCutsTheSeriesToTheCheckpointAndContinuesThem) {
+  std::map<std::string, std::vector<double>> unwritten;
   {
     auto w = H5SeriesWriter::create(path("r.h5"));
     define(w);
-    append_rows(w, 0, 10);
+    append_rows(w, 0, 3000);
+    w.flush();  // the checkpoint: 3000 rows, of which the file holds 2048 of /time and 2048 of /xy
+    unwritten = w.unwritten_rows();
+    append_rows(w, 3000, 5000, 100.0);  // after the checkpoint: must go
     w.flush();
-    append_rows(w, 10, 15, 100.0);  // written after the "checkpoint" at 10 rows: must go
-    w.flush();
-  }  // destroyed without commit: an interrupted run
+  }  // destroyed without commit: an interrupted run (it writes what it has)
   ASSERT_TRUE(fs::exists(path("r.h5.partial")));
   {
-    auto w = H5SeriesWriter::reopen(path("r.h5"), 10);
+    auto w = H5SeriesWriter::reopen(path("r.h5"), 3000, unwritten);
     define(w);
-    EXPECT_EQ(w.rows("/time"), 10u);
-    append_rows(w, 10, 16);
+    EXPECT_EQ(w.rows("/time"), 3000u);
+    append_rows(w, 3000, 3016);
     w.commit();
   }
   const H5Reader r(path("r.h5"));
   std::vector<std::size_t> shape;
   const auto t = r.doubles("/time", &shape);
-  ASSERT_EQ(shape, std::vector<std::size_t>{16});
-  for (int i = 0; i < 16; ++i) EXPECT_EQ(t[static_cast<std::size_t>(i)], 0.5 * i) << i;
+  ASSERT_EQ(shape, std::vector<std::size_t>{3016});
+  for (int i = 0; i < 3016; ++i) ASSERT_EQ(t[static_cast<std::size_t>(i)], 0.5 * i) << i;
   const auto xy = r.doubles("/xy", &shape);
-  EXPECT_EQ(shape, (std::vector<std::size_t>{16, 2}));
-  EXPECT_EQ(xy[31], -7.5);
+  EXPECT_EQ(shape, (std::vector<std::size_t>{3016, 2}));
+  EXPECT_EQ(xy[2 * 3015 + 1], -0.5 * 3015);
   EXPECT_EQ(r.string_attribute("/xy", "units"), "m");
 }
 
@@ -93,7 +109,7 @@ TEST_F(H5Writer, ReopenRefusesAMissingFileAShorterSeriesOrAnotherShape) {
     w.flush();
   }
   {
-    auto w = H5SeriesWriter::reopen(path("s.h5"), 5);
+    auto w = H5SeriesWriter::reopen(path("s.h5"), 5);  // the file holds 4 rows (written when destroyed)
     try {
       define(w);
       ADD_FAILURE() << "a series with fewer rows than the checkpoint was continued";

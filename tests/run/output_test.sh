@@ -96,7 +96,8 @@ disk_full)
   short_scene "60 ms"
   "$raceway" run "$work/short.toml" -o "$work/out.h5" >"$work/run.log" 2>&1 &
   pid=$!
-  for _ in $(seq 1 100); do [[ -e "$work/out.h5.partial" ]] && break; sleep 0.05; done
+  # The first progress line: the output's layout is on disk (flushed), its rows are still in memory.
+  for _ in $(seq 1 400); do grep -q " s of " "$work/run.log" && break; sleep 0.02; done
   size=$(stat -c %s "$work/out.h5.partial" 2>/dev/null || echo 0)
   prlimit --pid "$pid" --fsize=$((size + 4096)) || fail "prlimit failed"
   wait "$pid"

@@ -1,0 +1,61 @@
+// A run's checkpoint: what `raceway run SCENE -o OUT.h5 --resume` needs to continue OUT.h5.partial
+// (docs/output_layout.md, "Checkpoints and resume"). A small HDF5 file OUT.h5.checkpoint, written
+// atomically (OUT.h5.checkpoint.partial, fsync, rename) after the output file was flushed, so it
+// never names rows that are not on disk.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace raceway::solver {
+
+/// --resume refused: the checkpoint belongs to another scene, build or set of options, or its
+/// output is missing. Bad input: exit code 2, nothing is written.
+class ResumeRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Why a checkpoint was written. Periodic ones sit where every run restarts CVODE, so a resume from
+/// one repeats the uninterrupted run bitwise; the others are taken at the next output time without
+/// a restart in the running run, and a resume from one restarts CVODE there.
+enum class CheckpointKind { periodic, wall_clock, signal };
+const char* checkpoint_kind_name(CheckpointKind kind);
+
+/// What identifies a run's results: the scene text, the build (solver/run/build_info.hpp) and the
+/// command-line options that change them.
+struct RunFingerprint {
+  std::string scene_text, build, options;
+};
+
+struct Checkpoint {
+  CheckpointKind kind = CheckpointKind::periodic;
+  long sample = 0;      ///< output index of the checkpoint's time: the file holds samples 0..sample
+  double time = 0;      ///< s
+  std::vector<double> state;
+  std::map<std::string, double> values;  ///< the run's accumulators and counters, by name
+  std::vector<double> restart_times;     ///< s: CVODE restarts off the periodic grid (resumes from other kinds)
+  /// Rows of each output series not yet in OUT.h5.partial (its last, partly filled chunk: the
+  /// writer writes whole chunks only until the end), by series path, row-major.
+  std::map<std::string, std::vector<double>> unwritten_rows;
+  RunFingerprint fingerprint;
+};
+
+/// The checkpoint file of an output path: OUT.h5 -> OUT.h5.checkpoint.
+std::string checkpoint_path(const std::string& output_path);
+
+/// Writes `cp` to `path` atomically (write, fsync, rename). Throws std::runtime_error naming the file.
+void write_checkpoint(const std::string& path, const Checkpoint& cp);
+
+/// The checkpoint at `path`; nullopt when there is none. Throws ResumeRefused when the file exists
+/// but cannot be read as a checkpoint.
+std::optional<Checkpoint> read_checkpoint(const std::string& path);
+
+/// Throws ResumeRefused with the reason (the first differing scene line, or the two builds or
+/// option sets) when `now` is not the fingerprint the checkpoint was written with.
+void require_same_run(const RunFingerprint& checkpoint, const RunFingerprint& now, const std::string& path);
+
+}  // namespace raceway::solver

@@ -1,0 +1,142 @@
+#include "solver/run/run_totals.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "solver/run/output_writer.hpp"
+
+namespace raceway::solver {
+
+using contact::Vec3;
+
+namespace {
+
+// The integrator counters the summary sums over CVODE restarts, by name (checkpoint values).
+struct CounterField {
+  const char* name;
+  long IntegratorStatistics::*member;
+};
+constexpr CounterField kCounters[] = {{"steps", &IntegratorStatistics::steps},
+                                      {"cvode_rhs_evaluations", &IntegratorStatistics::rhs_evaluations},
+                                      {"cvode_jacobian_evaluations", &IntegratorStatistics::jacobian_evaluations},
+                                      {"linear_setups", &IntegratorStatistics::linear_setups},
+                                      {"newton_iterations", &IntegratorStatistics::newton_iterations},
+                                      {"newton_failures", &IntegratorStatistics::newton_failures},
+                                      {"error_test_failures", &IntegratorStatistics::error_test_failures}};
+
+constexpr const char* kBaseNames[] = {"model_rhs_evaluations", "model_jacobian_evaluations", "segment_evaluations",
+                                      "rhs_seconds", "jacobian_seconds", "wall_seconds"};
+
+// The counters of this process (equations, executor, wall clock), in kBaseNames order.
+void process_counts(const Equations& eq, const scheduler::Executor& executor, double wall, double out[6]) {
+  out[0] = static_cast<double>(eq.rhs_evaluations());
+  out[1] = static_cast<double>(eq.jacobian_evaluations());
+  out[2] = static_cast<double>(eq.segment_evaluations());
+  out[3] = executor.total_seconds(scheduler::Phase::rhs);
+  out[4] = executor.total_seconds(scheduler::Phase::jacobian);
+  out[5] = wall;
+}
+
+}  // namespace
+
+RunTotals::RunTotals(const Model& m, double end_time)
+    : m_(m),
+      end_(end_time),
+      drive_(m.scene->inner_ring.motion == io::RingMotion::driven ? &m.scene->inner_ring : &m.scene->outer_ring) {}
+
+void RunTotals::record(double t, const std::vector<double>& z, const Equations& eq, double energy) {
+  if (samples_ == 0) energy_initial_ = energy, last_t_ = t;
+  energy_final_ = energy;
+  energy_max_drift_ = std::max(energy_max_drift_, std::abs(energy - energy_initial_));
+  ++samples_;
+  if (drive_->motion == io::RingMotion::driven)
+    revolutions_ += 0.5 * (drive_->speed(last_t_) + drive_->speed(t)) * (t - last_t_) / (2 * std::numbers::pi);
+  last_t_ = t;
+  if (t < 0.5 * end_ - 1e-12) return;
+  // The second half's means (summary): contact force and load on the inner ring, cage speed.
+  force_sum_ += eq.contact_loads()[static_cast<std::size_t>(m_.inner_ring)].force;
+  const auto& l = m_.scene->inner_ring.load;
+  load_sum_ += Vec3(l.fx(t), l.fy(t), l.fz(t));
+  constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
+  std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);
+  for (std::size_t s = 0; s < m_.segments.size(); ++s)
+    if (m_.segments[s].kind == SegmentKind::ball_inner_groove)
+      element_load[static_cast<std::size_t>(m_.segments[s].element)] += eq.diagnostic(s, normal_force);
+  for (double q : element_load) max_element_load_ = std::max(max_element_load_, q);
+  const std::vector<double> none(z.size(), 0.0);
+  cage_sum_ += sample_body(m_, m_.cage, t, z, none, Wrench{}).angular_velocity.z();
+  epicyclic_sum_ += m_.epicyclic_cage_speed(t);
+  ++half_count_;
+}
+
+void RunTotals::add_finished_integrator(const IntegratorStatistics& s) {
+  for (const CounterField& c : kCounters) finished_.*c.member += s.*c.member;
+}
+
+void RunTotals::save(Checkpoint& cp, const IntegratorStatistics& current, const Equations& eq,
+                     const scheduler::Executor& executor, double wall_seconds) const {
+  auto& v = cp.values;
+  for (const CounterField& c : kCounters) v[c.name] = static_cast<double>(finished_.*c.member + current.*c.member);
+  double now[6];
+  process_counts(eq, executor, wall_seconds, now);
+  for (int i = 0; i < 6; ++i) v[kBaseNames[i]] = base_[i] + now[i];
+  v["energy_initial"] = energy_initial_, v["energy_final"] = energy_final_, v["energy_max_drift"] = energy_max_drift_;
+  v["revolutions"] = revolutions_, v["last_t"] = last_t_, v["output_samples"] = static_cast<double>(samples_);
+  for (int d = 0; d < 3; ++d) {
+    v["second_half.force_" + std::to_string(d)] = force_sum_[d];
+    v["second_half.load_" + std::to_string(d)] = load_sum_[d];
+  }
+  v["second_half.cage"] = cage_sum_, v["second_half.epicyclic"] = epicyclic_sum_;
+  v["second_half.max_element_load"] = max_element_load_, v["second_half.count"] = static_cast<double>(half_count_);
+}
+
+void RunTotals::restore(const Checkpoint& cp, const Equations& eq, const scheduler::Executor& executor) {
+  auto get = [&](const std::string& name) {
+    const auto it = cp.values.find(name);
+    if (it == cp.values.end()) throw ResumeRefused("cannot resume: the checkpoint lacks the value '" + name + "'");
+    return it->second;
+  };
+  for (const CounterField& c : kCounters) finished_.*c.member = std::lround(get(c.name));
+  double now[6];
+  process_counts(eq, executor, 0.0, now);
+  for (int i = 0; i < 6; ++i) base_[i] = get(kBaseNames[i]) - now[i];
+  energy_initial_ = get("energy_initial"), energy_final_ = get("energy_final"), energy_max_drift_ = get("energy_max_drift");
+  revolutions_ = get("revolutions"), last_t_ = get("last_t"), samples_ = std::lround(get("output_samples"));
+  for (int d = 0; d < 3; ++d) {
+    force_sum_[d] = get("second_half.force_" + std::to_string(d));
+    load_sum_[d] = get("second_half.load_" + std::to_string(d));
+  }
+  cage_sum_ = get("second_half.cage"), epicyclic_sum_ = get("second_half.epicyclic");
+  max_element_load_ = get("second_half.max_element_load"), half_count_ = std::lround(get("second_half.count"));
+}
+
+void RunTotals::summarize(RunSummary& sum, double t, const IntegratorStatistics& current, const Equations& eq,
+                          const scheduler::Executor& executor, double wall_seconds) const {
+  sum.stats = current;
+  for (const CounterField& c : kCounters) sum.stats.*c.member = finished_.*c.member + current.*c.member;
+  double now[6];
+  process_counts(eq, executor, wall_seconds, now);
+  sum.model_rhs_evaluations = std::lround(base_[0] + now[0]);
+  sum.model_jacobian_evaluations = std::lround(base_[1] + now[1]);
+  sum.segment_evaluations = std::lround(base_[2] + now[2]);
+  sum.rhs_seconds = base_[3] + now[3], sum.jacobian_seconds = base_[4] + now[4], sum.wall_time_s = base_[5] + now[5];
+  sum.simulated_time_s = t;
+  sum.output_samples = static_cast<int>(samples_);
+  sum.energy_initial_j = energy_initial_, sum.energy_final_j = energy_final_, sum.energy_max_drift_j = energy_max_drift_;
+  sum.driven_ring_revolutions = revolutions_;
+  if (half_count_ == 0) return;
+  const auto n = static_cast<double>(half_count_);
+  constexpr double rpm = 30.0 / std::numbers::pi;
+  sum.cage_speed_rpm = cage_sum_ / n * rpm;
+  sum.epicyclic_cage_speed_rpm = epicyclic_sum_ / n * rpm;
+  sum.cage_slip = sum.epicyclic_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.epicyclic_cage_speed_rpm : 0.0;
+  sum.max_ball_load_n = max_element_load_;
+  const int dims = m_.kind == io::ModelKind::spatial ? 3 : 2;
+  for (int d = 0; d < dims; ++d) {
+    sum.inner_ring_contact_force_n.push_back(force_sum_[d] / n);
+    sum.inner_ring_load_n.push_back(load_sum_[d] / n);
+  }
+}
+
+}  // namespace raceway::solver
