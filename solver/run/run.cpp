@@ -142,6 +142,8 @@ struct CheckpointPlan {
   }
 };
 
+StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset);
+
 /// One run from its first sample (0, or the one after a checkpoint) to the end: integration, output
 /// samples, checkpoints and the summary.
 class RunLoop {
@@ -228,7 +230,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
     if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
   } else {
-    const StartupReport start = initial_state(model_, t0, options_.azimuth_offset);
+    const StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset);
     if (options_.on_info) options_.on_info(start.summary);
     z_ = start.state;
   }

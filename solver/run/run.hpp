@@ -72,7 +72,6 @@ struct RunSummary {
   std::string method;                        ///< the integrator's method ("CVODE BDF", ...)
   std::vector<StateClassShare> step_limiting;  ///< which states limit the step, largest share first
   IntegratorTiming timing;                   ///< where the integrator's time went
-  double output_seconds = 0;                 ///< sampling: diagnostics right-hand side and writing
   io::JsonObject to_json() const;
 };
 
