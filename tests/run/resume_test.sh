@@ -29,10 +29,11 @@ source "$source_dir/tests/test_lib.sh"
 python=/usr/bin/python3
 compare=("$python" "$source_dir/tests/parallel/compare_outputs.py")
 
-# The scene: 6309 R3 for 20 ms (1000 output samples of 20 us), a checkpoint every 1 ms.
-sed -e 's/^end_time = .*/end_time = "20 ms"/' -e 's/^\[output\]/[output]\ncheckpoint_interval = "1 ms"/' \
+# The scene: 6309 R3 for 100 ms (5000 output samples of 20 us, about a second of wall time on one
+# core, long enough for kills to land mid-run), a checkpoint every 2 ms.
+sed -e 's/^end_time = .*/end_time = "100 ms"/' -e 's/^\[output\]/[output]\ncheckpoint_interval = "2 ms"/' \
   "$source_dir/jobs/scenes/6309_R3.toml" >"$work/scene.toml"
-grep -q '^checkpoint_interval' "$work/scene.toml" || printf '[output]\ncheckpoint_interval = "1 ms"\n' >>"$work/scene.toml"
+grep -q '^checkpoint_interval' "$work/scene.toml" || printf '[output]\ncheckpoint_interval = "2 ms"\n' >>"$work/scene.toml"
 
 # launch NP OUT ARGS...: raceway run in the background (under mpirun when NP > 1); sets $pid.
 launch() {
@@ -64,10 +65,13 @@ h5() {
   "$python" -c "import h5py, numpy as np, sys; f = h5py.File(sys.argv[1], 'r'); print($2)" "$1" 2>&1 | tail -1
 }
 
+# reference NP: the uninterrupted run; sets $reference_ms, its wall time in milliseconds.
 reference() {
-  local np=$1
+  local np=$1 t0
+  t0=$(date +%s%N)
   launch "$np" "$work/ref.h5"
   wait "$pid" || fail "the uninterrupted run failed: $(tail -3 "$work/log")"
+  reference_ms=$((($(date +%s%N) - t0) / 1000000))
 }
 
 kill_resume() {
@@ -81,8 +85,10 @@ kill_resume() {
     args=(--resume)
     if [[ $round -lt 5 ]]; then
       wait_for_line "$work/log" "Newton linear solver" || true  # printed as the output is opened
+      # A random delay below a quarter of the uninterrupted run's wall time, so that the kills land
+      # mid-run on a fast machine as on a slow one.
       local delay
-      delay=$(printf '0.%02d' $((RANDOM % (np == 1 ? 30 : 60))))
+      delay=$(printf '%d.%03d' 0 $((RANDOM % (reference_ms / 4 < 999 ? reference_ms / 4 + 1 : 999))))
       delays+=" $delay"
       sleep "$delay"
       [[ $np -gt 1 ]] && pkill -KILL -P "$pid" 2>/dev/null
@@ -98,7 +104,7 @@ kill_resume() {
     rows=$(h5 "$work/k.h5.partial" "len(f['time'])")
     [[ "$rows" =~ ^[0-9]+$ ]] || fail "after kill $kills (delay $delay s) the .partial does not open: $rows"
   done
-  echo "np $np: kills after$delays s; $kills kills, $resumed resumes from a checkpoint"
+  echo "np $np: uninterrupted run $reference_ms ms; kills after$delays s; $kills kills, $resumed resumes from a checkpoint"
   [[ -e "$work/k.h5" ]] || { fail "no complete file"; return; }
   [[ $kills -ge 2 ]] || fail "only $kills kill(s) landed before the end (the test did not test)"
   [[ $resumed -ge 1 ]] || fail "no resume started from a checkpoint (the test did not test)"
