@@ -231,6 +231,8 @@ struct OutputSpec {
 struct Scene {
   std::string source;     ///< file path, or "<built-in default>"
   std::string text;       ///< the scene text as read (stored in the output file)
+  /// Keys set on the command line, "section.key=VALUE" as given (--set), applied over the text.
+  std::vector<std::string> overrides;
   SceneInfo scene;
   BearingGeometry bearing;
   std::map<std::string, Material> materials;

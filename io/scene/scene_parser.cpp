@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "io/scene/scene_overrides.hpp"
 #include "io/scene/scene_rules.hpp"
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
@@ -302,9 +303,16 @@ void check_top_level(const std::string& file, const toml::table& root) {
   }
 }
 
+/// The schema walk over the parsed (and overridden) TOML table.
+Scene parse_table(const toml::table& root, const std::string& source_name);
+/// The text of a scene file; an unreadable one is a SceneError naming it.
+std::string read_scene_text(const std::string& path);
+
 }  // namespace
 
-Scene parse_scene(std::string_view text, const std::string& source_name) {
+Scene parse_scene(std::string_view text, const std::string& source_name) { return parse_scene(text, source_name, {}); }
+
+Scene parse_scene(std::string_view text, const std::string& source_name, std::span<const std::string> overrides) {
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(source_name));
@@ -312,12 +320,25 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     throw SceneError(source_name, std::max(static_cast<int>(e.source().begin.line), 1), "",
                      fmt::format("invalid TOML: {}", e.description()));
   }
+  apply_scene_overrides(root, overrides);
+  try {
+    Scene scene = parse_table(root, source_name);
+    scene.text = std::string(text);
+    scene.overrides.assign(overrides.begin(), overrides.end());
+    return scene;
+  } catch (const SceneError& e) {
+    throw error_of_override(e, overrides);
+  }
+}
+
+namespace {
+
+Scene parse_table(const toml::table& root, const std::string& source_name) {
   const std::string& file = source_name;
   check_top_level(file, root);
 
   Scene scene;
   scene.source = source_name;
-  scene.text = std::string(text);
   record_key_lines(root, "", scene);
   const Section info = top(file, root, "scene", true);
   Bind b{scene, &info};
@@ -345,7 +366,18 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
+}  // namespace
+
+Scene load_scene(const std::string& path, std::span<const std::string> overrides) {
+  if (path.empty()) return parse_scene(default_scene_text(), "<built-in default>", overrides);
+  return parse_scene(read_scene_text(path), path, overrides);
+}
+
+Scene load_scene(const std::string& path) { return parse_scene(read_scene_text(path), path); }
+
+namespace {
+
+std::string read_scene_text(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw SceneError(path, 0, "", "cannot read the scene file: it is a directory");
@@ -354,8 +386,10 @@ Scene load_scene(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path, 0, "", "cannot read the scene file: read error");
-  return parse_scene(text.str(), path);
+  return text.str();
 }
+
+}  // namespace
 
 Scene default_scene() { return parse_scene(default_scene_text(), "<built-in default>"); }
 

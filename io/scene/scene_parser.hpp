@@ -39,9 +39,15 @@ class SceneError : public std::runtime_error {
 
 /// Reads and parses a scene file. Scene::source = path, Scene::text = the file contents.
 Scene load_scene(const std::string& path);
+/// The same with keys set on the command line (scene_overrides.hpp); "" reads the built-in default.
+Scene load_scene(const std::string& path, std::span<const std::string> overrides);
 
 /// Parses scene text; source_name is used in errors and stored in Scene::source.
 Scene parse_scene(std::string_view text, const std::string& source_name);
+
+/// Parses scene text with keys set on the command line ("section.key=VALUE", scene_overrides.hpp),
+/// validated like the file's; they are kept in Scene::overrides.
+Scene parse_scene(std::string_view text, const std::string& source_name, std::span<const std::string> overrides);
 
 /// The built-in default scene (a small bearing that runs in seconds).
 Scene default_scene();

@@ -43,28 +43,16 @@
 #include "solver/run/output_writer.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
+#include "solver/driver/scene_on_ranks.hpp"
 
 namespace {
 
 using namespace raceway;
+using driver::exit_code_of;
 
-/// The signal that asked the run to stop (0: none), set by on_stop_signal on every rank; rank 0's
-/// run loop checkpoints and stops at the next output time.
-volatile std::sig_atomic_t g_stop_signal = 0;
-
-extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
-
-/// SIGINT, SIGTERM and SIGUSR1 (what batch schedulers send before a time limit) ask for a checkpoint
-/// and a stop; a second one of them ends the process at once (SA_RESETHAND: the default action).
-void install_stop_signals() {
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  action.sa_flags = SA_RESTART | SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) sigaction(signal, &action, nullptr);
+io::Scene load(const std::string& path, const std::vector<std::string>& overrides) {
+  return io::load_scene(path, overrides);
 }
-
-io::Scene load(const std::string& path) { return path.empty() ? io::default_scene() : io::load_scene(path); }
 
 std::string clock_text(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
@@ -98,15 +86,6 @@ class ProgressReporter {
   double next_ = 0.1;
 };
 
-/// The MPI library's own version line (e.g. "Open MPI v4.1.4, ..."), for the build attributes.
-std::string mpi_library_version() {
-  char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};
-  int length = 0;
-  MPI_Get_library_version(text, &length);
-  std::string s(text, static_cast<std::size_t>(length));
-  return s.substr(0, s.find_first_of(",\n"));
-}
-
 /// What `raceway run` was asked for besides the scene.
 struct RunRequest {
   std::string output, summary_json, result_options;
@@ -115,6 +94,7 @@ struct RunRequest {
 
 int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
+  for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
   const std::string& output = request.output;
   const std::string& summary_json = request.summary_json;
   if (!summary_json.empty()) io::check_output_path(summary_json, "run summary (--summary-json)");
@@ -124,8 +104,8 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.scheduler_log = request.scheduler_log;
   options.resume = request.resume;
   options.result_options = request.result_options;
-  options.stop_signal = &g_stop_signal;
-  options.mpi_library = mpi_library_version();
+  options.stop_signal = &driver::g_stop_signal;
+  options.mpi_library = driver::mpi_library_version();
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
   options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
@@ -168,18 +148,6 @@ int report_command(const io::ReportOptions& options) {
   return 0;
 }
 
-/// Rank 0's scene text and source name to every rank (every rank then parses the same text).
-/// Returns false on the workers when rank 0 could not read a scene (it reports why).
-bool broadcast_scene_text(int rank, std::string& text, std::string& source, bool ok) {
-  long long sizes[3] = {ok ? 1 : 0, static_cast<long long>(text.size()), static_cast<long long>(source.size())};
-  MPI_Bcast(sizes, 3, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-  if (sizes[0] == 0) return false;
-  if (rank != 0) text.resize(static_cast<std::size_t>(sizes[1])), source.resize(static_cast<std::size_t>(sizes[2]));
-  MPI_Bcast(text.data(), static_cast<int>(sizes[1]), MPI_CHAR, 0, MPI_COMM_WORLD);
-  MPI_Bcast(source.data(), static_cast<int>(sizes[2]), MPI_CHAR, 0, MPI_COMM_WORLD);
-  return true;
-}
-
 /// `--inject-failure RANK:EVALUATION` (test only).
 void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& options) {
   const auto colon = spec.find(':');
@@ -189,45 +157,6 @@ void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& opt
     options.inject_failure_evaluation = std::stol(spec.substr(colon + 1));
   } catch (const std::exception&) {
     throw std::invalid_argument("--inject-failure expects RANK:EVALUATION (e.g. 1:40), got '" + spec + "'");
-  }
-}
-
-/// A worker rank of `raceway run`: builds the model and evaluates tasks until rank 0 stops it.
-/// Any error here ends the whole job (MPI_Abort) with this rank's message.
-void worker(const std::string& text, const std::string& source, scheduler::MpiExecutor& executor) {
-  try {
-    const io::Scene scene = io::parse_scene(text, source);
-    if (!executor.await_start()) return;  // rank 0 failed before it had a model and says why
-    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c) { executor.serve(c); });
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "[raceway] rank %d: error: %s\n", executor.rank(), e.what());
-    std::fflush(stderr);
-    MPI_Abort(MPI_COMM_WORLD, 1);
-  }
-}
-
-/// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
-/// anything else 1.
-int exit_code_for(const std::exception& e) {
-  if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
-      dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e) ||
-      dynamic_cast<const solver::ResumeRefused*>(&e))
-    return 2;
-  if (dynamic_cast<const solver::IntegrationFailure*>(&e)) return 3;
-  if (dynamic_cast<const solver::RunInterrupted*>(&e)) return 4;
-  return 1;
-}
-
-/// Runs a command and maps what it throws to its exit code, logging the message.
-int exit_code_of(const std::function<int()>& command) {
-  try {
-    return command();
-  } catch (const solver::RunInterrupted& e) {
-    spdlog::warn("{}", e.what());
-    return exit_code_for(e);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return exit_code_for(e);
   }
 }
 
@@ -281,6 +210,7 @@ struct CommandLine {
   scheduler::MpiExecutorOptions exec_options;
   std::string schedule = "adaptive", inject;
   std::string method;  ///< --method: the scene's [solver] method, replaced
+  std::vector<std::string> overrides;  ///< --set section.key=VALUE
   bool replan_every_evaluation = false, scheduler_log = false, resume = false;
   io::ReportOptions report_options;
   double window_start = NAN;
@@ -290,11 +220,19 @@ struct CommandLine {
   CLI::App* report = nullptr;
 };
 
+/// --set section.key=VALUE, repeatable: a scene key set on the command line.
+void add_set_option(CLI::App& command, CommandLine& cl) {
+  command.add_option("--set", cl.overrides,
+                     "set a scene key, validated like the file's: --set inner_ring.speed=\"3000 rpm\" (repeatable)")
+      ->allow_extra_args(false);
+}
+
 void add_run_command(CLI::App& app, CommandLine& cl) {
   auto* run = cl.run = app.add_subcommand("run", "simulate a scene (the built-in default when none is given)");
   run->add_option("scene", cl.scene_path, "scene file (TOML)");
   run->add_option("-o,--output", cl.output, "HDF5 output file")->capture_default_str();
   run->add_option("--summary-json", cl.summary_json, "write the run summary as JSON");
+  add_set_option(*run, cl);
   run->add_option("--petsc-options", cl.petsc_options,
                   "PETSc options for the petsc-bordered linear solver, e.g. \"-fieldsplit_1_pc_factor_mat_solver_type "
                   "mumps\"; override the scene's [solver] petsc_options");
@@ -333,6 +271,7 @@ void add_check_command(CLI::App& app, CommandLine& cl) {
   check->alias("plan");
   check->add_option("scene", cl.scene_path, "scene file (TOML); the built-in default when none is given");
   check->add_option("--petsc-options", cl.petsc_options, "PETSc options to validate with the scene's");
+  add_set_option(*check, cl);
 }
 
 void add_report_command(CLI::App& app, CommandLine& cl) {
@@ -350,8 +289,9 @@ void add_report_command(CLI::App& app, CommandLine& cl) {
 }
 
 /// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
-int check_command(const std::string& scene_path) {
-  const io::Scene scene = load(scene_path);
+int check_command(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  const io::Scene scene = load(scene_path, overrides);
+  for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
   const auto model = solver::build_model(scene);
   std::fputs(model.describe().c_str(), stdout);
   const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
@@ -363,27 +303,30 @@ int check_command(const std::string& scene_path) {
   return 0;
 }
 
-/// `raceway run` on every rank: rank 0 reads the scene and integrates, all ranks evaluate tasks.
-/// Returns this rank's exit code; MPI is still initialised.
-int run_on_all_ranks(CommandLine& cl, int rank, int size) {
-  std::string text, source;
+/// `raceway run` on every rank of `comm`: its rank 0 reads the scene and integrates, all ranks
+/// evaluate tasks. Returns this rank's exit code (rank 0's, on every rank); MPI is still initialised.
+int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  driver::SceneSource source;
   io::Scene scene;
   bool ok = true;
   int code = 0;
   if (rank == 0) {
     try {
-      scene = load(cl.scene_path);
+      scene = load(cl.scene_path, cl.overrides);
       // --method edits the scene text, so the output's stored scene says what ran.
       if (!cl.method.empty())
         scene = io::parse_scene(io::override_scene_key(scene.text, "solver", "method", fmt::format("\"{}\"", cl.method)),
-                                scene.source);
-      text = scene.text, source = scene.source;
+                                scene.source, scene.overrides);
+      source = {scene.text, scene.source, scene.overrides};
     } catch (const io::SceneError& e) {
       spdlog::error("{}", e.what());
       code = 2, ok = false;
     }
   }
-  if (!broadcast_scene_text(rank, text, source, ok)) return rank == 0 ? code : 0;
+  if (!driver::broadcast_scene(comm, source, ok)) return rank == 0 ? code : 0;
   cl.exec_options.policy = cl.replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
                            : cl.schedule == "static"  ? scheduler::SchedulePolicy::static_plan
                                                       : scheduler::SchedulePolicy::adaptive;
@@ -394,10 +337,10 @@ int run_on_all_ranks(CommandLine& cl, int rank, int size) {
     return 2;
   }
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
-  install_stop_signals();
-  scheduler::MpiExecutor executor(MPI_COMM_WORLD, cl.exec_options);
+  driver::install_stop_signals();
+  scheduler::MpiExecutor executor(comm, cl.exec_options);
   if (rank != 0) {
-    worker(text, source, executor);
+    driver::serve_scene_tasks(source, executor);
   } else {
     if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
                                scheduler::schedule_policy_name(cl.exec_options.policy));
@@ -410,7 +353,7 @@ int run_on_all_ranks(CommandLine& cl, int rank, int size) {
     executor.stop();  // releases the workers (also after a failure)
   }
   // Every rank exits with rank 0's code (a stop by a signal, a failed integration).
-  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&code, 1, MPI_INT, 0, comm);
   return code;
 }
 
@@ -420,7 +363,7 @@ int check_or_report(CommandLine& cl) {
   // linear algebra live there (README.md, "In parallel"). Destroyed before MPI_Finalize.
   return exit_code_of([&] {
     const solver::PetscRuntime petsc(cl.petsc_options);
-    if (*cl.check) return check_command(cl.scene_path);
+    if (*cl.check) return check_command(cl.scene_path, cl.overrides);
     if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
     cl.report_options.plots = !cl.no_plots;
     return report_command(cl.report_options);
@@ -455,7 +398,7 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return code;
   }
-  const int code = *cl.run ? run_on_all_ranks(cl, rank, size) : rank == 0 ? check_or_report(cl) : 0;
+  const int code = *cl.run ? run_on_all_ranks(cl, MPI_COMM_WORLD) : rank == 0 ? check_or_report(cl) : 0;
   MPI_Finalize();
   return code;
 }

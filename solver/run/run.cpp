@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "io/h5/h5_series.hpp"
+#include "io/scene/scene_overrides.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "raceway/version.hpp"
 #include "io/h5/output_lock.hpp"
@@ -24,6 +25,7 @@
 #include "solver/run/output_writer.hpp"
 #include "solver/run/run_profile.hpp"
 #include "solver/run/run_totals.hpp"
+#include "solver/run/scene_summary.hpp"
 #include "solver/run/schedule_output.hpp"
 
 namespace raceway::solver {
@@ -59,8 +61,11 @@ io::JsonObject RunSummary::to_json() const {
   j.add("step_limiting_states", step_limiting_json(step_limiting));
   j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
   j.add("output_time_s", output_seconds);
+  j.add("scene_overrides", scene_overrides);
+  j.add("scene_parameters", scene_parameters);
   return j;
 }
+
 
 namespace {
 
@@ -78,6 +83,8 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
                       : io::H5SeriesWriter::create(options.output_path);
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
+  // --set section.key=VALUE, one per line as given (applied over scene_text)
+  if (!scene.overrides.empty()) file.set_attribute("/", "scene_overrides", scene_overrides_text(scene));
   file.set_attribute("/", "layout_version", kOutputLayoutVersion);
   for (const auto& [name, value] : build_info(options.mpi_library)) file.set_attribute("/", name, value);
   file.set_attribute("/", "model", model.describe());
@@ -216,6 +223,8 @@ RunSummary RunLoop::finish(double t) {
   sum.step_limiting = step_limiting_classes(model_, integrator_->step_limiting_states());
   sum.timing = integrator_->timing();
   sum.output_seconds = output_seconds_;
+  sum.scene_overrides = scene_overrides_json(scene_);
+  sum.scene_parameters = scene_parameters_json(scene_);
   file_->set_attribute("/", "summary_json", sum.to_json().dump());
   if (const auto* log = executor_.schedule_log(); log && (log->ranks > 1 || options_.scheduler_log))
     write_schedule_log(*file_, *log);
@@ -304,7 +313,8 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
   Equations eq(model, executor);
   executor.attach(eq.task_catalogue());
-  const RunFingerprint fingerprint{scene.text, build_fingerprint(options.mpi_library), options.result_options};
+  // The overrides are part of the scene: a resume with other ones is refused at their line.
+  const RunFingerprint fingerprint{scene.text + io::overrides_as_comments(scene.overrides), build_fingerprint(options.mpi_library), options.result_options};
   const std::optional<Checkpoint> resumed = checkpoint_to_resume(options, fingerprint);
   RunLoop loop(scene, options, model, eq, executor, fingerprint);
   return loop.run(resumed);

@@ -72,6 +72,9 @@ struct RunSummary {
   std::string method;                        ///< the integrator's method ("CVODE BDF", ...)
   std::vector<StateClassShare> step_limiting;  ///< which states limit the step, largest share first
   IntegratorTiming timing;                   ///< where the integrator's time went
+  /// The scene's keys set on the command line ("key": "value as given") and its resolved
+  /// parameters ("key": {"value": SI value or word, "unit": SI unit}): scene_summary.hpp.
+  io::JsonObject scene_overrides, scene_parameters;
   io::JsonObject to_json() const;
 };
 

@@ -1,0 +1,99 @@
+#include "io/scene/scene_overrides.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "io/scene/scene_parser.hpp"
+
+namespace raceway::io {
+
+namespace {
+
+std::string label(std::string_view text) { return fmt::format("--set {}", text); }
+
+/// The parts of a dotted key; empty parts are an error.
+std::vector<std::string> parts_of(std::string_view key, std::string_view text) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t dot = key.find('.', start);
+    const std::string_view part = key.substr(start, dot == std::string_view::npos ? dot : dot - start);
+    if (part.empty())
+      throw SceneError(label(text), 0, std::string(key), "the key has an empty part; expected section.key=VALUE");
+    parts.emplace_back(part);
+    if (dot == std::string_view::npos) return parts;
+    start = dot + 1;
+  }
+}
+
+/// VALUE as a TOML value, or as a string when it is not one (3000 rpm, erk).
+toml::node_view<toml::node> parsed_value(toml::table& holder, const SceneOverride& o) {
+  try {
+    holder = toml::parse("v = " + o.value, std::string_view(label(o.text())));
+  } catch (const toml::parse_error&) {
+    holder = toml::table{};
+    holder.insert("v", o.value);
+  }
+  return holder["v"];
+}
+
+bool related(std::string_view a, std::string_view b) {
+  const auto under = [](std::string_view key, std::string_view prefix) {
+    return key.size() > prefix.size() && key.starts_with(prefix) && key[prefix.size()] == '.';
+  };
+  return a == b || under(a, b) || under(b, a);
+}
+
+}  // namespace
+
+SceneOverride parse_scene_override(std::string_view text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string_view::npos)
+    throw SceneError(label(text), 0, "", "expected section.key=VALUE (e.g. inner_ring.speed=\"3000 rpm\"), no '='");
+  SceneOverride o{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1))};
+  while (!o.key.empty() && o.key.back() == ' ') o.key.pop_back();
+  while (!o.value.empty() && o.value.front() == ' ') o.value.erase(0, 1);
+  if (o.key.find('.') == std::string::npos)
+    throw SceneError(label(text), 0, o.key,
+                     "expected section.key=VALUE: a key inside a section (e.g. scene.end_time), not a section");
+  if (o.value.empty()) throw SceneError(label(text), 0, o.key, "the value is empty");
+  (void)parts_of(o.key, text);
+  return o;
+}
+
+void apply_scene_overrides(toml::table& root, std::span<const std::string> overrides) {
+  for (const std::string& text : overrides) {
+    const SceneOverride o = parse_scene_override(text);
+    const std::vector<std::string> parts = parts_of(o.key, text);
+    toml::table* table = &root;
+    std::string path;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+      path += (i ? "." : "") + parts[i];
+      toml::node* node = table->get(parts[i]);
+      if (!node) node = table->insert(parts[i], toml::table{}).first->second.as_table();
+      table = node->as_table();
+      if (!table)
+        throw SceneError(label(text), 0, o.key,
+                         fmt::format("'{}' is a value in the scene, not a table: it has no key '{}'", path, parts[i + 1]));
+    }
+    toml::table holder;
+    table->insert_or_assign(parts.back(), *parsed_value(holder, o).node());
+  }
+}
+
+SceneError error_of_override(const SceneError& error, std::span<const std::string> overrides) {
+  if (error.key().empty()) return error;
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
+    const SceneOverride o = parse_scene_override(*it);
+    if (related(error.key(), o.key)) return SceneError(label(*it), 0, error.key(), error.reason());
+  }
+  return error;
+}
+
+std::string overrides_as_comments(std::span<const std::string> overrides) {
+  std::string out;
+  for (const std::string& o : overrides) out += fmt::format("\n# --set {}", o);
+  return out;
+}
+
+}  // namespace raceway::io

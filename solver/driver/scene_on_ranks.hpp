@@ -1,0 +1,51 @@
+// One scene run on the ranks of a communicator (the run driver's MPI side, shared by `raceway run`
+// on MPI_COMM_WORLD and by `raceway campaign` on each group's communicator): the scene from the
+// communicator's rank 0 to every rank, rank 0 integrating and the others serving contact tasks;
+// the stop signals; the exit codes of errors.
+#pragma once
+
+#include <mpi.h>
+
+#include <csignal>
+#include <exception>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scheduler/mpi_executor.hpp"
+
+namespace raceway::driver {
+
+/// The signal that asked the run to stop (0: none), set on every rank by the handler of
+/// install_stop_signals; rank 0's run loop checkpoints and stops at the next output time.
+extern volatile std::sig_atomic_t g_stop_signal;
+
+/// SIGINT, SIGTERM and SIGUSR1 (what batch schedulers send before a time limit) ask for a checkpoint
+/// and a stop; a second one of them ends the process at once.
+void install_stop_signals();
+
+/// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
+/// anything else 1.
+int exit_code_for(const std::exception& e);
+
+/// Runs a command and maps what it throws to its exit code, logging the message.
+int exit_code_of(const std::function<int()>& command);
+
+/// The MPI library's own version line (e.g. "Open MPI v4.1.4"), for the build attributes.
+std::string mpi_library_version();
+
+/// What every rank of a run parses: the scene text, its source name and the --set overrides.
+struct SceneSource {
+  std::string text, source;
+  std::vector<std::string> overrides;
+};
+
+/// Rank 0's scene to every rank of `comm`. Returns false on every rank when rank 0 could not read
+/// one (`ok` false on rank 0: it reports why).
+bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok);
+
+/// A worker rank: builds the model of the scene and evaluates tasks until rank 0 stops it. Any
+/// error here ends the whole job (MPI_Abort) with this rank's message.
+void serve_scene_tasks(const SceneSource& scene, scheduler::MpiExecutor& executor);
+
+}  // namespace raceway::driver
