@@ -44,6 +44,7 @@
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
 #include "solver/driver/scene_on_ranks.hpp"
+#include "solver/driver/campaign_command.hpp"
 
 namespace {
 
@@ -377,7 +378,11 @@ int main(int argc, char** argv) {
   // the file's name, rather than ending the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
   io::prepare_hdf5_library();  // before MPI_Init
-  MPI_Init(&argc, &argv);
+  // A campaign's dispatcher is a thread beside world rank 0's own scenes (scheduler/campaign_dispatch.hpp).
+  const bool campaign = argc > 1 && std::string_view(argv[1]) == "campaign";
+  int threads = 0;
+  if (campaign) MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &threads);
+  else MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -391,6 +396,8 @@ int main(int argc, char** argv) {
   add_run_command(app, cl);
   add_check_command(app, cl);
   add_report_command(app, cl);
+  driver::CampaignRequest campaign_request;
+  CLI::App* campaign_app = driver::add_campaign_command(app, campaign_request);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {  // also --help and --version, with code 0
@@ -398,7 +405,15 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return code;
   }
-  const int code = *cl.run ? run_on_all_ranks(cl, MPI_COMM_WORLD) : rank == 0 ? check_or_report(cl) : 0;
+  if (campaign && threads < MPI_THREAD_MULTIPLE) {
+    if (rank == 0) spdlog::error("campaign: the MPI library gives no MPI_THREAD_MULTIPLE, which the dispatcher needs");
+    MPI_Finalize();
+    return 1;
+  }
+  const int code = *cl.run            ? run_on_all_ranks(cl, MPI_COMM_WORLD)
+                   : *campaign_app    ? driver::campaign_command(campaign_request)
+                   : rank == 0        ? check_or_report(cl)
+                                      : 0;
   MPI_Finalize();
   return code;
 }

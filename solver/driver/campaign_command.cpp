@@ -1,0 +1,292 @@
+// The campaign command: one mpirun for a whole sweep. Every rank reads the campaign file; world rank
+// 0 decides which scenes are left (finished ones are DIR/<id>.h5), splits the world into groups
+// (scheduler/campaign_dispatch.hpp) and dispatches; each group runs its scenes as durable runs
+// (checkpoints, resume) on its own communicator; at the end rank 0 writes DIR/campaign_status.json
+// and the table and plots (io/report/campaign_table.py).
+#include "solver/driver/campaign_command.hpp"
+
+#include <fmt/format.h>
+#include <mpi.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "io/h5/output_lock.hpp"
+#include "io/json/summary_json.hpp"
+#include "io/scene/scene_parser.hpp"
+#include "scheduler/campaign_dispatch.hpp"
+#include "solver/driver/campaign_file.hpp"
+#include "solver/driver/scene_on_ranks.hpp"
+#include "solver/numerics/petsc_runtime.hpp"
+#include "solver/run/run.hpp"
+
+namespace raceway::driver {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_now() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+
+std::string clock(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  return fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
+}
+
+std::string output_of(const std::string& dir, const CampaignScene& s) { return (fs::path(dir) / (s.id + ".h5")).string(); }
+
+/// DIR/campaign.json: the scenes, their axis values and overrides, run and settling times (what the
+/// table script reads besides the outputs).
+void write_manifest(const Campaign& c, const std::string& dir) {
+  io::JsonObject m;
+  m.add("campaign", c.name);
+  m.add("file", c.file);
+  m.add("scene", c.scene_path);
+  m.add("sweep", c.sweep);
+  io::JsonObject axes, metrics, scenes;
+  for (std::size_t a = 0; a < c.axes.size(); ++a) axes.add(c.axes[a].name, c.axes[a].key);
+  for (const std::string& name : c.metrics) metrics.add(name, true);
+  for (const CampaignScene& s : c.scenes) {
+    io::JsonObject one, values, overrides;
+    for (std::size_t a = 0; a < c.axes.size(); ++a) values.add(c.axes[a].name, s.axis_values[a]);
+    for (std::size_t i = 0; i < s.overrides.size(); ++i) overrides.add(fmt::format("{}", i), s.overrides[i]);
+    one.add("axis_values", std::move(values));
+    one.add("overrides", std::move(overrides));
+    one.add("end_time_s", s.end_time);
+    one.add("settling_time_s", s.settling_time);
+    one.add("predicted_cost", s.predicted_cost);
+    scenes.add(s.id, std::move(one));
+  }
+  m.add("axes", std::move(axes));
+  m.add("metrics", std::move(metrics));
+  m.add("scenes", std::move(scenes));
+  io::write_json_file((fs::path(dir) / "campaign.json").string(), m);
+}
+
+/// One scene on the ranks of the group; the leader's exit code and diagnosis.
+scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Campaign& c, const std::string& dir,
+                                  scheduler::JobAssignment job, bool resume) {
+  const CampaignScene& entry = c.scenes[static_cast<std::size_t>(job.job)];
+  scheduler::JobResult result{job.job, 0, job.attempt, 0, {}};
+  const double start = seconds_now();
+  SceneSource source{c.base_text, c.scene_path, entry.overrides};
+  scheduler::MpiExecutorOptions options;
+  scheduler::MpiExecutor executor(g.group, options);
+  if (!g.leader()) {
+    if (broadcast_scene(g.group, source, true)) serve_scene_tasks(source, executor);
+  } else {
+    broadcast_scene(g.group, source, true);
+    try {
+      const io::Scene scene = campaign_scene(c, entry);
+      solver::RunOptions run;
+      run.executor = &executor;
+      run.output_path = output_of(dir, entry);
+      run.resume = resume && job.attempt == 0;  // a retry starts afresh
+      run.stop_signal = &g_stop_signal;
+      run.mpi_library = mpi_library_version();
+      run.on_info = [&](const std::string& s) { spdlog::debug("{}: {}", entry.id, s); };
+      const auto summary = solver::run_scene(scene, run);
+      io::write_json_file((fs::path(dir) / (entry.id + ".json")).string(), summary.to_json());
+    } catch (const std::exception& e) {
+      result.code = exit_code_for(e);
+      result.diagnosis = e.what();
+    }
+    executor.stop();
+  }
+  MPI_Bcast(&result.code, 1, MPI_INT, 0, g.group);
+  result.wall_seconds = seconds_now() - start;
+  return result;
+}
+
+/// What the dispatcher saw, for progress lines and DIR/campaign_status.json (dispatcher thread only
+/// until join()).
+struct CampaignProgress {
+  const Campaign& campaign;
+  std::size_t total = 0, done = 0, running = 0, failed = 0;
+  double start = seconds_now(), cost_done = 0, cost_left = 0;
+  std::vector<scheduler::JobResult> finished;
+
+  void started(const scheduler::JobAssignment& job, int group) {
+    ++running;
+    const CampaignScene& s = campaign.scenes[static_cast<std::size_t>(job.job)];
+    spdlog::info("campaign: {} on group {}{}", s.id, group, job.attempt > 0 ? " (retry)" : "");
+  }
+  void ended(const scheduler::JobResult& r, int group, bool retry) {
+    --running;
+    const CampaignScene& s = campaign.scenes[static_cast<std::size_t>(r.job)];
+    if (r.code == 0) ++done, cost_done += s.predicted_cost, cost_left -= s.predicted_cost;
+    else if (!retry && r.code != 4) ++failed, cost_left -= s.predicted_cost;
+    if (!retry) finished.push_back(r);
+    const double rate = cost_done > 0 ? (seconds_now() - start) / cost_done : NAN;
+    if (r.code == 0)
+      spdlog::info("campaign: {} done in {:.1f} s (group {}); {} done, {} running, {} failed of {}; eta {}", s.id,
+                   r.wall_seconds, group, done, running, failed, total, clock(rate * cost_left));
+    else
+      spdlog::warn("campaign: {} {} (exit {}, group {}): {}", s.id,
+                   r.code == 4 ? "stopped, left for --resume" : retry ? "failed, retried once" : "failed twice",
+                   r.code, group, r.diagnosis);
+  }
+};
+
+void write_status(const std::string& dir, const CampaignProgress& p, const scheduler::DispatchRecord& rec,
+                  int groups, int ranks) {
+  io::JsonObject status, scenes;
+  for (const scheduler::JobResult& r : p.finished) {
+    io::JsonObject one;
+    one.add("exit_code", r.code);
+    one.add("attempts", r.attempt + 1);
+    one.add("wall_time_s", r.wall_seconds);
+    one.add("diagnosis", r.diagnosis);
+    scenes.add(p.campaign.scenes[static_cast<std::size_t>(r.job)].id, std::move(one));
+  }
+  status.add("groups", groups);
+  status.add("ranks", ranks);
+  status.add("wall_time_s", rec.wall);
+  status.add("group_busy_s", rec.group_busy);
+  status.add("group_waiting_for_dispatch_s", rec.group_waiting);
+  status.add("group_idle_at_end_s", rec.group_idle_at_end);
+  status.add("scenes_this_call", std::move(scenes));
+  // One file per call: a resumed campaign keeps the record of the earlier calls.
+  int n = 0;
+  while (fs::exists(fs::path(dir) / fmt::format("campaign_status_{}.json", n))) ++n;
+  io::write_json_file((fs::path(dir) / fmt::format("campaign_status_{}.json", n)).string(), status);
+}
+
+/// The table and plots of DIR (io/report/campaign_table.py); 0 on success.
+int make_table(const std::string& dir) {
+  const char* py = std::getenv("RACEWAY_PYTHON");
+  const std::string command = fmt::format("'{}' '{}/io/report/campaign_table.py' '{}'", py && *py ? py : "/usr/bin/python3",
+                                          RACEWAY_SOURCE_DIR, dir);
+  const int status = std::system(command.c_str());
+  if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
+  return status == 0 ? 0 : 1;
+}
+
+/// Rank 0: the campaign, the output folder and the scenes left to run; throws on bad input.
+std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
+  fs::create_directories(req.output_dir);
+  std::vector<int> left;
+  for (std::size_t i = 0; i < c.scenes.size(); ++i) {
+    const std::string out = output_of(req.output_dir, c.scenes[i]);
+    const bool started = fs::exists(out) || fs::exists(out + ".partial");
+    if (started && !req.resume)
+      throw io::OutputPathError(fmt::format("campaign: {} already holds {}{}; continue with --resume or choose another "
+                                            "folder (-o)", req.output_dir, c.scenes[i].id,
+                                            fs::exists(out) ? ".h5" : ".h5.partial"));
+    if (!fs::exists(out)) left.push_back(static_cast<int>(i));
+  }
+  write_manifest(c, req.output_dir);
+  return left;
+}
+
+int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
+  std::vector<int> left;
+  int code = 0;
+  if (rank == 0) code = exit_code_of([&] {
+      left = prepare(c, req);
+      spdlog::info("campaign '{}': {} scenes, {} finished, {} to run, into {}", c.name, c.scenes.size(),
+                   c.scenes.size() - left.size(), left.size(), req.output_dir);
+      return 0;
+    });
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (code != 0) return code;
+  install_stop_signals();
+  scheduler::CampaignGroups g = scheduler::split_campaign_groups(MPI_COMM_WORLD, c.ranks_per_scene);
+  CampaignProgress progress{c, 0, 0, 0, 0, seconds_now(), 0, 0, {}};
+  std::unique_ptr<scheduler::CampaignDispatcher> dispatcher;
+  if (rank == 0) {
+    spdlog::info("campaign: {} ranks in {} groups of {}", g.world_size, g.group_count, g.world_size / g.group_count);
+    std::vector<double> costs;
+    for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
+    progress.total = left.size();
+    for (const int j : left) progress.cost_left += costs[static_cast<std::size_t>(j)];
+    scheduler::DispatchEvents events{[&](const auto& job, int group) { progress.started(job, group); },
+                                     [&](const auto& r, int group, bool retry) { progress.ended(r, group, retry); },
+                                     [] { return g_stop_signal != 0; }};
+    dispatcher = std::make_unique<scheduler::CampaignDispatcher>(g, costs, left, events);
+  }
+  {
+    // PETSc on the group leaders only (PETSC_COMM_WORLD = MPI_COMM_SELF), one per process.
+    std::unique_ptr<solver::PetscRuntime> petsc = g.leader() ? std::make_unique<solver::PetscRuntime>() : nullptr;
+    scheduler::JobResult last;
+    while (true) {
+      scheduler::JobAssignment job = g.leader() ? scheduler::request_job(g, last) : scheduler::JobAssignment{};
+      job = scheduler::share_job(g, job);
+      if (job.job < 0) break;
+      last = run_in_group(g, c, req.output_dir, job, req.resume);
+    }
+  }
+  if (rank == 0) {
+    const scheduler::DispatchRecord record = dispatcher->join();
+    write_status(req.output_dir, progress, record, g.group_count, g.world_size);
+    const std::size_t finished = progress.done;
+    spdlog::info("campaign: {} of {} scenes done, {} failed, in {} ({} groups; busy {:.1f} s, waiting for the "
+                 "dispatcher {:.3f} s, idle at the end {:.1f} s)", finished, progress.total, progress.failed,
+                 clock(record.wall), g.group_count, record.group_busy, record.group_waiting, record.group_idle_at_end);
+    code = g_stop_signal != 0 ? 4 : progress.failed > 0 ? 1 : 0;
+    if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
+    if (finished < progress.total && code == 0) code = 1;
+    if (code == 0) code = make_table(req.output_dir);
+  }
+  scheduler::free_campaign_groups(g);
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return code;
+}
+
+/// `raceway campaign check FILE`: the scenes the campaign would run.
+int check_campaign(const Campaign& c) {
+  std::printf("campaign '%s': %zu scenes from %s (%s sweep), %d rank(s) per scene\n", c.name.c_str(), c.scenes.size(),
+              c.scene_path.c_str(), c.sweep.c_str(), c.ranks_per_scene);
+  for (const CampaignScene& s : c.scenes) {
+    std::string values;
+    for (std::size_t a = 0; a < c.axes.size(); ++a) values += fmt::format("  {}={}", c.axes[a].name, s.axis_values[a]);
+    std::printf("  %s  %.6g s (settling %.6g s)%s\n", s.id.c_str(), s.end_time, s.settling_time, values.c_str());
+  }
+  std::puts("campaign OK");
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* add_campaign_command(CLI::App& app, CampaignRequest& request) {
+  auto* c = app.add_subcommand("campaign", "run a sweep of scenes on groups of ranks (docs/campaigns.md): "
+                               "campaign FILE -o DIR [--resume], campaign check FILE, campaign report DIR");
+  c->add_option("args", request.args, "FILE, or check FILE, or report DIR")->required()->expected(1, 2);
+  c->add_option("-o,--output-dir", request.output_dir, "folder of the scenes' outputs, the table and the plots");
+  c->add_flag("--resume", request.resume, "skip finished scenes, resume interrupted ones from their checkpoints");
+  c->add_flag("--check", request.check, "validate the campaign and list its scenes (like campaign check FILE)");
+  return c;
+}
+
+int campaign_command(const CampaignRequest& req) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const bool check = req.check || req.args[0] == "check";
+  if (req.args[0] == "report") {
+    if (req.args.size() != 2) return rank == 0 ? (spdlog::error("campaign report DIR: no folder given"), 2) : 2;
+    return rank == 0 ? make_table(req.args[1]) : 0;
+  }
+  const std::string file = req.args.back();
+  Campaign c;
+  int code = 0;
+  code = exit_code_of([&] {
+    c = load_campaign(file);
+    return 0;
+  });
+  if (code != 0 || check) return rank == 0 && code == 0 ? check_campaign(c) : code;
+  if (req.output_dir.empty()) {
+    if (rank == 0) spdlog::error("campaign: no output folder; give -o DIR");
+    return 2;
+  }
+  return run_campaign(c, req, rank);
+}
+
+}  // namespace raceway::driver
