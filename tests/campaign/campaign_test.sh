@@ -1,0 +1,176 @@
+#!/bin/bash
+# Campaigns (raceway campaign, docs/campaigns.md) on 2 ranks in 2 groups of 1:
+#   table:     every scene is in the table; its metrics equal the ones this test recomputes from the
+#              scene's output file (independent code below), and the swept values are the SI values
+#              the run's summary reports.
+#   resume:    rank 1 is killed (SIGKILL) while it runs a scene that has a periodic checkpoint;
+#              --resume finishes the campaign, the killed scene equals the uninterrupted run's
+#              bitwise (tests/parallel/compare_outputs.py) and every scene is in the table.
+#   retry:     a scene that fails (its wall-clock budget) is retried once, then recorded as failed
+#              with its diagnosis; the campaign exits non-zero.
+#   bad_files: bad campaign files and overrides give file, line, key and reason (exit 2) before
+#              anything is written.
+#   overrides: --set is stored in the summary with the resolved parameters; a resume with other
+#              overrides is refused.
+# Usage: campaign_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
+set -u
+case_name=$1 raceway=$2 mpiexec=$3 source_dir=$4
+source "$source_dir/tests/test_lib.sh"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+python=/usr/bin/python3
+small="$source_dir/tests/campaign/small_campaign.toml"
+
+# Recomputes the table's metrics from each scene's file (numpy and h5py only) and compares.
+check_table() {
+  "$python" - "$1" <<'PY' || fail "table of $1"
+import csv, json, sys, h5py, numpy as np
+folder = sys.argv[1]
+manifest = json.load(open(f"{folder}/campaign.json"))
+rows = {r["scene"]: r for r in csv.DictReader(open(f"{folder}/campaign_table.csv"))}
+assert sorted(rows) == sorted(manifest["scenes"]), (sorted(rows), sorted(manifest["scenes"]))
+bad = 0
+for sid, scene in manifest["scenes"].items():
+    row = rows[sid]
+    assert row["status"] == "done", (sid, row["status"], row["diagnosis"])
+    with h5py.File(f"{folder}/{sid}.h5") as f:
+        t = f["time"][:]
+        keep = t >= scene["settling_time_s"] - 1e-12
+        w = f["cage/angular_velocity"][:][keep]
+        r = np.hypot(*(f["cage/position"][:][keep][:, :2] - f["outer_ring/position"][:][keep][:, :2]).T)
+        inner = [k for k in f["segments"] if "inner" in k][0]
+        load = f[f"segments/{inner}/normal_force"][:][keep].max(axis=1)
+        summary = json.loads(f.attrs["summary_json"])
+    expect = {"cage_speed_rpm": w.mean() * 60 / (2 * np.pi), "cage_whirl_radius_m": r.mean(),
+              "cage_whirl_radius_std_m": r.std(), "max_element_load_mean_n": load.mean(),
+              "window_samples": keep.sum()}
+    for key, value in expect.items():
+        got = float(row[key])
+        if not abs(got - value) <= 1e-12 * max(abs(value), 1e-30):
+            print(f"{sid} {key}: table {got!r}, recomputed {value!r}"); bad += 1
+    for name, key in manifest["axes"].items():
+        if float(row[f"{name}_si"]) != summary["scene_parameters"][key]["value"]:
+            print(f"{sid} {name}: table {row[name + '_si']}, summary {summary['scene_parameters'][key]}"); bad += 1
+sys.exit(1 if bad else 0)
+PY
+}
+
+# The pid of world rank RANK among the children of mpirun PID.
+rank_pid() {
+  local p
+  for p in $(pgrep -P "$1"); do
+    tr '\0' '\n' < /proc/$p/environ 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$2" && { echo "$p"; return; }
+  done
+}
+
+case $case_name in
+table)
+  "$mpiexec" -np 2 "$raceway" campaign "$small" -o "$work/c" > "$work/log" 2>&1 || fail "campaign: $(tail -3 "$work/log")"
+  grep -q "4 of 4 scenes done, 0 failed" "$work/log" || fail "no final count: $(tail -3 "$work/log")"
+  grep -q "2 ranks in 2 groups of 1" "$work/log" || fail "not 2 groups of 1"
+  check_table "$work/c"
+  ls "$work/c/plots/"cage_speed_rpm_vs_speed.png > /dev/null || fail "no trend plot"
+  ;;
+resume)
+  "$mpiexec" -np 2 "$raceway" campaign "$small" -o "$work/ref" > "$work/ref.log" 2>&1 || fail "reference campaign"
+  "$mpiexec" -np 2 "$raceway" campaign "$small" -o "$work/c" > "$work/log" 2>&1 &
+  mpirun_pid=$!
+  killed=""
+  for _ in $(seq 1 600); do
+    scene=$(grep -o "s[0-9]* on group 1" "$work/log" | tail -1 | cut -d' ' -f1)
+    if [[ -n $scene && -f "$work/c/$scene.h5.checkpoint" && ! -f "$work/c/$scene.h5" ]]; then
+      pid=$(rank_pid $mpirun_pid 1)
+      [[ -n $pid ]] && kill -KILL "$pid" && killed=$scene && break
+    fi
+    sleep 0.05
+  done
+  wait $mpirun_pid && fail "the campaign with a killed rank exited 0"
+  [[ -n $killed ]] || fail "no scene was killed mid-run"
+  [[ -f "$work/c/$killed.h5" ]] && fail "$killed finished although its rank was killed"
+  "$mpiexec" -np 2 "$raceway" campaign "$small" -o "$work/c" > "$work/log2" 2>&1 && fail "a second call without --resume was accepted"
+  "$mpiexec" -np 2 "$raceway" campaign "$small" -o "$work/c" --resume > "$work/log3" 2>&1 || fail "resume: $(tail -3 "$work/log3")"
+  grep -q "resuming" "$work/log3" || true
+  "$python" "$source_dir/tests/parallel/compare_outputs.py" "$work/ref/$killed.h5" "$work/c/$killed.h5" \
+    || fail "$killed resumed differs from the uninterrupted run"
+  check_table "$work/c"
+  echo "killed $killed on rank 1"
+  ;;
+retry)
+  "$mpiexec" -np 2 "$raceway" campaign "$source_dir/tests/campaign/failing_campaign.toml" -o "$work/c" > "$work/log" 2>&1 \
+    && fail "a campaign with a failing scene exited 0"
+  grep -q "s001 failed, retried once" "$work/log" || fail "no retry: $(cat "$work/log")"
+  grep -q "s001 failed twice" "$work/log" || fail "not recorded as failed twice"
+  "$raceway" campaign report "$work/c" > /dev/null 2>&1 || fail "campaign report"
+  "$python" - "$work/c" <<'PY' || fail "failed scene not in the table with its diagnosis"
+import csv, sys
+rows = {r["scene"]: r for r in csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv"))}
+assert rows["s000"]["status"] == "done", rows["s000"]
+assert rows["s001"]["status"] == "failed" and rows["s001"]["attempts"] == "2", rows["s001"]
+assert "max_wall_time" in rows["s001"]["diagnosis"] or "wall" in rows["s001"]["diagnosis"], rows["s001"]["diagnosis"]
+PY
+  ;;
+bad_files)
+  bad() {  # NAME EXPECTED-TEXT: the campaign file text on stdin
+    cat > "$work/$1.toml"
+    "$raceway" campaign "$work/$1.toml" -o "$work/out_$1" > "$work/$1.log" 2>&1
+    local rc=$?
+    [[ $rc == 2 ]] || fail "$1: exit $rc, expected 2"
+    grep -q -- "$2" "$work/$1.log" || fail "$1: expected '$2', got: $(cat "$work/$1.log")"
+    [[ -e "$work/out_$1" ]] && fail "$1: output folder created"
+  }
+  head='[campaign]
+scene = "'$source_dir'/jobs/scenes/default.toml"
+end_time = "10 ms"'
+  bad unknown_axis_key "$work/unknown_axis_key.toml:6: key 'axis\[0\].valeus': unknown key 'valeus'" <<EOF
+$head
+[[axis]]
+key = "inner_ring.speed"
+valeus = ["1 rpm"]
+EOF
+  bad empty_axis "$work/empty_axis.toml:4: key 'axis\[0\].values': the axis has no values" <<EOF
+$head
+[[axis]]
+key = "inner_ring.speed"
+values = []
+EOF
+  bad rejected_value "$work/rejected_value.toml:8: key 'axis\[0\].values': scene s001 (-5 mm) is rejected" <<EOF
+$head
+[[axis]]
+key = "bearing.roller_diameter"
+values = [
+  "6 mm",
+  "-5 mm",
+]
+EOF
+  "$raceway" check --set inner_ring.speed=fast > "$work/o.log" 2>&1; rc=$?
+  [[ $rc == 2 ]] || fail "--set bad value: exit $rc"
+  grep -q -- "--set inner_ring.speed=fast: key 'inner_ring.speed'" "$work/o.log" || fail "override not named: $(cat "$work/o.log")"
+  "$raceway" check --set bearing.no_such_key=1 > "$work/o.log" 2>&1 && fail "unknown override key accepted"
+  grep -q "unknown key 'no_such_key' in \[bearing\]" "$work/o.log" || fail "unknown override key: $(cat "$work/o.log")"
+  ;;
+overrides)
+  "$raceway" run --set scene.end_time="20 ms" --set 'inner_ring.speed="2000 rpm"' -o "$work/o.h5" \
+    --summary-json "$work/o.json" > "$work/log" 2>&1 || fail "run with --set"
+  grep -q -- "--set inner_ring.speed=\"2000 rpm\"" "$work/log" || fail "override not in the log"
+  "$python" - "$work/o.json" "$work/o.h5" <<'PY' || fail "summary"
+import json, math, sys, h5py
+j = json.load(open(sys.argv[1]))
+assert j["scene_overrides"] == {"scene.end_time": "20 ms", "inner_ring.speed": "\"2000 rpm\""}, j["scene_overrides"]
+p = j["scene_parameters"]
+assert abs(p["inner_ring.speed"]["value"] - 2000 * 2 * math.pi / 60) < 1e-12 and p["inner_ring.speed"]["unit"] == "rad/s"
+assert p["scene.end_time"] == {"value": 0.02, "unit": "s"}, p["scene.end_time"]
+assert p["bearing.pitch_diameter"] == {"value": 0.03, "unit": "m"}, p["bearing.pitch_diameter"]  # the file's value
+assert h5py.File(sys.argv[2]).attrs["scene_overrides"].count("\n") == 2
+PY
+  "$raceway" run --set scene.end_time="2 s" --set output.checkpoint_interval="5 ms" -o "$work/r.h5" > /dev/null 2>&1 &
+  pid=$!
+  for _ in $(seq 1 400); do [[ -f "$work/r.h5.checkpoint" ]] && break; sleep 0.05; done
+  kill -KILL $pid; wait $pid 2> /dev/null
+  "$raceway" run --set scene.end_time="2 s" --set output.checkpoint_interval="10 ms" -o "$work/r.h5" --resume \
+    > "$work/r.log" 2>&1; rc=$?
+  [[ $rc == 2 ]] || fail "resume with other overrides: exit $rc"
+  grep -q "checkpoint_interval=5 ms', now '# --set output.checkpoint_interval=10 ms'" "$work/r.log" \
+    || fail "refusal does not name the override: $(cat "$work/r.log")"
+  ;;
+*) fail "unknown case $case_name" ;;
+esac
+finish
