@@ -10,6 +10,8 @@
 #              with its diagnosis; the campaign exits non-zero.
 #   bad_files: bad campaign files and overrides give file, line, key and reason (exit 2) before
 #              anything is written.
+#   slurm:     jobs/campaigns/slurm_campaign.sh under Slurm's environment without Slurm: SIGUSR1
+#              stops with checkpoints and resubmits; the next job resumes and completes the table.
 #   overrides: --set is stored in the summary with the resolved parameters; a resume with other
 #              overrides is refused.
 # Usage: campaign_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
@@ -170,6 +172,30 @@ PY
   [[ $rc == 2 ]] || fail "resume with other overrides: exit $rc"
   grep -q "checkpoint_interval=5 ms', now '# --set output.checkpoint_interval=10 ms'" "$work/r.log" \
     || fail "refusal does not name the override: $(cat "$work/r.log")"
+  ;;
+slurm)
+  # jobs/campaigns/slurm_campaign.sh with Slurm's environment but without Slurm: sbatch is a stub
+  # that records its arguments; SIGUSR1 (what --signal=B:USR1@300 sends) stops the campaign with
+  # checkpoints (exit 4) and resubmits; the resubmitted job resumes and completes the table.
+  printf '#!/bin/bash\necho "$@" > %q/sbatch_args\n' "$work" > "$work/sbatch"
+  chmod +x "$work/sbatch"
+  export SLURM_JOB_ID=4242 SLURM_NTASKS=2 SLURM_SUBMIT_DIR=$work RACEWAY=$raceway SBATCH=$work/sbatch \
+    RACEWAY_LAUNCHER="$mpiexec -np 2" RACEWAY_SLURM_SCRIPT=$source_dir/jobs/campaigns/slurm_campaign.sh
+  bash "$RACEWAY_SLURM_SCRIPT" "$small" "$work/c" > "$work/job1.log" 2>&1 &
+  job=$!
+  for _ in $(seq 1 600); do ls "$work/c/"*.checkpoint > /dev/null 2>&1 && break; sleep 0.05; done
+  kill -USR1 $job
+  wait $job; rc=$?
+  [[ $rc == 4 ]] || fail "job 1: exit $rc, expected 4: $(tail -5 "$work/job1.log")"
+  grep -q "campaign stopped by a signal" "$work/job1.log" || fail "no stop message: $(tail -5 "$work/job1.log")"
+  [[ "$(cat "$work/sbatch_args" 2> /dev/null)" == "--export=ALL,RACEWAY_JOB_NUMBER=2 $RACEWAY_SLURM_SCRIPT $small $work/c" ]] \
+    || fail "resubmission: '$(cat "$work/sbatch_args" 2> /dev/null)'"
+  rm -f "$work/sbatch_args"
+  RACEWAY_JOB_NUMBER=2 bash "$RACEWAY_SLURM_SCRIPT" "$small" "$work/c" > "$work/job2.log" 2>&1 \
+    || fail "job 2: $(tail -5 "$work/job2.log")"
+  grep -q -- "--resume" "$work/job2.log" || fail "job 2 did not resume"
+  [[ -f "$work/sbatch_args" ]] && fail "a finished campaign was resubmitted"
+  check_table "$work/c"
   ;;
 *) fail "unknown case $case_name" ;;
 esac
