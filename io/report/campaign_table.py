@@ -36,6 +36,11 @@ except ImportError as e:  # pragma: no cover
 METRICS = ["cage_speed_rpm", "cage_slip", "cage_whirl_radius_m", "cage_whirl_radius_std_m", "pocket_force_mean_n",
            "pocket_force_peak_n", "max_element_load_mean_n"]
 RPM = 60.0 / (2.0 * np.pi)
+#: The campaign file's metric names (campaign.metrics) and their columns.
+COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
+              "cage_whirl_radius": ["cage_whirl_radius_m", "cage_whirl_radius_std_m"],
+              "pocket_force": ["pocket_force_mean_n", "pocket_force_peak_n"],
+              "max_element_load": ["max_element_load_mean_n"], "steps": ["steps"], "wall_time": ["wall_time_s"]}
 
 
 def _axial(w):
@@ -143,9 +148,16 @@ def build_table(folder):
     return manifest, rows
 
 
+def metric_columns(manifest):
+    """The metric columns the campaign asked for, in the order of METRICS."""
+    asked = [c for name in manifest.get("metrics", COLUMNS_OF) for c in COLUMNS_OF[name]]
+    return [m for m in METRICS if m in asked], [c for c in ("steps", "wall_time_s") if c in asked]
+
+
 def write_table(folder, manifest, rows):
-    columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + METRICS + \
-        ["window_samples", "steps", "wall_time_s", "status", "attempts", "diagnosis"]
+    metrics, run = metric_columns(manifest)
+    columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + metrics + \
+        ["window_samples"] + run + ["status", "attempts", "diagnosis"]
     with open(os.path.join(folder, "campaign_table.csv"), "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
@@ -166,7 +178,7 @@ def plot_trends(folder, manifest, rows):
     written = []
     for axis in axes:
         others = [a for a in axes if a != axis]
-        for metric in METRICS:
+        for metric in metric_columns(manifest)[0]:
             fig, ax = plt.subplots(figsize=(6, 4))
             groups = {}
             for r in done:

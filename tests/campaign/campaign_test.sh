@@ -41,8 +41,15 @@ for sid, scene in manifest["scenes"].items():
         r = np.hypot(*(f["cage/position"][:][keep][:, :2] - f["outer_ring/position"][:][keep][:, :2]).T)
         inner = [k for k in f["segments"] if "inner" in k][0]
         load = f[f"segments/{inner}/normal_force"][:][keep].max(axis=1)
+        pocket = np.hstack([f[f"segments/{k}/normal_force"][:][keep] for k in f["segments"] if "cage_bar" in k])
         summary = json.loads(f.attrs["summary_json"])
-    expect = {"cage_speed_rpm": w.mean() * 60 / (2 * np.pi), "cage_whirl_radius_m": r.mean(),
+        p = summary["scene_parameters"]
+        ratio = p["bearing.roller_diameter"]["value"] / p["bearing.pitch_diameter"]["value"]
+        epicyclic = 0.5 * (f["inner_ring/angular_velocity"][:][keep] * (1 - ratio)
+                           + f["outer_ring/angular_velocity"][:][keep] * (1 + ratio))
+    assert pocket.max() > 0, f"{sid}: no pocket force, the pocket metrics are not checked"
+    expect = {"cage_speed_rpm": w.mean() * 60 / (2 * np.pi), "cage_slip": 1 - w.mean() / epicyclic.mean(),
+              "pocket_force_mean_n": pocket.mean(), "pocket_force_peak_n": pocket.max(), "cage_whirl_radius_m": r.mean(),
               "cage_whirl_radius_std_m": r.std(), "max_element_load_mean_n": load.mean(),
               "window_samples": keep.sum()}
     for key, value in expect.items():
