@@ -119,6 +119,13 @@ JobAssignment request_job(const CampaignGroups& g, const JobResult& last) {
   return {reply[0], reply[1]};
 }
 
+void broadcast_waiting_idle(int& value, MPI_Comm comm) {
+  MPI_Request request;
+  MPI_Ibcast(&value, 1, MPI_INT, 0, comm, &request);
+  for (int done = 0; MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done;)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
 JobAssignment share_job(const CampaignGroups& g, JobAssignment job) {
   int values[2] = {job.job, job.attempt};
   MPI_Bcast(values, 2, MPI_INT, 0, g.group);

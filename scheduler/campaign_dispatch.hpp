@@ -83,6 +83,11 @@ class CampaignDispatcher {
 
 /// A group leader: reports `last` (job -1: nothing yet) and receives the next assignment.
 JobAssignment request_job(const CampaignGroups& groups, const JobResult& last);
+/// `value` from rank 0 of `comm` to all its ranks, waiting by polling every 5 ms (MPI_Ibcast,
+/// MPI_Test) instead of in MPI_Bcast, which spins a core in Open MPI: a rank whose group has no
+/// scene left waits so for the others without taking their CPU.
+void broadcast_waiting_idle(int& value, MPI_Comm comm);
+
 /// Every rank of a group: the leader's assignment.
 JobAssignment share_job(const CampaignGroups& groups, JobAssignment job);
 

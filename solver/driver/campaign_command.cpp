@@ -237,7 +237,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     if (code == 0) code = make_table(req.output_dir);
   }
   scheduler::free_campaign_groups(g);
-  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  scheduler::broadcast_waiting_idle(code, MPI_COMM_WORLD);
   return code;
 }
 
