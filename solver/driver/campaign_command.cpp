@@ -149,10 +149,11 @@ void write_status(const std::string& dir, const CampaignProgress& p, const sched
   }
   status.add("groups", groups);
   status.add("ranks", ranks);
-  status.add("wall_time_s", rec.wall);
-  status.add("group_busy_s", rec.group_busy);
-  status.add("group_waiting_for_dispatch_s", rec.group_waiting);
-  status.add("group_idle_at_end_s", rec.group_idle_at_end);
+  const std::pair<const char*, double> seconds[] = {{"wall_time_s", rec.wall},
+                                                    {"group_busy_s", rec.group_busy},
+                                                    {"group_waiting_for_dispatch_s", rec.group_waiting},
+                                                    {"group_idle_at_end_s", rec.group_idle_at_end}};
+  for (const auto& [name, value] : seconds) status.add(name, value);
   status.add("scenes_this_call", std::move(scenes));
   // One file per call: a resumed campaign keeps the record of the earlier calls.
   int n = 0;
