@@ -16,12 +16,17 @@ Metrics, over the samples with t >= settling time:
   pocket_force_mean_n       mean normal force of the pocket contacts (every pocket and sample)
   pocket_force_peak_n       the largest of them
   max_element_load_mean_n   mean over samples of the largest rolling element's inner-race load
+Spatial scenes also get the cage-centroid metrics of `raceway report` (io/report/cage_metrics.cpp,
+seed 001 eq. 9) over the same window, when RACEWAY_EXECUTABLE names the raceway executable (raceway
+campaign sets it): vortex_radius_ratio, sigma_v, whirl_frequency_hz, pocket_force_rms_n (RMS net
+circumferential pocket force) and power_loss_w (mean total).
 Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/matplotlib missing.
 """
 import csv
 import glob
 import json
 import os
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -109,6 +114,31 @@ def scene_metrics(path, settling_time):
     return m, summary
 
 
+SPATIAL_METRICS = ["vortex_radius_ratio", "sigma_v", "whirl_frequency_hz", "pocket_force_rms_n", "power_loss_w"]
+
+
+def report_metrics(folder, sid, settling_time):
+    """`raceway report --no-plots` of a spatial scene over t >= settling_time: its cage-centroid
+    metrics, or {} without RACEWAY_EXECUTABLE (a failed report is an error)."""
+    exe = os.environ.get("RACEWAY_EXECUTABLE")
+    if not exe:
+        return {}
+    out = os.path.join(folder, "reports", sid)
+    # Run from a rank of mpirun: the child must not take mpirun's environment for its own (its
+    # MPI_Init would fail), so it starts as a singleton.
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_")) or k.startswith("OMPI_ALLOW_RUN_AS_ROOT")}
+    subprocess.run([exe, "report", os.path.join(folder, sid + ".h5"), "-o", out, "--no-plots",
+                    "--window-start", repr(settling_time)], check=True, capture_output=True, env=env)
+    with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+        r = json.load(f)
+    centroid = r["cage_centroid"]
+    return {"vortex_radius_ratio": centroid["vortex_radius_ratio"], "sigma_v": centroid["sigma_v"],
+            "whirl_frequency_hz": centroid["whirl_frequency_hz"],
+            "pocket_force_rms_n": r["pocket_forces"]["rms_circumferential_force_n"],
+            "power_loss_w": r["power_loss"]["total_mean_w"]}
+
+
 def _statuses(folder):
     """The latest exit code and diagnosis of every scene from DIR/campaign_status_*.json."""
     found = {}
@@ -136,6 +166,8 @@ def build_table(folder):
                 value = params.get(key, {}).get("value")
                 row[f"{name}_si"] = value if isinstance(value, (int, float)) else None
             row.update({k: metrics[k] for k in METRICS})
+            if summary.get("model_kind") == "spatial":
+                row.update(report_metrics(folder, sid, scene["settling_time_s"]))
             row["window_samples"] = metrics["samples"]
             row["steps"] = summary.get("steps")
             row["wall_time_s"] = summary.get("wall_time_s")
@@ -156,6 +188,8 @@ def metric_columns(manifest):
 
 def write_table(folder, manifest, rows):
     metrics, run = metric_columns(manifest)
+    if any(k in r for r in rows for k in SPATIAL_METRICS):
+        metrics = metrics + SPATIAL_METRICS
     columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + metrics + \
         ["window_samples"] + run + ["status", "attempts", "diagnosis"]
     with open(os.path.join(folder, "campaign_table.csv"), "w", newline="", encoding="utf-8") as f:
@@ -178,7 +212,8 @@ def plot_trends(folder, manifest, rows):
     written = []
     for axis in axes:
         others = [a for a in axes if a != axis]
-        for metric in metric_columns(manifest)[0]:
+        spatial = [m for m in SPATIAL_METRICS if any(m in r for r in done)]
+        for metric in metric_columns(manifest)[0] + spatial:
             fig, ax = plt.subplots(figsize=(6, 4))
             groups = {}
             for r in done:

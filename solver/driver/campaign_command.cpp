@@ -164,8 +164,11 @@ void write_status(const std::string& dir, const CampaignProgress& p, const sched
 /// The table and plots of DIR (io/report/campaign_table.py); 0 on success.
 int make_table(const std::string& dir) {
   const char* py = std::getenv("RACEWAY_PYTHON");
-  const std::string command = fmt::format("'{}' '{}/io/report/campaign_table.py' '{}'", py && *py ? py : "/usr/bin/python3",
-                                          RACEWAY_SOURCE_DIR, dir);
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // for `raceway report` of spatial scenes
+  const std::string command =
+      fmt::format("RACEWAY_EXECUTABLE='{}' '{}' '{}/io/report/campaign_table.py' '{}'", ec ? "" : self.string(),
+                  py && *py ? py : "/usr/bin/python3", RACEWAY_SOURCE_DIR, dir);
   const int status = std::system(command.c_str());
   if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
   return status == 0 ? 0 : 1;

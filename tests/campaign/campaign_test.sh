@@ -9,6 +9,8 @@
 #              with its diagnosis; the campaign exits non-zero.
 #   bad_files: bad campaign files and overrides give file, line, key and reason (exit 2) before
 #              anything is written.
+#   spatial:   a spatial campaign's rows hold `raceway report`'s cage-centroid metrics (vortex radius
+#              ratio, sigma_v, ...) over the window after settling, and only the metrics asked for.
 #   slurm:     jobs/campaigns/slurm_campaign.sh under Slurm's environment without Slurm: SIGUSR1
 #              stops with checkpoints and resubmits; the next job resumes and completes the table.
 #   overrides: --set is stored in the summary with the resolved parameters; a resume with other
@@ -177,6 +179,24 @@ PY
   [[ $rc == 2 ]] || fail "resume with other overrides: exit $rc"
   grep -q "checkpoint_interval=5 ms', now '# --set output.checkpoint_interval=10 ms'" "$work/r.log" \
     || fail "refusal does not name the override: $(cat "$work/r.log")"
+  ;;
+spatial)
+  # A spatial campaign: its rows carry `raceway report`'s metrics over the same window, and only the
+  # metrics the campaign file asks for.
+  "$mpiexec" -np 2 "$raceway" campaign "$source_dir/tests/campaign/spatial_campaign.toml" -o "$work/c" \
+    > "$work/log" 2>&1 || fail "spatial campaign: $(tail -3 "$work/log")"
+  settling=$("$python" -c "import json,sys; print(repr(json.load(open(sys.argv[1]))['scenes']['s001']['settling_time_s']))" "$work/c/campaign.json")
+  "$raceway" report "$work/c/s001.h5" -o "$work/r" --no-plots --window-start "$settling" > /dev/null 2>&1 || fail "report"
+  "$python" - "$work/c" "$work/r/summary.json" <<'PY' || fail "spatial table"
+import csv, json, sys
+rows = {r["scene"]: r for r in csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv"))}
+report = json.load(open(sys.argv[2]))
+row = rows["s001"]
+assert float(row["power_loss_w"]) == report["power_loss"]["total_mean_w"] > 0, (row["power_loss_w"], report["power_loss"])
+assert float(row["pocket_force_rms_n"]) == report["pocket_forces"]["rms_circumferential_force_n"]
+assert "vortex_radius_ratio" in row and "sigma_v" in row
+assert "cage_speed_rpm" in row and "steps" in row and "cage_slip" not in row and "wall_time_s" not in row, list(row)
+PY
   ;;
 slurm)
   # jobs/campaigns/slurm_campaign.sh with Slurm's environment but without Slurm: sbatch is a stub
