@@ -73,7 +73,7 @@ def parse_args(argv):
     p.add_argument("--contact-threshold", type=float, default=None)
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--animate", action="store_true")
-    p.add_argument("--animation-frames", type=int, default=240)
+    p.add_argument("--animation-frames", type=int, default=150)
     p.add_argument("--xdmf", action="store_true")
     return p.parse_args(argv)
 
