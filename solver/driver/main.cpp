@@ -154,19 +154,8 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   return 0;
 }
 
-/// `raceway report OUT.h5`: cage and ball metrics of a spatial run into <dir>/summary.json, plus PNGs.
-int report_command(const io::ReportOptions& options) {
-  const io::ReportResult res = io::make_report(options);
-  for (const auto& note : res.notes) spdlog::warn("{}", note);
-  for (const auto& line : res.headlines) spdlog::info("{}", line);
-  spdlog::info("summary written to {}", res.summary_path);
-  if (!res.plot_message.empty()) {
-    if (options.plots) spdlog::warn("{}", res.plot_message);
-    else spdlog::info("{}", res.plot_message);
-  }
-  if (!res.plots.empty()) spdlog::info("{} plots written to {}", res.plots.size(), res.output_dir);
-  return 0;
-}
+/// `raceway report OUT.h5`: the Python report (io/report/raceway_report.py) of a planar or spatial run.
+int report_command(const io::ReportOptions& options) { return io::run_report(options); }
 
 /// Rank 0's scene text and source name to every rank (every rank then parses the same text).
 /// Returns false on the workers when rank 0 could not read a scene (it reports why).
@@ -209,7 +198,7 @@ void worker(const std::string& text, const std::string& source, scheduler::MpiEx
 /// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
 /// anything else 1.
 int exit_code_for(const std::exception& e) {
-  if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
+  if (dynamic_cast<const io::SceneError*>(&e) ||
       dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e) ||
       dynamic_cast<const solver::ResumeRefused*>(&e))
     return 2;
@@ -284,7 +273,8 @@ struct CommandLine {
   bool replan_every_evaluation = false, scheduler_log = false, resume = false;
   io::ReportOptions report_options;
   double window_start = NAN;
-  bool no_plots = false;
+  bool no_plots = false, animate = false, xdmf = false;
+  double contact_threshold = NAN;
   CLI::App* run = nullptr;
   CLI::App* check = nullptr;
   CLI::App* report = nullptr;
@@ -337,16 +327,20 @@ void add_check_command(CLI::App& app, CommandLine& cl) {
 
 void add_report_command(CLI::App& app, CommandLine& cl) {
   auto* report = cl.report =
-      app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
-  report->add_option("output_file", cl.report_options.input, "HDF5 output of a spatial run")->required();
-  report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json and the PNGs "
-                     "(default: <stem>_report beside the file)");
+      app.add_subcommand("report", "the report of a run's output file: summary.json, figures, report.html");
+  report->add_option("output_file", cl.report_options.input, "HDF5 output of a run (planar or spatial)")->required();
+  report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json, the PNGs and "
+                     "report.html (default: <stem>_report beside the file)");
   report->add_option("--window-start", cl.window_start, "start of the analysis window in s (default: second half)")
       ->check(number_at_least(0, false));
   report->add_option("--bin-width", cl.report_options.bin_width_deg, "azimuth bin width in deg (0 to 360]")
       ->check(number_at_least(0, true))
       ->capture_default_str();
+  report->add_option("--contact-threshold", cl.contact_threshold, "pocket contact threshold in N (default: 1 % of "
+                     "the peak pocket force)")->check(number_at_least(0, true));
   report->add_flag("--no-plots", cl.no_plots, "write summary.json only");
+  report->add_flag("--animate", cl.animate, "also an animation of the bearing along its axis (MP4 with ffmpeg, else GIF)");
+  report->add_flag("--xdmf", cl.xdmf, "also OUT.xdmf beside the .h5: the bodies over time for ParaView");
 }
 
 /// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
@@ -422,7 +416,10 @@ int check_or_report(CommandLine& cl) {
     const solver::PetscRuntime petsc(cl.petsc_options);
     if (*cl.check) return check_command(cl.scene_path);
     if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
+    if (!std::isnan(cl.contact_threshold)) cl.report_options.contact_threshold = cl.contact_threshold;
     cl.report_options.plots = !cl.no_plots;
+    cl.report_options.animate = cl.animate;
+    cl.report_options.xdmf = cl.xdmf;
     return report_command(cl.report_options);
   });
 }
