@@ -23,10 +23,12 @@
 #include <csignal>
 #include <cstdlib>
 #include <optional>
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <memory>
 #include <fmt/format.h>
+#include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -40,6 +42,7 @@
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/run/build_info.hpp"
 #include "solver/run/output_writer.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
@@ -72,30 +75,73 @@ std::string clock_text(double s) {
   return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{:02}:{:02}", t / 60, t % 60);
 }
 
-/// A progress bar on a terminal; plain log lines (every 10 %) otherwise.
+/// A progress bar on a terminal, redrawn at most 5 times a second and its line ended before any
+/// other message (finish(), also when the run throws); plain log lines every 10 % otherwise.
 class ProgressReporter {
  public:
   ProgressReporter() : tty_(isatty(STDERR_FILENO) != 0) {}
+  ProgressReporter(const ProgressReporter&) = delete;
+  ProgressReporter& operator=(const ProgressReporter&) = delete;
+  ~ProgressReporter() { finish(); }
   void operator()(const solver::Progress& p) {
     const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
-    const double eta = frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
     if (tty_) {
-      const int width = 30, filled = static_cast<int>(frac * width);
-      std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
-                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
-                   p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta).c_str(), p.steps);
-      if (frac >= 1.0) std::fprintf(stderr, "\n");
-      std::fflush(stderr);
+      const auto now = std::chrono::steady_clock::now();
+      last_ = p, pending_ = true;
+      if (open_ && frac < 1.0 && now - last_draw_ < std::chrono::milliseconds(200)) return;
+      last_draw_ = now;
+      draw(p);
+      if (frac >= 1.0) finish();
     } else if (frac >= next_) {
       spdlog::info("t {:.6g} s of {:.6g} s ({:.0f} %), {:.2f} revolutions, wall {:.2f} s, eta {}, steps {}", p.time,
-                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta), p.steps);
+                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta(p, frac)), p.steps);
       while (next_ <= frac) next_ += 0.1;
     }
   }
+  /// Draws the last progress if it was skipped, then ends the bar's line so that the next message
+  /// starts on its own line.
+  void finish() {
+    if (pending_) draw(last_);
+    if (!open_) return;
+    std::fputc('\n', stderr);
+    std::fflush(stderr);
+    open_ = false;
+  }
 
  private:
+  static double eta(const solver::Progress& p, double frac) {
+    return frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
+  }
+  void draw(const solver::Progress& p) {
+    const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
+    const int width = 30, filled = static_cast<int>(std::clamp(frac, 0.0, 1.0) * width + 1e-6);
+    std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
+                 p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta(p, frac)).c_str(), p.steps);
+    std::fflush(stderr);
+    open_ = true, pending_ = false;
+  }
+
   bool tty_;
+  bool open_ = false;     ///< a bar is drawn and its line not ended
+  bool pending_ = false;  ///< last_ has not been drawn (rate limit)
+  solver::Progress last_{};
   double next_ = 0.1;
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+/// Log lines name their level when it is not plain information: "[raceway] warning: ...",
+/// "[raceway] error: ..." (the %* flag of the pattern).
+class LevelPrefix : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
+    const std::string_view text = msg.level >= spdlog::level::err    ? "error: "
+                                  : msg.level == spdlog::level::warn ? "warning: "
+                                  : msg.level <= spdlog::level::debug ? "debug: "
+                                                                      : "";
+    dest.append(text.data(), text.data() + text.size());
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<LevelPrefix>(); }
 };
 
 /// The MPI library's own version line (e.g. "Open MPI v4.1.4, ..."), for the build attributes.
@@ -128,8 +174,12 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.mpi_library = mpi_library_version();
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
-  options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
+  options.on_info = [&](const std::string& s) {
+    progress.finish();  // a message never shares the bar's line
+    spdlog::info("{}", s);
+  };
   const auto sum = solver::run_scene(scene, options);
+  progress.finish();
   executor.stop();
   const auto json = sum.to_json();
   spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
@@ -436,11 +486,16 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   spdlog::set_default_logger(spdlog::stderr_color_mt("raceway"));  // messages on stderr, data on stdout
-  spdlog::set_pattern("[raceway] %v");
+  auto formatter = std::make_unique<spdlog::pattern_formatter>();
+  formatter->add_flag<LevelPrefix>('*').set_pattern("[raceway] %*%v");
+  spdlog::set_formatter(std::move(formatter));
 
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", fmt::format("raceway {} (commit {})", kVersion, kGitCommit));
+  std::string libraries;
+  for (const auto& [name, value] : solver::build_info(mpi_library_version()))
+    if (name != "raceway_version" && name != "raceway_commit") libraries += fmt::format("\n  {}: {}", name, value);
+  app.set_version_flag("--version", fmt::format("raceway {} (commit {}){}", kVersion, kGitCommit, libraries));
   CommandLine cl;
   add_run_command(app, cl);
   add_check_command(app, cl);
