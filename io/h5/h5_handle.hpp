@@ -1,5 +1,4 @@
-// Small RAII helpers for the HDF5 C API, shared by the writer (io/h5/h5_series.cpp) and the
-// report's reader (io/report/report_reader.cpp). Internal to io/.
+// Small RAII helpers for the HDF5 C API, used by the writer (io/h5/h5_series.cpp). Internal to io/.
 #pragma once
 
 #include <hdf5.h>

@@ -135,8 +135,8 @@ def report_metrics(folder, sid, settling_time):
     centroid = r["cage_centroid"]
     return {"vortex_radius_ratio": centroid["vortex_radius_ratio"], "sigma_v": centroid["sigma_v"],
             "whirl_frequency_hz": centroid["whirl_frequency_hz"],
-            "pocket_force_rms_n": r["pocket_forces"]["rms_circumferential_force_n"],
-            "power_loss_w": r["power_loss"]["total_mean_w"]}
+            "pocket_force_rms_n": r.get("pocket_forces", {}).get("rms_circumferential_force_n"),
+            "power_loss_w": r.get("power_loss", {}).get("total_mean_w")}
 
 
 def _statuses(folder):

@@ -13,7 +13,7 @@ constexpr const char* kDefaultScene = R"TOML(# raceway default scene: a small cy
 # [scene]: what to simulate and for how long.
 [scene]
 name = "default"               # label stored in the output
-model = "planar"               # the only model in this build
+model = "planar"               # "planar" (roller bearings in the radial plane) or "spatial" (ball bearings)
 end_time = "0.1 s"             # simulated time
 output_interval = "0.5 ms"     # time between stored samples (<= end_time)
 gravity = false                # gravity along -y

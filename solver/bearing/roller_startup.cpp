@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -159,7 +160,12 @@ Eigen::VectorXd newton_on_rings(const Seating& s, const std::vector<int>& free_r
     double lambda = 1.0;
     for (int ls = 0; ls < 30; ++ls, lambda *= 0.5) {
       Eigen::VectorXd xn = x + lambda * dx;
-      Eigen::VectorXd rn = residual(xn);
+      Eigen::VectorXd rn;
+      try {
+        rn = residual(xn);
+      } catch (const std::runtime_error&) {
+        continue;  // a step so long that a roller cannot be seated: shorten it
+      }
       if (rn.norm() < r.norm()) {
         x = xn;
         r = rn;
@@ -181,18 +187,33 @@ Eigen::VectorXd newton_on_rings(const Seating& s, const std::vector<int>& free_r
 /// across the load go the wrong way. As in the ball start-up, a spring to that point keeps the
 /// problem regular and is relaxed in stages (1e9 to 1e3 N/m, then none), each stage starting next
 /// to its solution.
+///
+/// At zero clearance the direct Newton is tried first; at high speed the rollers' centrifugal
+/// force presses them into the outer race and opens a play of its own, so when the direct Newton
+/// fails the continuation is used there too.
 Eigen::VectorXd seat_rings(const Seating& s, const std::vector<int>& free_rings, double load_scale,
                            StartupReport& rep) {
   const double clearance = s.m.scene->bearing.radial_clearance;
   const double share = 0.5 * clearance / static_cast<double>(free_rings.size());
-  Eigen::VectorXd x = along_load(s, free_rings, clearance > 0 ? take_up_play(s, free_rings, share) : 1e-7);
-  const Eigen::VectorXd anchor = x;
+  auto solve = [&](bool continuation, Eigen::VectorXd& x) {
+    x = along_load(s, free_rings, continuation ? take_up_play(s, free_rings, share) : 1e-7);
+    const Eigen::VectorXd anchor = x;
+    if (continuation)
+      for (const double spring : {1e9, 1e8, 1e7, 1e6, 1e5, 1e4, 1e3})
+        newton_on_rings(s, free_rings, spring, anchor, 1e-8 * load_scale, x, rep.iterations);
+    return newton_on_rings(s, free_rings, 0.0, anchor, 1e-10 * load_scale, x, rep.iterations).cwiseAbs().maxCoeff();
+  };
+  Eigen::VectorXd x;
   rep.iterations = 0;
-  if (clearance > 0)
-    for (const double spring : {1e9, 1e8, 1e7, 1e6, 1e5, 1e4, 1e3})
-      newton_on_rings(s, free_rings, spring, anchor, 1e-8 * load_scale, x, rep.iterations);
-  const Eigen::VectorXd r = newton_on_rings(s, free_rings, 0.0, anchor, 1e-10 * load_scale, x, rep.iterations);
-  rep.residual = r.cwiseAbs().maxCoeff();
+  rep.residual = std::numeric_limits<double>::infinity();
+  if (clearance == 0) {
+    try {
+      rep.residual = solve(false, x);
+    } catch (const std::runtime_error&) {
+      // a roller that cannot be seated on the way: the continuation below starts elsewhere
+    }
+  }
+  if (!(rep.residual < 1e-6 * load_scale)) rep.residual = solve(true, x);
   if (!(rep.residual < 1e-6 * load_scale))
     throw std::runtime_error(fmt::format(
         "start-up: no quasi-static equilibrium of the rings under their loads (largest unbalanced force {:.3g} N "

@@ -17,6 +17,7 @@
 
 #include "io/h5/output_lock.hpp"
 #include "io/json/summary_json.hpp"
+#include "io/report/report.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "scheduler/campaign_dispatch.hpp"
 #include "solver/driver/campaign_file.hpp"
@@ -166,9 +167,15 @@ int make_table(const std::string& dir) {
   const char* py = std::getenv("RACEWAY_PYTHON");
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // for `raceway report` of spatial scenes
+  // Beside the report's script (io/report/CMakeLists.txt: share/raceway/report of the build or install).
+  const std::string report = io::report_script_path();
+  if (report.empty()) {
+    spdlog::error("campaign: no table script (share/raceway/report/campaign_table.py beside the executable)");
+    return 1;
+  }
   const std::string command =
-      fmt::format("RACEWAY_EXECUTABLE='{}' '{}' '{}/io/report/campaign_table.py' '{}'", ec ? "" : self.string(),
-                  py && *py ? py : "/usr/bin/python3", RACEWAY_SOURCE_DIR, dir);
+      fmt::format("RACEWAY_EXECUTABLE='{}' '{}' '{}' '{}'", ec ? "" : self.string(), py && *py ? py : "/usr/bin/python3",
+                  (fs::path(report).parent_path() / "campaign_table.py").string(), dir);
   const int status = std::system(command.c_str());
   if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
   return status == 0 ? 0 : 1;

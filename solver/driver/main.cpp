@@ -23,10 +23,12 @@
 #include <csignal>
 #include <cstdlib>
 #include <optional>
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <memory>
 #include <fmt/format.h>
+#include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -40,6 +42,7 @@
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/run/build_info.hpp"
 #include "solver/run/output_writer.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
@@ -61,30 +64,73 @@ std::string clock_text(double s) {
   return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{:02}:{:02}", t / 60, t % 60);
 }
 
-/// A progress bar on a terminal; plain log lines (every 10 %) otherwise.
+/// A progress bar on a terminal, redrawn at most 5 times a second and its line ended before any
+/// other message (finish(), also when the run throws); plain log lines every 10 % otherwise.
 class ProgressReporter {
  public:
   ProgressReporter() : tty_(isatty(STDERR_FILENO) != 0) {}
+  ProgressReporter(const ProgressReporter&) = delete;
+  ProgressReporter& operator=(const ProgressReporter&) = delete;
+  ~ProgressReporter() { finish(); }
   void operator()(const solver::Progress& p) {
     const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
-    const double eta = frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
     if (tty_) {
-      const int width = 30, filled = static_cast<int>(frac * width);
-      std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
-                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
-                   p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta).c_str(), p.steps);
-      if (frac >= 1.0) std::fprintf(stderr, "\n");
-      std::fflush(stderr);
+      const auto now = std::chrono::steady_clock::now();
+      last_ = p, pending_ = true;
+      if (open_ && frac < 1.0 && now - last_draw_ < std::chrono::milliseconds(200)) return;
+      last_draw_ = now;
+      draw(p);
+      if (frac >= 1.0) finish();
     } else if (frac >= next_) {
       spdlog::info("t {:.6g} s of {:.6g} s ({:.0f} %), {:.2f} revolutions, wall {:.2f} s, eta {}, steps {}", p.time,
-                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta), p.steps);
+                   p.end_time, 100 * frac, p.revolutions, p.wall_seconds, clock_text(eta(p, frac)), p.steps);
       while (next_ <= frac) next_ += 0.1;
     }
   }
+  /// Draws the last progress if it was skipped, then ends the bar's line so that the next message
+  /// starts on its own line.
+  void finish() {
+    if (pending_) draw(last_);
+    if (!open_) return;
+    std::fputc('\n', stderr);
+    std::fflush(stderr);
+    open_ = false;
+  }
 
  private:
+  static double eta(const solver::Progress& p, double frac) {
+    return frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
+  }
+  void draw(const solver::Progress& p) {
+    const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
+    const int width = 30, filled = static_cast<int>(std::clamp(frac, 0.0, 1.0) * width + 1e-6);
+    std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), 100 * frac, p.time,
+                 p.revolutions, clock_text(p.wall_seconds).c_str(), clock_text(eta(p, frac)).c_str(), p.steps);
+    std::fflush(stderr);
+    open_ = true, pending_ = false;
+  }
+
   bool tty_;
+  bool open_ = false;     ///< a bar is drawn and its line not ended
+  bool pending_ = false;  ///< last_ has not been drawn (rate limit)
+  solver::Progress last_{};
   double next_ = 0.1;
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+/// Log lines name their level when it is not plain information: "[raceway] warning: ...",
+/// "[raceway] error: ..." (the %* flag of the pattern).
+class LevelPrefix : public spdlog::custom_flag_formatter {
+ public:
+  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
+    const std::string_view text = msg.level >= spdlog::level::err    ? "error: "
+                                  : msg.level == spdlog::level::warn ? "warning: "
+                                  : msg.level <= spdlog::level::debug ? "debug: "
+                                                                      : "";
+    dest.append(text.data(), text.data() + text.size());
+  }
+  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<LevelPrefix>(); }
 };
 
 /// What `raceway run` was asked for besides the scene.
@@ -109,8 +155,12 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.mpi_library = driver::mpi_library_version();
   ProgressReporter progress;
   options.on_progress = [&](const solver::Progress& p) { progress(p); };
-  options.on_info = [](const std::string& s) { spdlog::info("{}", s); };
+  options.on_info = [&](const std::string& s) {
+    progress.finish();  // a message never shares the bar's line
+    spdlog::info("{}", s);
+  };
   const auto sum = solver::run_scene(scene, options);
+  progress.finish();
   executor.stop();
   const auto json = sum.to_json();
   spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
@@ -135,19 +185,8 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   return 0;
 }
 
-/// `raceway report OUT.h5`: cage and ball metrics of a spatial run into <dir>/summary.json, plus PNGs.
-int report_command(const io::ReportOptions& options) {
-  const io::ReportResult res = io::make_report(options);
-  for (const auto& note : res.notes) spdlog::warn("{}", note);
-  for (const auto& line : res.headlines) spdlog::info("{}", line);
-  spdlog::info("summary written to {}", res.summary_path);
-  if (!res.plot_message.empty()) {
-    if (options.plots) spdlog::warn("{}", res.plot_message);
-    else spdlog::info("{}", res.plot_message);
-  }
-  if (!res.plots.empty()) spdlog::info("{} plots written to {}", res.plots.size(), res.output_dir);
-  return 0;
-}
+/// `raceway report OUT.h5`: the Python report (io/report/raceway_report.py) of a planar or spatial run.
+int report_command(const io::ReportOptions& options) { return io::run_report(options); }
 
 /// `--inject-failure RANK:EVALUATION` (test only).
 void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& options) {
@@ -215,7 +254,8 @@ struct CommandLine {
   bool replan_every_evaluation = false, scheduler_log = false, resume = false;
   io::ReportOptions report_options;
   double window_start = NAN;
-  bool no_plots = false;
+  bool no_plots = false, animate = false, xdmf = false;
+  double contact_threshold = NAN;
   CLI::App* run = nullptr;
   CLI::App* check = nullptr;
   CLI::App* report = nullptr;
@@ -277,16 +317,20 @@ void add_check_command(CLI::App& app, CommandLine& cl) {
 
 void add_report_command(CLI::App& app, CommandLine& cl) {
   auto* report = cl.report =
-      app.add_subcommand("report", "cage and ball metrics and plots of a spatial run's output file");
-  report->add_option("output_file", cl.report_options.input, "HDF5 output of a spatial run")->required();
-  report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json and the PNGs "
-                     "(default: <stem>_report beside the file)");
+      app.add_subcommand("report", "the report of a run's output file: summary.json, figures, report.html");
+  report->add_option("output_file", cl.report_options.input, "HDF5 output of a run (planar or spatial)")->required();
+  report->add_option("-o,--output-dir", cl.report_options.output_dir, "folder for summary.json, the PNGs and "
+                     "report.html (default: <stem>_report beside the file)");
   report->add_option("--window-start", cl.window_start, "start of the analysis window in s (default: second half)")
       ->check(number_at_least(0, false));
   report->add_option("--bin-width", cl.report_options.bin_width_deg, "azimuth bin width in deg (0 to 360]")
       ->check(number_at_least(0, true))
       ->capture_default_str();
+  report->add_option("--contact-threshold", cl.contact_threshold, "pocket contact threshold in N (default: 1 % of "
+                     "the peak pocket force)")->check(number_at_least(0, true));
   report->add_flag("--no-plots", cl.no_plots, "write summary.json only");
+  report->add_flag("--animate", cl.animate, "also an animation of the bearing along its axis (MP4 with ffmpeg, else GIF)");
+  report->add_flag("--xdmf", cl.xdmf, "also OUT.xdmf beside the .h5: the bodies over time for ParaView");
 }
 
 /// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
@@ -366,7 +410,10 @@ int check_or_report(CommandLine& cl) {
     const solver::PetscRuntime petsc(cl.petsc_options);
     if (*cl.check) return check_command(cl.scene_path, cl.overrides);
     if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
+    if (!std::isnan(cl.contact_threshold)) cl.report_options.contact_threshold = cl.contact_threshold;
     cl.report_options.plots = !cl.no_plots;
+    cl.report_options.animate = cl.animate;
+    cl.report_options.xdmf = cl.xdmf;
     return report_command(cl.report_options);
   });
 }
@@ -387,11 +434,16 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   spdlog::set_default_logger(spdlog::stderr_color_mt("raceway"));  // messages on stderr, data on stdout
-  spdlog::set_pattern("[raceway] %v");
+  auto formatter = std::make_unique<spdlog::pattern_formatter>();
+  formatter->add_flag<LevelPrefix>('*').set_pattern("[raceway] %*%v");
+  spdlog::set_formatter(std::move(formatter));
 
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", fmt::format("raceway {} (commit {})", kVersion, kGitCommit));
+  std::string libraries;
+  for (const auto& [name, value] : solver::build_info(driver::mpi_library_version()))
+    if (name != "raceway_version" && name != "raceway_commit") libraries += fmt::format("\n  {}: {}", name, value);
+  app.set_version_flag("--version", fmt::format("raceway {} (commit {}){}", kVersion, kGitCommit, libraries));
   CommandLine cl;
   add_run_command(app, cl);
   add_check_command(app, cl);

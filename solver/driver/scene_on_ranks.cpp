@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "io/h5/output_lock.hpp"
-#include "io/report/report.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
@@ -39,7 +38,7 @@ void install_stop_signals() {
 }
 
 int exit_code_for(const std::exception& e) {
-  if (dynamic_cast<const io::ReportInputError*>(&e) || dynamic_cast<const io::SceneError*>(&e) ||
+  if (dynamic_cast<const io::SceneError*>(&e) ||
       dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e) ||
       dynamic_cast<const solver::ResumeRefused*>(&e))
     return 2;

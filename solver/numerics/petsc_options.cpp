@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <utility>
@@ -93,7 +94,16 @@ Trial trial_solve(const BorderedLayout& real) {
   return t;
 }
 
-/// Names of options nobody read, apart from raceway's own defaults.
+/// PETSc's own diagnostic options (profiling, memory, option reports): read by PETSc itself, at
+/// start-up or PetscFinalize, never by the solver, so the unused-option check lets them pass.
+bool petsc_diagnostic_option(const std::string& name) {
+  for (const char* prefix : {"-log_", "-info", "-options_", "-malloc", "-memory_view", "-on_error_", "-fp_trap",
+                             "-no_signal_handler", "-check_pointer_intensity", "-history", "-objects_dump"})
+    if (name.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+/// Names of options nobody read, apart from raceway's own defaults and PETSc's diagnostics.
 std::vector<std::string> unused_options(const std::vector<std::string>& ignore) {
   PetscInt n = 0;
   char** names = nullptr;
@@ -103,7 +113,7 @@ std::vector<std::string> unused_options(const std::vector<std::string>& ignore) 
   for (PetscInt i = 0; i < n; ++i) {
     const std::string name = std::string("-") + names[i];
     if (std::find(ignore.begin(), ignore.end(), name) != ignore.end()) continue;
-    if (name == "-no_signal_handler") continue;
+    if (petsc_diagnostic_option(name)) continue;
     out.push_back(values[i] ? name + " " + values[i] : name);
   }
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
@@ -119,8 +129,13 @@ std::string join(const std::vector<std::string>& v) {
 }  // namespace
 
 std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const BorderedLayout& layout) {
-  const std::string key = fmt::format("{}\n{}\n{} {} {}", spec.petsc_options, command_line_options_, layout.border,
-                                      layout.block_size, layout.blocks > 0);
+  // PETSC_OPTIONS from the environment, as PETSc reads it: the lowest priority (the scene and the
+  // command line override it). PetscOptionsClear below drops what PetscInitialize read, so it is
+  // put back first; PETSc's diagnostics in it (-log_view) then reach PetscFinalize.
+  const char* env = std::getenv("PETSC_OPTIONS");
+  const std::string env_options = env ? env : "";
+  const std::string key = fmt::format("{}\n{}\n{}\n{} {} {}", env_options, spec.petsc_options, command_line_options_,
+                                      layout.border, layout.block_size, layout.blocks > 0);
   if (key == applied_key_) return applied_summary_;
   applied_key_.clear();
   check(PetscOptionsClear(nullptr), "PetscOptionsClear");
@@ -150,6 +165,11 @@ std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const Bo
                        join(left), t.description));
     return t;
   };
+  if (!env_options.empty())
+    stage(env_options, [&](const std::string& reason) {
+      PetscOptionsClear(nullptr);
+      throw OptionsError("PETSC_OPTIONS (environment): " + reason);
+    });
   Trial t = stage(spec.petsc_options, [&](const std::string& reason) {
     PetscOptionsClear(nullptr);
     throw io::SceneError(spec.petsc_options_file.empty() ? "<scene>" : spec.petsc_options_file,

@@ -1,0 +1,104 @@
+"""report.html of `raceway report`: one self-contained page (figures embedded as PNG data, the
+numbers, the scene text and the build) to open in a browser or send to a colleague."""
+import base64
+import html
+import math
+import os
+
+CAPTIONS = {
+    "cage_speed.png": "Cage speed about the bearing axis against the kinematic cage speed; the slip is over the shaded "
+                      "window (time means).",
+    "cage_centroid.png": "Cage centre orbit (the window in colour, earlier samples grey) and its distance from the "
+                         "window's mean centre.",
+    "pocket_force_time.png": "Pocket (bar) forces, every sample: the largest front and rear bar force over the pockets, "
+                             "and the peak of every impact.",
+    "pocket_force_azimuth.png": "Pocket forces against the pocket's azimuth over the window: time mean and peak per bin.",
+    "contact_angle.png": "Load-weighted mean contact angle of the groove contacts.",
+    "contact_pressure.png": "Largest Hertz pressure of each contact kind.",
+    "film_thickness.png": "Thinnest central film thickness of the loaded contacts of each kind.",
+    "cage_land_force.png": "Normal force between the cage and its guiding land.",
+    "friction.png": "Friction torque on the driven ring (the contacts' moment against its rotation) and the power "
+                    "loss of each contact kind.",
+}
+
+
+def _fmt(v, unit="", scale=1.0, digits=4):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "-"
+    return f"{scale * v:.{digits}g}{(' ' + unit) if unit else ''}"
+
+
+def rows(summary, element):
+    """(quantity, value) pairs of the main numbers; means are window means."""
+    cs, c = summary["cage_speed"], summary["cage_centroid"]
+    out = [("window", f"{summary['window']['start_s']:.6g} .. {summary['window']['end_s']:.6g} s "
+                      f"({summary['window']['samples']} samples)"),
+           ("cage speed (mean)", _fmt(cs["mean_rpm"], "rpm", digits=6)),
+           ("kinematic cage speed, nominal contact angle (mean)", _fmt(cs["epicyclic_rpm"], "rpm", digits=6)),
+           ("slip against it", _fmt(cs["slip"], "%", 100))]
+    if "rolling_rpm" in cs:
+        out += [("kinematic cage speed, loaded contact angle (mean)", _fmt(cs["rolling_rpm"], "rpm", digits=6)),
+                ("slip against it", _fmt(cs["slip_rolling"], "%", 100))]
+    for key, value in summary.get("contact_angle", {}).items():
+        if key.endswith("loaded_mean_deg"):
+            out.append((f"{key[:-len('_loaded_mean_deg')]} contact angle (load-weighted mean)", _fmt(value, "deg")))
+    out += [("cage vortex radius (mean)", _fmt(c["vortex_radius_mean_m"], "um", 1e6)),
+            ("cage whirl / cage speed", _fmt(c["whirl_to_cage_speed_ratio"])), ("sigma_v", _fmt(c["sigma_v"]))]
+    ld = summary[f"{element}_load"]
+    out += [(f"largest {element} load (mean)", _fmt(ld["largest_mean_n"], "N")),
+            (f"largest {element} load (peak)", _fmt(ld["max_n"], "N")),
+            ("load zone", "loaded all round" if ld["loaded_all_round"] else
+             f"{_fmt(ld['load_zone_width_deg'], 'deg', digits=3)} wide, centred at "
+             f"{_fmt(ld['load_zone_centre_deg'], 'deg', digits=3)}")]
+    if "pocket_forces" in summary:
+        p = summary["pocket_forces"]
+        out += [("pocket impacts (whole run)", str(p["impacts"]["count"])),
+                ("front / rear bar contacts (window)", f"{p['front']['events']} / {p['rear']['events']}"),
+                ("front / rear bar force (peak)", f"{_fmt(p['front']['peak_n'], 'N')} / {_fmt(p['rear']['peak_n'], 'N')}")]
+    for kind, e in summary.get("contact", {}).items():
+        if "max_pressure_largest_mean_pa" in e:
+            out.append((f"{kind} max pressure (mean / peak)", f"{_fmt(e['max_pressure_largest_mean_pa'], 'GPa', 1e-9)}"
+                        f" / {_fmt(e['max_pressure_peak_pa'], 'GPa', 1e-9)}"))
+        if "film_thickness_thinnest_mean_m" in e:
+            out.append((f"{kind} thinnest film (mean / min)", f"{_fmt(e['film_thickness_thinnest_mean_m'], 'um', 1e6)}"
+                        f" / {_fmt(e['film_thickness_min_m'], 'um', 1e6)}"))
+    if "cage_land" in summary:
+        out.append(("cage-land force (mean / peak)", f"{_fmt(summary['cage_land']['force_mean_n'], 'N')} / "
+                                                     f"{_fmt(summary['cage_land']['force_peak_n'], 'N')}"))
+    fr = summary.get("friction", {})
+    if "friction_torque_mean_n_m" in fr:
+        out.append(("friction torque (mean)", _fmt(fr["friction_torque_mean_n_m"], "mN m", 1e3)))
+    if "power_loss_mean_w" in fr:
+        out.append(("power loss (mean)", _fmt(fr["power_loss_mean_w"], "W")))
+    return out
+
+
+def write_page(run, summary, folder, pngs, name="report.html"):
+    """Writes folder/name and returns its path."""
+    esc = html.escape
+    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
+             f"<title>raceway report: {esc(run.scene_name)}</title>",
+             "<style>body{font-family:sans-serif;max-width:1640px;margin:auto;padding:1em}"
+             "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}"
+             "img{width:100%;max-width:1600px}pre{background:#f5f5f5;padding:.5em;overflow-x:auto;font-size:85%}"
+             "figcaption{color:#444;margin-bottom:1.5em}</style></head><body>",
+             f"<h1>{esc(run.scene_name)}</h1>",
+             f"<p>{esc(run.kind)} bearing, {run.elements} {esc(run.element)}s; file <code>{esc(run.path)}</code>. "
+             "Values are means over the window unless marked peak.</p>",
+             "<h2>Numbers</h2><table><tr><th>quantity</th><th>value</th></tr>"]
+    parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in rows(summary, run.element)]
+    parts.append("</table><p>All metrics: <code>summary.json</code> beside this page.</p><h2>Figures</h2>")
+    for png in pngs:
+        with open(os.path.join(folder, png), "rb") as fh:
+            data = base64.b64encode(fh.read()).decode("ascii")
+        parts.append(f"<figure><img alt='{esc(png)}' src='data:image/png;base64,{data}'>"
+                     f"<figcaption>{esc(CAPTIONS.get(png, png))}</figcaption></figure>")
+    if summary.get("notes"):
+        parts.append(f"<h2>Notes</h2><p>{esc(summary['notes'])}</p>")
+    parts.append("<h2>Build</h2><table>")
+    parts += [f"<tr><td>{esc(k)}</td><td>{esc(str(v))}</td></tr>" for k, v in run.build.items()]
+    parts.append(f"</table><h2>Scene</h2><pre>{esc(run.scene_text)}</pre></body></html>\n")
+    path = os.path.join(folder, name)
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write("\n".join(parts))
+    return path

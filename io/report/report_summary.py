@@ -1,0 +1,222 @@
+"""The metrics of one run as the summary.json object of `raceway report` (report_metrics.py defines them).
+
+Every number over time is a window value: a time (or sample) mean over the stated window, unless its
+key says `peak`, `max` or `min`. The window is the second half of the run by default.
+"""
+import math
+
+import numpy as np
+
+import report_metrics as rm
+
+DEG = 180.0 / math.pi
+
+
+def _mean(x):
+    return float(np.mean(x)) if np.size(x) else math.nan
+
+
+def cage_speed(run, w):
+    s = rm.speed_stats(run.cage_speed, run.epicyclic_speed, w)
+    out = {"mean_rad_s": s["mean_rad_s"], "mean_rpm": s["mean_rpm"], "min_rad_s": s["min_rad_s"],
+           "max_rad_s": s["max_rad_s"], "epicyclic_rad_s": s["kinematic_rad_s"], "epicyclic_rpm": s["kinematic_rpm"],
+           "slip": s["slip"], "direction": rm.cage_direction(s["mean_rad_s"])}
+    if run.rolling_speed is not None:
+        r = rm.speed_stats(run.cage_speed, run.rolling_speed, w)
+        out.update({"rolling_rad_s": r["kinematic_rad_s"], "rolling_rpm": r["kinematic_rpm"], "slip_rolling": r["slip"]})
+    if run.kind == "planar":
+        out["reference"] = "epicyclic speed of line contacts at 0 deg from the rings' speeds (rolling = epicyclic)"
+    else:
+        out["reference"] = ("epicyclic at the nominal contact angle; rolling at the load-weighted mean contact "
+                            "angle of the inner-groove contacts, per sample, then the window mean")
+    return out
+
+
+def contact_angles(run, w):
+    """Load-weighted mean contact angle of each groove kind over the window (time mean), in deg."""
+    out = {}
+    for kind in ("ball_inner_groove", "ball_outer_groove"):
+        seg = run.contact.get(kind)
+        if not seg or "contact_angle" not in seg:
+            continue
+        q = seg["normal_force"][w.slice]
+        a = np.abs(seg["contact_angle"][w.slice])
+        total = float(np.sum(q))
+        out[f"{kind}_loaded_mean_deg"] = float(np.sum(q * a) / total) * DEG if total > 0 else math.nan
+        loaded = q > 0
+        out[f"{kind}_max_deg"] = float(np.max(a[loaded])) * DEG if loaded.any() else math.nan
+    return out
+
+
+def contact_fields(run, w):
+    """Per ball contact kind: the largest Hertz pressure over its segments and the thinnest film of
+    its loaded contacts, each per sample, then the window mean (and the peak / minimum)."""
+    out = {}
+    for kind, seg in run.contact.items():
+        q = seg["normal_force"]
+        if not np.any(q[w.slice] > 0):
+            continue
+        entry = {}
+        if "max_pressure" in seg:
+            largest = np.max(np.where(q > 0, seg["max_pressure"], 0.0), axis=1)
+            entry["max_pressure_largest_mean_pa"] = float(rm.time_mean(run.time, largest, w))
+            entry["max_pressure_peak_pa"] = float(np.max(largest[w.slice]))
+        if "film_thickness" in seg and np.any(seg["film_thickness"][w.slice] > 0):
+            with np.errstate(all="ignore"):
+                thinnest = np.nanmin(np.where(q > 0, seg["film_thickness"], np.nan), axis=1)
+            loaded = thinnest[w.slice]
+            entry["film_thickness_thinnest_mean_m"] = float(np.nanmean(loaded))
+            entry["film_thickness_min_m"] = float(np.nanmin(loaded))
+        if entry:
+            out[kind] = entry
+    return out
+
+
+def centroid(run, w, cage_mean):
+    m = rm.centroid_metrics(run.time, run.cage_xy[:, 0], run.cage_xy[:, 1], run.cage_vxy[:, 0], run.cage_vxy[:, 1],
+                            w, cage_mean)
+    for key in ("land_clearance", "pocket_clearance", "pitch_radius"):
+        m[f"{key}_m"] = run.geometry.get(key, math.nan)
+    return m
+
+
+def pocket_forces(run, w, direction, threshold):
+    if run.bar_front is None:
+        return None
+    if threshold is None:
+        threshold = rm.default_contact_threshold(run.bar_front, run.bar_rear, w)
+    front = [rm.contact_stats(run.time, run.bar_front[:, k], w, threshold) for k in range(run.elements)]
+    rear = [rm.contact_stats(run.time, run.bar_rear[:, k], w, threshold) for k in range(run.elements)]
+    ft, rt = rm.total_stats(front, w), rm.total_stats(rear, w)
+    p = {"threshold_n": threshold, "direction": direction,
+         "rear_impulse_fraction": rm.ratio_or_nan(rt["impulse_n_s"], ft["impulse_n_s"] + rt["impulse_n_s"])}
+    if run.pocket_circumferential is not None:
+        fc = run.pocket_circumferential
+        wts = rm.trapezoid_weights(run.time, w)
+        sq = float(np.sum(wts[:, None] * fc[w.slice] ** 2))
+        p["rms_circumferential_force_n"] = math.sqrt(sq / (run.elements * w.length))
+        p["mean_net_circumferential_force_n"] = float(np.sum(wts * np.sum(fc[w.slice], axis=1))) / w.length
+    p["front"], p["rear"] = ft, rt
+    per = lambda stats: {k: [s[k] for s in stats] for k in ("rms_n", "peak_n", "impulse_n_s", "events",
+                                                             "mean_duration_s", "duty_cycle")}
+    p["front_per_pocket"], p["rear_per_pocket"] = per(front), per(rear)
+    p["impacts"] = rm.impacts(run.time, run.bar_front, run.bar_rear, threshold)
+    p["impacts"]["note"] = "every impact of the whole run (not only the window): peak sample of each contact"
+    return p
+
+
+def element_load(run, w, bins):
+    """Inner-race loads: peak, time mean of the largest, per-element time means and the load zone."""
+    q = run.element_load[w.slice]
+    largest = np.max(q, axis=1)
+    i, k = np.unravel_index(int(np.argmax(q)), q.shape)
+    az = rm.azimuth(run.element_xy[w.slice, :, 0], run.element_xy[w.slice, :, 1])
+    b = rm.bin_by_azimuth(az, q, bins)
+    peak_bin = float(np.nanmax(b["mean"])) if np.isfinite(b["mean"]).any() else 0.0
+    threshold = max(0.01 * peak_bin, 1e-3)
+    z = rm.load_zone(b, threshold)
+    out = {"max_n": float(q[i, k]), "max_azimuth_deg": float(az[i, k]) * DEG, "max_time_s": float(run.time[w.begin + i]),
+           "max_element": int(k), "largest_mean_n": float(np.mean(largest)),
+           "mean_per_element_n": [float(v) for v in np.mean(q, axis=0)],
+           "max_bin_mean_n": peak_bin, "load_zone_threshold_n": threshold,
+           "load_zone_start_deg": z["start"] * DEG, "load_zone_end_deg": z["end"] * DEG,
+           "load_zone_width_deg": z["width"] * DEG, "load_zone_centre_deg": z["centre"] * DEG,
+           "loaded_all_round": bool(z["all_round"]),
+           "note": "max_n is the peak sample; largest_mean_n the window mean of the largest element load"}
+    return out, b
+
+
+def friction(run, w):
+    out = {}
+    if run.driven_moment is not None:
+        m = float(np.mean(run.driven_moment[w.slice]))
+        sign = 1.0 if np.mean(run.driven_speed[w.slice]) >= 0 else -1.0
+        # The contacts' moment on the driven ring opposes its rotation; the drive supplies the negative.
+        out["driven_ring"] = run.geometry.get("driven_ring", "")
+        out["friction_torque_mean_n_m"] = -sign * m
+        out["drive_power_mean_w"] = -float(np.mean(run.driven_moment[w.slice] * run.driven_speed[w.slice]))
+    if run.power_loss:
+        total = 0.0
+        for kind, p in run.power_loss.items():
+            v = float(rm.time_mean(run.time, p, w))
+            out[f"{kind}_power_loss_mean_w"] = v
+            total += v
+        out["power_loss_mean_w"] = total
+    return out
+
+
+def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None):
+    """The summary.json object and a few headline lines for the log."""
+    if not (bin_width_deg > 0 and bin_width_deg <= 360):
+        raise ValueError(f"--bin-width {bin_width_deg} deg is not in (0, 360]")
+    w = rm.select_window(run.time, window_start)
+    bins = bin_width_deg / DEG
+    s = {"report_format": 2, "input": run.path, "scene_name": run.scene_name, "model_kind": run.kind,
+         "rolling_element": run.element, f"{run.element}_count": run.elements,
+         "window": {"start_s": w.t_begin, "end_s": w.t_end, "samples": w.samples,
+                    "default_second_half": w.default_second_half,
+                    "note": "means are over this window unless a key says peak, max or min"}}
+    cs = cage_speed(run, w)
+    s["cage_speed"] = cs
+    angles = contact_angles(run, w)
+    if angles:
+        s["contact_angle"] = angles
+    s["cage_centroid"] = centroid(run, w, cs["mean_rad_s"])
+    az = {"bin_width_deg": bin_width_deg}
+    pf = pocket_forces(run, w, cs["direction"], contact_threshold)
+    if pf:
+        s["pocket_forces"] = pf
+        pa = rm.azimuth(run.element_xy[w.slice, :, 0], run.element_xy[w.slice, :, 1])
+        for bar, f in (("front", run.bar_front), ("rear", run.bar_rear)):
+            b = rm.bin_by_azimuth(pa, f[w.slice], bins)
+            az["bin_centre_deg"] = list(b["centre"] * DEG)
+            az[f"{bar}_force_mean_n"], az[f"{bar}_force_max_n"] = list(b["mean"]), list(b["max"])
+    load, b = element_load(run, w, bins)
+    s[f"{run.element}_load"] = load
+    az["bin_centre_deg"] = list(b["centre"] * DEG)
+    for key in ("mean", "min", "max"):
+        az[f"{run.element}_load_{key}_n"] = list(b[key])
+    s["azimuth"] = az
+    fields = contact_fields(run, w)
+    if fields:
+        s["contact"] = fields
+    if run.land_force is not None:
+        lf = run.land_force
+        s["cage_land"] = {"force_mean_n": float(rm.time_mean(run.time, lf, w)), "force_peak_n": float(np.max(lf[w.slice])),
+                          "contact_fraction": float(np.mean(lf[w.slice] > 0))}
+    fr = friction(run, w)
+    if fr:
+        s["friction"] = fr
+        if "power_loss_mean_w" in fr:
+            s["power_loss"] = {"total_mean_w": fr["power_loss_mean_w"]}
+    if run.notes:
+        s["notes"] = "; ".join(run.notes)
+    return s, headlines(s, run)
+
+
+def headlines(s, run):
+    w, cs = s["window"], s["cage_speed"]
+    lines = [f"window {w['start_s']:.6g} .. {w['end_s']:.6g} s ({w['samples']} samples): cage {cs['mean_rpm']:.2f} rpm "
+             f"(mean), epicyclic {cs['epicyclic_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %"]
+    if "rolling_rpm" in cs and run.kind == "spatial":
+        lines.append(f"kinematic cage speed at the loaded contact angle {cs['rolling_rpm']:.2f} rpm (mean): "
+                     f"slip {100 * cs['slip_rolling']:.3f} %")
+    c = s["cage_centroid"]
+    lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
+                 f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f}, whirl {c['whirl_frequency_rad_s']:.3g} "
+                 f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
+    if "pocket_forces" in s:
+        p = s["pocket_forces"]
+        lines.append(f"pocket forces (threshold {p['threshold_n']:.3g} N): front {p['front']['events']} contacts, peak "
+                     f"{p['front']['peak_n']:.3g} N; rear {p['rear']['events']} contacts, peak {p['rear']['peak_n']:.3g} "
+                     f"N; {p['impacts']['count']} impacts in the whole run")
+    ld = s[f"{run.element}_load"]
+    zone = ("loaded all round" if ld["loaded_all_round"] else
+            f"load zone {ld['load_zone_width_deg']:.0f} deg wide centred at {ld['load_zone_centre_deg']:.0f} deg")
+    lines.append(f"inner-race {run.element} load: largest {ld['largest_mean_n']:.4g} N (mean), peak {ld['max_n']:.4g} N; "
+                 f"{zone}")
+    if "friction" in s and "friction_torque_mean_n_m" in s["friction"]:
+        fr = s["friction"]
+        lines.append(f"friction torque {fr['friction_torque_mean_n_m']:.4g} N m (mean), power loss "
+                     f"{fr.get('power_loss_mean_w', math.nan):.4g} W (mean)")
+    return lines

@@ -1,0 +1,220 @@
+#!/usr/bin/env python3
+"""`raceway report` on real short runs of every bearing kind, one scene per ctest.
+
+    report_runs_test.py SCENE RACEWAY_EXECUTABLE SOURCE_DIR
+
+Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --xdmf` and checks:
+- the page, the figures (PNG, at least 1200 px wide) and summary.json exist; the page embeds every
+  figure and names the scene;
+- summary.json's numbers against values this test computes from the output file itself through the
+  reader (raceway_output.py) and against the run's own summary (summary_json, written by the C++
+  run loop): the cage speed window mean, the kinematic speed (spatial: /cage/rolling_speed mean;
+  planar: the run's epicyclic speed), the largest rolling-element load's window mean, the pocket
+  impact count (every run of samples above the contact threshold on one bar of one pocket), the
+  cage-land force mean;
+- the XDMF file: it parses, every HDF DataItem names a dataset of the .h5 with its shape, every
+  hyperslab lies inside it, the time steps are the file's times, and the cage position read
+  through the XDMF's hyperslab at a sample equals /cage/position there;
+- for 6309_R3 also the animation (the report script directly, 12 frames) and, when chromium is
+  installed, a headless screenshot of the page.
+
+Exit codes: 0 pass, 1 fail, 77 skipped (numpy, h5py or matplotlib missing).
+"""
+import json
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+
+try:
+    import h5py
+    import numpy as np
+    import matplotlib  # noqa: F401
+except ImportError as err:
+    print(f"SKIP: {err}", file=sys.stderr)
+    sys.exit(77)
+
+END_TIMES = {"default": "0.04 s", "seed002_40hz": "0.02 s", "6309_R3": "0.02 s", "qj215_validation": "0.03 s",
+             "7206B_angular_contact": "0.02 s"}
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print(f"FAIL: {what}", file=sys.stderr)
+
+
+def near(value, expected, rel, what, abs_tol=0.0):
+    ok = value is not None and math.isfinite(value) and abs(value - expected) <= rel * abs(expected) + abs_tol
+    check(ok, f"{what}: {value} not within {rel:g} (rel) of {expected}")
+
+
+def png_width(path):
+    with open(path, "rb") as fh:
+        head = fh.read(24)
+    return struct.unpack(">I", head[16:20])[0] if head[:8] == b"\x89PNG\r\n\x1a\n" else 0
+
+
+def runs_above(force, threshold):
+    on = np.concatenate([[False], force > threshold, [False]])
+    return int(np.count_nonzero(on[1:] & ~on[:-1]))
+
+
+def expected_from_file(out, window_start):
+    """What the report should say, computed here from the file's datasets."""
+    t = np.asarray(out["time"])
+    w = t >= window_start - 1e-9 * (t[-1] - t[0])
+    spatial = out.attrs.get("model_kind") == "spatial"
+    cage = np.asarray(out["cage/angular_velocity"])
+    cage = cage[:, 2] if spatial else cage
+    e = {"cage_mean": float(np.mean(cage[w])), "samples": int(np.count_nonzero(w))}
+    if spatial:
+        e["rolling_mean"] = float(np.mean(np.asarray(out["cage/rolling_speed"])[w]))
+        g = out.segments("ball_inner_groove")
+        balls = np.asarray(g["ball"], dtype=int)
+        n = int(balls.max()) + 1
+        load = np.zeros((len(t), n))
+        for c, k in enumerate(balls):
+            load[:, k] += g["normal_force"][:, c]
+        p = out.segments("ball_pocket")
+        direction = -1 if e["cage_mean"] < 0 else 1
+        front, rear = np.zeros((len(t), n)), np.zeros((len(t), n))
+        for c, k in enumerate(np.asarray(p["ball"], dtype=int)):
+            fn, fc = p["normal_force"][:, c], p["circumferential_force"][:, c]
+            front[:, k] += np.where((fn > 0) & (fc * direction < 0), fn, 0.0)
+            rear[:, k] += np.where((fn > 0) & (fc * direction >= 0), fn, 0.0)
+    else:
+        load = np.asarray(out["segments/roller_inner_race/normal_force"])
+        front = np.asarray(out["segments/cage_bar_front/normal_force"])
+        rear = np.asarray(out["segments/cage_bar_rear/normal_force"])
+    e["largest_load_mean"] = float(np.mean(np.max(load[w], axis=1)))
+    e["bars"] = (front, rear)
+    if "segments/cage_land/normal_force" in out:
+        land = np.sum(np.asarray(out["segments/cage_land/normal_force"]), axis=1)
+        tw = t[w]
+        e["land_mean"] = float(np.trapz(land[w], tw) / (tw[-1] - tw[0]))
+    return e
+
+
+def check_summary(s, h5, element):
+    sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
+    from raceway_output import RacewayOutput
+    with RacewayOutput(h5) as out:
+        run_summary = out.summary
+        e = expected_from_file(out, s["window"]["start_s"])
+        spatial = out.attrs.get("model_kind") == "spatial"
+    near(s["window"]["samples"], e["samples"], 0, "window samples")
+    cs = s["cage_speed"]
+    near(cs["mean_rad_s"], e["cage_mean"], 1e-12, "cage speed window mean")
+    near(cs["mean_rpm"], run_summary["cage_speed_rpm"], 1e-9, "cage speed against the run's own summary")
+    if spatial:
+        near(cs["rolling_rad_s"], e["rolling_mean"], 1e-12, "kinematic speed at the loaded contact angle")
+        near(cs["slip_rolling"], 1 - e["cage_mean"] / e["rolling_mean"], 1e-9, "slip at the loaded angle", 1e-12)
+    else:
+        near(cs["epicyclic_rpm"], run_summary["epicyclic_cage_speed_rpm"], 1e-6, "planar epicyclic speed against the "
+             "run's own summary")
+    near(s[f"{element}_load"]["largest_mean_n"], e["largest_load_mean"], 1e-12, "largest element load window mean")
+    check(s[f"{element}_load"]["max_n"] >= s[f"{element}_load"]["largest_mean_n"], "peak load >= its mean")
+    p = s["pocket_forces"]
+    front, rear = e["bars"]
+    if cs["direction"] < 0 and not spatial:
+        front, rear = rear, front
+    count = sum(runs_above(f[:, k], p["threshold_n"]) for f in (front, rear) for k in range(f.shape[1]))
+    check(p["impacts"]["count"] == count, f"impact count {p['impacts']['count']}, the file has {count}")
+    check(len(p["impacts"]["time_s"]) == count, "one impact time per impact")
+    if "land_mean" in e:
+        near(s["cage_land"]["force_mean_n"], e["land_mean"], 1e-9, "cage-land force window mean", 1e-12)
+    return count
+
+
+def check_xdmf(xdmf, h5):
+    root = ET.parse(xdmf).getroot()
+    steps = root.findall("./Domain/Grid/Grid")
+    check(len(steps) > 1, f"{xdmf}: {len(steps)} time steps")
+    with h5py.File(h5, "r") as f:
+        times = [float(s.find("Time").get("Value")) for s in steps]
+        stride = round((times[1] - times[0]) / (f["time"][1] - f["time"][0])) if len(times) > 1 else 1
+        check(np.allclose(times, f["time"][::stride][:len(times)], rtol=0, atol=0), "XDMF times are /time")
+        for item in root.iter("DataItem"):
+            if item.get("Format") != "HDF":
+                continue
+            name, path = item.text.strip().split(":")
+            check(name == os.path.basename(h5), f"XDMF names {name}, not the .h5 beside it")
+            dims = tuple(int(v) for v in item.get("Dimensions").split())
+            check(path.strip("/") in f and f[path].shape == dims, f"XDMF: {path} {dims} is not in the file")
+        # The cage position at a sample through the XDMF hyperslab.
+        k = len(steps) // 2
+        cage = [g for g in steps[k].findall("Grid") if g.get("Name") == "cage"][0]
+        slab = cage.find("Geometry/DataItem")
+        start, step, count = np.array(slab.find("DataItem").text.split(), dtype=int).reshape(3, -1)
+        ds = f[slab.findall("DataItem")[1].text.split(":")[1]]
+        check(all(start + step * (count - 1) < ds.shape), "XDMF hyperslab inside the dataset")
+        value = ds[tuple(slice(a, a + s * c, s) for a, s, c in zip(start, step, count))]
+        check(np.array_equal(value[0], f["cage/position"][k * stride]), "cage position through the XDMF")
+
+
+def screenshot(page, work):
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if not browser:
+        print("note: no chromium: the page screenshot is not taken", file=sys.stderr)
+        return
+    png = os.path.join(work, "page.png")
+    subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={png}",
+                    "--window-size=1600,3000", "file://" + os.path.abspath(page)], capture_output=True, timeout=120)
+    check(os.path.isfile(png) and png_width(png) == 1600, "headless chromium screenshot of the page")
+
+
+def main():
+    global SOURCE
+    scene, raceway, SOURCE = sys.argv[1:4]
+    with open(os.path.join(SOURCE, "jobs", "scenes", scene + ".toml")) as fh:
+        text = re.sub(r'^end_time = .*$', f'end_time = "{END_TIMES[scene]}"', fh.read(), count=1, flags=re.M)
+    with tempfile.TemporaryDirectory(prefix=f"raceway_report_{scene}.") as work:
+        toml, h5 = os.path.join(work, scene + ".toml"), os.path.join(work, scene + ".h5")
+        with open(toml, "w") as fh:
+            fh.write(text)
+        r = subprocess.run([raceway, "run", toml, "-o", h5], capture_output=True, text=True, timeout=600)
+        check(r.returncode == 0, f"run: exit code {r.returncode}: {r.stderr[-2000:]}")
+        if r.returncode:
+            return 1
+        r = subprocess.run([raceway, "report", h5, "--xdmf"], capture_output=True, text=True, timeout=600)
+        check(r.returncode == 0, f"report: exit code {r.returncode}: {r.stderr[-3000:]}")
+        folder = os.path.join(work, scene + "_report")
+        with open(os.path.join(folder, "summary.json")) as fh:
+            s = json.load(fh)
+        element = s["rolling_element"]
+        pngs = sorted(n for n in os.listdir(folder) if n.endswith(".png"))
+        for png in ["cage_speed.png", "cage_centroid.png", f"{element}_load_azimuth.png", "pocket_force_time.png"]:
+            check(png in pngs, f"{png} written")
+        for png in pngs:
+            check(png_width(os.path.join(folder, png)) >= 1200, f"{png} is {png_width(os.path.join(folder, png))} px wide")
+        with open(os.path.join(folder, "report.html"), encoding="utf-8") as fh:
+            page = fh.read()
+        check(page.count("data:image/png;base64,") == len(pngs), "the page embeds every figure")
+        check(s["scene_name"] in page and "<pre>" in page, "the page names the scene and holds its text")
+        impacts = check_summary(s, h5, element)
+        check_xdmf(os.path.join(work, scene + ".xdmf"), h5)
+        print(f"{scene}: {len(pngs)} figures, cage {s['cage_speed']['mean_rpm']:.3f} rpm, {impacts} impacts",
+              file=sys.stderr)
+        if scene == "6309_R3":
+            script = os.path.join(SOURCE, "io", "report", "raceway_report.py")
+            r = subprocess.run([sys.executable, script, h5, "--animate", "--animation-frames", "12", "-o", folder],
+                               capture_output=True, text=True, timeout=600)
+            videos = [n for n in os.listdir(folder) if n.startswith("cage.")]
+            check(r.returncode == 0 and len(videos) == 1, f"animation: {r.returncode} {videos} {r.stderr[-2000:]}")
+            if videos and videos[0].endswith(".gif"):
+                from PIL import Image
+                with Image.open(os.path.join(folder, videos[0])) as im:
+                    check(im.n_frames == 12, f"animation has {im.n_frames} frames, expected 12")
+            screenshot(os.path.join(folder, "report.html"), work)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
