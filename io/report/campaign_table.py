@@ -163,6 +163,7 @@ def build_table(folder):
             metrics, summary = scene_metrics(path, scene["settling_time_s"])
             params = summary.get("scene_parameters", {})
             for name, key in manifest["axes"].items():
+                manifest.setdefault("axis_units", {})[name] = params.get(key, {}).get("unit", "")
                 value = params.get(key, {}).get("value")
                 row[f"{name}_si"] = value if isinstance(value, (int, float)) else None
             row.update({k: metrics[k] for k in METRICS})
@@ -222,7 +223,8 @@ def plot_trends(folder, manifest, rows):
                 group = sorted(group, key=lambda r: r[f"{axis}_si"] if r[f"{axis}_si"] is not None else 0)
                 x = [r[f"{axis}_si"] for r in group]
                 ax.plot(x, [r[metric] for r in group], "o-", label=f"{others[0]} = {label}" if others else None)
-            ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}, SI)")
+            unit = manifest.get("axis_units", {}).get(axis, "")
+            ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}){f' [{unit}]' if unit else ''}")
             ax.set_ylabel(metric)
             ax.set_title(f"{manifest['campaign']}: {metric}")
             if others:
