@@ -22,9 +22,9 @@ CampaignGroups split_campaign_groups(MPI_Comm world, int ranks_per_group) {
   CampaignGroups g;
   MPI_Comm_rank(world, &g.world_rank);
   MPI_Comm_size(world, &g.world_size);
-  const int per = std::clamp(ranks_per_group, 1, g.world_size);
-  g.group_count = g.world_size / per;
-  g.group_index = std::min(g.world_rank / per, g.group_count - 1);
+  g.ranks_per_group = std::clamp(ranks_per_group, 1, g.world_size);
+  g.group_count = g.world_size / g.ranks_per_group;
+  g.group_index = std::min(g.world_rank / g.ranks_per_group, g.group_count - 1);
   MPI_Comm_dup(world, &g.dispatch);
   MPI_Comm_split(world, g.group_index, g.world_rank, &g.group);
   MPI_Comm_rank(g.group, &g.group_rank);
@@ -75,7 +75,7 @@ void CampaignDispatcher::loop() {
     MPI_Recv(message, 4, MPI_DOUBLE, leader, kResultTag, groups_.dispatch, MPI_STATUS_IGNORE);
     JobResult result{static_cast<int>(message[0]), static_cast<int>(message[1]), static_cast<int>(message[2]),
                      message[3], {}};
-    const int group = std::min(leader / std::max(groups_.world_size / groups_.group_count, 1), groups_.group_count - 1);
+    const int group = std::min(leader / groups_.ranks_per_group, groups_.group_count - 1);
     if (result.job >= 0) {
       MPI_Status diag;
       MPI_Probe(leader, kDiagnosisTag, groups_.dispatch, &diag);

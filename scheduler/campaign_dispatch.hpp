@@ -22,6 +22,7 @@ struct CampaignGroups {
   MPI_Comm dispatch = MPI_COMM_NULL;  ///< duplicate of the world: leaders <-> dispatcher
   MPI_Comm group = MPI_COMM_NULL;     ///< this rank's group: one scene's ranks
   int world_rank = 0, world_size = 1, group_index = 0, group_count = 1, group_rank = 0, group_size = 1;
+  int ranks_per_group = 1;  ///< world rank r is in group min(r / ranks_per_group, group_count - 1)
   bool leader() const { return group_rank == 0; }
 };
 

@@ -214,7 +214,8 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   CampaignProgress progress{c, 0, 0, 0, 0, seconds_now(), 0, 0, {}};
   std::unique_ptr<scheduler::CampaignDispatcher> dispatcher;
   if (rank == 0) {
-    spdlog::info("campaign: {} ranks in {} groups of {}", g.world_size, g.group_count, g.world_size / g.group_count);
+    spdlog::info("campaign: {} ranks in {} groups of {}{}", g.world_size, g.group_count, g.ranks_per_group,
+                 g.world_size % g.ranks_per_group ? " (the last group takes the remaining ranks)" : "");
     std::vector<double> costs;
     for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
     progress.total = left.size();
@@ -288,10 +289,18 @@ int campaign_command(const CampaignRequest& req) {
   const std::string file = req.args.back();
   Campaign c;
   int code = 0;
-  code = exit_code_of([&] {
-    c = load_campaign(file);
-    return 0;
-  });
+  if (rank == 0) {
+    code = exit_code_of([&] {
+      c = load_campaign(file);
+      return 0;
+    });
+  } else {
+    try {  // every rank reads the campaign; rank 0 says what is wrong with it
+      c = load_campaign(file);
+    } catch (const std::exception& e) {
+      code = exit_code_for(e);
+    }
+  }
   if (code != 0 || check) return rank == 0 && code == 0 ? check_campaign(c) : code;
   if (req.output_dir.empty()) {
     if (rank == 0) spdlog::error("campaign: no output folder; give -o DIR");
