@@ -38,7 +38,8 @@ COLUMNS = ["scene", "duration_s", "choice", "option", "overrides", "wall_s", "st
 
 BALL_CHOICES = {
     "gravity": {"off": ["scene.gravity=false"]},
-    "traction_law": {"tanh": ['contact.ball_race.traction="tanh"'], "none": ['contact.ball_race.traction="none"']},
+    # (traction "none" is no option: the scenes' friction keys would then be refused as without effect)
+    "traction_law": {"tanh": ['contact.ball_race.traction="tanh"']},
     "traction_grid": {"3x3": ["contact.ball_race.grid=[3, 3]"], "1x1": ["contact.ball_race.grid=[1, 1]"]},
     "method": {"adams": ['solver.method="adams"', "solver.max_order=12"],
                "erk": ['solver.method="erk"', "solver.max_order=5"]},
@@ -49,7 +50,6 @@ BALL_CHOICES = {
 FILM = {"film": {"off": ["contact.ball_race.rolling_resistance=false"]}}
 ROLLER_CHOICES = {
     "gravity": {"off": ["scene.gravity=false"]},
-    "traction_law": {"none": ['contact.roller_race.traction="none"']},
     "slices": {"5": ["contact.roller_race.slices=5"]},
     "method": {"adams": ['solver.method="adams"', "solver.max_order=12"],
                "erk": ['solver.method="erk"', "solver.max_order=5"], "bdf order 5": ["solver.max_order=5"]},

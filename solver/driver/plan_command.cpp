@@ -205,7 +205,7 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
   }
   const Recommendation best = recommend(rows, targets);
   std::printf("recommended: predicted cost %.2fx the scene as shipped", best.cost_ratio);
-  if (reference) std::printf(" (%.3g s of wall time for its %s s, against %.3g s)", best.cost_ratio * reference->wall_s,
+  if (reference) std::printf(" (%.3g s of wall time for its %s, against %.3g s)", best.cost_ratio * reference->wall_s,
                              reference->duration.c_str(), reference->wall_s);
   std::puts("");
   for (const auto& t : targets) {
@@ -258,7 +258,7 @@ int plan_command(const PlanOptions& options) {
     return nullptr;
   };
   const FidelityRow* reference = find("as shipped");
-  std::printf("plan for %s (%s), measured over its first %s s with perf/fidelity_table.py\n",
+  std::printf("plan for %s (%s), measured over its first %s with perf/fidelity_table.py\n",
               options.scene_path.c_str(), scene.scene.name.c_str(), reference ? reference->duration.c_str() : "?");
   std::printf("planar or spatial: %s; a %s bearing is built %s only\n",
               scene.scene.model == io::ModelKind::spatial ? "spatial" : "planar",
