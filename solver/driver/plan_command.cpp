@@ -153,7 +153,7 @@ void print_choices(const std::vector<FidelityRow>& rows) {
               "pocket force", "how");
   for (const auto& r : rows) {
     if (r.choice == "reference" && r.option == "as shipped") continue;
-    const std::string how = !r.overrides.empty() ? "--set " + r.overrides : r.note;
+    const std::string how = r.choice == "reference" ? r.note : !r.overrides.empty() ? "--set " + r.overrides : r.note;
     if (r.cost_ratio <= 0) {
       std::printf("  %-14s %-11s %8s  %s (%s)\n", r.choice.c_str(), r.option.c_str(), "failed", how.c_str(),
                   r.note.c_str());
@@ -162,8 +162,7 @@ void print_choices(const std::vector<FidelityRow>& rows) {
     std::printf("  %-14s %-11s %7.2fx %11s %11s %12s  %s\n", r.choice.c_str(), r.option.c_str(), r.cost_ratio,
                 percent(r.change[0]).c_str(), percent(r.change[1]).c_str(), percent(r.change[2]).c_str(), how.c_str());
   }
-  std::puts("  (cost: wall time against the scene as shipped; changes: relative, of the means over the second half;\n"
-            "   the reference row 'uncertainty' is the scene against itself at rtol / 10: smaller changes are not resolved)");
+  std::puts("  (cost: wall time against the scene as shipped; changes: relative, of the means over the second half)");
 }
 
 /// The `--set` form of a row's overrides: "a.b=1 c.d=[3, 3]" -> {"a.b=1", "c.d=[3, 3]"}. An override
@@ -204,6 +203,7 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
                   percent(uncertainty->change[q]).c_str());
   }
   const Recommendation best = recommend(rows, targets);
+  std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent)");
   std::printf("recommended: predicted cost %.2fx the scene as shipped", best.cost_ratio);
   if (reference) std::printf(" (%.3g s of wall time for its %s, against %.3g s)", best.cost_ratio * reference->wall_s,
                              reference->duration.c_str(), reference->wall_s);
