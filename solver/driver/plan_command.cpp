@@ -25,6 +25,10 @@ namespace {
 
 using solver::OptionsError;
 
+/// An option is recommended only when it saves at least 5 % of the time: the table's timings (the
+/// smaller CPU time of two runs) scatter by a few per cent.
+constexpr double kLeastSaving = 0.95;
+
 /// The fields of one CSV line. Written by hand: the table is Python's csv output (fields quoted
 /// only when they hold a comma or a quote, quotes doubled), and ten lines of splitting do not
 /// justify a CSV library as a dependency of the executable.
@@ -59,7 +63,7 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
   std::vector<std::string> header;
   std::vector<FidelityRow> rows;
   std::string line;
-  const char* wanted[] = {"scene", "duration_s", "choice", "option", "overrides", "wall_s", "cost_ratio",
+  const char* wanted[] = {"scene", "duration_s", "choice", "option", "overrides", "cpu_s", "cost_ratio",
                           "cage_speed_change", "max_load_change", "pocket_force_change", "note"};
   std::map<std::string, std::size_t> col;
   for (int number = 1; std::getline(in, line); ++number) {
@@ -78,11 +82,11 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
       throw OptionsError(fmt::format("{}:{}: {} fields, the header has {}", path, number, f.size(), header.size()));
     FidelityRow r{f[col["scene"]], f[col["duration_s"]], f[col["choice"]], f[col["option"]],
                   f[col["overrides"]], f[col["note"]]};
-    r.wall_s = number_or_zero(f[col["wall_s"]]);
+    r.cpu_s = number_or_zero(f[col["cpu_s"]]);
     r.cost_ratio = number_or_zero(f[col["cost_ratio"]]);
     r.change = {number_or_zero(f[col["cage_speed_change"]]), number_or_zero(f[col["max_load_change"]]),
                 number_or_zero(f[col["pocket_force_change"]])};
-    if (!std::isfinite(r.cost_ratio) || !std::isfinite(r.wall_s) ||
+    if (!std::isfinite(r.cost_ratio) || !std::isfinite(r.cpu_s) ||
         std::any_of(r.change.begin(), r.change.end(), [](double c) { return !std::isfinite(c); }))
       throw OptionsError(fmt::format("{}:{}: a number column holds something that is not a number", path, number));
     rows.push_back(std::move(r));
@@ -111,27 +115,57 @@ Target parse_target(const std::string& text) {
   return t;
 }
 
+namespace {
+
+/// The measured rows of combinations ("combination" rows: several choices at once, run by
+/// perf/fidelity_table.py for the plans it checks), by their overrides.
+std::map<std::string, const FidelityRow*> measured_combinations(const std::vector<FidelityRow>& rows) {
+  std::map<std::string, const FidelityRow*> out;
+  for (const auto& r : rows)
+    if (r.choice == "combination" && r.cost_ratio > 0) out[r.overrides] = &r;
+  return out;
+}
+
+/// A candidate's cost and changes: measured when the table holds its combination of overrides
+/// (rank rows aside: they change nothing and scale the time), else the options' product and sum.
+void predict(Recommendation& c, const std::map<std::string, const FidelityRow*>& measured) {
+  std::string key;
+  double rank_ratio = 1;
+  int with_overrides = 0;
+  for (const auto* r : c.chosen) {
+    c.cost_ratio *= r->cost_ratio;
+    for (std::size_t q = 0; q < 3; ++q) c.change[q] += r->change[q];
+    if (r->overrides.empty()) rank_ratio *= r->cost_ratio;
+    else key += (key.empty() ? "" : " ") + r->overrides, ++with_overrides;
+  }
+  const auto it = with_overrides > 1 ? measured.find(key) : measured.end();
+  if (it == measured.end()) return;
+  c.measured = true;
+  c.cost_ratio = it->second->cost_ratio * rank_ratio;
+  c.change = it->second->change;
+}
+
+}  // namespace
+
 Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets) {
   // The options per choice, in the table's order; index 0 of each is "as shipped" (nullptr).
   std::vector<std::string> choices;
   std::map<std::string, std::vector<const FidelityRow*>> options;
   for (const auto& r : rows) {
-    if (r.choice == "reference" || r.cost_ratio <= 0) continue;
+    if (r.choice == "reference" || r.choice == "combination" || r.cost_ratio <= 0 || r.cost_ratio > kLeastSaving)
+      continue;
     if (!options.count(r.choice)) choices.push_back(r.choice), options[r.choice] = {nullptr};
     options[r.choice].push_back(&r);
   }
+  const auto measured = measured_combinations(rows);
   Recommendation best;
   std::vector<std::size_t> pick(choices.size(), 0);
   // Every combination (an odometer over the choices): a few hundred at most.
   while (true) {
     Recommendation c;
-    for (std::size_t i = 0; i < choices.size(); ++i) {
-      const FidelityRow* r = options[choices[i]][pick[i]];
-      if (!r) continue;
-      c.chosen.push_back(r);
-      c.cost_ratio *= r->cost_ratio;
-      for (std::size_t q = 0; q < 3; ++q) c.change[q] += r->change[q];
-    }
+    for (std::size_t i = 0; i < choices.size(); ++i)
+      if (const FidelityRow* r = options[choices[i]][pick[i]]) c.chosen.push_back(r);
+    predict(c, measured);
     const bool meets = std::all_of(targets.begin(), targets.end(), [&](const Target& t) {
       return c.change[static_cast<std::size_t>(t.quantity)] <= t.tolerance;
     });
@@ -152,7 +186,7 @@ void print_choices(const std::vector<FidelityRow>& rows) {
   std::printf("  %-14s %-11s %8s %11s %11s %12s  %s\n", "choice", "option", "cost", "cage speed", "max load",
               "pocket force", "how");
   for (const auto& r : rows) {
-    if (r.choice == "reference" && r.option == "as shipped") continue;
+    if ((r.choice == "reference" && r.option == "as shipped") || r.choice == "combination") continue;
     const std::string how = r.choice == "reference" ? r.note : !r.overrides.empty() ? "--set " + r.overrides : r.note;
     if (r.cost_ratio <= 0) {
       std::printf("  %-14s %-11s %8s  %s (%s)\n", r.choice.c_str(), r.option.c_str(), "failed", how.c_str(),
@@ -162,7 +196,9 @@ void print_choices(const std::vector<FidelityRow>& rows) {
     std::printf("  %-14s %-11s %7.2fx %11s %11s %12s  %s\n", r.choice.c_str(), r.option.c_str(), r.cost_ratio,
                 percent(r.change[0]).c_str(), percent(r.change[1]).c_str(), percent(r.change[2]).c_str(), how.c_str());
   }
-  std::puts("  (cost: wall time against the scene as shipped; changes: relative, of the means over the second half)");
+  std::puts("  (cost: CPU time of a one-rank run, the wall time on an idle machine, against the scene as shipped;\n"
+            "   changes: relative, of the means over the second half; options saving less than 5 % are within\n"
+            "   the timing scatter and never recommended)");
 }
 
 /// The `--set` form of a row's overrides: "a.b=1 c.d=[3, 3]" -> {"a.b=1", "c.d=[3, 3]"}. An override
@@ -203,14 +239,17 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
                   percent(uncertainty->change[q]).c_str());
   }
   const Recommendation best = recommend(rows, targets);
-  std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent)");
-  std::printf("recommended: predicted cost %.2fx the scene as shipped", best.cost_ratio);
-  if (reference) std::printf(" (%.3g s of wall time for its %s, against %.3g s)", best.cost_ratio * reference->wall_s,
-                             reference->duration.c_str(), reference->wall_s);
+  std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent),\n"
+            "unless the table holds the combination measured (perf/fidelity_table.py measures the plans it checks)");
+  std::printf("recommended: %s cost %.2fx the scene as shipped", best.measured ? "measured" : "predicted",
+              best.cost_ratio);
+  if (reference) std::printf(" (%.3g CPU seconds for its %s, against %.3g s)", best.cost_ratio * reference->cpu_s,
+                             reference->duration.c_str(), reference->cpu_s);
   std::puts("");
   for (const auto& t : targets) {
     const auto q = static_cast<std::size_t>(t.quantity);
-    std::printf("  predicted change of %s at most %s (target %s)\n", kQuantities[q], percent(best.change[q]).c_str(),
+    std::printf("  %s change of %s %s (target %s)\n", best.measured ? "measured" : "predicted", kQuantities[q],
+                ((best.measured ? std::string() : std::string("at most ")) + percent(best.change[q])).c_str(),
                 percent(t.tolerance).c_str());
   }
   if (best.chosen.empty()) std::puts("  the scene as shipped: no cheaper choice meets the targets");

@@ -21,7 +21,7 @@ inline constexpr std::array<const char*, 3> kQuantities{"cage_speed", "max_load"
 /// One measured variant of a scene: a row of the fidelity table.
 struct FidelityRow {
   std::string scene, duration, choice, option, overrides, note;
-  double wall_s = 0, cost_ratio = 0;        ///< cost_ratio: wall time / the reference's; 0: the run failed
+  double cpu_s = 0, cost_ratio = 0;         ///< cost_ratio: CPU time / the reference's; 0: the run failed
   std::array<double, 3> change{};           ///< relative change of each of kQuantities against the reference
 };
 
@@ -34,8 +34,9 @@ struct Target {
 /// One option chosen per choice (a row each; the shipped settings are no row) and its prediction.
 struct Recommendation {
   std::vector<const FidelityRow*> chosen;
-  double cost_ratio = 1;         ///< the product of the options' cost ratios
-  std::array<double, 3> change{};  ///< the sum of the options' changes: a bound, not an estimate
+  double cost_ratio = 1;           ///< the product of the options' cost ratios, or the measured one
+  std::array<double, 3> change{};  ///< the sum of the options' changes (a bound), or the measured ones
+  bool measured = false;           ///< the table holds this combination, run as a whole
 };
 
 /// The rows of the table at PATH (a CSV file with a header line; '#' lines are comments). Throws
@@ -46,7 +47,8 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path);
 Target parse_target(const std::string& text);
 
 /// The cheapest combination of one option (or none) per choice whose predicted changes meet every
-/// target; ROWS are the scene's rows (the reference rows and failed runs are skipped).
+/// target; ROWS are the scene's rows (the reference rows and failed runs are skipped; a
+/// "combination" row replaces the prediction of its set of overrides by its measurement).
 Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets);
 
 struct PlanOptions {
