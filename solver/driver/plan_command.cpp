@@ -59,7 +59,9 @@ std::string percent(double relative) { return fmt::format("{:.3g} %", 100 * rela
 
 std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw OptionsError(fmt::format("{}: cannot read the fidelity table (--table; written by perf/fidelity_table.py)", path));
+  if (!in)
+    throw OptionsError(
+        fmt::format("{}: cannot read the fidelity table (--table; written by perf/fidelity_table.py)", path));
   std::vector<std::string> header;
   std::vector<FidelityRow> rows;
   std::string line;
@@ -73,7 +75,8 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
       header = f;
       for (const char* name : wanted) {
         const auto it = std::find(header.begin(), header.end(), name);
-        if (it == header.end()) throw OptionsError(fmt::format("{}:{}: the header has no column '{}'", path, number, name));
+        if (it == header.end())
+          throw OptionsError(fmt::format("{}:{}: the header has no column '{}'", path, number, name));
         col[name] = static_cast<std::size_t>(it - header.begin());
       }
       continue;
@@ -110,7 +113,8 @@ Target parse_target(const std::string& text) {
   if (!value.empty() && value.back() == '%') value.pop_back(), scale = 0.01;
   const double v = value.empty() ? NAN : number_or_zero(value);
   if (!(v > 0) || !std::isfinite(v))
-    throw OptionsError(fmt::format("--target '{}': the tolerance must be a positive number (relative, or with %)", text));
+    throw OptionsError(
+        fmt::format("--target '{}': the tolerance must be a positive number (relative, or with %)", text));
   t.tolerance = v * scale;
   return t;
 }
