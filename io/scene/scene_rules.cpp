@@ -194,6 +194,16 @@ void output_interval_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
+// Gravity is fixed in space and so turns in the carrier's frame; raceway's gravity is fixed in the
+// bearing frame, which would be wrong here (and it is 1e-4 of a carrier's field in practice).
+void carrier_without_gravity(const Row&, const Section& s, Bind& b) {
+  s.check(!b.scene.gravity, "radius", [] {
+    return std::string("a bearing on a rotating carrier cannot take scene.gravity = true: gravity would turn in the "
+                       "carrier's frame, which raceway does not model (it is a ten-thousandth of the carrier's field "
+                       "in a planetary gearbox); set gravity = false");
+  });
+}
+
 void initial_step_within_run(const Row&, const Section& s, Bind& b) {
   const double step = b.scene.solver.initial_step, end = b.scene.scene.end_time;
   s.check(step <= end, "initial_step", [&] {

@@ -57,6 +57,7 @@ std::optional<std::string> bdf_only(const Section& s, const Bind& b);
 // ---- checks after a key is read ----------------------------------------------------------------
 void allowed_keys_in_scene(const Row& row, const Section& s, Bind& b);
 void output_interval_within_run(const Row& row, const Section& s, Bind& b);
+void carrier_without_gravity(const Row& row, const Section& s, Bind& b);
 void initial_step_within_run(const Row& row, const Section& s, Bind& b);
 void model_fits_bearing_type(const Row& row, const Section& s, Bind& b);
 void clearance_fits_elements(const Row& row, const Section& s, Bind& b);

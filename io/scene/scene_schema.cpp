@@ -41,6 +41,9 @@ constexpr std::string_view kBallRaceContact =
     "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
     "at the contact centre";
 
+constexpr std::string_view kPlanarCarrier =
+    "only for planar roller bearings (model = \"planar\"): the carrier's frame terms act in the bearing's plane";
+
 constexpr std::string_view kMaxOrderText = "5 (bdf), 12 (adams), 8 (erk), 5 (ark)";
 constexpr std::string_view kMaxOrderDefaultText = "5 (bdf), 12 (adams), 5 (erk), 4 (ark)";
 
@@ -297,6 +300,15 @@ constexpr Row kRows[] = {
      .elsewhere = kSpatialDirection, .when = tilt_support_needs_free_tilt, .then = damper_has_spring,
      .meaning = "about x and y (tilt = \"free\")"},
 
+    // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
+    {.section = "carrier", .key = "radius", .kind = number, .field = FIELD(scene.carrier.radius), .dim = dim::length,
+     .bounds = positive, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .then = carrier_without_gravity,
+     .example = "100 mm",
+     .meaning = "R_c: distance from the sun (carrier) axis to the bearing axis, which lies on the carrier's +x"},
+    {.section = "carrier", .key = "speed", .kind = time_function, .field = FIELD(scene.carrier.speed),
+     .dim = dim::angular_speed, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
+     .meaning = "the carrier's speed about z; ring speeds and loads are in the bearing frame, which turns with it"},
+
     // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
     {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
      .meaning = "label"},
@@ -437,7 +449,7 @@ constexpr Row kRows[] = {
 #undef FIELD
 
 constexpr std::string_view kTopSections[] = {"scene",      "bearing",   "materials", "cage",   "inner_ring",
-                                             "outer_ring", "lubricant", "contact",   "solver", "output"};
+                                             "outer_ring", "carrier",   "lubricant", "contact", "solver", "output"};
 
 }  // namespace
 
