@@ -415,6 +415,23 @@ void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
                        "stress = coefficient x pressure; 0.02 to 0.1 for mineral oils)");
 }
 
+// The film laws of seed 003 (EHD roller-race, hydrodynamic roller-cage) need a viscosity.
+void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
+  const contact::LawId id = b.contact->normal.id;
+  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic) return;
+  if (!(b.scene.lubricant.viscosity > 0))
+    s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
+                                 "lubricant.pressure_viscosity for an EHD film)",
+                                 b.contact->normal.name()));
+}
+
+// EHD traction is the shear of the EHD film: it needs that film; limiting shear needs its lubricant.
+void traction_fits_normal_law(const Row& row, const Section& s, Bind& b) {
+  limiting_shear_has_lubricant(row, s, b);
+  if (b.contact->traction.id == contact::LawId::ehd_traction && b.contact->normal.id != contact::LawId::moes_ehd)
+    s.fail("traction", "traction = \"ehd\" is the shear of an EHD film: it needs normal = \"moes_ehd\"");
+}
+
 void rolling_resistance_has_film(const Row&, const Section& s, Bind& b) {
   if (b.contact->traction.rolling_resistance && !(b.scene.lubricant.viscosity > 0))
     s.fail("rolling_resistance", "EHL rolling resistance needs a film: set lubricant.viscosity, or "

@@ -347,7 +347,7 @@ constexpr Row kRows[] = {
 
     // ---- [contact.NAME]: laws from the law registry (contact/laws/law_registry.hpp) -------------
     {.section = "contact.*", .key = "normal", .kind = law, .field = FIELD(contact->normal), .def = registry,
-     .role = LawRole::normal, .meaning = "normal force law"},
+     .then = film_law_has_lubricant, .role = LawRole::normal, .meaning = "normal force law"},
     {.section = "contact.*", .key = "slices", .kind = integer, .field = FIELD(contact->normal.slices),
      .bounds = {.lo = 1, .hi = 200}, .def = value(1), .contacts = contact::line_contacts, .elsewhere = kLineContact,
      .meaning = "slices along the roller length (for crowning)"},
@@ -361,7 +361,7 @@ constexpr Row kRows[] = {
      .dim = dim::inverse_speed, .bounds = non_negative, .def = value(0.5), .when = damping_law_on, .otherwise = 0,
      .meaning = "F = F_elastic (1 + factor d(delta)/dt); 0.5 s/m: restitution about 0.93 at a 0.2 m/s impact"},
     {.section = "contact.*", .key = "traction", .kind = law, .field = FIELD(contact->traction), .def = registry,
-     .then = limiting_shear_has_lubricant, .role = LawRole::traction, .meaning = "traction (friction) law"},
+     .then = traction_fits_normal_law, .role = LawRole::traction, .meaning = "traction (friction) law"},
     {.section = "contact.*", .key = "friction_coefficient", .kind = number,
      .field = FIELD(contact->traction.friction_coefficient), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
      .def = derived(friction_default, "0.1; cage_land 0.05"), .when = traction_law_on,
