@@ -85,7 +85,8 @@ SegmentResult ehd_contact_at(const EhdRaceFilm& film, const TractionCurve& curve
   const SurfaceSpeeds v = surface_speeds(a, b, point, normal_on_b, tangent, contact_velocity);
   const EhdState st = evaluate_ehd(film.law, -approach, std::abs(v.entrainment));
   r.valid = st.valid && std::isfinite(v.slip) && std::isfinite(v.approach_rate);
-  if (!r.valid || st.force == 0) return r;
+  // Beyond the validity limit the force is still applied (and flagged), as contact_at does.
+  if (st.force == 0 || !std::isfinite(st.force) || !std::isfinite(v.slip)) return r;
   const double normal = std::max(0.0, st.force * (1.0 + film.damping_factor * v.approach_rate));
   double tangential = -curve.coefficient(v.slip) * normal, poiseuille = 0;  // without EHD traction
   if (film.traction) {
@@ -115,7 +116,7 @@ SegmentResult film_contact_at(const HydrodynamicLineLaw& law, const TractionCurv
   const SurfaceSpeeds v = surface_speeds(a, b, point, normal_on_b, tangent, contact_velocity);
   const HydrodynamicForce h = evaluate_hydrodynamic(law, -approach, -v.approach_rate, v.entrainment);
   r.valid = h.valid && std::isfinite(v.slip);
-  if (!r.valid || (h.force == 0 && h.couette_force_per_speed == 0)) return r;
+  if (!std::isfinite(h.force) || !std::isfinite(v.slip) || (h.force == 0 && h.couette_force_per_speed == 0)) return r;
   const double dry_friction = traction.coefficient(v.slip) * h.dry.force;
   const double tangential = -(dry_friction + h.couette_force_per_speed * v.slip);
   apply_at(r, a, b, point, normal_on_b, h.force, tangential, tangent);
