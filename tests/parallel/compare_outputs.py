@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Bitwise comparison of raceway output files (the reference first, then the others).
 
-Every dataset outside /scheduler must have the same shape, dtype and bytes; every attribute
+Every dataset outside /scheduler must have the same shape, dtype and bytes (the values, and each
+stored chunk: offset, filter mask, compressed bytes); every attribute
 must be equal, except the ones that legitimately differ between runs: the root's summary_json
 is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s, time_split_s, output_time_s,
 output_write_time_s), and
@@ -35,6 +36,18 @@ def has_references(v):
         v.dtype.fields[n][0].kind == "O" for n in v.dtype.names)))
 
 
+def stored_chunks(dataset):
+    """A chunked dataset's chunks as stored (offset, filter mask, filtered bytes): the files must
+    agree in what is on disk, not only in the values read back."""
+    if dataset.chunks is None:
+        return None
+    chunks = []
+    for i in range(dataset.id.get_num_chunks()):
+        offset = dataset.id.get_chunk_info(i).chunk_offset
+        chunks.append((offset,) + tuple(dataset.id.read_direct_chunk(offset)))
+    return sorted(chunks)
+
+
 def collect(path):
     items = {}
     with h5py.File(path, "r") as f:
@@ -63,7 +76,7 @@ def collect(path):
             if isinstance(obj, h5py.Dataset):
                 data = obj[()]
                 raw = data.tobytes() if isinstance(data, np.ndarray) and data.dtype.kind != "O" else repr(data.tolist() if isinstance(data, np.ndarray) else data)
-                items[full] = ("dataset", str(obj.dtype), obj.shape, raw, attrs_of(full, obj))
+                items[full] = ("dataset", str(obj.dtype), obj.shape, raw, attrs_of(full, obj), stored_chunks(obj))
             else:
                 items[full] = ("group", attrs_of(full, obj))
 
