@@ -437,14 +437,14 @@ void H5SeriesWriter::reserve_for_flush() {
   }
 }
 
-void H5SeriesWriter::flush() {
+void H5SeriesWriter::flush(bool wait_for_disk) {
   require_open("flush");
   ErrorSilencer quiet;
   reserve_for_flush();
   write_all_buffers(true);
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) fail("writing to disk (H5Fflush)", "/");
   release_disk(partial_path_);
-  fsync_file(partial_path_);
+  if (wait_for_disk) fsync_file(partial_path_);
   flushed_ = true;
 }
 

@@ -160,8 +160,11 @@ class H5SeriesWriter {
   void write_array(const std::string& path, const std::vector<std::string>& values,
                    const std::string& description);
 
-  /// Writes all buffered rows, flushes the file (H5Fflush) and waits for the disk (fsync).
-  void flush();
+  /// Writes the buffered rows of whole chunks, flushes the file (H5Fflush) and, if wait_for_disk,
+  /// waits for the disk (fsync). Without the wait the flushed file is complete in the system's
+  /// cache: it survives the process being killed, not a power loss (fsync: 5-15 ms here, more on
+  /// network file systems).
+  void flush(bool wait_for_disk = true);
 
   /// Bytes of appended rows not yet in the file.
   std::size_t buffered_bytes() const noexcept { return buffered_bytes_; }

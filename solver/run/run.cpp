@@ -243,7 +243,10 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
   out_.emplace(*file_, model_, scene_.output.segments);
   file_->set_attribute("/", "restart_times", restart_times_);
-  file_->flush();  // the layout on disk: from here on the .partial file is readable after any kill
+  // The layout in the file: from here on the .partial file is readable after the process is
+  // killed. A fresh run does not wait for the disk here: a power loss now loses nothing a resume
+  // could use (there is no checkpoint yet); a resumed file holds the rows of the earlier runs.
+  file_->flush(resumed.has_value());
   integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
   last_checkpoint_wall_ = wall();
   if (!resumed) record(t0);
