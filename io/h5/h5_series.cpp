@@ -390,8 +390,14 @@ void H5SeriesWriter::write_buffer(const std::string& path, Series& s, bool whole
   s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(written));
 }
 
+std::vector<double> H5SeriesWriter::padded_chunk(const Series& s, std::size_t first_row, std::size_t rows) {
+  // As HDF5 stores an edge chunk: the rows past the end hold the fill value (NaN).
+  std::vector<double> values(s.chunk_rows * s.row_size, std::numeric_limits<double>::quiet_NaN());
+  std::copy_n(s.buffer.begin() + static_cast<std::ptrdiff_t>(first_row * s.row_size), rows * s.row_size, values.begin());
+  return values;
+}
+
 void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_t rows) {
-  const std::size_t chunk_values = s.chunk_rows * s.row_size;
   std::vector<hsize_t> offset(s.row_shape.size() + 1, 0);
   for (std::size_t done = 0; done < rows; done += s.chunk_rows) {
     const std::size_t chunk = (s.rows_written + done) / s.chunk_rows;
@@ -399,13 +405,9 @@ void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_
     if (auto f = s.filtered.find(chunk); f != s.filtered.end()) {
       stored = f->second.get();
       s.filtered.erase(f);
-    } else {
-      // Not handed to the compressor (the last, partial chunk): as HDF5 stores an edge chunk, the
-      // rows past the end hold the fill value (NaN).
-      std::vector<double> values(chunk_values, std::numeric_limits<double>::quiet_NaN());
-      const std::size_t count = std::min(chunk_values, (rows - done) * s.row_size);
-      std::copy_n(s.buffer.begin() + static_cast<std::ptrdiff_t>(done * s.row_size), count, values.begin());
-      stored = filter_chunk(values, options_.shuffle, options_.gzip_level);
+    } else {  // the last, partial chunk, not handed to the compressor
+      stored = filter_chunk(padded_chunk(s, done, std::min(s.chunk_rows, rows - done)), options_.shuffle,
+                            options_.gzip_level);
     }
     offset[0] = static_cast<hsize_t>(chunk * s.chunk_rows);
     if (H5Dwrite_chunk(s.dataset, dxpl_, stored.filter_mask, offset.data(), stored.bytes.size(), stored.bytes.data()) < 0)
@@ -414,6 +416,19 @@ void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_
 }
 
 void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
+  if (!whole_chunks_only && compressor_) {
+    // The last, partial chunks are filtered by both threads: the compressor takes those of the
+    // second half of the series (last first) while this thread writes from the first.
+    std::size_t half = series_.size() / 2;
+    for (auto it = series_.rbegin(); it != series_.rend() && half > 0; ++it, --half) {
+      Series& s = it->second;
+      const std::size_t rows = s.buffer.size() / s.row_size, tail = rows % s.chunk_rows;
+      if (!s.direct || s.rows_written % s.chunk_rows != 0 || tail == 0) continue;
+      const std::size_t chunk = (s.rows_written + rows) / s.chunk_rows;
+      if (!s.filtered.contains(chunk))
+        s.filtered.emplace(chunk, compressor_->submit(padded_chunk(s, rows - tail, tail)));
+    }
+  }
   for (auto& [path, s] : series_) write_buffer(path, s, whole_chunks_only);
 }
 

@@ -206,6 +206,8 @@ class H5SeriesWriter {
   void write_buffer(const std::string& path, Series& s, bool whole_chunks_only);
   void write_chunks(const std::string& path, Series& s, std::size_t rows);  // H5Dwrite_chunk from rows_written
   void submit_whole_chunks(Series& s);  // to the background compressor
+  /// A whole chunk's values from `rows` buffered rows starting at buffer row `first_row`.
+  static std::vector<double> padded_chunk(const Series& s, std::size_t first_row, std::size_t rows);
   void write_all_buffers(bool whole_chunks_only);
   void close_all() noexcept;
   void abandon() noexcept;     // after a failed write: nothing more reaches the file; close
