@@ -23,6 +23,17 @@ constexpr LawEntry kLaws[] = {
     {LawRole::traction, LawId::limiting_shear, "limiting_shear", ball_race_contact,
      "lubricated traction: Barus viscosity and a limiting shear stress over the contact ellipse (needs "
      "[lubricant] viscosity and limiting_shear_coefficient); the tanh curve where there is no film"},
+    {LawRole::normal, LawId::moes_ehd, "moes_ehd", roller_race_contact,
+     "EHD line contact (seed 003 eq. 8-9): Palmgren's law carrying a Moes film (Martin's rigid-isoviscous "
+     "constant), fully flooded up to a gap of 2 % of the roller radius (needs [lubricant] viscosity)"},
+    {LawRole::traction, LawId::ehd_traction, "ehd", roller_race_contact,
+     "EHD traction (seed 003 eq. 10): Couette friction linear in the slide-to-roll ratio up to "
+     "friction_coefficient (saturating at 5 %; slip_velocity_scale keeps it finite at rest) and the Poiseuille "
+     "rolling force (needs normal = \"moes_ehd\")"},
+    {LawRole::normal, LawId::hydrodynamic, "hydrodynamic", roller_cage_contact,
+     "hydrodynamic film (seed 003 2.2.1): rigid roller on a flat bar, rolling and squeeze film up to a gap of 2 % "
+     "of the roller radius, the dry Palmgren law once the film collapses to 0.2 um; viscous Couette drag (needs "
+     "[lubricant] viscosity)"},
 };
 
 constexpr std::array<ContactKindBit, 5> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,

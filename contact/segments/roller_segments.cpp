@@ -1,5 +1,6 @@
 #include "contact/segments/roller_segments.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace raceway::contact {
@@ -14,6 +15,7 @@ inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 inline Vec2 perp(Vec2 a) { return {-a.y, a.x}; }  // e_z x a
+inline double norm_of(Vec2 a) { return std::hypot(a.x, a.y); }
 
 inline Vec2 position(const PlanarKinematics& k) { return {k.x, k.y}; }
 /// Velocity of the material point of body k at the spatial point c.
@@ -53,6 +55,77 @@ SegmentResult contact_at(const LineContactLaw& law, const TractionCurve& tractio
   return r;
 }
 
+/// The normal and tangential forces on B at `point`, equal and opposite on A.
+void apply_at(SegmentResult& r, const PlanarKinematics& a, const PlanarKinematics& b, Vec2 point, Vec2 normal_on_b,
+              double normal, double tangential, Vec2 tangent) {
+  const Vec2 f_b = normal * normal_on_b + tangential * tangent;
+  r.on_b = {f_b.x, f_b.y, cross(point - position(b), f_b)};
+  r.on_a = {-f_b.x, -f_b.y, cross(point - position(a), Vec2{-f_b.x, -f_b.y})};
+  r.diagnostics.normal_force = normal;
+  r.diagnostics.traction_force = tangential;
+}
+
+/// Surface speeds along `tangent` of A and B at `point`, relative to the contact point, which
+/// moves at `contact_velocity`: the entrainment speed u_m (their mean) and the slip (B - A).
+struct SurfaceSpeeds {
+  double entrainment, slip, approach_rate;
+};
+SurfaceSpeeds surface_speeds(const PlanarKinematics& a, const PlanarKinematics& b, Vec2 point, Vec2 normal_on_b,
+                             Vec2 tangent, Vec2 contact_velocity) {
+  const Vec2 va = point_velocity(a, point), vb = point_velocity(b, point);
+  const double ua = dot(va - contact_velocity, tangent), ub = dot(vb - contact_velocity, tangent);
+  return {0.5 * (ua + ub), ub - ua, -dot(vb - va, normal_on_b)};
+}
+
+/// The EHD roller-race contact (seed 003 2.2.2): film force, Couette and Poiseuille traction.
+SegmentResult ehd_contact_at(const EhdRaceFilm& film, const TractionCurve& curve, const PlanarKinematics& a, const PlanarKinematics& b,
+                             Vec2 point, Vec2 normal_on_b, double approach, Vec2 tangent, Vec2 contact_velocity) {
+  SegmentResult r;
+  r.diagnostics.approach = approach;
+  const SurfaceSpeeds v = surface_speeds(a, b, point, normal_on_b, tangent, contact_velocity);
+  const EhdState st = evaluate_ehd(film.law, -approach, std::abs(v.entrainment));
+  r.valid = st.valid && std::isfinite(v.slip) && std::isfinite(v.approach_rate);
+  // Beyond the validity limit the force is still applied (and flagged), as contact_at does.
+  if (st.force == 0 || !std::isfinite(st.force) || !std::isfinite(v.slip)) return r;
+  const double normal = std::max(0.0, st.force * (1.0 + film.damping_factor * v.approach_rate));
+  double tangential = -curve.coefficient(v.slip) * normal, poiseuille = 0;  // without EHD traction
+  if (film.traction) {
+    tangential = -film.couette.coefficient(v.slip, v.entrainment) * normal;
+    const double U = speed_parameter(film.law.film, std::abs(v.entrainment));
+    poiseuille = film.law.film.length * poiseuille_force_per_length(film.law.film, U, st.load_parameter);
+    tangential -= poiseuille * std::tanh(v.entrainment / film.couette.speed_floor);  // resists the rolling
+  }
+  apply_at(r, a, b, point, normal_on_b, normal, tangential, tangent);
+  r.diagnostics.slip_velocity = v.slip;
+  r.diagnostics.elastic_energy =
+      film.law.stiffness * std::pow(st.deflection, palmgren_exponent + 1) / (palmgren_exponent + 1);
+  r.diagnostics.power_loss = std::max(0.0, (normal - st.force) * v.approach_rate) +
+                             std::abs((tangential + poiseuille * std::tanh(v.entrainment / film.couette.speed_floor)) *
+                                      v.slip) +
+                             poiseuille * std::abs(v.entrainment);
+  return r;
+}
+
+/// The hydrodynamic roller-cage contact (seed 003 2.2.1): film (rolling and squeeze) and dry force,
+/// the film's viscous drag and the traction curve on the dry force.
+SegmentResult film_contact_at(const HydrodynamicLineLaw& law, const TractionCurve& traction, const PlanarKinematics& a,
+                              const PlanarKinematics& b, Vec2 point, Vec2 normal_on_b, double approach, Vec2 tangent,
+                              Vec2 contact_velocity) {
+  SegmentResult r;
+  r.diagnostics.approach = approach;
+  const SurfaceSpeeds v = surface_speeds(a, b, point, normal_on_b, tangent, contact_velocity);
+  const HydrodynamicForce h = evaluate_hydrodynamic(law, -approach, -v.approach_rate, v.entrainment);
+  r.valid = h.valid && std::isfinite(v.slip);
+  if (!std::isfinite(h.force) || !std::isfinite(v.slip) || (h.force == 0 && h.couette_force_per_speed == 0)) return r;
+  const double dry_friction = traction.coefficient(v.slip) * h.dry.force;
+  const double tangential = -(dry_friction + h.couette_force_per_speed * v.slip);
+  apply_at(r, a, b, point, normal_on_b, h.force, tangential, tangent);
+  r.diagnostics.slip_velocity = v.slip;
+  r.diagnostics.elastic_energy = h.dry.elastic_energy;
+  r.diagnostics.power_loss = -tangential * v.slip + h.dry.damping_power + h.film_force * std::max(0.0, v.approach_rate);
+  return r;
+}
+
 }  // namespace
 
 SegmentResult evaluate(const RollerRaceSegment& s, const PlanarKinematics& ring,
@@ -66,6 +139,13 @@ SegmentResult evaluate(const RollerRaceSegment& s, const PlanarKinematics& ring,
   const double roller_surface = s.internal ? d + s.roller_radius : d - s.roller_radius;
   const Vec2 point = position(ring) + (0.5 * (roller_surface + s.race_radius)) * n;
   const Vec2 normal_on_roller = s.internal ? -1.0 * n : n;
+  if (s.ehd) {
+    // The contact point turns with the roller about the ring centre.
+    const Vec2 rel_velocity = Vec2{roller.vx - ring.vx, roller.vy - ring.vy};
+    const double turn_rate = cross(n, rel_velocity) / d;
+    const Vec2 contact_velocity = Vec2{ring.vx, ring.vy} + (turn_rate * norm_of(point - position(ring))) * perp(n);
+    return ehd_contact_at(*s.ehd, s.traction, ring, roller, point, normal_on_roller, approach, perp(n), contact_velocity);
+  }
   return contact_at(s.law, s.traction, ring, roller, point, normal_on_roller, approach, perp(n));
 }
 
@@ -79,6 +159,9 @@ SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
   const double approach = s.side * offset - s.half_clearance;
   const Vec2 outward = static_cast<double>(s.side) * tangential;  // from roller centre to the bar
   const Vec2 point = position(roller) + (s.roller_radius - 0.5 * approach) * outward;
+  if (s.film)  // the contact point moves with the roller along the bar
+    return film_contact_at(*s.film, s.traction, cage, roller, point, -1.0 * outward, approach, radial,
+                           Vec2{roller.vx, roller.vy});
   return contact_at(s.law, s.traction, cage, roller, point, -1.0 * outward, approach, radial);
 }
 

@@ -9,7 +9,10 @@
 // Frames: bearing frame, z the bearing axis (out of the plane), angles counter-clockwise.
 #pragma once
 
+#include <optional>
+
 #include "contact/laws/line_contact.hpp"
+#include "contact/laws/lubricated_line_contact.hpp"
 #include "contact/segments/segment_result.hpp"
 
 namespace raceway::contact {
@@ -43,6 +46,16 @@ inline constexpr int diagnostics_count = 6;
 
 using SegmentResult = ContactResult<PlanarWrench, SegmentDiagnostics>;
 
+/// The EHD film of a roller-race contact (seed 003 2.2.2): its force replaces the dry normal law
+/// (Hunt-Crossley damping, if on, multiplies it). With `traction` Couette friction replaces the
+/// segment's traction curve and the Poiseuille force resists the rolling; else the curve applies.
+struct EhdRaceFilm {
+  EhdLineLaw law;
+  double damping_factor = 0;  ///< s/m
+  bool traction = false;
+  CouetteTraction couette;
+};
+
 /// Roller on a raceway. A = ring, B = roller. `internal`: outer race (roller inside a bore).
 struct RollerRaceSegment {
   double race_radius = 0;    ///< m
@@ -50,6 +63,7 @@ struct RollerRaceSegment {
   bool internal = false;
   LineContactLaw law;
   TractionCurve traction;
+  std::optional<EhdRaceFilm> ehd;  ///< lubricated (normal = "moes_ehd"); else the dry law
 };
 SegmentResult evaluate(const RollerRaceSegment& s, const PlanarKinematics& ring,
                        const PlanarKinematics& roller);
@@ -66,6 +80,9 @@ struct CageBarSegment {
   int side = +1;
   LineContactLaw law;
   TractionCurve traction;
+  /// Lubricated (normal = "hydrodynamic", seed 003 2.2.1): the film with its dry contact (film->dry
+  /// is `law`), the viscous Couette drag of the film plus the traction curve on the dry force.
+  std::optional<HydrodynamicLineLaw> film;
 };
 SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& roller);

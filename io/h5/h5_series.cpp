@@ -130,6 +130,7 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
   }
   w.dxpl_ = H5Pcreate(H5P_DATASET_XFER);  // collective transfer mode goes here later
   if (w.dxpl_ < 0) w.fail("making the data transfer property list", "/");
+  if (options.background_compression) w.compressor_ = std::make_unique<ChunkCompressor>(options.shuffle, options.gzip_level);
   return w;
 }
 
@@ -157,8 +158,11 @@ H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
       resume_unwritten_(std::move(other.resume_unwritten_)),
       buffered_bytes_(std::exchange(other.buffered_bytes_, 0)),
       flushed_(other.flushed_),
-      series_(std::move(other.series_)) {
+      series_(std::move(other.series_)),
+      by_id_(std::move(other.by_id_)),
+      compressor_(std::move(other.compressor_)) {
   other.series_.clear();
+  other.by_id_.clear();
 }
 
 H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
@@ -175,7 +179,10 @@ H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
     buffered_bytes_ = std::exchange(other.buffered_bytes_, 0);
     flushed_ = other.flushed_;
     series_ = std::move(other.series_);
+    by_id_ = std::move(other.by_id_);
+    compressor_ = std::move(other.compressor_);
     other.series_.clear();
+    other.by_id_.clear();
   }
   return *this;
 }
@@ -286,27 +293,57 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   const int exists = resuming_ ? h5::link_exists(file_, key) : 0;
   if (exists < 0) fail("H5Lexists", key);
   s.dataset = exists > 0 ? open_series_dataset(key, s) : create_series_dataset(key, s);
+  s.path = key;
+  // Chunks of whole rows that start at a chunk boundary (always, but after a partial write at the
+  // end) go to the background compressor.
+  s.direct = compressor_ && std::equal(s.row_shape.begin(), s.row_shape.end(),
+                                       chunk_shape(s.row_shape, options_.chunk_bytes).begin() + 1) &&
+             s.rows_written % s.chunk_rows == 0;
+  s.next_chunk = s.rows_written / s.chunk_rows;
   auto [it, inserted] = series_.emplace(key, std::move(s));  // the map owns the open dataset now
   (void)inserted;
+  by_id_.push_back(&it->second);
+  submit_whole_chunks(it->second);  // a resumed series' buffered rows
   if (!h5::write_units_description(it->second.dataset, units, description)) fail("writing units/description", key);
 }
 
-void H5SeriesWriter::append(const std::string& path, std::span<const double> row) {
-  require_open("append");
-  auto it = series_.find(path);
-  if (it == series_.end()) it = series_.find(h5::normalize(path));
+H5SeriesWriter::SeriesId H5SeriesWriter::series_id(const std::string& path) const {
+  require_open("series_id");
+  auto it = series_.find(h5::normalize(path));
   if (it == series_.end()) {
-    throw std::invalid_argument(fmt::format("H5SeriesWriter::append: series '{}' is not defined in '{}'", path,
+    throw std::invalid_argument(fmt::format("H5SeriesWriter::series_id: series '{}' is not defined in '{}'", path,
                                             partial_path_));
   }
-  Series& s = it->second;
+  return static_cast<SeriesId>(std::find(by_id_.begin(), by_id_.end(), &it->second) - by_id_.begin());
+}
+
+void H5SeriesWriter::append(const std::string& path, std::span<const double> row) {
+  append(series_id(path), row);
+}
+
+void H5SeriesWriter::append(SeriesId id, std::span<const double> row) {
+  require_open("append");
+  if (id >= by_id_.size())
+    throw std::invalid_argument(fmt::format("H5SeriesWriter::append: no series {} in '{}'", id, partial_path_));
+  Series& s = *by_id_[id];
   if (row.size() != s.row_size) {
     throw std::invalid_argument(fmt::format("H5SeriesWriter::append: series '{}' in '{}' takes rows of {} values, got {}",
-                                            it->first, partial_path_, s.row_size, row.size()));
+                                            s.path, partial_path_, s.row_size, row.size()));
   }
   s.buffer.insert(s.buffer.end(), row.begin(), row.end());
   buffered_bytes_ += row.size_bytes();
+  submit_whole_chunks(s);
   if (buffered_bytes_ >= options_.max_buffered_bytes) flush();
+}
+
+void H5SeriesWriter::submit_whole_chunks(Series& s) {
+  if (!s.direct) return;
+  const std::size_t rows = s.rows_written + s.buffer.size() / s.row_size;
+  for (; (s.next_chunk + 1) * s.chunk_rows <= rows; ++s.next_chunk) {
+    const auto first = static_cast<std::ptrdiff_t>((s.next_chunk * s.chunk_rows - s.rows_written) * s.row_size);
+    const auto count = static_cast<std::ptrdiff_t>(s.chunk_rows * s.row_size);
+    s.filtered.emplace(s.next_chunk, compressor_->submit({s.buffer.begin() + first, s.buffer.begin() + first + count}));
+  }
 }
 
 std::size_t H5SeriesWriter::rows(const std::string& path) const {
@@ -328,27 +365,70 @@ void H5SeriesWriter::write_buffer(const std::string& path, Series& s, bool whole
   new_dims.insert(new_dims.end(), s.row_shape.begin(), s.row_shape.end());
   if (H5Dset_extent(s.dataset, new_dims.data()) < 0) fail("H5Dset_extent", path);
 
-  std::vector<hsize_t> start(new_dims.size(), 0);
-  start[0] = s.rows_written;
-  std::vector<hsize_t> count = new_dims;
-  count[0] = n;
-  const Handle file_space(H5Dget_space(s.dataset), H5Sclose);
-  if (!file_space.ok() ||
-      H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) < 0) {
-    fail("selecting the rows to write", path);
-  }
-  const Handle mem_space(h5::make_dataspace(count), H5Sclose);
-  if (!mem_space.ok()) fail("H5Screate_simple", path);
-  if (H5Dwrite(s.dataset, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), dxpl_, s.buffer.data()) < 0) {
-    fail("H5Dwrite", path);
+  if (s.direct && s.rows_written % s.chunk_rows == 0) {
+    write_chunks(path, s, n);
+  } else {
+    std::vector<hsize_t> start(new_dims.size(), 0);
+    start[0] = s.rows_written;
+    std::vector<hsize_t> count = new_dims;
+    count[0] = n;
+    const Handle file_space(H5Dget_space(s.dataset), H5Sclose);
+    if (!file_space.ok() ||
+        H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr) < 0) {
+      fail("selecting the rows to write", path);
+    }
+    const Handle mem_space(h5::make_dataspace(count), H5Sclose);
+    if (!mem_space.ok()) fail("H5Screate_simple", path);
+    if (H5Dwrite(s.dataset, H5T_NATIVE_DOUBLE, mem_space.get(), file_space.get(), dxpl_, s.buffer.data()) < 0) {
+      fail("H5Dwrite", path);
+    }
   }
   s.rows_written += n;
+  s.next_chunk = std::max(s.next_chunk, (s.rows_written + s.chunk_rows - 1) / s.chunk_rows);
   const std::size_t written = n * s.row_size;
   buffered_bytes_ -= std::min(buffered_bytes_, written * sizeof(double));
   s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(written));
 }
 
+std::vector<double> H5SeriesWriter::padded_chunk(const Series& s, std::size_t first_row, std::size_t rows) {
+  // As HDF5 stores an edge chunk: the rows past the end hold the fill value (NaN).
+  std::vector<double> values(s.chunk_rows * s.row_size, std::numeric_limits<double>::quiet_NaN());
+  std::copy_n(s.buffer.begin() + static_cast<std::ptrdiff_t>(first_row * s.row_size), rows * s.row_size, values.begin());
+  return values;
+}
+
+void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_t rows) {
+  std::vector<hsize_t> offset(s.row_shape.size() + 1, 0);
+  for (std::size_t done = 0; done < rows; done += s.chunk_rows) {
+    const std::size_t chunk = (s.rows_written + done) / s.chunk_rows;
+    FilteredChunk stored;
+    if (auto f = s.filtered.find(chunk); f != s.filtered.end()) {
+      stored = f->second.get();
+      s.filtered.erase(f);
+    } else {  // the last, partial chunk, not handed to the compressor
+      stored = filter_chunk(padded_chunk(s, done, std::min(s.chunk_rows, rows - done)), options_.shuffle,
+                            options_.gzip_level);
+    }
+    offset[0] = static_cast<hsize_t>(chunk * s.chunk_rows);
+    if (H5Dwrite_chunk(s.dataset, dxpl_, stored.filter_mask, offset.data(), stored.bytes.size(), stored.bytes.data()) < 0)
+      fail("H5Dwrite_chunk", path);
+  }
+}
+
 void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
+  if (!whole_chunks_only && compressor_) {
+    // The last, partial chunks are filtered by both threads: the compressor takes those of the
+    // second half of the series (last first) while this thread writes from the first.
+    std::size_t half = series_.size() / 2;
+    for (auto it = series_.rbegin(); it != series_.rend() && half > 0; ++it, --half) {
+      Series& s = it->second;
+      const std::size_t rows = s.buffer.size() / s.row_size, tail = rows % s.chunk_rows;
+      if (!s.direct || s.rows_written % s.chunk_rows != 0 || tail == 0) continue;
+      const std::size_t chunk = (s.rows_written + rows) / s.chunk_rows;
+      if (!s.filtered.contains(chunk))
+        s.filtered.emplace(chunk, compressor_->submit(padded_chunk(s, rows - tail, tail)));
+    }
+  }
   for (auto& [path, s] : series_) write_buffer(path, s, whole_chunks_only);
 }
 
@@ -372,14 +452,14 @@ void H5SeriesWriter::reserve_for_flush() {
   }
 }
 
-void H5SeriesWriter::flush() {
+void H5SeriesWriter::flush(bool wait_for_disk) {
   require_open("flush");
   ErrorSilencer quiet;
   reserve_for_flush();
   write_all_buffers(true);
   if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) fail("writing to disk (H5Fflush)", "/");
   release_disk(partial_path_);
-  fsync_file(partial_path_);
+  if (wait_for_disk) fsync_file(partial_path_);
   flushed_ = true;
 }
 
@@ -394,7 +474,7 @@ void H5SeriesWriter::abandon() noexcept {
   if (null_fd >= 0 && H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
     (void)::dup2(null_fd, *static_cast<int*>(handle));
   if (null_fd >= 0) (void)::close(null_fd);
-  for (auto& [path, s] : series_) s.buffer.clear();
+  for (auto& [path, s] : series_) s.buffer.clear(), s.filtered.clear();
   buffered_bytes_ = 0;
   close_all();
 }
@@ -405,6 +485,7 @@ void H5SeriesWriter::close_all() noexcept {
     s.dataset = -1;
   }
   series_.clear();
+  by_id_.clear();
   if (dxpl_ >= 0) H5Pclose(dxpl_);
   dxpl_ = -1;
   if (file_ >= 0) H5Fclose(file_);
@@ -422,6 +503,7 @@ void H5SeriesWriter::commit() {
       s.dataset = -1;
     }
     series_.clear();
+    by_id_.clear();
     H5Pclose(dxpl_);
     dxpl_ = -1;
     if (H5Fclose(file_) < 0) fail("H5Fclose", "/");  // fail() abandons the still open file

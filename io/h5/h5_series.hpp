@@ -25,7 +25,9 @@
 //     defined afterwards are its existing datasets cut to `rows` rows less the unwritten ones, which
 //     are buffered again.
 //
-// Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous.
+// Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous. A
+// chunk of whole rows is filtered on a background thread as soon as its rows are appended and
+// stored at the next flush (H5Dwrite_chunk); a series' last, partial chunk is filtered at commit.
 //
 // Errors: every HDF5 failure throws std::runtime_error naming the file, the object and the
 // innermost HDF5 error message (e.g. "No space left on device" at the flush that hits a full disk);
@@ -38,20 +40,25 @@
 // missing intermediate groups are created.
 //
 // Parallel output (later): the file access and data transfer property lists are each made in one
-// place (make_file_access_plist() and the constructor, see h5_series.cpp); switching to the MPI-IO
-// driver with collective transfers changes those two places only.
+// place (make_file_access_plist() and open_file(), see h5_series.cpp); switching to the MPI-IO
+// driver with collective transfers changes those two places, and background_compression = false
+// (HDF5 1.10 has no H5Dwrite_chunk under MPI-IO; there each rank filters the chunks it writes).
 #pragma once
 
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <map>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "io/h5/chunk_compressor.hpp"
 
 namespace raceway::io {
 
@@ -67,6 +74,11 @@ struct H5WriterOptions {
   bool shuffle = true;         ///< byte shuffle before deflate (doubles compress about 10 % better)
   std::size_t chunk_bytes = 16 * 1024;  ///< target chunk size of a series (whole rows when a row fits)
   std::size_t max_buffered_bytes = std::size_t{32} << 20;  ///< buffered rows beyond this: flush()
+  /// Filter (shuffle, deflate) each chunk of whole rows on a background thread as soon as its rows
+  /// are appended, and store it at the next flush with H5Dwrite_chunk (io/h5/chunk_compressor.hpp):
+  /// the same stored bytes as HDF5's pipeline, off the caller's thread. false: HDF5 filters them
+  /// inside the flush.
+  bool background_compression = true;
 };
 
 class H5SeriesWriter {
@@ -103,6 +115,12 @@ class H5SeriesWriter {
   /// std::invalid_argument; unknown series: std::invalid_argument). Rows are buffered in memory and
   /// written by the next flush() or commit() (or when max_buffered_bytes are reached).
   void append(const std::string& path, std::span<const double> row);
+
+  /// A series' handle for append(SeriesId, row): the same as append(path, row) without looking the
+  /// path up (a run appends every series at every output time). Valid until commit() or a move.
+  using SeriesId = std::size_t;
+  SeriesId series_id(const std::string& path) const;
+  void append(SeriesId id, std::span<const double> row);
 
   /// Makes the series at `scale_path` (a [T] series, e.g. /time) the HDF5 dimension scale of the
   /// first dimension of every series defined so far (H5DS: h5py's ds.dims[0][0] is then it).
@@ -142,8 +160,11 @@ class H5SeriesWriter {
   void write_array(const std::string& path, const std::vector<std::string>& values,
                    const std::string& description);
 
-  /// Writes all buffered rows, flushes the file (H5Fflush) and waits for the disk (fsync).
-  void flush();
+  /// Writes the buffered rows of whole chunks, flushes the file (H5Fflush) and, if wait_for_disk,
+  /// waits for the disk (fsync). Without the wait the flushed file is complete in the system's
+  /// cache: it survives the process being killed, not a power loss (fsync: 5-15 ms here, more on
+  /// network file systems).
+  void flush(bool wait_for_disk = true);
 
   /// Bytes of appended rows not yet in the file.
   std::size_t buffered_bytes() const noexcept { return buffered_bytes_; }
@@ -171,6 +192,10 @@ class H5SeriesWriter {
     std::size_t chunk_rows = 1;            // rows per chunk
     std::size_t rows_written = 0;          // rows in the file
     std::vector<double> buffer;            // rows not yet written, row-major
+    std::string path;                      // normalized
+    bool direct = false;                   // chunks of whole rows, written with H5Dwrite_chunk
+    std::size_t next_chunk = 0;            // first chunk not yet handed to the compressor
+    std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
   };
 
   H5SeriesWriter(std::string final_path, const H5WriterOptions& options);
@@ -179,6 +204,10 @@ class H5SeriesWriter {
   Hid open_series_dataset(const std::string& key, Series& s);
   void require_open(const char* what) const;
   void write_buffer(const std::string& path, Series& s, bool whole_chunks_only);
+  void write_chunks(const std::string& path, Series& s, std::size_t rows);  // H5Dwrite_chunk from rows_written
+  void submit_whole_chunks(Series& s);  // to the background compressor
+  /// A whole chunk's values from `rows` buffered rows starting at buffer row `first_row`.
+  static std::vector<double> padded_chunk(const Series& s, std::size_t first_row, std::size_t rows);
   void write_all_buffers(bool whole_chunks_only);
   void close_all() noexcept;
   void abandon() noexcept;     // after a failed write: nothing more reaches the file; close
@@ -203,6 +232,8 @@ class H5SeriesWriter {
   std::size_t buffered_bytes_ = 0;
   bool flushed_ = false;        // a flush() completed: the file on disk is consistent
   std::map<std::string, Series, std::less<>> series_;
+  std::vector<Series*> by_id_;  // SeriesId -> series_ node (map nodes do not move)
+  std::unique_ptr<ChunkCompressor> compressor_;  // background_compression
 };
 
 }  // namespace raceway::io

@@ -220,6 +220,16 @@ struct SolverSpec {
   double jacobian_perturbation = 1e-7;  ///< relative finite-difference increment
 };
 
+/// A planetary bearing (seed 003 eq. 1-6): the bearing frame rides on a carrier that turns about the
+/// sun axis. The bearing axis lies at distance `radius` from the sun axis, along the bearing frame's
+/// +x; the carrier turns at `speed` (psi'(t)) about z. Every quantity of the scene (positions,
+/// velocities, ring speeds, loads) is in the bearing frame, which turns with the carrier.
+struct CarrierSpec {
+  bool present = false;  ///< a [carrier] section was given (else the bearing frame is inertial)
+  double radius = 0;     ///< m, R_c: distance from the sun axis to the bearing axis
+  TimeFunction speed;    ///< rad/s, psi'(t): the carrier's speed about z
+};
+
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
   double max_size = 4e9;  ///< bytes: a run whose series would be larger is refused before it starts
@@ -245,6 +255,7 @@ struct Scene {
   ContactSpec ball_race;    ///< spatial: ball-groove
   ContactSpec ball_cage;    ///< spatial: ball-pocket
   ContactSpec cage_land;
+  CarrierSpec carrier;    ///< planar: the bearing on a rotating planet carrier (absent: inertial frame)
   SolverSpec solver;
   OutputSpec output;
   bool gravity = false;   ///< gravity along -y (9.80665 m/s^2)

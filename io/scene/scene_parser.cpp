@@ -356,6 +356,10 @@ Scene parse_table(const toml::table& root, const std::string& source_name) {
     on_ring.ring = ring;
     read_section("*_ring", *section, on_ring);
   }
+  if (const Section carrier = top(file, root, "carrier", false); carrier.present()) {
+    read_section("carrier", carrier, b);
+    scene.carrier.present = true;
+  }
   if (const Section lubricant = top(file, root, "lubricant", false); lubricant.present())
     read_section("lubricant", lubricant, b);
   read_section("contact", top(file, root, "contact", false), b);

@@ -194,6 +194,16 @@ void output_interval_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
+// Gravity is fixed in space and so turns in the carrier's frame; raceway's gravity is fixed in the
+// bearing frame, which would be wrong here (and it is 1e-4 of a carrier's field in practice).
+void carrier_without_gravity(const Row&, const Section& s, Bind& b) {
+  s.check(!b.scene.gravity, "radius", [] {
+    return std::string("a bearing on a rotating carrier cannot take scene.gravity = true: gravity would turn in the "
+                       "carrier's frame, which raceway does not model (it is a ten-thousandth of the carrier's field "
+                       "in a planetary gearbox); set gravity = false");
+  });
+}
+
 void initial_step_within_run(const Row&, const Section& s, Bind& b) {
   const double step = b.scene.solver.initial_step, end = b.scene.scene.end_time;
   s.check(step <= end, "initial_step", [&] {
@@ -403,6 +413,23 @@ void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
   if (!(lub.limiting_shear_coefficient > 0))
     s.fail("traction", "traction = \"limiting_shear\" needs lubricant.limiting_shear_coefficient > 0 (limiting shear "
                        "stress = coefficient x pressure; 0.02 to 0.1 for mineral oils)");
+}
+
+// The film laws of seed 003 (EHD roller-race, hydrodynamic roller-cage) need a viscosity.
+void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
+  const contact::LawId id = b.contact->normal.id;
+  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic) return;
+  if (!(b.scene.lubricant.viscosity > 0))
+    s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
+                                 "lubricant.pressure_viscosity for an EHD film)",
+                                 b.contact->normal.name()));
+}
+
+// EHD traction is the shear of the EHD film: it needs that film; limiting shear needs its lubricant.
+void traction_fits_normal_law(const Row& row, const Section& s, Bind& b) {
+  limiting_shear_has_lubricant(row, s, b);
+  if (b.contact->traction.id == contact::LawId::ehd_traction && b.contact->normal.id != contact::LawId::moes_ehd)
+    s.fail("traction", "traction = \"ehd\" is the shear of an EHD film: it needs normal = \"moes_ehd\"");
 }
 
 void rolling_resistance_has_film(const Row&, const Section& s, Bind& b) {

@@ -57,6 +57,7 @@ std::optional<std::string> bdf_only(const Section& s, const Bind& b);
 // ---- checks after a key is read ----------------------------------------------------------------
 void allowed_keys_in_scene(const Row& row, const Section& s, Bind& b);
 void output_interval_within_run(const Row& row, const Section& s, Bind& b);
+void carrier_without_gravity(const Row& row, const Section& s, Bind& b);
 void initial_step_within_run(const Row& row, const Section& s, Bind& b);
 void model_fits_bearing_type(const Row& row, const Section& s, Bind& b);
 void clearance_fits_elements(const Row& row, const Section& s, Bind& b);
@@ -77,6 +78,8 @@ void misalignment_given(const Row& row, const Section& s, Bind& b);
 void ring_support_has_spring(const Row& row, const Section& s, Bind& b);
 void crown_drop_fits(const Row& row, const Section& s, Bind& b);
 void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
+void film_law_has_lubricant(const Row& row, const Section& s, Bind& b);
+void traction_fits_normal_law(const Row& row, const Section& s, Bind& b);
 void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
 void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);
 void order_exists_for_method(const Row& row, const Section& s, Bind& b);

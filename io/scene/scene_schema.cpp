@@ -41,6 +41,9 @@ constexpr std::string_view kBallRaceContact =
     "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
     "at the contact centre";
 
+constexpr std::string_view kPlanarCarrier =
+    "only for planar roller bearings (model = \"planar\"): the carrier's frame terms act in the bearing's plane";
+
 constexpr std::string_view kMaxOrderText = "5 (bdf), 12 (adams), 8 (erk), 5 (ark)";
 constexpr std::string_view kMaxOrderDefaultText = "5 (bdf), 12 (adams), 5 (erk), 4 (ark)";
 
@@ -297,6 +300,15 @@ constexpr Row kRows[] = {
      .elsewhere = kSpatialDirection, .when = tilt_support_needs_free_tilt, .then = damper_has_spring,
      .meaning = "about x and y (tilt = \"free\")"},
 
+    // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
+    {.section = "carrier", .key = "radius", .kind = number, .field = FIELD(scene.carrier.radius), .dim = dim::length,
+     .bounds = positive, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .then = carrier_without_gravity,
+     .example = "100 mm",
+     .meaning = "R_c: distance from the sun (carrier) axis to the bearing axis, which lies on the carrier's +x"},
+    {.section = "carrier", .key = "speed", .kind = time_function, .field = FIELD(scene.carrier.speed),
+     .dim = dim::angular_speed, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
+     .meaning = "the carrier's speed about z; ring speeds and loads are in the bearing frame, which turns with it"},
+
     // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
     {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
      .meaning = "label"},
@@ -335,7 +347,7 @@ constexpr Row kRows[] = {
 
     // ---- [contact.NAME]: laws from the law registry (contact/laws/law_registry.hpp) -------------
     {.section = "contact.*", .key = "normal", .kind = law, .field = FIELD(contact->normal), .def = registry,
-     .role = LawRole::normal, .meaning = "normal force law"},
+     .then = film_law_has_lubricant, .role = LawRole::normal, .meaning = "normal force law"},
     {.section = "contact.*", .key = "slices", .kind = integer, .field = FIELD(contact->normal.slices),
      .bounds = {.lo = 1, .hi = 200}, .def = value(1), .contacts = contact::line_contacts, .elsewhere = kLineContact,
      .meaning = "slices along the roller length (for crowning)"},
@@ -349,7 +361,7 @@ constexpr Row kRows[] = {
      .dim = dim::inverse_speed, .bounds = non_negative, .def = value(0.5), .when = damping_law_on, .otherwise = 0,
      .meaning = "F = F_elastic (1 + factor d(delta)/dt); 0.5 s/m: restitution about 0.93 at a 0.2 m/s impact"},
     {.section = "contact.*", .key = "traction", .kind = law, .field = FIELD(contact->traction), .def = registry,
-     .then = limiting_shear_has_lubricant, .role = LawRole::traction, .meaning = "traction (friction) law"},
+     .then = traction_fits_normal_law, .role = LawRole::traction, .meaning = "traction (friction) law"},
     {.section = "contact.*", .key = "friction_coefficient", .kind = number,
      .field = FIELD(contact->traction.friction_coefficient), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
      .def = derived(friction_default, "0.1; cage_land 0.05"), .when = traction_law_on,
@@ -437,7 +449,7 @@ constexpr Row kRows[] = {
 #undef FIELD
 
 constexpr std::string_view kTopSections[] = {"scene",      "bearing",   "materials", "cage",   "inner_ring",
-                                             "outer_ring", "lubricant", "contact",   "solver", "output"};
+                                             "outer_ring", "carrier",   "lubricant", "contact", "solver", "output"};
 
 }  // namespace
 

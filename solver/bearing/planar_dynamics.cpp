@@ -1,8 +1,10 @@
-// Planar body dynamics: Newton in x, y and Euler about z in the inertial bearing frame (the planar
-// bearing's bodies carry sx, sy, saz, svx, svy, swz at most).
+// Planar body dynamics: Newton in x, y and Euler about z in the bearing frame (the planar
+// bearing's bodies carry sx, sy, saz, svx, svy, swz at most). The bearing frame is inertial, or
+// turns with a planet carrier: then the frame's inertial forces join (carrier_frame.hpp).
 #include <memory>
 
 #include "solver/bearing/body_dynamics.hpp"
+#include "solver/bearing/carrier_frame.hpp"
 
 namespace raceway::solver {
 
@@ -29,6 +31,14 @@ class PlanarDynamics final : public BodyDynamics {
     }
     net = Wrench{};
     net.force.x() = fx, net.force.y() = fy, net.moment.z() = mz;
+    // The carrier frame's inertial forces drive the rates; the net wrench holds the real forces.
+    if (const auto frame = carrier_frame(*m_.scene, t)) {
+      if (sl[sx] >= 0) {
+        const auto f = frame->force(body.mass, z[sl[sx]], z[sl[sy]], z[sl[svx]], z[sl[svy]]);
+        fx += f[0], fy += f[1];
+      }
+      mz += frame->moment(body.axial_inertia);
+    }
     if (sl[sx] >= 0) {
       zdot[sl[sx]] = z[sl[svx]];
       zdot[sl[sy]] = z[sl[svy]];
@@ -48,9 +58,10 @@ class PlanarDynamics final : public BodyDynamics {
     rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);
   }
 
-  /// Kinematic rows (dq/dt = v) and ring supports, analytically.
-  void add_body_jacobian(double, const double*, const std::vector<Wrench>&, const FiniteDifferenceSteps&,
+  /// Kinematic rows (dq/dt = v), ring supports and the carrier frame's forces, analytically.
+  void add_body_jacobian(double t, const double*, const std::vector<Wrench>&, const FiniteDifferenceSteps&,
                          BorderedMatrix& jac) const override {
+    const auto frame = carrier_frame(*m_.scene, t);
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
       if (sl[sx] >= 0) {
@@ -62,6 +73,13 @@ class PlanarDynamics final : public BodyDynamics {
             jac.add(sl[svx + d], sl[sx + d], -sup.stiffness / body.mass);
             jac.add(sl[svx + d], sl[svx + d], -sup.damping / body.mass);
           }
+        }
+        if (frame) {
+          const auto d = frame->force_derivative();
+          const int columns[4] = {sl[sx], sl[sy], sl[svx], sl[svy]};
+          for (int row = 0; row < 2; ++row)
+            for (int k = 0; k < 4; ++k)
+              if (d[row][k] != 0.0) jac.add(sl[svx + row], columns[k], d[row][k]);
         }
       }
       if (sl[saz] >= 0) jac.add(sl[saz], sl[swz], 1.0);
@@ -81,6 +99,7 @@ class PlanarDynamics final : public BodyDynamics {
           e -= body.ring->load.fx(t) * x + body.ring->load.fy(t) * y;
           e += 0.5 * body.ring->support.stiffness * (x * x + y * y);
         }
+        if (const auto frame = carrier_frame(*m_.scene, t)) e += frame->potential(body.mass, x, y);
       }
       if (sl[swz] >= 0) {
         const double w = z[sl[swz]];

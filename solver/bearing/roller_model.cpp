@@ -116,6 +116,49 @@ struct LineLaws {
   }
 };
 
+/// The lubricated laws of seed 003 where the scene chooses them: the EHD film of a race of radius
+/// `race_radius` (`internal`: the outer race) and the hydrodynamic film of a cage bar. Fully
+/// flooded up to a gap of 2 % of the roller radius (the films' load there is below 1e-3 of a
+/// loaded contact's); the cage film collapses to the dry contact at 0.2 um, the combined roughness
+/// of ground surfaces.
+contact::LineFilm line_film(const io::Scene& scene, double e_star, double reduced_radius, double length,
+                            double roller_radius) {
+  contact::LineFilm f;
+  f.viscosity = scene.lubricant.viscosity;
+  f.pressure_viscosity = scene.lubricant.pressure_viscosity;
+  f.reduced_modulus = e_star;
+  f.reduced_radius = reduced_radius;
+  f.length = length;
+  f.cutoff = 0.02 * roller_radius;
+  return f;
+}
+
+void add_race_film(contact::RollerRaceSegment& seg, const io::Scene& scene) {
+  const io::ContactSpec& spec = scene.roller_race;
+  if (spec.normal.id != contact::LawId::moes_ehd) return;
+  const double length = scene.bearing.roller_length;
+  const double e_star = seg.law.stiffness / contact::palmgren_stiffness(1.0, length);  // K = c_P E* l^(8/9)
+  const double curvature = 1.0 / seg.roller_radius + (seg.internal ? -1.0 : 1.0) / seg.race_radius;
+  contact::EhdRaceFilm film;
+  film.law.film = line_film(scene, e_star, 1.0 / curvature, length, seg.roller_radius);
+  film.law.stiffness = seg.law.stiffness;
+  film.law.max_approach = seg.law.max_approach;
+  film.damping_factor = seg.law.damping_factor;
+  film.traction = spec.traction.id == contact::LawId::ehd_traction;
+  film.couette = {spec.traction.friction_coefficient, 0.05, spec.traction.slip_velocity_scale};
+  seg.ehd = film;
+}
+
+void add_bar_film(contact::CageBarSegment& seg, const io::Scene& scene, double length) {
+  if (scene.roller_cage.normal.id != contact::LawId::hydrodynamic) return;
+  const double e_star = seg.law.stiffness / contact::palmgren_stiffness(1.0, length);
+  contact::HydrodynamicLineLaw film;
+  film.film = line_film(scene, e_star, seg.roller_radius, length, seg.roller_radius);
+  film.film_floor = 0.2e-6;
+  film.dry = seg.law;
+  seg.film = film;
+}
+
 int add_law(Model& m, SegmentLaw law) {
   m.laws.push_back(std::move(law));
   return static_cast<int>(m.laws.size()) - 1;
@@ -133,14 +176,22 @@ void add_roller_segments(Model& m, const io::Scene& scene) {
   const auto bar_law = laws.law(scene.roller_cage, steel, scene.material(cs.material), bar_width);
   const auto bar_traction = LineLaws::traction(scene.roller_cage);
   const double rr = m.element_radius;
-  const int inner = add_law(m, contact::RollerRaceSegment{m.inner_race_radius, rr, false, race_law, race_traction});
-  const int outer = add_law(m, contact::RollerRaceSegment{m.outer_race_radius, rr, true, race_law, race_traction});
+  contact::RollerRaceSegment inner_race{m.inner_race_radius, rr, false, race_law, race_traction, std::nullopt};
+  contact::RollerRaceSegment outer_race{m.outer_race_radius, rr, true, race_law, race_traction, std::nullopt};
+  add_race_film(inner_race, scene);
+  add_race_film(outer_race, scene);
+  const int inner = add_law(m, inner_race);
+  const int outer = add_law(m, outer_race);
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
     const double pocket = 2.0 * pi * k / m.element_count;
     const double half = 0.5 * cs.pocket_clearance;
-    const int front = add_law(m, contact::CageBarSegment{m.pitch_radius, pocket, half, rr, +1, bar_law, bar_traction});
-    const int rear = add_law(m, contact::CageBarSegment{m.pitch_radius, pocket, half, rr, -1, bar_law, bar_traction});
+    contact::CageBarSegment front_bar{m.pitch_radius, pocket, half, rr, +1, bar_law, bar_traction, std::nullopt};
+    contact::CageBarSegment rear_bar{m.pitch_radius, pocket, half, rr, -1, bar_law, bar_traction, std::nullopt};
+    add_bar_film(front_bar, scene, bar_width);
+    add_bar_film(rear_bar, scene, bar_width);
+    const int front = add_law(m, front_bar);
+    const int rear = add_law(m, rear_bar);
     m.segments.push_back({SegmentKind::roller_inner_race, m.inner_ring, body, inner, k, fmt::format("roller[{}]/inner_race", k)});
     m.segments.push_back({SegmentKind::roller_outer_race, m.outer_ring, body, outer, k, fmt::format("roller[{}]/outer_race", k)});
     m.segments.push_back({SegmentKind::cage_bar_front, m.cage, body, front, k, fmt::format("roller[{}]/cage_bar_front", k)});

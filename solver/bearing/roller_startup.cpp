@@ -1,5 +1,7 @@
 #include "solver/bearing/startup.hpp"
 
+#include "solver/bearing/carrier_frame.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -21,6 +23,7 @@ struct Seating {
   double load_direction;  // azimuth of the load on the inner ring relative to the outer [rad]
   double spin = 0;                 // roller spin of the returned state [rad/s]
   double ring_speed[2] = {0, 0};   // inner, outer ring rotation speeds at t0 [rad/s]
+  std::optional<CarrierFrame> frame = carrier_frame(*m.scene, t0);  // planetary bearings
 
   /// The kinematics the returned state will have: rings at rest but for their drive speed, the
   /// roller orbiting at the epicyclic speed with its rolling spin (so damping and traction are in
@@ -52,8 +55,13 @@ struct Seating {
     const double psi = azimuth(k);
     const double mass = m.bodies[m.first_element + k].mass;
     auto residual = [&](double rho) {
-      return race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
-             mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
+      const double r = race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
+                       mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
+      if (!frame) return r;
+      // The carrier's field along the radius (its tangential part is left to the cage).
+      const PlanarKinematics at = roller_at(rho, psi);
+      const auto f = frame->force(mass, at.x, at.y, at.vx, at.vy);
+      return r + f[0] * std::cos(psi) + f[1] * std::sin(psi);
     };
     // The outer race alone bounds rho from above (residual < 0 deep in the outer race); search down.
     double hi = m.outer_race_radius - m.element_radius + 1e-2 * m.element_radius;
@@ -96,6 +104,10 @@ struct Seating {
       out[2 * i] = force[free_rings[i]][0] + b.ring->load.fx(t0) - sup.stiffness * x[2 * i];
       out[2 * i + 1] = force[free_rings[i]][1] + b.ring->load.fy(t0) - b.mass * m.gravity -
                        sup.stiffness * x[2 * i + 1];
+      if (frame) {
+        const auto f = frame->force(b.mass, x[2 * i], x[2 * i + 1], 0, 0);
+        out[2 * i] += f[0], out[2 * i + 1] += f[1];
+      }
     }
     return out;
   }
@@ -237,6 +249,14 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   double lx = in.fx(t0) - out.fx(t0), ly = in.fy(t0) - out.fy(t0);
   const double g = m.gravity;
   ly -= g * (m.bodies[m.inner_ring].mass - m.bodies[m.outer_ring].mass);
+  if (const auto frame = carrier_frame(*m.scene, t0)) {
+    // The carrier's field pulls both rings outwards (+x) and the rollers onto the outer race.
+    const auto free_mass = [&](int r) { return m.bodies[r].slot[sx] >= 0 ? m.bodies[r].mass : 0.0; };
+    double outward = free_mass(m.inner_ring) - free_mass(m.outer_ring);
+    for (int k = 0; k < m.element_count; ++k) outward -= m.bodies[m.first_element + k].mass;
+    const auto f = frame->force(outward, 0, 0, 0, 0);
+    lx += f[0], ly += f[1];
+  }
   Seating s{m, t0, m.epicyclic_cage_speed(t0),
             (lx == 0 && ly == 0) ? -0.5 * std::numbers::pi : std::atan2(ly, lx)};
 

@@ -1,5 +1,6 @@
 // The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
-// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway report OUT.h5`,
+// lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway plan SCENE`
+// (plan_command.hpp), `raceway report OUT.h5`,
 // `raceway --version`.
 //
 // Exit codes (every rank of `raceway run` exits with rank 0's): 0 success; 2 bad input (scene,
@@ -41,6 +42,7 @@
 #include "io/json/summary_json.hpp"
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
+#include "solver/driver/plan_command.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/run/build_info.hpp"
 #include "solver/run/output_writer.hpp"
@@ -237,7 +239,7 @@ int command_line_error(const CLI::App& app, const CLI::ParseError& e, int rank, 
       return !app.get_subcommands([&](const CLI::App* c) { return c->check_name(word); }).empty();
     };
     if (argc > 1 && argv[1][0] != '-' && !known(argv[1]))
-      what = fmt::format("unknown command '{}'; the commands are run, check (or plan) and report", argv[1]);
+      what = fmt::format("unknown command '{}'; the commands are run, check, plan and report", argv[1]);
     std::replace(what.begin(), what.end(), '\n', ' ');
     std::fprintf(stderr, "[raceway] error: %s (see raceway --help)\n", what.c_str());
   }
@@ -259,6 +261,8 @@ struct CommandLine {
   CLI::App* run = nullptr;
   CLI::App* check = nullptr;
   CLI::App* report = nullptr;
+  CLI::App* plan = nullptr;
+  plan::PlanOptions plan_options;
 };
 
 /// --set section.key=VALUE, repeatable: a scene key set on the command line.
@@ -309,7 +313,6 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
 
 void add_check_command(CLI::App& app, CommandLine& cl) {
   auto* check = cl.check = app.add_subcommand("check", "validate a scene and print the model it would build");
-  check->alias("plan");
   check->add_option("scene", cl.scene_path, "scene file (TOML); the built-in default when none is given");
   check->add_option("--petsc-options", cl.petsc_options, "PETSc options to validate with the scene's");
   add_set_option(*check, cl);
@@ -409,6 +412,7 @@ int check_or_report(CommandLine& cl) {
   return exit_code_of([&] {
     const solver::PetscRuntime petsc(cl.petsc_options);
     if (*cl.check) return check_command(cl.scene_path, cl.overrides);
+    if (*cl.plan) return plan::plan_command(cl.plan_options);
     if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
     if (!std::isnan(cl.contact_threshold)) cl.report_options.contact_threshold = cl.contact_threshold;
     cl.report_options.plots = !cl.no_plots;
@@ -448,6 +452,7 @@ int main(int argc, char** argv) {
   add_run_command(app, cl);
   add_check_command(app, cl);
   add_report_command(app, cl);
+  cl.plan = plan::add_plan_command(app, cl.plan_options);
   driver::CampaignRequest campaign_request;
   CLI::App* campaign_app = driver::add_campaign_command(app, campaign_request);
   try {

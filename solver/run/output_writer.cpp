@@ -85,13 +85,11 @@ void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, cons
 }
 
 template <class Table>
-void append_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields,
-                        const std::vector<int>& index, const Equations& eq) {
-  std::vector<double> row(index.size());
-  for (std::size_t d = 0; d < fields.size(); ++d) {
-    for (std::size_t i = 0; i < row.size(); ++i) row[i] = eq.diagnostic(static_cast<std::size_t>(index[i]), static_cast<int>(d));
-    file.append(group + "/" + fields[d].name, row);
-  }
+std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids(const io::H5SeriesWriter& file, const std::string& group,
+                                                         const Table& fields) {
+  std::vector<io::H5SeriesWriter::SeriesId> ids;
+  for (const auto& f : fields) ids.push_back(file.series_id(group + "/" + f.name));
+  return ids;
 }
 
 long columns(const std::vector<BodySeries>& series) {
@@ -189,6 +187,14 @@ OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segmen
   for (const BodySeries& s : element_series(m.kind))
     file_.define_series(std::string("/") + m.element_group + "/" + s.name, row_shape(s, {n}), s.unit, s.meaning);
   if (segments_) define_segment_groups();
+  time_ = file_.series_id("/time"), energy_ = file_.series_id("/energy");
+  for (int b = 0; b < m.first_element; ++b)
+    for (const BodySeries& s : border_series(m.kind))
+      border_ids_.push_back(file_.series_id("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name));
+  if (m.kind == io::ModelKind::spatial)
+    epicyclic_ = file_.series_id("/cage/epicyclic_speed"), rolling_ = file_.series_id("/cage/rolling_speed");
+  for (const BodySeries& s : element_series(m.kind))
+    element_ids_.push_back(file_.series_id(std::string("/") + m.element_group + "/" + s.name));
   file_.set_time_scale("/time", "time");
   file_.set_attribute("/", "state_names", m.state_name);
 }
@@ -209,10 +215,13 @@ void OutputWriter::define_segment_groups() {
     file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
     if (m_.kind == io::ModelKind::spatial)
       file_.write_array(g + "/ball", {elements.size()}, elements, "-", "ball index (0-based) of each column; -1 for cage-land");
-    if (line_family_[k])
+    if (line_family_[k]) {
       define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size());
-    else
+      diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::line_diagnostic_fields);
+    } else {
       define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size());
+      diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::point_diagnostic_fields);
+    }
   }
 }
 
@@ -231,44 +240,49 @@ double OutputWriter::loaded_contact_angle(const Model& m, const Equations& eq) {
 void OutputWriter::append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot,
                                  const Equations& eq) {
   const auto& loads = eq.body_loads();
+  auto id = border_ids_.begin();
   for (int bi = 0; bi < m_.first_element; ++bi) {
     const BodySample s = sample_body(m_, bi, t, z, zdot, loads[static_cast<std::size_t>(bi)]);
     for (const BodySeries& series : border_series(m_.kind)) {
-      std::vector<double> row;
-      for (int c : series.components) row.push_back(component(s, series.quantity, c));
-      file_.append("/" + m_.bodies[static_cast<std::size_t>(bi)].name + "/" + series.name, row);
+      row_.clear();
+      for (int c : series.components) row_.push_back(component(s, series.quantity, c));
+      file_.append(*id++, row_);
     }
   }
   if (m_.kind == io::ModelKind::spatial) {
     const double epi = m_.epicyclic_cage_speed(t);
-    file_.append("/cage/epicyclic_speed", std::span<const double>(&epi, 1));
+    file_.append(epicyclic_, std::span<const double>(&epi, 1));
     const double rolling = m_.epicyclic_cage_speed(t, loaded_contact_angle(m_, eq));
-    file_.append("/cage/rolling_speed", std::span<const double>(&rolling, 1));
+    file_.append(rolling_, std::span<const double>(&rolling, 1));
   }
   const auto& all = element_series(m_.kind);
-  std::vector<std::vector<double>> rows(all.size());
+  std::vector<BodySample> samples;
   for (int k = 0; k < m_.element_count; ++k) {
     const int b = m_.first_element + k;
-    const BodySample s = sample_body(m_, b, t, z, zdot, loads[static_cast<std::size_t>(b)]);
-    for (std::size_t i = 0; i < all.size(); ++i)
-      for (int c : all[i].components) rows[i].push_back(component(s, all[i].quantity, c));
+    samples.push_back(sample_body(m_, b, t, z, zdot, loads[static_cast<std::size_t>(b)]));
   }
-  for (std::size_t i = 0; i < all.size(); ++i) file_.append(std::string("/") + m_.element_group + "/" + all[i].name, rows[i]);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    row_.clear();
+    for (const BodySample& s : samples)
+      for (int c : all[i].components) row_.push_back(component(s, all[i].quantity, c));
+    file_.append(element_ids_[i], row_);
+  }
 }
 
 void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
                           double energy) {
-  file_.append("/time", std::span<const double>(&t, 1));
-  file_.append("/energy", std::span<const double>(&energy, 1));
+  file_.append(time_, std::span<const double>(&t, 1));
+  file_.append(energy_, std::span<const double>(&energy, 1));
   append_bodies(t, z, zdot, eq);
   if (!segments_) return;
   for (int k = 0; k < segment_kind_count; ++k) {
-    if (index_[k].empty()) continue;
-    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
-    if (line_family_[k])
-      append_diagnostics(file_, g, contact::line_diagnostic_fields, index_[k], eq);
-    else
-      append_diagnostics(file_, g, contact::point_diagnostic_fields, index_[k], eq);
+    const std::vector<int>& index = index_[k];
+    row_.resize(index.size());
+    for (std::size_t d = 0; d < diagnostic_ids_[k].size(); ++d) {
+      for (std::size_t i = 0; i < index.size(); ++i)
+        row_[i] = eq.diagnostic(static_cast<std::size_t>(index[i]), static_cast<int>(d));
+      file_.append(diagnostic_ids_[k][d], row_);
+    }
   }
 }
 

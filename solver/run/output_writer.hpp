@@ -58,6 +58,11 @@ class OutputWriter {
   io::H5SeriesWriter& file_;
   const Model& m_;
   bool segments_;
+  // The series' handles in the order append() writes them (looked up once, not per sample).
+  io::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
+  std::vector<io::H5SeriesWriter::SeriesId> border_ids_, element_ids_;
+  std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids_[segment_kind_count];
+  std::vector<double> row_;  ///< reused row buffer
   std::vector<int> index_[segment_kind_count];  ///< segments of each kind, in column order
   bool line_family_[segment_kind_count] = {};    ///< the kind's diagnostics: line (else point) field table
 };

@@ -59,6 +59,9 @@ struct RunSummary {
   long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
   double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
   double output_seconds = 0;  ///< wall time of the output: diagnostics at output times, writing, checkpoints
+  /// Of output_seconds, all but the right-hand sides at output times (sampling, appending, filtering,
+  /// flushes, checkpoints, the commit): what the writer costs rank 0.
+  double output_write_seconds = 0;
   double cage_speed_rpm = 0;            ///< mean over the second half of the run
   double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
   double cage_slip = 0;                 ///< 1 - cage / epicyclic

@@ -36,11 +36,11 @@ AnySegment make_segment(const SegmentCase& c, const LawOptions& o) {
     case Kind::race:
       return RollerRaceSegment{.race_radius = c.internal ? outer_race_radius : inner_race_radius,
                                .roller_radius = roller_radius, .internal = c.internal, .law = law,
-                               .traction = traction};
+                               .traction = traction, .ehd = std::nullopt};
     case Kind::bar:
       return CageBarSegment{.pitch_radius = pitch_radius, .pocket_angle = pocket_angle,
                             .half_clearance = 0.5 * pocket_clearance, .roller_radius = roller_radius,
-                            .side = c.side, .law = law, .traction = traction};
+                            .side = c.side, .law = law, .traction = traction, .film = std::nullopt};
     case Kind::land:
       return CageLandSegment{.land_radius = c.internal ? outer_land_radius : inner_land_radius,
                              .clearance = land_clearance, .outer_land = c.internal, .law = law,

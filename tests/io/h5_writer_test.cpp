@@ -6,6 +6,8 @@
 #include <hdf5_hl.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -167,4 +169,68 @@ TEST_F(H5Writer, WriteArrayReplacesAFixedArrayButNotASeries) {
   EXPECT_TRUE(r.has("/xy"));
   EXPECT_FALSE(r.has("/nothing/here"));
   EXPECT_THROW((void)r.doubles("/nothing"), std::runtime_error);
+}
+
+namespace {
+
+// Every stored chunk of every chunked dataset of a file: filter mask and bytes, by dataset and offset.
+std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> stored_chunks(const std::string& file_path) {
+  std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> out;
+  const hid_t file = H5Fopen(file_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  for (const char* name : {"/time", "/xy", "/wide"}) {
+    const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+    const hid_t space = H5Dget_space(d);
+    hsize_t chunks = 0;
+    H5Dget_num_chunks(d, space, &chunks);
+    for (hsize_t i = 0; i < chunks; ++i) {
+      hsize_t offset[2] = {0, 0};
+      unsigned mask = 0;
+      haddr_t address = 0;
+      hsize_t size = 0;
+      H5Dget_chunk_info(d, space, i, offset, &mask, &address, &size);
+      std::vector<char> bytes(size);
+      std::uint32_t read_mask = 0;
+      H5Dread_chunk(d, H5P_DEFAULT, offset, &read_mask, bytes.data());
+      out[std::string(name) + "@" + std::to_string(offset[0]) + "," + std::to_string(offset[1])] = {read_mask,
+                                                                                                     std::move(bytes)};
+    }
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  H5Fclose(file);
+  return out;
+}
+
+}  // namespace
+
+// Chunks filtered on the background thread and stored with H5Dwrite_chunk are the chunks HDF5's own
+// filter pipeline stores (shuffle + deflate, and deflate alone), whole and partial, across flushes;
+// a series whose row does not fit a chunk (/wide: 2100 values, 16 KiB chunks) takes HDF5's path.
+TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
+  for (const bool shuffle : {true, false}) {
+    std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> chunks[2];
+    for (const bool background : {false, true}) {
+      raceway::io::H5WriterOptions options;
+      options.shuffle = shuffle;
+      options.background_compression = background;
+      const std::string out = path(std::string("c") + (background ? "1" : "0") + ".h5");
+      auto w = H5SeriesWriter::create(out, options);
+      define(w);
+      w.define_series("/wide", {2100}, "-", "a row larger than a chunk");
+      std::vector<double> wide(2100);
+      for (int r = 0; r < 5000; ++r) {
+        append_rows(w, r, r + 1, std::sin(0.01 * r));
+        if (r % 100 == 0) {
+          for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = std::cos(0.001 * static_cast<double>(i * r));
+          w.append("/wide", wide);
+        }
+        if (r == 2500) w.flush();
+      }
+      w.commit();
+      chunks[background] = stored_chunks(out);
+      EXPECT_EQ(H5Reader(out).doubles("/xy"), H5Reader(path("c0.h5")).doubles("/xy"));
+    }
+    EXPECT_EQ(chunks[0].size(), 3u + 5u + 100u) << "chunks of /time, /xy, /wide (2 per row)";
+    EXPECT_TRUE(chunks[0] == chunks[1]) << "shuffle " << shuffle;
+  }
 }

@@ -38,6 +38,9 @@ constexpr Accepted kExpected[] = {
     {LawRole::traction, "tanh", LawId::tanh_traction, kAll},
     {LawRole::traction, "none", LawId::no_traction, kAll},
     {LawRole::traction, "limiting_shear", LawId::limiting_shear, contact::ball_race_contact},
+    {LawRole::normal, "moes_ehd", LawId::moes_ehd, contact::roller_race_contact},
+    {LawRole::traction, "ehd", LawId::ehd_traction, contact::roller_race_contact},
+    {LawRole::normal, "hydrodynamic", LawId::hydrodynamic, contact::roller_cage_contact},
 };
 constexpr LawRole kRoles[] = {LawRole::normal, LawRole::damping, LawRole::traction};
 
@@ -86,20 +89,23 @@ TEST(LawRegistry, IdsNamesAndDefaults) {
   }
   EXPECT_EQ(contact::known_law_names(LawRole::traction, contact::ball_race_contact), "tanh, none, limiting_shear");
   EXPECT_EQ(contact::known_law_names(LawRole::traction, contact::ball_cage_contact), "tanh, none");
-  EXPECT_EQ(contact::known_law_names(LawRole::normal, contact::roller_cage_contact), "palmgren");
+  EXPECT_EQ(contact::known_law_names(LawRole::normal, contact::roller_cage_contact), "palmgren, hydrodynamic");
   EXPECT_EQ(contact::contacts_description(kLine), "line contacts (roller_race, roller_cage, cage_land)");
   EXPECT_EQ(contact::contacts_description(contact::ball_race_contact), "ball_race contacts");
 }
 
 // ---- the laws through the scene parser ---------------------------------------------------------
 
-/// A planar or spatial scene (with a lubricant that limiting-shear traction needs) and one law set.
+/// A planar or spatial scene (with a lubricant that limiting-shear traction and the film laws need)
+/// and one law set (EHD traction with the EHD film it needs).
 std::string scene_with_law(ContactKindBit contact, LawRole role, std::string_view name) {
   const bool planar = contact == contact::roller_race_contact || contact == contact::roller_cage_contact;
   const std::string base =
-      planar ? std::string(kPlanarMinimal)
+      planar ? std::string(kPlanarMinimal) + "[lubricant]\nviscosity = \"30 mPa s\"\n"
              : spatial("", "[lubricant]\nviscosity = \"30 mPa s\"\nlimiting_shear_coefficient = 0.07\n");
-  return base + "[contact." + std::string(contact::contact_name(contact)) + "]\n" +
+  const std::string film = name == "ehd" && role == LawRole::traction && contact == contact::roller_race_contact
+                               ? "normal = \"moes_ehd\"\n" : "";
+  return base + "[contact." + std::string(contact::contact_name(contact)) + "]\n" + film +
          std::string(contact::role_name(role)) + " = \"" + std::string(name) + "\"\n";
 }
 
@@ -163,7 +169,7 @@ TEST(SceneLaws, MisplacedOrMisspeltNamesGetAHint) {
   EXPECT_EQ(error_of(scene_with_law(contact::ball_cage_contact, LawRole::traction, "limiting_shear")).reason(),
             "unknown traction law 'limiting_shear'; known: tanh, none ('limiting_shear' is for ball_race contacts)");
   EXPECT_EQ(error_of(scene_with_law(contact::roller_race_contact, LawRole::normal, "hertz")).reason(),
-            "unknown normal law 'hertz'; known: palmgren ('hertz' is for point contacts (ball_race, ball_cage))");
+            "unknown normal law 'hertz'; known: palmgren, moes_ehd ('hertz' is for point contacts (ball_race, ball_cage))");
   EXPECT_EQ(error_of(scene_with_law(contact::ball_race_contact, LawRole::damping, "hunt_crosley")).reason(),
             "unknown damping law 'hunt_crosley' (did you mean 'hunt_crossley'?); known: hunt_crossley, none");
   // a name of another role is unknown in this one
@@ -179,6 +185,26 @@ TEST(SceneLaws, LimitingShearNeedsALubricant) {
   const Scene wet = parse(scene_with_law(contact::ball_race_contact, LawRole::traction, "limiting_shear"));
   EXPECT_EQ(wet.ball_race.traction.id, LawId::limiting_shear);
   EXPECT_TRUE(wet.ball_race.traction.rolling_resistance);  // a film: on by default
+}
+
+// The film laws of seed 003 need a viscosity; EHD traction needs the EHD film.
+TEST(SceneLaws, FilmLawsNeedALubricantAndEhdTractionTheEhdFilm) {
+  const std::string lubricant = "\n[lubricant]\nviscosity = \"20 mPa s\"\npressure_viscosity = \"20 1/GPa\"\n";
+  const std::string race = "\n[contact.roller_race]\nnormal = \"moes_ehd\"\ntraction = \"ehd\"\n";
+  const std::string cage = "\n[contact.roller_cage]\nnormal = \"hydrodynamic\"\n";
+  for (const std::string& contact : {race, cage}) {
+    const SceneError e = error_of(std::string(kPlanarMinimal) + contact);
+    EXPECT_NE(e.key().find(".normal"), std::string::npos) << e.what();
+    EXPECT_NE(e.reason().find("needs a lubricant"), std::string::npos) << e.what();
+  }
+  const Scene wet = parse(std::string(kPlanarMinimal) + lubricant + race + cage);
+  EXPECT_EQ(wet.roller_race.normal.id, LawId::moes_ehd);
+  EXPECT_EQ(wet.roller_race.traction.id, LawId::ehd_traction);
+  EXPECT_EQ(wet.roller_cage.normal.id, LawId::hydrodynamic);
+  const SceneError dry_film = error_of(std::string(kPlanarMinimal) + lubricant +
+                                       "\n[contact.roller_race]\ntraction = \"ehd\"\n");
+  EXPECT_EQ(dry_film.key(), "contact.roller_race.traction");
+  EXPECT_NE(dry_film.reason().find("needs normal = \"moes_ehd\""), std::string::npos) << dry_film.what();
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Bitwise comparison of raceway output files (the reference first, then the others).
 
-Every dataset outside /scheduler must have the same shape, dtype and bytes; every attribute
+Every dataset outside /scheduler must have the same shape, dtype and bytes (the values, and each
+stored chunk: offset, filter mask, compressed bytes); every attribute
 must be equal, except the ones that legitimately differ between runs: the root's summary_json
-is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s, time_split_s, output_time_s), and
+is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s, time_split_s, output_time_s,
+output_write_time_s), and
 /scheduler (plans, imbalance, rank count) is skipped. Exit 0 when all files match, 1 otherwise.
 
     compare_outputs.py REFERENCE.h5 OTHER.h5 [OTHER.h5 ...]
@@ -14,7 +16,8 @@ import sys
 import h5py
 import numpy as np
 
-TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s", "time_split_s", "output_time_s"}
+TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s", "time_split_s", "output_time_s",
+               "output_write_time_s"}
 SKIPPED_GROUPS = ("/scheduler",)
 
 
@@ -31,6 +34,18 @@ def dereferenced(f, value):
 def has_references(v):
     return isinstance(v, np.ndarray) and (v.dtype.kind == "O" or (v.dtype.names and any(
         v.dtype.fields[n][0].kind == "O" for n in v.dtype.names)))
+
+
+def stored_chunks(dataset):
+    """A chunked dataset's chunks as stored (offset, filter mask, filtered bytes): the files must
+    agree in what is on disk, not only in the values read back."""
+    if dataset.chunks is None:
+        return None
+    chunks = []
+    for i in range(dataset.id.get_num_chunks()):
+        offset = dataset.id.get_chunk_info(i).chunk_offset
+        chunks.append((offset,) + tuple(dataset.id.read_direct_chunk(offset)))
+    return sorted(chunks)
 
 
 def collect(path):
@@ -61,7 +76,7 @@ def collect(path):
             if isinstance(obj, h5py.Dataset):
                 data = obj[()]
                 raw = data.tobytes() if isinstance(data, np.ndarray) and data.dtype.kind != "O" else repr(data.tolist() if isinstance(data, np.ndarray) else data)
-                items[full] = ("dataset", str(obj.dtype), obj.shape, raw, attrs_of(full, obj))
+                items[full] = ("dataset", str(obj.dtype), obj.shape, raw, attrs_of(full, obj), stored_chunks(obj))
             else:
                 items[full] = ("group", attrs_of(full, obj))
 

@@ -320,6 +320,11 @@ void compare_backends(const char* name, DynamicSystem& eq, const io::SolverSpec&
 
 TEST(DenseVsBorderedBackends, Seed002RollerBearingRunsAgree) {
   io::Scene scene = io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  // The step counts of the backends agree to 2 % at BDF order 5, rtol 1e-7 (the settings this was
+  // measured with); at the scene's own looser settings round-off alone moves them by 10 %.
+  scene.solver.rtol = 1e-7;
+  scene.solver.max_order = 5;
+  scene.solver.atol_position = scene.solver.atol_velocity = 0;
   const Model model = build_model(scene);
   scheduler::SerialExecutor executor;
   Equations eq(model, executor);

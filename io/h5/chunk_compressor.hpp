@@ -1,0 +1,58 @@
+// Compression of whole chunks of the output's time series off the run's thread.
+//
+// H5SeriesWriter stores its series chunked, byte-shuffled and deflated. Through HDF5's filter
+// pipeline that work happens inside H5Dwrite/H5Dclose on the calling thread: measured, 30 ms of a
+// 0.13 s 6309 R3 run (perf/results/output_overhead.md). The writer therefore compresses each
+// chunk as soon as its rows are complete, on a background thread, with the same two filters HDF5
+// applies (shuffle, then zlib's compress2 at the dataset's level), and hands the result to
+// H5Dwrite_chunk at the next flush: the chunk stored is the one HDF5's pipeline would have
+// stored, so readers (h5py, h5ls, HDF5 itself) see the same dataset values.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <future>
+#include <mutex>
+#include <span>
+#include <thread>
+#include <vector>
+
+namespace raceway::io {
+
+/// One chunk as stored: bytes after the filters, and the filter mask H5Dwrite_chunk takes
+/// (0: every filter of the dataset applied).
+struct FilteredChunk {
+  std::vector<unsigned char> bytes;
+  std::uint32_t filter_mask = 0;
+};
+
+/// The bytes HDF5's filter pipeline stores for `values` (a whole chunk, row-major): byte shuffle
+/// of 8-byte elements if `shuffle`, then zlib compress2 at `gzip_level` if > 0.
+FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzip_level);
+
+/// A single background thread that runs filter_chunk() on submitted chunks, first in first out.
+/// Destroying it finishes the queued chunks (their futures stay valid) and joins the thread.
+class ChunkCompressor {
+ public:
+  ChunkCompressor(bool shuffle, int gzip_level);
+  ~ChunkCompressor();
+  ChunkCompressor(const ChunkCompressor&) = delete;
+  ChunkCompressor& operator=(const ChunkCompressor&) = delete;
+
+  /// Queues a chunk (the values are moved in) and returns its filtered bytes to come.
+  std::future<FilteredChunk> submit(std::vector<double> values);
+
+ private:
+  void work();
+
+  const bool shuffle_;
+  const int gzip_level_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::packaged_task<FilteredChunk()>> queue_;
+  bool stopping_ = false;
+  std::thread thread_;  // last: started after the members it uses
+};
+
+}  // namespace raceway::io

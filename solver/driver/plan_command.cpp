@@ -1,0 +1,319 @@
+#include "solver/driver/plan_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "io/scene/scene_parser.hpp"
+#include "solver/numerics/petsc_runtime.hpp"
+
+#ifndef RACEWAY_FIDELITY_TABLE
+#define RACEWAY_FIDELITY_TABLE "perf/results/fidelity_table.csv"
+#endif
+
+namespace raceway::plan {
+
+namespace {
+
+using solver::OptionsError;
+
+/// An option is recommended only when it saves at least 5 % of the time: the table's timings (the
+/// smaller CPU time of two runs) scatter by a few per cent.
+constexpr double kLeastSaving = 0.95;
+
+/// The fields of one CSV line. Written by hand: the table is Python's csv output (fields quoted
+/// only when they hold a comma or a quote, quotes doubled), and ten lines of splitting do not
+/// justify a CSV library as a dependency of the executable.
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') out.back() += '"', ++i;
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) out.emplace_back();
+    else if (c != '\r') out.back() += c;
+  }
+  return out;
+}
+
+double number_or_zero(const std::string& text) {
+  if (text.empty()) return 0;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  return (*end == '\0' && errno != ERANGE && std::isfinite(v)) ? v : NAN;
+}
+
+std::string percent(double relative) { return fmt::format("{:.3g} %", 100 * relative); }
+
+}  // namespace
+
+std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw OptionsError(
+        fmt::format("{}: cannot read the fidelity table (--table; written by perf/fidelity_table.py)", path));
+  std::vector<std::string> header;
+  std::vector<FidelityRow> rows;
+  std::string line;
+  const char* wanted[] = {"scene", "duration_s", "choice", "option", "overrides", "cpu_s", "cost_ratio",
+                          "cage_speed_change", "max_load_change", "pocket_force_change", "note"};
+  std::map<std::string, std::size_t> col;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto f = csv_fields(line);
+    if (header.empty()) {
+      header = f;
+      for (const char* name : wanted) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        if (it == header.end())
+          throw OptionsError(fmt::format("{}:{}: the header has no column '{}'", path, number, name));
+        col[name] = static_cast<std::size_t>(it - header.begin());
+      }
+      continue;
+    }
+    if (f.size() != header.size())
+      throw OptionsError(fmt::format("{}:{}: {} fields, the header has {}", path, number, f.size(), header.size()));
+    FidelityRow r{f[col["scene"]], f[col["duration_s"]], f[col["choice"]], f[col["option"]],
+                  f[col["overrides"]], f[col["note"]]};
+    r.cpu_s = number_or_zero(f[col["cpu_s"]]);
+    r.cost_ratio = number_or_zero(f[col["cost_ratio"]]);
+    r.change = {number_or_zero(f[col["cage_speed_change"]]), number_or_zero(f[col["max_load_change"]]),
+                number_or_zero(f[col["pocket_force_change"]])};
+    if (!std::isfinite(r.cost_ratio) || !std::isfinite(r.cpu_s) ||
+        std::any_of(r.change.begin(), r.change.end(), [](double c) { return !std::isfinite(c); }))
+      throw OptionsError(fmt::format("{}:{}: a number column holds something that is not a number", path, number));
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+Target parse_target(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string names = fmt::format("{}", fmt::join(kQuantities, ", "));
+  if (eq == std::string::npos)
+    throw OptionsError(fmt::format("--target '{}': expected QUANTITY=TOLERANCE (quantities: {})", text, names));
+  const std::string name = text.substr(0, eq);
+  std::string value = text.substr(eq + 1);
+  Target t;
+  const auto it = std::find(kQuantities.begin(), kQuantities.end(), name);
+  if (it == kQuantities.end())
+    throw OptionsError(fmt::format("--target '{}': unknown quantity '{}' (quantities: {})", text, name, names));
+  t.quantity = static_cast<int>(it - kQuantities.begin());
+  double scale = 1;
+  if (!value.empty() && value.back() == '%') value.pop_back(), scale = 0.01;
+  const double v = value.empty() ? NAN : number_or_zero(value);
+  if (!(v > 0) || !std::isfinite(v))
+    throw OptionsError(
+        fmt::format("--target '{}': the tolerance must be a positive number (relative, or with %)", text));
+  t.tolerance = v * scale;
+  return t;
+}
+
+namespace {
+
+/// The measured rows of combinations ("combination" rows: several choices at once, run by
+/// perf/fidelity_table.py for the plans it checks), by their overrides.
+std::map<std::string, const FidelityRow*> measured_combinations(const std::vector<FidelityRow>& rows) {
+  std::map<std::string, const FidelityRow*> out;
+  for (const auto& r : rows)
+    if (r.choice == "combination" && r.cost_ratio > 0) out[r.overrides] = &r;
+  return out;
+}
+
+/// A candidate's cost and changes: measured when the table holds its combination of overrides
+/// (rank rows aside: they change nothing and scale the time), else the options' product and sum.
+void predict(Recommendation& c, const std::map<std::string, const FidelityRow*>& measured) {
+  std::string key;
+  double rank_ratio = 1;
+  int with_overrides = 0;
+  for (const auto* r : c.chosen) {
+    c.cost_ratio *= r->cost_ratio;
+    for (std::size_t q = 0; q < 3; ++q) c.change[q] += r->change[q];
+    if (r->overrides.empty()) rank_ratio *= r->cost_ratio;
+    else key += (key.empty() ? "" : " ") + r->overrides, ++with_overrides;
+  }
+  const auto it = with_overrides > 1 ? measured.find(key) : measured.end();
+  if (it == measured.end()) return;
+  c.measured = true;
+  c.cost_ratio = it->second->cost_ratio * rank_ratio;
+  c.change = it->second->change;
+}
+
+}  // namespace
+
+Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets) {
+  // The options per choice, in the table's order; index 0 of each is "as shipped" (nullptr).
+  std::vector<std::string> choices;
+  std::map<std::string, std::vector<const FidelityRow*>> options;
+  for (const auto& r : rows) {
+    if (r.choice == "reference" || r.choice == "combination" || r.cost_ratio <= 0 || r.cost_ratio > kLeastSaving)
+      continue;
+    if (!options.count(r.choice)) choices.push_back(r.choice), options[r.choice] = {nullptr};
+    options[r.choice].push_back(&r);
+  }
+  const auto measured = measured_combinations(rows);
+  Recommendation best;
+  std::vector<std::size_t> pick(choices.size(), 0);
+  // Every combination (an odometer over the choices): a few hundred at most.
+  while (true) {
+    Recommendation c;
+    for (std::size_t i = 0; i < choices.size(); ++i)
+      if (const FidelityRow* r = options[choices[i]][pick[i]]) c.chosen.push_back(r);
+    predict(c, measured);
+    const bool meets = std::all_of(targets.begin(), targets.end(), [&](const Target& t) {
+      return c.change[static_cast<std::size_t>(t.quantity)] <= t.tolerance;
+    });
+    if (meets && (c.cost_ratio < best.cost_ratio ||
+                  (c.cost_ratio == best.cost_ratio && c.chosen.size() < best.chosen.size())))
+      best = c;
+    std::size_t i = 0;
+    while (i < choices.size() && ++pick[i] == options[choices[i]].size()) pick[i++] = 0;
+    if (i == choices.size()) break;
+  }
+  return best;
+}
+
+namespace {
+
+void print_choices(const std::vector<FidelityRow>& rows) {
+  std::puts("what each modelling choice costs and changes (one change at a time against the scene as shipped):");
+  std::printf("  %-14s %-11s %8s %11s %11s %12s  %s\n", "choice", "option", "cost", "cage speed", "max load",
+              "pocket force", "how");
+  for (const auto& r : rows) {
+    if ((r.choice == "reference" && r.option == "as shipped") || r.choice == "combination") continue;
+    const std::string how = r.choice == "reference" ? r.note : !r.overrides.empty() ? "--set " + r.overrides : r.note;
+    if (r.cost_ratio <= 0) {
+      std::printf("  %-14s %-11s %8s  %s (%s)\n", r.choice.c_str(), r.option.c_str(), "failed", how.c_str(),
+                  r.note.c_str());
+      continue;
+    }
+    std::printf("  %-14s %-11s %7.2fx %11s %11s %12s  %s\n", r.choice.c_str(), r.option.c_str(), r.cost_ratio,
+                percent(r.change[0]).c_str(), percent(r.change[1]).c_str(), percent(r.change[2]).c_str(), how.c_str());
+  }
+  std::puts("  (cost: CPU time of a one-rank run, the wall time on an idle machine, against the scene as shipped;\n"
+            "   changes: relative, of the means over the second half; options saving less than 5 % are within\n"
+            "   the timing scatter and never recommended)");
+}
+
+/// The `--set` form of a row's overrides: "a.b=1 c.d=[3, 3]" -> {"a.b=1", "c.d=[3, 3]"}. An override
+/// starts at a word followed by '=' after a space outside brackets.
+std::vector<std::string> split_overrides(const std::string& text) {
+  std::vector<std::string> out;
+  int depth = 0;
+  std::string cur;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    depth += (c == '[') - (c == ']');
+    if (c == ' ' && depth == 0 && text.find('=', i) != std::string::npos &&
+        text.find('=', i) < text.find(' ', i + 1)) {
+      if (!cur.empty()) out.push_back(cur);
+      cur.clear();
+      continue;
+    }
+    cur += c;
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
+std::string shell_quoted(const std::string& s) {
+  if (s.find_first_of(" \"[]$'") == std::string::npos) return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+void print_recommendation(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets,
+                          const FidelityRow* reference, const FidelityRow* uncertainty) {
+  for (const auto& t : targets) {
+    const auto q = static_cast<std::size_t>(t.quantity);
+    std::printf("target: %s within %s of the scene as shipped\n", kQuantities[q], percent(t.tolerance).c_str());
+    if (uncertainty && uncertainty->change[q] > t.tolerance)
+      std::printf("  note: below the reference's own uncertainty (%s at rtol / 10): not resolved by the data\n",
+                  percent(uncertainty->change[q]).c_str());
+  }
+  const Recommendation best = recommend(rows, targets);
+  std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent),\n"
+            "unless the table holds the combination measured (perf/fidelity_table.py measures the plans it checks)");
+  std::printf("recommended: %s cost %.2fx the scene as shipped", best.measured ? "measured" : "predicted",
+              best.cost_ratio);
+  if (reference) std::printf(" (%.3g CPU seconds for its %s, against %.3g s)", best.cost_ratio * reference->cpu_s,
+                             reference->duration.c_str(), reference->cpu_s);
+  std::puts("");
+  for (const auto& t : targets) {
+    const auto q = static_cast<std::size_t>(t.quantity);
+    std::printf("  %s change of %s %s (target %s)\n", best.measured ? "measured" : "predicted", kQuantities[q],
+                ((best.measured ? std::string() : std::string("at most ")) + percent(best.change[q])).c_str(),
+                percent(t.tolerance).c_str());
+  }
+  if (best.chosen.empty()) std::puts("  the scene as shipped: no cheaper choice meets the targets");
+  for (const auto* r : best.chosen) {
+    std::printf("  %s: %s\n", r->choice.c_str(), r->option.c_str());
+    if (r->overrides.empty()) std::printf("    %s\n", r->note.c_str());
+    for (const auto& o : split_overrides(r->overrides)) std::printf("    --set %s\n", shell_quoted(o).c_str());
+  }
+}
+
+}  // namespace
+
+CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
+  auto* plan = app.add_subcommand("plan", "what each modelling choice of a scene costs and changes, and the cheapest "
+                                          "settings meeting --target (measured data: perf/results/fidelity_table.csv)");
+  plan->add_option("scene", options.scene_path, "scene file (TOML); its data are the table's rows of its file name")
+      ->required();
+  plan->add_option("--target", options.targets,
+                   "QUANTITY=TOLERANCE, relative or with %: cage_speed, max_load (roller/ball loads), pocket_force; "
+                   "repeatable");
+  options.table_path = RACEWAY_FIDELITY_TABLE;
+  plan->add_option("--table", options.table_path, "the fidelity table")->capture_default_str();
+  return plan;
+}
+
+int plan_command(const PlanOptions& options) {
+  // Everything is checked before anything is printed: the scene, the targets, the table.
+  const io::Scene scene = io::load_scene(options.scene_path);
+  std::vector<Target> targets;
+  for (const auto& t : options.targets) targets.push_back(parse_target(t));
+  const std::string name = std::filesystem::path(options.scene_path).stem().string();
+  std::vector<FidelityRow> rows;
+  std::set<std::string> known;
+  for (auto& r : read_fidelity_table(options.table_path)) {
+    known.insert(r.scene);
+    if (r.scene == name) rows.push_back(std::move(r));
+  }
+  if (rows.empty())
+    throw OptionsError(fmt::format("{}: no measured data for scene '{}' (the table has {}); measure it with "
+                                   "perf/fidelity_table.py --scenes {}", options.table_path, name,
+                                   fmt::join(known, ", "), name));
+  const auto find = [&](const char* option) -> const FidelityRow* {
+    for (const auto& r : rows)
+      if (r.choice == "reference" && r.option == option) return &r;
+    return nullptr;
+  };
+  const FidelityRow* reference = find("as shipped");
+  std::printf("plan for %s (%s), measured over its first %s with perf/fidelity_table.py\n",
+              options.scene_path.c_str(), scene.scene.name.c_str(), reference ? reference->duration.c_str() : "?");
+  std::printf("planar or spatial: %s; a %s bearing is built %s only\n",
+              scene.scene.model == io::ModelKind::spatial ? "spatial" : "planar",
+              scene.bearing.is_ball_bearing() ? "ball" : "cylindrical roller",
+              scene.bearing.is_ball_bearing() ? "spatial" : "planar");
+  print_choices(rows);
+  if (targets.empty()) {
+    std::puts("no --target given: add e.g. --target cage_speed=1% for the cheapest settings that meet it");
+    return 0;
+  }
+  print_recommendation(rows, targets, reference, find("uncertainty"));
+  return 0;
+}
+
+}  // namespace raceway::plan

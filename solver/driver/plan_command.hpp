@@ -1,0 +1,66 @@
+// `raceway plan SCENE [--target QUANTITY=TOL ...]`: the fidelity planner. It states what each
+// modelling choice of the scene costs and what it changes, from measured data kept in the
+// repository (perf/results/fidelity_table.csv, refreshed by perf/fidelity_table.py), and recommends
+// the cheapest combination of choices whose predicted change meets every target, printed as
+// `--set section.key=value` overrides.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace raceway::plan {
+
+/// The quantities a target can name, in the table's column order.
+inline constexpr std::array<const char*, 3> kQuantities{"cage_speed", "max_load", "pocket_force"};
+
+/// One measured variant of a scene: a row of the fidelity table.
+struct FidelityRow {
+  std::string scene, duration, choice, option, overrides, note;
+  double cpu_s = 0, cost_ratio = 0;         ///< cost_ratio: CPU time / the reference's; 0: the run failed
+  std::array<double, 3> change{};           ///< relative change of each of kQuantities against the reference
+};
+
+/// A target: the largest relative change of one quantity.
+struct Target {
+  int quantity = 0;  ///< index in kQuantities
+  double tolerance = 0;
+};
+
+/// One option chosen per choice (a row each; the shipped settings are no row) and its prediction.
+struct Recommendation {
+  std::vector<const FidelityRow*> chosen;
+  double cost_ratio = 1;           ///< the product of the options' cost ratios, or the measured one
+  std::array<double, 3> change{};  ///< the sum of the options' changes (a bound), or the measured ones
+  bool measured = false;           ///< the table holds this combination, run as a whole
+};
+
+/// The rows of the table at PATH (a CSV file with a header line; '#' lines are comments). Throws
+/// solver::OptionsError naming the file and line when it cannot be read.
+std::vector<FidelityRow> read_fidelity_table(const std::string& path);
+
+/// "cage_speed=0.01" or "cage_speed=1%"; throws solver::OptionsError with the reason.
+Target parse_target(const std::string& text);
+
+/// The cheapest combination of one option (or none) per choice whose predicted changes meet every
+/// target; ROWS are the scene's rows (the reference rows and failed runs are skipped; a
+/// "combination" row replaces the prediction of its set of overrides by its measurement).
+Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets);
+
+struct PlanOptions {
+  std::string scene_path;
+  std::vector<std::string> targets;
+  std::string table_path;
+};
+
+/// Adds the `plan` subcommand to APP; the options land in OPTIONS.
+CLI::App* add_plan_command(CLI::App& app, PlanOptions& options);
+
+/// Runs `raceway plan`; returns the exit code (bad input throws, exit 2 by the caller's mapping).
+int plan_command(const PlanOptions& options);
+
+}  // namespace raceway::plan

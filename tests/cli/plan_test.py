@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""`raceway plan`: one recommendation checked against an actual run, and its refusals of bad input.
+
+  plan_test.py CASE RACEWAY SOURCE_DIR
+
+  recommendation: `raceway plan jobs/scenes/6309_R3.toml --target cage_speed=1% --target max_load=1%`
+    recommends at least one change (a --set line); the scene with those overrides, run over the
+    fidelity table's duration, changes the mean cage speed and the mean largest ball load of the
+    second half by no more than the targets against the scene as shipped run the same way (both
+    measured as perf/fidelity_table.py measures them).
+  refusals: an unknown quantity, a tolerance that is not positive, a scene without measured data,
+    a missing table, a bad scene: exit 2, one line naming what is wrong, nothing on stdout.
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+case, raceway, source = sys.argv[1], sys.argv[2], sys.argv[3]
+sys.path.insert(0, os.path.join(source, "perf"))
+try:
+    from work_precision import SCENES, read_run, set_key  # noqa: E402  (h5py, numpy)
+except ImportError as e:
+    print(f"skipped: {e}")
+    sys.exit(77)
+
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+        print("FAIL:", what, file=sys.stderr)
+
+
+def plan(*args):
+    return subprocess.run([raceway, "plan", *args], capture_output=True, text=True)
+
+
+def recommendation(work):
+    scene_file = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    targets = {"cage_speed": 0.01, "max_load": 0.01}
+    p = plan(scene_file, *sum((["--target", f"{q}={t * 100:g}%"] for q, t in targets.items()), []))
+    print(p.stdout)
+    check(p.returncode == 0, f"plan exit {p.returncode}: {p.stderr}")
+    sets = [l.strip()[len("--set "):] for l in p.stdout.splitlines() if l.strip().startswith("--set ")]
+    check(len(sets) > 0, "the plan recommends no change, so nothing is checked")
+    table = os.path.join(source, "perf", "results", "fidelity_table.csv")
+    rows = [r for r in csv.DictReader(l for l in open(table) if not l.startswith("#")) if r["scene"] == "6309_R3"]
+    duration = rows[0]["duration_s"]
+    check(duration == SCENES["6309_R3"]["end_time"], f"table duration {duration} is not perf/work_precision.py's")
+    base = open(scene_file).read()
+    for key, value in SCENES["6309_R3"].items():
+        base = set_key(base, "scene", key, f'"{value}"')
+    recommended = base
+    for s in sets:
+        s = s[1:-1] if s.startswith("'") and s.endswith("'") else s
+        path, value = s.split("=", 1)
+        section, key = path.rsplit(".", 1)
+        recommended = set_key(recommended, section, key, value)
+    out = {}
+    for name, text in (("reference", base), ("recommended", recommended)):
+        scene = os.path.join(work, name + ".toml")
+        open(scene, "w").write(text)
+        r = subprocess.run([raceway, "run", scene, "-o", os.path.join(work, name + ".h5")], capture_output=True, text=True)
+        check(r.returncode == 0, f"{name} run exit {r.returncode}: {r.stderr[-300:]}")
+        if r.returncode != 0:
+            return
+        out[name] = read_run(os.path.join(work, name + ".h5"))
+    for q, tol in targets.items():
+        ref, rec = out["reference"][q], out["recommended"][q]
+        change = abs(rec - ref) / abs(ref)
+        print(f"{q}: reference {ref:.6g}, recommended {rec:.6g}, change {change:.3g} (target {tol:g})")
+        check(change <= tol, f"{q} changed by {change:.3g} > target {tol:g}")
+
+
+def refusals(work):
+    scene = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    bad_scene = os.path.join(work, "bad.toml")
+    open(bad_scene, "w").write(open(scene).read().replace('rolling_elements = 8', 'rolling_elements = -8'))
+    other = os.path.join(work, "no_data_here.toml")
+    open(other, "w").write(open(scene).read())
+    for args, expected in [((scene, "--target", "cage_sped=1%"), "unknown quantity 'cage_sped'"),
+                           ((scene, "--target", "cage_speed=-1"), "positive"),
+                           ((scene, "--target", "cage_speed"), "QUANTITY=TOLERANCE"),
+                           ((other, "--target", "cage_speed=1%"), "no measured data for scene 'no_data_here'"),
+                           ((scene, "--table", os.path.join(work, "missing.csv")), "cannot read the fidelity table"),
+                           ((bad_scene,), "rolling_elements")]:
+        p = plan(*args)
+        check(p.returncode == 2, f"plan {' '.join(args[1:])}: exit {p.returncode}, expected 2")
+        check(expected in p.stderr, f"plan {' '.join(args[1:])}: stderr does not name '{expected}': {p.stderr}")
+        check(p.stdout == "", f"plan {' '.join(args[1:])}: printed before refusing: {p.stdout[:200]}")
+
+
+with tempfile.TemporaryDirectory() as work:
+    {"recommendation": recommendation, "refusals": refusals}[case](work)
+if failures:
+    print(f"{case}: {len(failures)} failure(s)", file=sys.stderr)
+    sys.exit(1)
+print(f"{case}: passed")
