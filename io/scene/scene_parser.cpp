@@ -21,6 +21,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "io/scene/catalogue_fill.hpp"
 #include "io/scene/scene_rules.hpp"
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
@@ -319,6 +320,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.source = source_name;
   scene.text = std::string(text);
   record_key_lines(root, "", scene);
+  scene.catalogue = catalogue::fill(root, file);  // after the key lines: filled keys are not in the text
   const Section info = top(file, root, "scene", true);
   Bind b{scene, &info};
   read_section("scene", info, b);
