@@ -152,7 +152,13 @@ struct Published {
   std::string origin() const { return "published: " + source((*e.published)["source"].value_or(std::string())); }
 };
 
-std::vector<Fill> bearing_values(const Entry& e) {
+/// The element size the cage's clearances scale with (mm).
+struct ElementSize {
+  double dw = 0, dm = 0;
+};
+
+/// `bearing` is the scene's [bearing] table (for the keys it gives).
+std::vector<Fill> bearing_values(const Entry& e, const toml::table& bearing, ElementSize& size) {
   const Series& s = *e.series;
   const Published pub{e};
   const std::string iso = fmt::format("{} dimension series {}", source("iso15"), s.dimension_series);
@@ -180,6 +186,7 @@ std::vector<Fill> bearing_values(const Entry& e) {
   out.push_back(plain("bearing", "rolling_elements", z, z_origin, true));
   out.push_back(length("bearing", s.ball() ? "ball_diameter" : "roller_diameter", dw, dw_origin));
   out.push_back(length("bearing", "pitch_diameter", dm, dm_origin));
+  size = {dw, dm};
   if (!s.ball()) {
     out.push_back(length("bearing", "roller_length", dw, "estimated: as long as the roller diameter"));
   } else {
@@ -191,7 +198,8 @@ std::vector<Fill> bearing_values(const Entry& e) {
     out.push_back(plain("bearing", "inner_conformity", fi, fi_origin, false));
     out.push_back(plain("bearing", "outer_conformity", fo, fo_origin, false));
   }
-  if (s.contact_angle)
+  // An angular contact bearing's free contact angle, unless the scene sets it by its clearance.
+  if (s.contact_angle && !bearing.contains("radial_clearance"))
     out.push_back(word("bearing", "contact_angle", fmt::format("{:g} deg", *s.contact_angle),
                        "published: the B suffix of the 72..B series (makers' catalogues)"));
   if (s.arc_angle) {
@@ -207,14 +215,9 @@ std::vector<Fill> bearing_values(const Entry& e) {
 }
 
 /// The cage the series is usually made with, and its play (docs/catalogue.md, "Cages").
-std::vector<Fill> cage_values(const Entry& e, const toml::table* scene_cage) {
+std::vector<Fill> cage_values(const Entry& e, const ElementSize& size, const toml::table* scene_cage) {
   const Series& s = *e.series;
-  const std::vector<Fill> bearing = bearing_values(e);
-  double dw = 0, dm = 0;
-  for (const Fill& f : bearing) {
-    if (f.key == "ball_diameter" || f.key == "roller_diameter") dw = std::stod(f.text.substr(1));
-    if (f.key == "pitch_diameter") dm = std::stod(f.text.substr(1));
-  }
+  const double dw = size.dw, dm = size.dm;
   std::vector<Fill> out;
   const bool pressed = s.type == "deep_groove_ball" || s.type == "angular_contact_ball";
   const std::string guidance = pressed ? "rolling_element" : "outer_land";
@@ -308,8 +311,11 @@ std::vector<CatalogueValue> catalogue::fill(toml::table& root, const std::string
                                  "designation",
                                  e.designation, e.series->type, e.series->name));
   std::vector<Fill> fills = first_scene_values(e, root);
-  for (std::vector<Fill> part : {bearing_values(e), cage_values(e, root["cage"].as_table())})
-    fills.insert(fills.end(), part.begin(), part.end());
+  ElementSize size;
+  const std::vector<Fill> geometry = bearing_values(e, *bearing, size);  // sets size, which the cage needs
+  fills.insert(fills.end(), geometry.begin(), geometry.end());
+  const std::vector<Fill> cage = cage_values(e, size, root["cage"].as_table());
+  fills.insert(fills.end(), cage.begin(), cage.end());
   std::vector<CatalogueValue> out;
   for (const Fill& f : fills) {
     const bool pseudo = f.key.starts_with("(");

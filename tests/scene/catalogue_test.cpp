@@ -114,6 +114,10 @@ TEST(Catalogue, TheSceneOverridesAnyValue) {
   for (const io::CatalogueValue& v : s.catalogue) given += v.given;
   EXPECT_EQ(given, 4);
   EXPECT_NE(io::describe_catalogue_values(s).find("given by the scene"), std::string::npos);
+  // An angular contact bearing given by its groove clearance: the catalogue's 40 deg stands back.
+  const io::Scene ac = scene_of("7206B", "radial_clearance = \"30 um\"\n");
+  EXPECT_NEAR(ac.bearing.radial_clearance, 30e-6, 1e-12);
+  EXPECT_LT(ac.bearing.ball.free_contact_angle, 40 * test::deg);
 }
 
 TEST(Catalogue, UnknownDesignationOrContradictingTypeIsRefused) {
