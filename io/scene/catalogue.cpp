@@ -253,7 +253,7 @@ std::vector<Fill> first_scene_values(const Entry& e, const toml::table& root) {
                "load zone",
                true, Fill::Kind::boolean, 1};
   out.push_back(gravity);
-  if (!root.contains("outer_ring") || !root["outer_ring"].as_table()->contains("motion"))
+  if (const toml::table* outer = root["outer_ring"].as_table(); !root.contains("outer_ring") || (outer && !outer->contains("motion")))
     out.push_back(word("outer_ring", "motion", "fixed", "first-scene default: the outer ring held in its housing", true));
   if (const toml::table* inner = root["inner_ring"].as_table(); inner && inner->contains("speed"))
     out.push_back(word("inner_ring", "motion", "driven", "first-scene default: the inner ring turns at its speed", true));
@@ -320,9 +320,10 @@ std::vector<CatalogueValue> catalogue::fill(toml::table& root, const std::string
   for (const Fill& f : fills) {
     const bool pseudo = f.key.starts_with("(");
     if (!pseudo && !root.contains(f.section)) root.insert(f.section, toml::table{});
-    toml::table& table = *root[f.section].as_table();
-    const bool given = !pseudo && table.contains(f.key);
-    if (!given && !pseudo) insert(table, f);
+    toml::table* table = root[f.section].as_table();
+    if (!pseudo && !table) continue;  // not a table: the reader says so
+    const bool given = !pseudo && table->contains(f.key);
+    if (!given && !pseudo) insert(*table, f);
     out.push_back({pseudo ? f.key : f.section + "." + f.key, f.text, f.origin, given, f.first_scene_default});
   }
   return out;

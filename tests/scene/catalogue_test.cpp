@@ -131,6 +131,12 @@ TEST(Catalogue, UnknownDesignationOrContradictingTypeIsRefused) {
     EXPECT_EQ(e.line(), 5);
     EXPECT_NE(e.reason().find("did you mean '6206'"), std::string::npos) << e.what();
   }
+  // A designation that is not a string, and sections that are not tables beside a designation: the
+  // reader's errors, never a crash.
+  for (const std::string& text :
+       {std::string("[bearing]\ndesignation = 6205\n"), std::string("cage = 3\n[bearing]\ndesignation = \"6205\"\n"),
+        std::string("outer_ring = 1\nlubricant = \"oil\"\n[bearing]\ndesignation = \"6205\"\n")})
+    EXPECT_THROW((void)io::parse_scene(text, "odd.toml"), io::SceneError) << text;
   try {
     (void)scene_of("6205", "type = \"angular_contact_ball\"\n");
     FAIL() << "a type contradicting the designation was accepted";
