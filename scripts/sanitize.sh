@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A checking build with AddressSanitizer and UndefinedBehaviorSanitizer, and the test suite on it.
 #
-#   scripts/sanitize.sh [CTEST ARGS...]     e.g. scripts/sanitize.sh -L unit   or   -E _long
+#   scripts/sanitize.sh [CTEST ARGS...]     e.g. scripts/sanitize.sh -LE long   (without the long runs)
 #
 # Configures build-asan (RelWithDebInfo, -DRACEWAY_SANITIZE=address,undefined, benchmarks off),
 # builds it and runs ctest in it; the ctest summary goes to stdout and to build-asan/sanitize.log.
