@@ -237,6 +237,16 @@ struct OutputSpec {
   double checkpoint_wall_interval = 300;  ///< s wall clock, after which a checkpoint is written (0: none)
 };
 
+/// A value a scene takes from the bearing catalogue (io/scene/catalogue.hpp) or a first-scene default
+/// that comes with a designation, for `raceway check`.
+struct CatalogueValue {
+  std::string key;     ///< dotted scene key, "bearing.ball_diameter"
+  std::string value;   ///< as TOML text, "\"7.94 mm\""
+  std::string origin;  ///< where it comes from: a source, or the rule of an estimate, or why a default
+  bool given = false;  ///< the scene gives the key itself: its value is used and this one is not
+  bool first_scene_default = false;  ///< not bearing data: a default a first scene needs (gravity, lubricant)
+};
+
 /// One simulation, validated and in SI units, and where it came from.
 struct Scene {
   std::string source;     ///< file path, or "<built-in default>"
@@ -259,6 +269,9 @@ struct Scene {
   SolverSpec solver;
   OutputSpec output;
   bool gravity = false;   ///< gravity along -y (9.80665 m/s^2)
+  /// [bearing] designation ("6205"; empty: none) and the values it filled in (in the order filled).
+  std::string designation;
+  std::vector<CatalogueValue> catalogue;
   /// Line of every key of the scene text ("inner_ring.load.fy" -> 31), for errors found after
   /// parsing (start-up, output size) that name the keys involved.
   std::map<std::string, int, std::less<>> key_lines;

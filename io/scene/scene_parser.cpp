@@ -22,6 +22,7 @@
 #include <toml++/toml.h>
 
 #include "io/scene/scene_overrides.hpp"
+#include "io/scene/catalogue_fill.hpp"
 #include "io/scene/scene_rules.hpp"
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
@@ -304,7 +305,7 @@ void check_top_level(const std::string& file, const toml::table& root) {
 }
 
 /// The schema walk over the parsed (and overridden) TOML table.
-Scene parse_table(const toml::table& root, const std::string& source_name);
+Scene parse_table(toml::table& root, const std::string& source_name);
 /// The text of a scene file; an unreadable one is a SceneError naming it.
 std::string read_scene_text(const std::string& path);
 
@@ -333,13 +334,14 @@ Scene parse_scene(std::string_view text, const std::string& source_name, std::sp
 
 namespace {
 
-Scene parse_table(const toml::table& root, const std::string& source_name) {
+Scene parse_table(toml::table& root, const std::string& source_name) {
   const std::string& file = source_name;
   check_top_level(file, root);
 
   Scene scene;
   scene.source = source_name;
   record_key_lines(root, "", scene);
+  scene.catalogue = catalogue::fill(root, file);  // after the key lines: filled keys are not in the text
   const Section info = top(file, root, "scene", true);
   Bind b{scene, &info};
   read_section("scene", info, b);

@@ -89,6 +89,11 @@ constexpr Row kRows[] = {
      .dim = dim::none, .bounds = {.lo = 0, .hi = 0.5, .hi_open = true}, .meaning = "Poisson's ratio"},
 
     // ---- [bearing] ------------------------------------------------------------------------------
+    {.section = "bearing", .key = "designation", .kind = text, .field = FIELD(scene.designation), .def = absent,
+     .example = "6205",
+     .meaning = "a catalogue bearing (docs/catalogue.md: 60, 62, 63, 72..B, QJ2.., NU2.. series): fills every key of "
+                "[bearing] and [cage], the model and first-scene defaults that the scene does not give; `raceway "
+                "check` lists them"},
     {.section = "bearing", .key = "type", .kind = choice, .field = FIELD(scene.bearing.type),
      .then = model_fits_bearing_type, .options = kBearingTypes, .noun = "bearing type",
      .meaning = "cylindrical_roller needs model = \"planar\", the ball bearings model = \"spatial\""},

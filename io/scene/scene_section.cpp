@@ -106,7 +106,8 @@ Section::Section(const std::string& file, const toml::table* table, std::string 
 
 int Section::line(std::string_view key) const {
   const toml::node* n = node(key);
-  return n ? std::max(line_of(*n), 1) : line_;
+  // A value the catalogue filled in has no line of its own: the section's (or the designation's) stands.
+  return n && line_of(*n) > 0 ? line_of(*n) : std::max(line_, 1);
 }
 
 void Section::fail(std::string_view key, std::string reason) const {

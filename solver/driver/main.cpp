@@ -37,6 +37,7 @@
 #include "io/h5/output_lock.hpp"
 #include "io/report/report.hpp"
 #include "raceway/version.hpp"
+#include "io/scene/catalogue.hpp"
 #include "io/scene/scene_override.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "io/json/summary_json.hpp"
@@ -340,6 +341,7 @@ void add_report_command(CLI::App& app, CommandLine& cl) {
 int check_command(const std::string& scene_path, const std::vector<std::string>& overrides) {
   const io::Scene scene = load(scene_path, overrides);
   for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
+  std::fputs(io::describe_catalogue_values(scene).c_str(), stdout);
   const auto model = solver::build_model(scene);
   std::fputs(model.describe().c_str(), stdout);
   const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};

@@ -103,6 +103,12 @@ bool BorderedFactorization::factor(const BorderedMatrix& m) {
   for (int k = 0; k < n; ++k) {
     block_lu_[k].compute(m.block[k]);
     if (!usable(block_lu_[k])) return false;
+    // Without a border there is nothing to solve for; Eigen's triangular solve of a 0-column
+    // right-hand side would still bind a reference to its element (0, 0) (undefined behaviour).
+    if (m.border_size() == 0) {
+      block_inv_border_[k].resize(m.block[k].rows(), 0);
+      continue;
+    }
     block_inv_border_[k] = block_lu_[k].solve(m.block_to_border[k]);
     schur.noalias() -= m.border_to_block[k] * block_inv_border_[k];
   }

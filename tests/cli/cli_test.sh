@@ -221,6 +221,7 @@ run --schedule-sample-every 0|--schedule-sample-every: expected a whole number >
 run --schedule-sample-every 2.5|--schedule-sample-every: expected a whole number > 0
 run --schedule-sample-every 1e400|--schedule-sample-every: expected a whole number > 0
 run --schedule sometimes|--schedule: sometimes not in {adaptive,static}
+run --method rk4|--method: rk4 not in {bdf,adams,erk,ark}
 run --rank-timeout nan|--rank-timeout: expected a finite number > 0, got 'nan'
 run --rank-timeout 0|--rank-timeout: expected a finite number > 0, got '0'
 run --inject-failure 1|--inject-failure expects RANK:EVALUATION
