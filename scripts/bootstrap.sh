@@ -8,7 +8,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev
   libpetsc-real-dev libsundials-dev libeigen3-dev libhdf5-openmpi-dev hdf5-tools libmetis-dev
   libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
-  python3-matplotlib python3-h5py python3-numpy)
+  python3-matplotlib python3-h5py python3-numpy
+  chromium python3-vtk9 ffmpeg)  # the report tests: page screenshot, VTK read-back, MP4 animation
 
 missing=()
 for p in "${packages[@]}"; do

@@ -2,7 +2,7 @@
 """`raceway report OUT.h5`: the report of a planar (roller) or spatial (ball) bearing run.
 
     raceway_report.py OUT.h5 [-o DIR] [--window-start S] [--bin-width DEG] [--contact-threshold N]
-                      [--no-plots] [--animate] [--animation-frames N] [--xdmf]
+                      [--no-plots] [--animate] [--animation-frames N] [--xdmf] [--vtk]
 
 `raceway report` runs this script (found beside the executable's install prefix); it can be run
 directly too. Writes into DIR (default: <stem>_report beside the file):
@@ -11,7 +11,8 @@ directly too. Writes into DIR (default: <stem>_report beside the file):
     *.png          the figures (report_plots.py), 1600 px wide, titled with the scene
     report.html    one self-contained page: figures, numbers, scene text, build (report_page.py)
     cage.mp4/.gif  with --animate: the bearing seen along its axis (report_animation.py)
-and with --xdmf OUT.xdmf beside the .h5 for ParaView (report_xdmf.py).
+and with --xdmf OUT.xdmf beside the .h5 for ParaView (report_xdmf.py), with --vtk OUT_vtk/OUT.pvd, the
+bodies as VTK PolyData files that any VTK or ParaView reads (report_vtk.py).
 
 Exit codes: 0 done (plots skipped with a warning when matplotlib is missing); 2 bad input (a
 missing file or dataset, a bad option), naming the file and dataset; 3 numpy or h5py missing;
@@ -75,6 +76,7 @@ def parse_args(argv):
     p.add_argument("--animate", action="store_true")
     p.add_argument("--animation-frames", type=int, default=150)
     p.add_argument("--xdmf", action="store_true")
+    p.add_argument("--vtk", action="store_true")
     return p.parse_args(argv)
 
 
@@ -139,6 +141,9 @@ def main(argv):
     if args.xdmf:
         import report_xdmf
         log("info", f"ParaView file written to {report_xdmf.write_xdmf(args.input)}")
+    if args.vtk:
+        import report_vtk
+        log("info", f"VTK time series written to {report_vtk.write_vtk(args.input)}")
     if args.no_plots:
         log("info", "plots skipped (--no-plots)")
     else:

@@ -57,6 +57,7 @@ std::vector<std::string> report_arguments(const std::string& script, const Repor
   if (!options.plots) args.emplace_back("--no-plots");
   if (options.animate) args.emplace_back("--animate");
   if (options.xdmf) args.emplace_back("--xdmf");
+  if (options.vtk) args.emplace_back("--vtk");
   return args;
 }
 

@@ -26,6 +26,7 @@ struct ReportOptions {
   bool plots = true;                         ///< figures and the report page
   bool animate = false;                      ///< the animation (MP4 with ffmpeg, else GIF)
   bool xdmf = false;                         ///< OUT.xdmf beside the .h5 for ParaView
+  bool vtk = false;                          ///< OUT_vtk/OUT.pvd: VTK PolyData files over time
 };
 
 /// The command line of the report script for these options (without the interpreter).

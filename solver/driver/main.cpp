@@ -257,7 +257,7 @@ struct CommandLine {
   bool replan_every_evaluation = false, scheduler_log = false, resume = false;
   io::ReportOptions report_options;
   double window_start = NAN;
-  bool no_plots = false, animate = false, xdmf = false;
+  bool no_plots = false, animate = false, xdmf = false, vtk = false;
   double contact_threshold = NAN;
   CLI::App* run = nullptr;
   CLI::App* check = nullptr;
@@ -335,6 +335,7 @@ void add_report_command(CLI::App& app, CommandLine& cl) {
   report->add_flag("--no-plots", cl.no_plots, "write summary.json only");
   report->add_flag("--animate", cl.animate, "also an animation of the bearing along its axis (MP4 with ffmpeg, else GIF)");
   report->add_flag("--xdmf", cl.xdmf, "also OUT.xdmf beside the .h5: the bodies over time for ParaView");
+  report->add_flag("--vtk", cl.vtk, "also OUT_vtk/OUT.pvd: the bodies over time as VTK PolyData files");
 }
 
 /// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
@@ -420,6 +421,7 @@ int check_or_report(CommandLine& cl) {
     cl.report_options.plots = !cl.no_plots;
     cl.report_options.animate = cl.animate;
     cl.report_options.xdmf = cl.xdmf;
+    cl.report_options.vtk = cl.vtk;
     return report_command(cl.report_options);
   });
 }

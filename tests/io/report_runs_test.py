@@ -3,7 +3,7 @@
 
     report_runs_test.py SCENE RACEWAY_EXECUTABLE SOURCE_DIR
 
-Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --xdmf` and checks:
+Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --xdmf --vtk` and checks:
 - the page, the figures (PNG, at least 1200 px wide) and summary.json exist; the page embeds every
   figure and names the scene;
 - summary.json's numbers against values this test computes from the output file itself through the
@@ -15,8 +15,10 @@ Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --
 - the XDMF file: it parses, every HDF DataItem names a dataset of the .h5 with its shape, every
   hyperslab lies inside it, the time steps are the file's times, and the cage position read
   through the XDMF's hyperslab at a sample equals /cage/position there;
-- for 6309_R3 also the animation (the report script directly, 12 frames) and, when chromium is
-  installed, a headless screenshot of the page.
+- the VTK export read back with VTK's reader (python3-vtk9): the cage's point at a time step is
+  /cage/position at that output time;
+- for 6309_R3 also the animation (the report script directly, 12 frames, MP4 through ffmpeg or GIF)
+  and a headless chromium screenshot of the page (1600 px wide).
 
 Exit codes: 0 pass, 1 fail, 77 skipped (numpy, h5py or matplotlib missing).
 """
@@ -159,15 +161,47 @@ def check_xdmf(xdmf, h5):
         check(np.array_equal(value[0], f["cage/position"][k * stride]), "cage position through the XDMF")
 
 
+def check_vtk(pvd, h5):
+    """Reads the VTK export back with VTK's own reader: the cage's point at the middle time step is
+    the cage position the .h5 holds at that time."""
+    import vtk  # python3-vtk9, installed by scripts/bootstrap.sh
+    entries = ET.parse(pvd).getroot().findall("./Collection/DataSet")
+    check(len(entries) > 1, f"{pvd}: {len(entries)} time steps")
+    entry = entries[len(entries) // 2]
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(os.path.join(os.path.dirname(pvd), entry.get("file")))
+    reader.Update()
+    data = reader.GetOutput()
+    with h5py.File(h5, "r") as f:
+        elements = "balls" if "balls/position" in f else "rollers"
+        count = f[f"{elements}/position"].shape[1]
+        check(data.GetNumberOfPoints() == count + 3, f"VTK: {data.GetNumberOfPoints()} points, expected {count + 3}")
+        times = f["time"][()]
+        sample = int(np.argmin(np.abs(times - float(entry.get("timestep")))))
+        check(times[sample] == float(entry.get("timestep")), "VTK time step is an output time")
+        cage = np.array(data.GetPoint(count))
+        expected = np.zeros(3)
+        expected[:f["cage/position"].shape[1]] = f["cage/position"][sample][:3]
+        check(np.array_equal(cage, expected), f"cage position through VTK {cage} against {expected}")
+        body = data.GetPointData().GetArray("body")
+        check(body is not None and body.GetValue(count) == count, "VTK point data 'body' names the cage")
+        print(f"VTK: {len(entries)} time steps; cage at t = {times[sample]:.6g} s read back: {cage}", file=sys.stderr)
+
+
 def screenshot(page, work):
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    check(browser is not None, "chromium is installed (scripts/bootstrap.sh installs it) for the page screenshot")
     if not browser:
-        print("note: no chromium: the page screenshot is not taken", file=sys.stderr)
         return
     png = os.path.join(work, "page.png")
-    subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", f"--screenshot={png}",
+    # Flags for a closed network: no background connections, a fresh profile.
+    subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                    f"--user-data-dir={os.path.join(work, 'chromium-profile')}", f"--screenshot={png}",
                     "--window-size=1600,3000", "file://" + os.path.abspath(page)], capture_output=True, timeout=120)
     check(os.path.isfile(png) and png_width(png) == 1600, "headless chromium screenshot of the page")
+    if os.path.isfile(png):
+        print(f"page screenshot: {png_width(png)} px wide, {os.path.getsize(png)} bytes", file=sys.stderr)
 
 
 def main():
@@ -183,7 +217,7 @@ def main():
         check(r.returncode == 0, f"run: exit code {r.returncode}: {r.stderr[-2000:]}")
         if r.returncode:
             return 1
-        r = subprocess.run([raceway, "report", h5, "--xdmf"], capture_output=True, text=True, timeout=600)
+        r = subprocess.run([raceway, "report", h5, "--xdmf", "--vtk"], capture_output=True, text=True, timeout=600)
         check(r.returncode == 0, f"report: exit code {r.returncode}: {r.stderr[-3000:]}")
         folder = os.path.join(work, scene + "_report")
         with open(os.path.join(folder, "summary.json")) as fh:
@@ -200,6 +234,7 @@ def main():
         check(s["scene_name"] in page and "<pre>" in page, "the page names the scene and holds its text")
         impacts = check_summary(s, h5, element)
         check_xdmf(os.path.join(work, scene + ".xdmf"), h5)
+        check_vtk(os.path.join(work, scene + "_vtk", scene + ".pvd"), h5)
         print(f"{scene}: {len(pngs)} figures, cage {s['cage_speed']['mean_rpm']:.3f} rpm, {impacts} impacts",
               file=sys.stderr)
         if scene == "6309_R3":
@@ -208,6 +243,11 @@ def main():
                                capture_output=True, text=True, timeout=600)
             videos = [n for n in os.listdir(folder) if n.startswith("cage.")]
             check(r.returncode == 0 and len(videos) == 1, f"animation: {r.returncode} {videos} {r.stderr[-2000:]}")
+            if videos and videos[0].endswith(".mp4"):
+                probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                                        "-show_entries", "stream=nb_read_frames", "-of", "csv=p=0",
+                                        os.path.join(folder, videos[0])], capture_output=True, text=True)
+                check(probe.stdout.strip() == "12", f"animation has {probe.stdout.strip()} frames, expected 12")
             if videos and videos[0].endswith(".gif"):
                 from PIL import Image
                 with Image.open(os.path.join(folder, videos[0])) as im:
