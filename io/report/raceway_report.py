@@ -145,7 +145,7 @@ def main(argv):
         import report_vtk
         log("info", f"VTK time series written to {report_vtk.write_vtk(args.input)}")
     if args.no_plots:
-        log("info", "plots skipped (--no-plots)")
+        log("info", "plots skipped (--no-plots)" + (", and with them the animation (--animate)" if args.animate else ""))
     else:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
