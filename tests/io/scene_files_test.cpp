@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/scene/scene_parser.hpp"
+#include "solver/driver/campaign_file.hpp"
 #include "tests/io/scene_test_util.hpp"
 
 namespace raceway::io {
@@ -41,7 +42,7 @@ double net_fy(const Scene& s, const RingSpec& r) { return r.load.fy(0.0) - (s.gr
 
 TEST(JobScenes, EveryJobSceneParsesAndSaysHowToRunIt) {
   const auto names = job_scenes();
-  EXPECT_GE(names.size(), 4u + 1u + 8u + 5u + 6u);  // 6309 x 4, QJ215 validation and sweeps
+  EXPECT_GE(names.size(), 4u + 1u + 2u);  // 6309 x 4, QJ215 validation, seed 002 (its sweeps: jobs/campaigns)
   for (const auto& name : names) {
     SCOPED_TRACE(name);
     try {
@@ -217,34 +218,39 @@ TEST(JobScenes, Seed001QJ215ValidationInSI) {
   EXPECT_DOUBLE_EQ(s.cage_land.traction.friction_coefficient, 0.1);
 }
 
-TEST(JobScenes, QJ215SweepsShareTheValidationScene) {
-  const std::string validation = read_file(job_path("qj215_validation"));
-  const auto at = validation.find("\n# ---- shared by every QJ215 scene");
-  ASSERT_NE(at, std::string::npos);
-  const std::string shared = validation.substr(at + 1);
+// Seed 001's three sweeps are campaign files over the validation scene (jobs/campaigns/): each
+// scene is the validation scene with the swept speed or loads, 20 inner-ring revolutions and 600
+// output samples per revolution, as in the paper.
+TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
   const Scene reference = job("qj215_validation");
   struct Case {
-    std::string name;
-    double rpm, fa, fr;
+    std::string campaign;
+    std::vector<double> rpm, fa, fr;
   };
-  std::vector<Case> cases;
-  for (int v = 1000; v <= 8000; v += 1000) cases.push_back({"qj215_speed_" + std::to_string(v), double(v), 1000, 0});
-  for (int v = 1000; v <= 5000; v += 1000) cases.push_back({"qj215_axial_" + std::to_string(v), 1000, double(v), 0});
-  for (int v = 100; v <= 600; v += 100) cases.push_back({"qj215_radial_" + std::to_string(v), 1000, 2000, double(v)});
+  std::vector<Case> cases(3);
+  cases[0].campaign = "qj215_speed";
+  for (int v = 1000; v <= 8000; v += 1000) cases[0].rpm.push_back(v), cases[0].fa.push_back(1000), cases[0].fr.push_back(0);
+  cases[1].campaign = "qj215_axial";
+  for (int v = 1000; v <= 5000; v += 1000) cases[1].rpm.push_back(1000), cases[1].fa.push_back(v), cases[1].fr.push_back(0);
+  cases[2].campaign = "qj215_radial";
+  for (int v = 100; v <= 600; v += 100) cases[2].rpm.push_back(1000), cases[2].fa.push_back(2000), cases[2].fr.push_back(v);
   for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const Scene s = job(c.name);
-    ASSERT_GE(s.text.size(), shared.size());
-    EXPECT_EQ(s.text.substr(s.text.size() - shared.size()), shared);  // verbatim copy
-    EXPECT_NEAR(s.inner_ring.speed(0.0), rpm(c.rpm), 1e-9);
-    EXPECT_DOUBLE_EQ(s.inner_ring.load.fz(0.0), c.fa);
-    EXPECT_DOUBLE_EQ(s.inner_ring.load.fy(0.0), -c.fr);
-    EXPECT_TRUE(s.inner_ring.load.fx.is_zero());
-    EXPECT_NEAR(s.inner_ring.speed(0.0) * s.scene.end_time / (2 * pi), 20.0, 1e-4);  // 20 revolutions
-    EXPECT_NEAR(s.scene.output_interval * s.inner_ring.speed(0.0) / (2 * pi), 1.0 / 600, 1e-8);
-    EXPECT_EQ(s.bearing.rolling_elements, reference.bearing.rolling_elements);
-    EXPECT_EQ(s.bearing.ball.inner_conformity, reference.bearing.ball.inner_conformity);
-    EXPECT_EQ(s.cage.land_clearance, reference.cage.land_clearance);
+    SCOPED_TRACE(c.campaign);
+    const auto campaign = driver::load_campaign((kSourceDir / "jobs" / "campaigns" / (c.campaign + ".toml")).string());
+    ASSERT_EQ(campaign.scenes.size(), c.rpm.size());
+    for (std::size_t k = 0; k < c.rpm.size(); ++k) {
+      const Scene s = driver::campaign_scene(campaign, campaign.scenes[k]);
+      EXPECT_NEAR(s.inner_ring.speed(0.0), rpm(c.rpm[k]), 1e-9);
+      EXPECT_DOUBLE_EQ(s.inner_ring.load.fz(0.0), c.fa[k]);
+      EXPECT_DOUBLE_EQ(s.inner_ring.load.fy(0.0), -c.fr[k]);
+      EXPECT_TRUE(s.inner_ring.load.fx.is_zero());
+      EXPECT_NEAR(s.inner_ring.speed(0.0) * s.scene.end_time / (2 * pi), 20.0, 1e-9);  // 20 revolutions
+      EXPECT_NEAR(s.scene.output_interval * s.inner_ring.speed(0.0) / (2 * pi), 1.0 / 600, 1e-12);
+      EXPECT_EQ(s.bearing.rolling_elements, reference.bearing.rolling_elements);
+      EXPECT_EQ(s.bearing.ball.inner_conformity, reference.bearing.ball.inner_conformity);
+      EXPECT_EQ(s.cage.land_clearance, reference.cage.land_clearance);
+      EXPECT_EQ(s.ball_race.traction.friction_coefficient, reference.ball_race.traction.friction_coefficient);
+    }
   }
 }
 
