@@ -1,5 +1,8 @@
-# Shared by the shell tests (tests/cli, tests/parallel): a scratch folder removed on exit, and a
-# failure counter. Source it after setting case_name.
+# Shared by the shell tests (tests/cli, tests/parallel, tests/run, tests/campaign): a scratch folder
+# removed on exit, a failure counter, and Open MPI's settings for mpirun as root in a container (no
+# single-copy transfers, which a container's ptrace limits refuse). Source it after setting case_name.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
 work=$(mktemp -d "${TMPDIR:-/tmp}/raceway_${case_name}.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 failures=0

@@ -20,7 +20,7 @@
 set -u
 case_name=$1 raceway=$2 mpiexec=$3 source_dir=$4
 source "$source_dir/tests/test_lib.sh"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
 python=/usr/bin/python3
 small="$source_dir/tests/campaign/small_campaign.toml"
 

@@ -20,8 +20,6 @@ case_name=${1:?case}
 raceway=${2:?raceway}
 mpiexec=${3:?mpiexec}
 source_dir=${4:?source dir}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
 compare=(/usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py")
 
 source "$source_dir/tests/test_lib.sh"
