@@ -41,6 +41,11 @@ struct TaskCatalogue {
   std::vector<int> group;
   /// Per task: bodies whose states the task reads (for the edge weights of the level-1 graph).
   std::vector<std::array<int, 2>> bodies;
+  /// Per task: the piece of work it is a part of (equations: its contact segment, when a heavy
+  /// segment's work is cut into sub-tasks whose records the master combines in a fixed order).
+  /// Level 2 of the plan moves a piece's tasks together unless the piece is heavy against a rank's
+  /// share. Empty: every task is a piece of its own.
+  std::vector<int> parent;
   std::array<TaskFunction, phase_count> function;  ///< empty where a phase has no tasks
   std::array<int, phase_count> record_size{};
 };

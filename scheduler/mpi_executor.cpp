@@ -73,9 +73,10 @@ std::string fmt_plan_line(const PlanEvent& e) {
   char line[320];
   std::snprintf(line, sizeof line,
                 "scheduler: %s plan v%d before evaluation %ld (%s, %s): predicted imbalance %.3f -> %.3f, "
-                "measured %.3f, %d rolling element(s) split, %.3g ms",
+                "measured %.3f, %d rolling element(s) and %d segment(s) split, %.3g ms",
                 phase_name(e.phase), e.version, e.evaluation, reason_name(e.reason), method_name(e.method),
-                e.predicted_before, e.predicted_after, e.measured_imbalance, e.split_groups, 1e3 * e.plan_seconds);
+                e.predicted_before, e.predicted_after, e.measured_imbalance, e.split_groups, e.split_parents,
+                1e3 * e.plan_seconds);
   return line;
 }
 
@@ -166,6 +167,7 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   message_.assign(message_size_, 0.0);
   receive_.resize(static_cast<std::size_t>(size_));
   log_.task_group = catalogue.group;
+  log_.task_parent = catalogue.parent;
   log_.context_size = catalogue.context_size;
   for (std::size_t p = 0; p < schedule_phase_count; ++p) log_.record_size[p] = catalogue.record_size[p];
   // Start plans: uniform costs (nothing measured yet).
@@ -208,6 +210,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     }
     plan.method = PlanMethod::rotated;
     plan.split_groups = count_split_groups(plan.owner, catalogue_.group);
+    plan.split_parents = count_split_parents(plan.owner, catalogue_.parent);
     if (!model.empty()) plan.predicted_imbalance = predicted_imbalance(plan.owner, model, capacity_);
   }
   const bool first = owner_[phase].empty();
@@ -229,6 +232,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   e.reason = reason;
   e.method = plan.method;
   e.split_groups = plan.split_groups;
+  e.split_parents = plan.split_parents;
   e.measured_imbalance = smoothed_imbalance_[phase];
   e.predicted_before = before;
   e.predicted_after = plan.predicted_imbalance;

@@ -14,7 +14,11 @@ namespace raceway::scheduler {
 
 namespace {
 
-/// A level-1 unit: a rolling element's tasks, or one border task.
+int piece_of(const TaskCatalogue& cat, int t) {
+  return cat.parent.empty() ? t : cat.parent[static_cast<std::size_t>(t)];
+}
+
+/// A level-1 unit: a rolling element's tasks, or one border piece's.
 struct Unit {
   std::vector<int> tasks;
   double cost = 0;
@@ -23,18 +27,15 @@ struct Unit {
 
 std::vector<Unit> make_units(std::span<const double> cost, const TaskCatalogue& cat) {
   std::vector<Unit> units;
-  std::map<int, std::size_t> of_group;
+  std::map<int, std::size_t> of_group, of_border_piece;
   for (int t = 0; t < cat.task_count; ++t) {
     const int g = cat.group[static_cast<std::size_t>(t)];
-    std::size_t u;
-    if (g == border_group) {
-      u = units.size();
-      units.emplace_back();
-    } else {
-      auto [it, fresh] = of_group.try_emplace(g, units.size());
-      if (fresh) units.emplace_back();
-      u = it->second;
-    }
+    // A border piece (one segment, perhaps cut into sub-tasks) is a unit; a rolling element's
+    // pieces together are one.
+    auto& index = g == border_group ? of_border_piece : of_group;
+    auto [it, fresh] = index.try_emplace(g == border_group ? piece_of(cat, t) : g, units.size());
+    if (fresh) units.emplace_back();
+    const std::size_t u = it->second;
     units[u].tasks.push_back(t);
     units[u].cost += cost[static_cast<std::size_t>(t)];
     if (!cat.bodies.empty())
@@ -121,9 +122,39 @@ std::vector<int> owners_of(const std::vector<Unit>& units, const std::vector<int
   return owner;
 }
 
-/// Level 2: moves single tasks off the most loaded rank (heaviest rolling element first).
+/// What level 2 can move off a rank: a piece's tasks there, or one task of a heavy piece.
+struct Move {
+  std::vector<int> tasks;
+  double cost = 0;
+};
+
+/// The moves off rank `from` within group g, in task order: light pieces whole, heavy ones by task.
+std::vector<Move> moves_of_group(const std::vector<int>& owner, std::span<const double> cost, const TaskCatalogue& cat,
+                                 int from, int g, double heavy) {
+  std::vector<Move> moves;
+  std::map<int, std::size_t> of_piece;
+  for (int t = 0; t < cat.task_count; ++t) {
+    const auto ti = static_cast<std::size_t>(t);
+    if (owner[ti] != from || cat.group[ti] != g) continue;
+    auto [it, fresh] = of_piece.try_emplace(piece_of(cat, t), moves.size());
+    if (fresh) moves.emplace_back();
+    moves[it->second].tasks.push_back(t);
+    moves[it->second].cost += cost[ti];
+  }
+  std::vector<Move> out;
+  for (auto& m : moves) {
+    if (m.cost > heavy && m.tasks.size() > 1)
+      for (int t : m.tasks) out.push_back({{t}, cost[static_cast<std::size_t>(t)]});
+    else
+      out.push_back(std::move(m));
+  }
+  return out;
+}
+
+/// Level 2: moves pieces (or tasks of heavy pieces) off the most loaded rank, heaviest rolling
+/// element first.
 void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const TaskCatalogue& cat,
-                    std::span<const double> capacity, double tolerance) {
+                    std::span<const double> capacity, const PlanOptions& options) {
   const std::size_t ranks = capacity.size();
   std::vector<double> load = rank_loads(owner, cost, ranks);
   double total = 0, cap_sum = 0;
@@ -138,7 +169,7 @@ void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const
       if (n > hi_norm) hi_norm = n, hi = r;
       if (n < lo_norm) lo_norm = n, lo = r;
     }
-    if (hi == lo || hi_norm <= mean * (1 + tolerance)) return;
+    if (hi == lo || hi_norm <= mean * (1 + options.level2_tolerance)) return;
     // Amount x that equalises hi and lo: (load_hi - x)/cap_hi = (load_lo + x)/cap_lo.
     const double x = (load[hi] * capacity[lo] - load[lo] * capacity[hi]) / (capacity[hi] + capacity[lo]);
     // Group costs on hi, to try the heaviest rolling element's tasks first.
@@ -149,25 +180,22 @@ void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const
     std::vector<std::pair<double, int>> groups;
     for (auto [g, c] : group_cost) groups.emplace_back(c, g);
     std::sort(groups.rbegin(), groups.rend());
-    int best = -1;
+    Move best;
     for (auto [gc, g] : groups) {
       double best_distance = std::numeric_limits<double>::infinity();
-      for (int t = 0; t < cat.task_count; ++t) {
-        const auto ti = static_cast<std::size_t>(t);
-        if (owner[ti] != static_cast<int>(hi) || cat.group[ti] != g) continue;
-        const double c = cost[ti];
+      for (Move& m : moves_of_group(owner, cost, cat, static_cast<int>(hi), g, options.split_share * mean * capacity[hi])) {
+        const double c = m.cost;
         // The move must lower the larger of the two ranks' weighted times.
         if (!(c > 0) || std::max((load[hi] - c) / capacity[hi], (load[lo] + c) / capacity[lo]) >= hi_norm) continue;
         const double d = std::abs(c - x);
-        if (d < best_distance) best_distance = d, best = t;
+        if (d < best_distance) best_distance = d, best = std::move(m);
       }
-      if (best >= 0) break;
+      if (!best.tasks.empty()) break;
     }
-    if (best < 0) return;
-    const auto bi = static_cast<std::size_t>(best);
-    owner[bi] = static_cast<int>(lo);
-    load[hi] -= cost[bi];
-    load[lo] += cost[bi];
+    if (best.tasks.empty()) return;
+    for (int t : best.tasks) owner[static_cast<std::size_t>(t)] = static_cast<int>(lo);
+    load[hi] -= best.cost;
+    load[lo] += best.cost;
   }
 }
 
@@ -194,10 +222,20 @@ int count_split_groups(std::span<const int> owner, std::span<const int> group) {
   return n;
 }
 
+int count_split_parents(std::span<const int> owner, std::span<const int> parent) {
+  if (parent.size() != owner.size()) return 0;
+  std::map<int, std::set<int>> ranks_of;
+  for (std::size_t t = 0; t < owner.size(); ++t) ranks_of[parent[t]].insert(owner[t]);
+  int n = 0;
+  for (const auto& [p, r] : ranks_of) n += r.size() > 1 ? 1 : 0;
+  return n;
+}
+
 Plan make_plan(std::span<const double> cost, const TaskCatalogue& cat, std::span<const double> capacity,
                const PlanOptions& options) {
-  if (cost.size() != static_cast<std::size_t>(cat.task_count) || cat.group.size() != cost.size())
-    throw std::invalid_argument("make_plan: one cost and one group per task are needed");
+  if (cost.size() != static_cast<std::size_t>(cat.task_count) || cat.group.size() != cost.size() ||
+      (!cat.parent.empty() && cat.parent.size() != cost.size()))
+    throw std::invalid_argument("make_plan: one cost and one group (and parent, if any) per task are needed");
   double cap_sum = 0;
   for (double c : capacity) cap_sum += std::max(c, 0.0);
   if (!(cap_sum > 0)) throw std::invalid_argument("make_plan: no rank has a positive capacity");
@@ -214,13 +252,13 @@ Plan make_plan(std::span<const double> cost, const TaskCatalogue& cat, std::span
   }
   std::vector<int> owner = owners_of(units, lpt(units, capacity), cat.task_count);
   plan.method = PlanMethod::greedy_lpt;
-  split_heaviest(owner, cost, cat, capacity, options.level2_tolerance);
+  split_heaviest(owner, cost, cat, capacity, options);
   double best = predicted_imbalance(owner, cost, capacity);
   if (options.try_metis) {
     const std::vector<int> by_metis = metis_kway(units, capacity);
     if (!by_metis.empty()) {
       std::vector<int> metis_owner = owners_of(units, by_metis, cat.task_count);
-      split_heaviest(metis_owner, cost, cat, capacity, options.level2_tolerance);
+      split_heaviest(metis_owner, cost, cat, capacity, options);
       const double m = predicted_imbalance(metis_owner, cost, capacity);
       if (m <= best) best = m, owner = std::move(metis_owner), plan.method = PlanMethod::metis_kway;
     }
@@ -228,6 +266,7 @@ Plan make_plan(std::span<const double> cost, const TaskCatalogue& cat, std::span
   plan.owner = std::move(owner);
   plan.predicted_imbalance = best;
   plan.split_groups = count_split_groups(plan.owner, cat.group);
+  plan.split_parents = count_split_parents(plan.owner, cat.parent);
   return plan;
 }
 

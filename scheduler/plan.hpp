@@ -19,6 +19,11 @@
 // rolling elements, or a narrow loaded zone): while the most loaded rank is above the mean by more
 // than level2_tolerance, it moves single tasks, from its heaviest rolling element first, to the
 // least loaded rank, choosing the task closest to the amount that would equalise the two.
+// What it moves is a piece (TaskCatalogue::parent: a contact segment), all of the piece's tasks on
+// that rank together; a heavy piece (more than split_share of a rank's share of the work) is cut,
+// its sub-tasks (traction-grid blocks, Jacobian columns) moved one by one. Cutting costs no
+// arithmetic (the sub-tasks exist at every rank count, and the master combines their records in
+// one fixed order), only a few doubles of messages, so heavy is set low.
 #pragma once
 
 #include <span>
@@ -33,6 +38,7 @@ struct Plan {
   std::vector<int> owner;   ///< per task: rank
   PlanMethod method = PlanMethod::greedy_lpt;
   int split_groups = 0;     ///< rolling elements with tasks on more than one rank
+  int split_parents = 0;    ///< pieces (TaskCatalogue::parent) with tasks on more than one rank
   double predicted_imbalance = 1;
 };
 
@@ -40,6 +46,9 @@ struct PlanOptions {
   /// Level 2 stops when the most loaded rank is within this fraction of the capacity-weighted
   /// mean: 2 % is below the measurement noise of one evaluation's task times.
   double level2_tolerance = 0.02;
+  /// A piece whose tasks on a rank cost more than this fraction of a rank's mean share may be cut
+  /// (its tasks moved separately); lighter pieces move whole.
+  double split_share = 0.1;
   bool try_metis = true;
 };
 
@@ -55,5 +64,7 @@ Plan make_plan(std::span<const double> cost, const TaskCatalogue& catalogue, std
 
 /// Groups (rolling elements) whose tasks are on more than one rank.
 int count_split_groups(std::span<const int> owner, std::span<const int> group);
+/// Pieces (TaskCatalogue::parent) whose tasks are on more than one rank; 0 when parent is empty.
+int count_split_parents(std::span<const int> owner, std::span<const int> parent);
 
 }  // namespace raceway::scheduler

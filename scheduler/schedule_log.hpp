@@ -23,6 +23,7 @@ struct PlanEvent {
   PlanReason reason = PlanReason::initial;
   PlanMethod method = PlanMethod::greedy_lpt;
   int split_groups = 0;              ///< rolling elements whose tasks level 2 spread over several ranks
+  int split_parents = 0;             ///< pieces (segments cut into sub-tasks) spread over several ranks
   double measured_imbalance = 0;     ///< smoothed measured imbalance when the plan was made (0: none yet)
   double predicted_before = 0;       ///< cost-model imbalance of the old plan
   double predicted_after = 0;        ///< cost-model imbalance of the new plan
@@ -59,6 +60,9 @@ struct ScheduleLog {
   int context_size = 0;
   /// Per task: rolling element or -1 (border), as in the TaskCatalogue.
   std::vector<int> task_group;
+  /// Per task: the piece (contact segment) it is a part of, as in the TaskCatalogue (empty: each
+  /// task is its own).
+  std::vector<int> task_parent;
 };
 
 }  // namespace raceway::scheduler

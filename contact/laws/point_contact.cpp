@@ -389,9 +389,15 @@ double film_weight(double film_thickness, const PointLubricant& lubricant) {
   return x * x * (3 - 2 * x);
 }
 
-TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
-                                  double normal_force, double ax, double ay, double film_thickness,
-                                  const ContactSliding& sliding) {
+int traction_block_count(const PointTraction& traction) {
+  if (traction.grid_x < 1 || traction.grid_y < 1) return 1;
+  const auto cells = traction_grid(traction.grid_x, traction.grid_y).cells.size();
+  return static_cast<int>(std::clamp<std::size_t>(cells / traction_block_cells, 1, max_traction_blocks));
+}
+
+TractionResult integrate_traction_block(const PointTraction& traction, const PointLubricant& lubricant,
+                                        double normal_force, double ax, double ay, double film_thickness,
+                                        const ContactSliding& sliding, int block) {
   TractionResult out;
   if (traction.model == TractionModel::none || !(normal_force > 0) || !(ax > 0) || !(ay > 0)) return out;
   if (traction.grid_x < 1 || traction.grid_y < 1)
@@ -404,13 +410,19 @@ TractionResult integrate_traction(const PointTraction& traction, const PointLubr
   if (!limiting && traction.friction_coefficient == 0) return out;
 
   const TractionGrid& grid = traction_grid(traction.grid_x, traction.grid_y);
+  const auto blocks = static_cast<std::size_t>(traction_block_count(traction));
+  const auto b = static_cast<std::size_t>(block);
+  if (block < 0 || b >= blocks) throw std::invalid_argument("integrate_traction_block: no such block");
+  // Block b: cells [n b / blocks, n (b + 1) / blocks) in grid order (rows along x).
+  const std::size_t first = grid.cells.size() * b / blocks, last = grid.cells.size() * (b + 1) / blocks;
   const double area_scale = ax * ay;                                                // unit disk -> ellipse
   const double pressure_scale = normal_force / (area_scale * grid.shape_integral);  // ~ p_max
   const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
   const double inverse_scale = 1 / traction.slip_velocity_scale;
   const double inverse_h = limiting ? 1 / film_thickness : 0;
   double fx = 0, fy = 0, mz = 0, power = 0;
-  for (const GridCell& c : grid.cells) {
+  for (std::size_t i = first; i < last; ++i) {
+    const GridCell& c = grid.cells[i];
     const double x = ax * c.x, y = ay * c.y;
     const double sx = sliding.slide_x - sliding.spin * y, sy = sliding.slide_y + sliding.spin * x;
     const double s = std::sqrt(sx * sx + sy * sy);
@@ -439,6 +451,32 @@ TractionResult integrate_traction(const PointTraction& traction, const PointLubr
   out.spin_moment = mz;
   out.power_loss = power;
   return out;
+}
+
+TractionResult sum_traction_blocks(std::span<const TractionResult> blocks) {
+  if (blocks.empty()) return {};
+  TractionResult sum = blocks[0];
+  for (std::size_t b = 1; b < blocks.size(); ++b) {
+    sum.force_x += blocks[b].force_x;
+    sum.force_y += blocks[b].force_y;
+    sum.spin_moment += blocks[b].spin_moment;
+    sum.power_loss += blocks[b].power_loss;
+  }
+  return sum;
+}
+
+TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
+                                  double normal_force, double ax, double ay, double film_thickness,
+                                  const ContactSliding& sliding) {
+  const int blocks = traction_block_count(traction);
+  if (blocks == 1)
+    return integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, 0);
+  std::array<TractionResult, max_traction_blocks> partial{};
+  const int n = std::min(blocks, max_traction_blocks);
+  for (int b = 0; b < n; ++b)
+    partial[static_cast<std::size_t>(b)] =
+        integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, b);
+  return sum_traction_blocks(std::span<const TractionResult>(partial.data(), static_cast<std::size_t>(n)));
 }
 
 }  // namespace raceway::contact

@@ -110,14 +110,31 @@ inline void finish_ball_contact(const SpatialKinematics& a, const SpatialKinemat
 
 }  // namespace
 
-SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                              const SpatialKinematics& ball) {
+namespace {
+
+/// A ball-groove contact up to its traction: geometry, normal force, film and sliding. `done`: the
+/// result is complete (apart, outside the groove, or invalid input) and has no traction.
+struct GrooveContact {
   SpatialSegmentResult r;
+  bool done = true;
+  Vec3 n, ex, ey, point, w_rel;
+  HertzNormal normal;
+  double q = 0, rx = 0, ry = 0, entrainment = 0, a = 0, b = 0, ax = 0, ay = 0;
+  FilmThickness film;
+  ContactSliding sliding;
+};
+
+GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics& ring, const SpatialKinematics& ball) {
+  GrooveContact g;
+  SpatialSegmentResult& r = g.r;
   const Mat3& rot = ring.rotation;
   const Vec3 rel = ball.position - ring.position;
   const Vec3 p = rot.transpose() * rel;  // ball centre, ring frame
   const double rho_ball = length(p.x(), p.y());
-  if (!(rho_ball > 0) || !std::isfinite(rho_ball) || !std::isfinite(p.z())) return invalid_result(not_a_number);
+  if (!(rho_ball > 0) || !std::isfinite(rho_ball) || !std::isfinite(p.z())) {
+    r = invalid_result(not_a_number);
+    return g;
+  }
   const Vec3 e_r(p.x() / rho_ball, p.y() / rho_ball, 0.0);  // ring frame, at the ball's azimuth
   const Vec3 e_t(-e_r.y(), e_r.x(), 0.0);
   // d = ball centre - arc centre, in the (e_r, e_z) plane of the ball's azimuth.
@@ -126,86 +143,121 @@ SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematic
   const double len = length(d_rad, d_ax);
   const double approach = len - (s.groove_radius - s.ball_radius);
   r.diagnostics.approach = approach;
-  if (!std::isfinite(approach)) return invalid_result(approach);
+  if (!std::isfinite(approach)) {
+    r = invalid_result(approach);
+    return g;
+  }
   if (len > 0) r.diagnostics.contact_angle = std::atan2(d_ax, std::abs(d_rad));
-  if (approach <= 0 || s.groove_side * d_ax < 0) return r;
+  if (approach <= 0 || s.groove_side * d_ax < 0) return g;
+  g.done = false;
 
   // Geometry of the contact: normal n from the ball centre into the ring (body 1), the contact point
   // on the groove, and the contact frame (x rolling = e_theta, y = n x x, z = n).
   const double n_rad = d_rad / len, n_ax = d_ax / len;
   const Vec3 n_ring = n_rad * e_r + n_ax * unit_z;
   const Vec3 point_ring = s.centre_radius * e_r + s.centre_axial * unit_z + s.groove_radius * n_ring;
-  const Vec3 n = rot * n_ring;
-  const Vec3 ex = rot * e_t;
-  const Vec3 ey = n.cross(ex);
-  const Vec3 point = ring.position + rot * point_ring;
-  const Vec3 v_rel = point_velocity(ball, point) - point_velocity(ring, point);
-  const double approach_rate = n.dot(v_rel);  // exact d(approach)/dt
+  g.n = rot * n_ring;
+  g.ex = rot * e_t;
+  g.ey = g.n.cross(g.ex);
+  g.point = ring.position + rot * point_ring;
+  const Vec3 v_rel = point_velocity(ball, g.point) - point_velocity(ring, g.point);
+  const double approach_rate = g.n.dot(v_rel);  // exact d(approach)/dt
 
   // Hertz at s = cos(contact angle); relative curvatures for the film.
   const double cos_angle = std::abs(n_rad);
   const HertzPointContact hertz = s.normal.hertz.at(cos_angle);
-  const HertzNormal normal =
-      hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
+  g.normal = hertz_hunt_crossley(hertz.stiffness, s.normal.damping_factor, approach, approach_rate);
   r.valid = approach <= s.normal.max_approach;
-  const double q = normal.force;
+  g.q = g.normal.force;
   const double rho_contact = s.centre_radius + s.groove_radius * n_rad;  // from the ring axis
   const double kx = 1.0 / s.ball_radius + (s.outer ? -cos_angle : cos_angle) / rho_contact;
   const double ky = 1.0 / s.ball_radius - 1.0 / s.groove_radius;
-  const double rx = 1.0 / kx, ry = 1.0 / ky;
+  g.rx = 1.0 / kx, g.ry = 1.0 / ky;
 
   // Entrainment: surface speeds along x relative to the contact point, which moves with the ring
   // plus a rotation about the ring axis at the ball centre's azimuth rate in the ring frame.
   const Vec3 p_dot = rot.transpose() * (ball.velocity - ring.velocity - ring.angular_velocity.cross(rel));
   const double azimuth_rate = p_dot.dot(e_t) / rho_ball;
   const double u_ring = -azimuth_rate * rho_contact;
-  const double slide_x = v_rel.dot(ex), slide_y = v_rel.dot(ey);
+  const double slide_x = v_rel.dot(g.ex), slide_y = v_rel.dot(g.ey);
   const double u_ball = u_ring + slide_x;
-  const double entrainment = 0.5 * std::abs(u_ring + u_ball);
+  g.entrainment = 0.5 * std::abs(u_ring + u_ball);
 
-  const FilmThickness film =
-      hamrock_dowson_film(entrainment, q, rx, ry, s.normal.reduced_modulus, s.lubricant);
-  const double cbrt_q = std::cbrt(q);
-  const double a = hertz.a_coefficient * cbrt_q, b = hertz.b_coefficient * cbrt_q;
-  const double ax = hertz.a_along_x ? a : b, ay = hertz.a_along_x ? b : a;
-  const Vec3 w_rel = ball.angular_velocity - ring.angular_velocity;
-  const ContactSliding sliding{slide_x, slide_y, w_rel.dot(n)};
-  const TractionResult traction =
-      q > 0 ? integrate_traction(s.traction, s.lubricant, q, ax, ay, film.central, sliding)
-            : TractionResult{};
-  Vec3 couple = traction.spin_moment * n;
+  g.film = hamrock_dowson_film(g.entrainment, g.q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
+  const double cbrt_q = std::cbrt(g.q);
+  g.a = hertz.a_coefficient * cbrt_q, g.b = hertz.b_coefficient * cbrt_q;
+  g.ax = hertz.a_along_x ? g.a : g.b, g.ay = hertz.a_along_x ? g.b : g.a;
+  g.w_rel = ball.angular_velocity - ring.angular_velocity;
+  g.sliding = ContactSliding{slide_x, slide_y, g.w_rel.dot(g.n)};
+  return g;
+}
 
+/// The rest of the contact once its traction is known: rolling resistance, the wrench, diagnostics.
+SpatialSegmentResult finish_groove_contact(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                           const SpatialKinematics& ball, GrooveContact& g,
+                                           const TractionResult& traction) {
+  const double q = g.q;
+  Vec3 couple = traction.spin_moment * g.n;
   // EHL rolling resistance as a pair of couples about y opposing the relative rolling rotation
   // (equivalent to shifting the pressure centre towards the inlet by F_R Rx / Q): it conserves force
   // and angular momentum and dissipates F_R Rx |Omega| (= F_R u_e in pure rolling). F_R is bounded
   // by Q (1/F = 1/F_R + 1/Q, a change of order F_R/Q ~ 1e-4 under load): Houpert's F_R ~ Q^0.47
   // alone would have an unbounded slope at contact onset.
   double rolling_loss = 0;
-  if (s.rolling_resistance && film.central > 0) {
+  if (s.rolling_resistance && g.film.central > 0) {
     const double houpert =
-        ehl_rolling_resistance(entrainment, q, rx, ry, s.normal.reduced_modulus, s.lubricant);
+        ehl_rolling_resistance(g.entrainment, q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
     // Handed over with the traction as the film vanishes (Houpert's F_R ~ u^0.66 has an unbounded
     // slope at zero entrainment; film_weight ~ h^2 ~ u^1.34 there makes the couple C1).
-    const double f_r = houpert > 0 ? film_weight(film.central, s.lubricant) * houpert * q / (houpert + q) : 0.0;
-    const double rolling_rate = w_rel.dot(ey);
+    const double f_r = houpert > 0 ? film_weight(g.film.central, s.lubricant) * houpert * q / (houpert + q) : 0.0;
+    const double rolling_rate = g.w_rel.dot(g.ey);
     const double scale = s.traction.slip_velocity_scale > 0 ? s.traction.slip_velocity_scale : 1.0;
-    const double m = -f_r * rx * std::tanh(rolling_rate * rx / scale);
-    couple += m * ey;
+    const double m = -f_r * g.rx * std::tanh(rolling_rate * g.rx / scale);
+    couple += m * g.ey;
     rolling_loss = -m * rolling_rate;
   }
-  const Vec3 tangential = traction.force_x * ex + traction.force_y * ey;
-  const Vec3 f_ball = -q * n + tangential;
+  const Vec3 tangential = traction.force_x * g.ex + traction.force_y * g.ey;
+  const Vec3 f_ball = -q * g.n + tangential;
   finish_ball_contact(ring, ball,
-                      {.point = point, .force_on_ball = f_ball, .couple_on_ball = couple,
+                      {.point = g.point, .force_on_ball = f_ball, .couple_on_ball = couple,
                        .normal_force = q,
-                       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * a * b) : 0.0,
-                       .film_thickness = film.central, .slip_velocity = length(slide_x, slide_y),
-                       .spin_velocity = sliding.spin,
+                       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * g.a * g.b) : 0.0,
+                       .film_thickness = g.film.central,
+                       .slip_velocity = length(g.sliding.slide_x, g.sliding.slide_y),
+                       .spin_velocity = g.sliding.spin,
                        .traction_force = length(traction.force_x, traction.force_y),
-                       .elastic_energy = normal.elastic_energy,
-                       .power_loss = traction.power_loss + normal.damping_power + rolling_loss},
-                      r);
-  return r;
+                       .elastic_energy = g.normal.elastic_energy,
+                       .power_loss = traction.power_loss + g.normal.damping_power + rolling_loss},
+                      g.r);
+  return g.r;
+}
+
+}  // namespace
+
+SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                              const SpatialKinematics& ball) {
+  GrooveContact g = groove_contact(s, ring, ball);
+  if (g.done) return g.r;
+  const TractionResult traction =
+      g.q > 0 ? integrate_traction(s.traction, s.lubricant, g.q, g.ax, g.ay, g.film.central, g.sliding)
+              : TractionResult{};
+  return finish_groove_contact(s, ring, ball, g, traction);
+}
+
+int traction_block_count(const BallGrooveSegment& s) { return traction_block_count(s.traction); }
+
+TractionResult evaluate_traction_block(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                       const SpatialKinematics& ball, int block) {
+  const GrooveContact g = groove_contact(s, ring, ball);
+  if (g.done || !(g.q > 0)) return {};
+  return integrate_traction_block(s.traction, s.lubricant, g.q, g.ax, g.ay, g.film.central, g.sliding, block);
+}
+
+SpatialSegmentResult evaluate_with_traction(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                            const SpatialKinematics& ball, const TractionResult& traction) {
+  GrooveContact g = groove_contact(s, ring, ball);
+  if (g.done) return g.r;
+  return finish_groove_contact(s, ring, ball, g, g.q > 0 ? traction : TractionResult{});
 }
 
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,

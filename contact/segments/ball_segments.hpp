@@ -125,6 +125,17 @@ struct BallGrooveSegment {
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball);
 
+/// evaluate(BallGrooveSegment) in parts, for a contact whose traction grid is shared out: block k
+/// of the traction (integrate_traction_block at this contact's load, ellipse, film and sliding;
+/// zero when apart), and the whole result given the traction summed over the blocks in block order
+/// (sum_traction_blocks). With the blocks' sum, evaluate_with_traction gives the same bits as
+/// evaluate: evaluate sums the same blocks in the same order.
+int traction_block_count(const BallGrooveSegment& s);
+TractionResult evaluate_traction_block(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                       const SpatialKinematics& ball, int block);
+SpatialSegmentResult evaluate_with_traction(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                            const SpatialKinematics& ball, const TractionResult& traction);
+
 /// A ball in its cage pocket. A = cage, B = ball. Pocket centre in the cage frame at
 /// (pitch_radius cos(pocket_angle), pitch_radius sin(pocket_angle), 0). Spherical pocket: contact
 /// when the ball centre is off the pocket centre by more than half the clearance; cylindrical: the

@@ -9,6 +9,7 @@ namespace raceway::solver {
 
 std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model);
 std::unique_ptr<BodyDynamics> make_spatial_dynamics(const Model& model);
+int segment_part_count(const SegmentLaw& law);  // segment_parts.cpp
 
 std::unique_ptr<BodyDynamics> make_body_dynamics(const Model& model) {
   return model.kind == io::ModelKind::spatial ? make_spatial_dynamics(model) : make_planar_dynamics(model);
@@ -111,10 +112,18 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
     elastic_energy_field_.push_back(std::visit(
         [](const auto& law) { return elastic_energy_field<std::decay_t<decltype(law)>>(); },
         model.laws[static_cast<std::size_t>(seg.law)]));
+    const int parts = segment_part_count(model.laws[static_cast<std::size_t>(seg.law)]);
+    first_task_.push_back(static_cast<int>(task_segment_.size()));
+    parts_.push_back(parts);
+    task_segment_.insert(task_segment_.end(), static_cast<std::size_t>(parts), static_cast<int>(parts_.size() - 1));
+    cut_ = cut_ || parts > 1;
   }
 }
 
-void Equations::rhs_task(std::span<const double> context, int s, std::span<double> rec) const {
+void Equations::rhs_task(std::span<const double> context, int task, std::span<double> rec) const {
+  const int s = task_segment_[static_cast<std::size_t>(task)];
+  if (parts_[static_cast<std::size_t>(s)] > 1)
+    return rhs_part(context.data(), s, task - first_task_[static_cast<std::size_t>(s)], rec);
   const double t = context[0];
   const double* z = context.data() + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
@@ -128,7 +137,10 @@ void Equations::rhs_task(std::span<const double> context, int s, std::span<doubl
       model_.laws[static_cast<std::size_t>(seg.law)]);
 }
 
-void Equations::jacobian_task(std::span<const double> context, int s, std::span<double> rec) const {
+void Equations::jacobian_task(std::span<const double> context, int task, std::span<double> rec) const {
+  const int s = task_segment_[static_cast<std::size_t>(task)];
+  if (parts_[static_cast<std::size_t>(s)] > 1)
+    return jacobian_part(context.data(), s, task - first_task_[static_cast<std::size_t>(s)], rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   std::visit([&](const auto& law) { segment_jacobian_record(model_, step_, law, seg, context[0], context.data() + 1, rec); },
              model_.laws[static_cast<std::size_t>(seg.law)]);
@@ -136,13 +148,15 @@ void Equations::jacobian_task(std::span<const double> context, int s, std::span<
 
 scheduler::TaskCatalogue Equations::task_catalogue() const {
   scheduler::TaskCatalogue c;
-  c.task_count = static_cast<int>(model_.segments.size());
+  c.task_count = static_cast<int>(task_segment_.size());
   c.context_size = 1 + model_.state_size;
-  for (const Segment& seg : model_.segments) {
+  for (int s : task_segment_) {
+    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     c.group.push_back(seg.element >= 0 ? seg.element : scheduler::border_group);
     c.bodies.push_back({model_.bodies[static_cast<std::size_t>(seg.body_a)].has_states() ? seg.body_a : -1,
                         model_.bodies[static_cast<std::size_t>(seg.body_b)].has_states() ? seg.body_b : -1});
   }
+  c.parent = task_segment_;
   c.function[static_cast<int>(scheduler::Phase::rhs)] = rhs_task_;
   c.function[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_task_;
   c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
@@ -156,7 +170,9 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   segment_count_ += nseg;
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
-  executor_.run(scheduler::Phase::rhs, context_, nseg, SegmentRecord::size, rhs_task_, records_);
+  const int ntask = static_cast<int>(task_segment_.size());
+  executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
+  if (cut_) combine_rhs_parts(t, z);
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
   for (auto& w : contact_) w = {};
   int status = 0;
@@ -206,7 +222,10 @@ int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   segment_count_ += jacobian_segment_evaluations_;
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
-  executor_.run(scheduler::Phase::jacobian, context_, nseg, jacobian_record, jacobian_task_, jac_records_);
+  const int ntask = static_cast<int>(task_segment_.size());
+  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record, jacobian_task_,
+                cut_ ? jac_task_records_ : jac_records_);
+  if (cut_) combine_jacobian_parts(z);
   jac.set_zero();
   int status = 0;
   std::vector<Wrench> contacts(model_.bodies.size());

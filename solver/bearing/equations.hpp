@@ -57,7 +57,8 @@ class Equations final : public DynamicSystem {
   long segment_evaluations() const { return segment_count_; }
   const Model& model() const { return model_; }
   scheduler::Executor& executor() { return executor_; }
-  /// The tasks (one per segment) with their grouping and task functions, for an executor's
+  /// The tasks (one per segment, several for a segment cut into parts) with their grouping and
+  /// task functions, for an executor's
   /// attach() on the master and serve() on the workers: every rank evaluates the same code.
   scheduler::TaskCatalogue task_catalogue() const;
   /// Size of a Jacobian task's record.
@@ -65,15 +66,29 @@ class Equations final : public DynamicSystem {
 
  private:
   /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
-  void rhs_task(std::span<const double> context, int s, std::span<double> rec) const;
-  void jacobian_task(std::span<const double> context, int s, std::span<double> rec) const;
+  void rhs_task(std::span<const double> context, int task, std::span<double> rec) const;
+  void jacobian_task(std::span<const double> context, int task, std::span<double> rec) const;
   void add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const;
+  /// Sub-task `part` of a segment cut into parts_[s] (rhs: a traction-grid block; Jacobian: every
+  /// parts_[s]-th of its evaluations: the base point, then the columns).
+  void rhs_part(const double* context, int s, int part, std::span<double> rec) const;
+  void jacobian_part(const double* context, int s, int part, std::span<double> rec) const;
+  /// Master: the segment records from the tasks' records, combining each cut segment's parts in
+  /// part order (the same bits for any rank count and plan).
+  void combine_rhs_parts(double t, const double* z);
+  void combine_jacobian_parts(const double* z);
 
   const Model& model_;
   scheduler::Executor& executor_;
   std::unique_ptr<BodyDynamics> dynamics_;
   FiniteDifferenceSteps step_;
   std::vector<double> records_, jac_records_;
+  // Segments cut into sub-tasks (a ball-groove contact whose traction grid has several blocks):
+  std::vector<int> parts_;       ///< per segment: its tasks (1: one task, as a whole)
+  std::vector<int> first_task_;  ///< per segment: its first task; its tasks are consecutive
+  std::vector<int> task_segment_;
+  bool cut_ = false;             ///< some segment has more than one task
+  std::vector<double> task_records_, jac_task_records_;
   std::vector<Wrench> contact_, net_;
   std::vector<int> elastic_energy_field_;  ///< per segment, in its family's field table
   std::vector<double> context_;            ///< [t, z...] sent with every evaluation

@@ -31,24 +31,30 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
     std::vector<double> group(log.task_group.begin(), log.task_group.end());
     file.write_array(g + "/task_group", {group.size()}, group, "-", "rolling element of each task; -1: border task");
   }
+  if (!log.task_parent.empty()) {
+    std::vector<double> parent(log.task_parent.begin(), log.task_parent.end());
+    file.write_array(g + "/task_segment", {parent.size()}, parent, "-",
+                     "contact segment of each task (a heavy segment's work is cut into several tasks)");
+  }
   file.write_array(g + "/rank_task_seconds", {log.rank_task_seconds.size()}, log.rank_task_seconds, "s",
                    "task seconds per rank, all phases");
   if (!log.plans.empty()) {
-    constexpr std::size_t columns = 10;
+    constexpr std::size_t columns = 11;
     std::vector<double> rows;
     for (const auto& e : log.plans) {
       const double row[columns] = {static_cast<double>(e.evaluation), static_cast<double>(e.phase),
                                    static_cast<double>(e.version),    static_cast<double>(e.reason),
                                    static_cast<double>(e.method),     static_cast<double>(e.split_groups),
                                    e.measured_imbalance,              e.predicted_before,
-                                   e.predicted_after,                 e.plan_seconds};
+                                   e.predicted_after,                 e.plan_seconds,
+                                   static_cast<double>(e.split_parents)};
       rows.insert(rows.end(), row, row + columns);
     }
     file.write_array(g + "/plans", {log.plans.size(), columns}, rows, "-",
                      "one row per plan: evaluation, phase (0 rhs, 1 jacobian), version, reason (0 initial, 1 first "
                      "measured costs, 2 imbalance, 3 forced), method (0 single rank, 1 greedy LPT, 2 METIS k-way, 3 "
                      "rotated), split rolling elements, measured imbalance, predicted imbalance before, after, seconds "
-                     "to make and send");
+                     "to make and send, split segments (cut into sub-tasks on several ranks)");
   }
   if (!log.samples.empty()) {
     constexpr std::size_t columns = 8;

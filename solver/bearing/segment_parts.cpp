@@ -1,0 +1,157 @@
+// Segments cut into sub-tasks: a heavy contact's work shared out over several tasks (and so
+// ranks), with results that do not depend on who computes what.
+//
+// Which segments: a ball-groove contact whose traction grid has more than one block
+// (contact::traction_block_count: the grid's fixed decomposition, a function of the grid alone).
+// Every such segment is always evaluated as its parts, at any rank count, so the arithmetic is the
+// same whether the parts run on one rank or on many; the plan (scheduler/plan.hpp) only decides
+// where they run.
+//
+//   right-hand side: part k computes traction block k at the segment's kinematics (4 doubles);
+//     the master adds the blocks in block order (contact::sum_traction_blocks, as evaluate does
+//     inside) and completes the contact (contact::evaluate_with_traction): bitwise the result of
+//     contact::evaluate;
+//   Jacobian: the segment's evaluations (the base point, then one per state of its two bodies) go
+//     round the parts (evaluation e to part e mod parts); a part returns its evaluations' wrenches;
+//     the master forms the columns (r - base) / h exactly as an uncut segment's task does.
+//
+// A part's record: rhs [force_x, force_y, spin_moment, power_loss of its block, 0 ...]; Jacobian:
+// the Jacobian record layout (segment_record.hpp) with the base result where the part has it and,
+// in each column it evaluates, the perturbed wrench itself (not yet the difference); valid is the
+// AND over the part's evaluations.
+#include <algorithm>
+#include <array>
+
+#include "solver/bearing/equations.hpp"
+
+namespace raceway::solver {
+
+namespace {
+
+/// The state of column c of a segment's Jacobian (body A's states, then B's, in coordinate order)
+/// and the body it belongs to.
+struct Column {
+  int body = -1, state = -1;
+  bool on_a = true;
+};
+
+std::vector<Column> jacobian_columns(const Model& m, const Segment& seg) {
+  std::vector<Column> columns;
+  for (int side = 0; side < 2; ++side) {
+    const int b = side == 0 ? seg.body_a : seg.body_b;
+    for (int c = 0; c < coordinate_count; ++c) {
+      const int j = m.bodies[static_cast<std::size_t>(b)].slot[c];
+      if (j >= 0) columns.push_back({b, j, side == 0});
+    }
+  }
+  return columns;
+}
+
+const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg) {
+  return std::get<contact::BallGrooveSegment>(m.laws[static_cast<std::size_t>(seg.law)]);
+}
+
+}  // namespace
+
+int segment_part_count(const SegmentLaw& law) {
+  if (const auto* groove = std::get_if<contact::BallGrooveSegment>(&law)) return contact::traction_block_count(*groove);
+  return 1;
+}
+
+void Equations::rhs_part(const double* context, int s, int part, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context + 1;
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  const contact::TractionResult block = contact::evaluate_traction_block(
+      groove_law(model_, seg), model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z), part);
+  std::fill(rec.begin(), rec.end(), 0.0);
+  rec[0] = block.force_x;
+  rec[1] = block.force_y;
+  rec[2] = block.spin_moment;
+  rec[3] = block.power_loss;
+}
+
+void Equations::combine_rhs_parts(double t, const double* z) {
+  const std::size_t size = SegmentRecord::size;
+  records_.resize(model_.segments.size() * size);
+  std::array<contact::TractionResult, contact::max_traction_blocks> blocks{};
+  for (std::size_t s = 0; s < model_.segments.size(); ++s) {
+    const double* first = task_records_.data() + static_cast<std::size_t>(first_task_[s]) * size;
+    double* out = records_.data() + s * size;
+    const auto parts = static_cast<std::size_t>(parts_[s]);
+    if (parts == 1) {
+      std::copy_n(first, size, out);
+      continue;
+    }
+    for (std::size_t k = 0; k < parts; ++k) {
+      const double* rec = first + k * size;
+      blocks[k] = {rec[0], rec[1], rec[2], rec[3]};
+    }
+    const Segment& seg = model_.segments[s];
+    const auto result = contact::evaluate_with_traction(
+        groove_law(model_, seg), model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z),
+        contact::sum_traction_blocks(std::span<const contact::TractionResult>(blocks.data(), parts)));
+    write_result(result, std::span<double>(out, size));
+  }
+}
+
+void Equations::jacobian_part(const double* context, int s, int part, std::span<double> rec) const {
+  const double t = context[0];
+  const double* z = context + 1;
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  const auto& law = groove_law(model_, seg);
+  const std::vector<Column> columns = jacobian_columns(model_, seg);
+  const auto ka = model_.kinematics(seg.body_a, t, z), kb = model_.kinematics(seg.body_b, t, z);
+  std::fill(rec.begin(), rec.end(), 0.0);
+  bool ok = true;
+  std::vector<double> zp(z, z + model_.state_size);
+  std::array<double, SegmentRecord::size> perturbed{};
+  const int evaluations = 1 + static_cast<int>(columns.size());
+  for (int e = part; e < evaluations; e += parts_[static_cast<std::size_t>(s)]) {
+    if (e == 0) {
+      const auto base = contact::evaluate(law, ka, kb);
+      write_result(base, rec);
+      ok = ok && base.valid;
+      continue;
+    }
+    const Column& c = columns[static_cast<std::size_t>(e - 1)];
+    const auto j = static_cast<std::size_t>(c.state);
+    zp[j] = z[j] + step_(c.state, z);
+    const auto kp = model_.kinematics(c.body, t, zp.data());
+    const auto r = c.on_a ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
+    zp[j] = z[j];
+    ok = ok && r.valid;
+    write_result(r, perturbed);
+    std::copy_n(perturbed.begin(), SegmentRecord::wrench_rows,
+                rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * (e - 1));
+  }
+  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+}
+
+void Equations::combine_jacobian_parts(const double* z) {
+  const std::size_t size = jacobian_record;
+  jac_records_.resize(model_.segments.size() * size);
+  for (std::size_t s = 0; s < model_.segments.size(); ++s) {
+    const double* first = jac_task_records_.data() + static_cast<std::size_t>(first_task_[s]) * size;
+    double* out = jac_records_.data() + s * size;
+    const auto parts = static_cast<std::size_t>(parts_[s]);
+    if (parts == 1) {
+      std::copy_n(first, size, out);
+      continue;
+    }
+    std::copy_n(first, SegmentRecord::size, out);  // the base point is part 0's first evaluation
+    bool ok = true;
+    for (std::size_t k = 0; k < parts; ++k) ok = ok && first[k * size + SegmentRecord::valid] != 0.0;
+    const std::vector<Column> columns = jacobian_columns(model_, model_.segments[s]);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const std::size_t offset = SegmentRecord::size + SegmentRecord::wrench_rows * c;
+      const double* r = first + ((c + 1) % parts) * size + offset;
+      // (r - base) / h as write_difference forms it for an uncut segment: the same bits.
+      const double inv = 1.0 / step_(columns[c].state, z);
+      for (int i = 0; i < SegmentRecord::wrench_rows; ++i) out[offset + static_cast<std::size_t>(i)] = (r[i] - out[i]) * inv;
+    }
+    out[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+  }
+}
+
+}  // namespace raceway::solver
