@@ -59,7 +59,7 @@ std::string value_text(const Row& row) {
     case ValueKind::material: return "a material name";
     case ValueKind::law: return fmt::format("a {} law (see Contact laws)", contact::role_name(row.role));
     case ValueKind::time_function: return "a time function: " + dimension_description(row.dim);
-    case ValueKind::cell_grid: return "[nx, ny], integers from 1 to 50";
+    case ValueKind::cell_grid: return "[nx, ny], integers from 1 to 128";
     case ValueKind::table: return fmt::format("a table: [{}]", row.sub);
   }
   return "";
@@ -120,7 +120,7 @@ std::string applies_text(const Row& row) {
 }
 
 std::string bounds_text(const Row& row) {
-  if (row.kind == ValueKind::cell_grid) return "1 to 50";
+  if (row.kind == ValueKind::cell_grid) return "1 to 128";
   if (row.kind != ValueKind::number && row.kind != ValueKind::integer && row.kind != ValueKind::time_function)
     return "";
   const std::string b = bounds_notation(row.bounds, row.kind == ValueKind::integer);
