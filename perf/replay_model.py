@@ -37,11 +37,15 @@ import numpy as np
 BORDER = -1
 
 
-def lpt_level2(cost, group, ranks, tolerance=0.02):
-    """Port of scheduler/plan.cpp's greedy LPT + level-2 splitting (equal capacities)."""
+def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1):
+    """Port of scheduler/plan.cpp's greedy LPT + level-2 moves (equal capacities). parent: per
+    task, its contact segment (sub-tasks of a cut segment); level 2 moves a segment's tasks on a
+    rank together unless they cost more than split_share of a rank's mean share."""
+    if parent is None:
+        parent = list(range(len(cost)))
     units = {}
     for t, g in enumerate(group):
-        key = ("b", t) if g == BORDER else ("g", g)
+        key = ("b", parent[t]) if g == BORDER else ("g", g)
         units.setdefault(key, []).append(t)
     unit_list = sorted(units.values(), key=lambda ts: -sum(cost[t] for t in ts))
     load = [0.0] * ranks
@@ -65,16 +69,27 @@ def lpt_level2(cost, group, ranks, tolerance=0.02):
                 gcost[group[t]] = gcost.get(group[t], 0.0) + cost[t]
         best = None
         for g in sorted(gcost, key=lambda k: -gcost[k]):
-            cands = [t for t in range(len(cost)) if owner[t] == hi and group[t] == g and cost[t] > 0
-                     and max(load[hi] - cost[t], load[lo] + cost[t]) < load[hi]]
+            pieces = {}
+            for t in range(len(cost)):
+                if owner[t] == hi and group[t] == g:
+                    pieces.setdefault(parent[t], []).append(t)
+            moves = []
+            for ts in pieces.values():
+                c = sum(cost[t] for t in ts)
+                if c > split_share * mean and len(ts) > 1:
+                    moves += [([t], cost[t]) for t in ts]
+                else:
+                    moves.append((ts, c))
+            cands = [m for m in moves if m[1] > 0 and max(load[hi] - m[1], load[lo] + m[1]) < load[hi]]
             if cands:
-                best = min(cands, key=lambda t: abs(cost[t] - x))
+                best = min(cands, key=lambda m: abs(m[1] - x))
                 break
         if best is None:
             break
-        owner[best] = lo
-        load[hi] -= cost[best]
-        load[lo] += cost[best]
+        for t in best[0]:
+            owner[t] = lo
+        load[hi] -= best[1]
+        load[lo] += best[1]
     return owner, load
 
 
@@ -85,6 +100,7 @@ def read_run(path):
             sys.exit(f"{path}: recorded with {g.attrs['ranks']} ranks; the replay needs a one-rank run")
         summary = json.loads(f.attrs["summary_json"])
         run = {"path": path, "wall": summary["wall_time_s"], "group": [int(x) for x in g["task_group"][()]],
+               "parent": [int(x) for x in g["task_segment"][()]] if "task_segment" in g else None,
                "context": int(g.attrs["context_size"]), "phases": {}}
         for ph in ("rhs", "jacobian"):
             n = int(g.attrs[f"evaluations_{ph}"])
@@ -106,7 +122,7 @@ def predict(run, ranks, latency, bandwidth):
         if ranks == 1:
             t += ph["n"] * sum(cost)
             continue
-        owner, load = lpt_level2(cost, group, ranks)
+        owner, load = lpt_level2(cost, group, ranks, run["parent"])
         cmd_bytes = 8 * (6 + max(run["context"], len(cost)))
         t_bcast = math.ceil(math.log2(ranks)) * (latency + cmd_bytes / bandwidth)
         counts = [0] * ranks
@@ -124,7 +140,10 @@ def main():
     ap.add_argument("--bandwidth-gbs", type=float, default=None, help="measured bandwidth here (pingpong)")
     ap.add_argument("--measured-np2", type=float, action="append", default=[],
                     help="measured np=2 speed-up of the i-th run (repeat per run; 0 = none)")
+    ap.add_argument("--table", help="write the predictions as CSV (scene, network, ranks, wall, speed-up, "
+                    "efficiency) for `raceway plan`; the scene is the run file's name without .h5")
     args = ap.parse_args()
+    table = []
     networks = []
     if args.latency_us is not None:
         networks.append(("here", args.latency_us * 1e-6, args.bandwidth_gbs * 1e9))
@@ -146,6 +165,8 @@ def main():
             for p in [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]:
                 tp, _ = predict(run, p, lat, bw)
                 print(f"{p:4d}  {tp:16.3f}  {t1 / tp:7.2f}  {t1 / tp / p:10.3f}")
+                scene = path.rsplit("/", 1)[-1].removesuffix(".h5")
+                table.append(f"{scene},{name},{p},{tp:.4f},{t1 / tp:.3f},{t1 / tp / p:.3f}")
             effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
             print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
             if name == "here" and i < len(args.measured_np2) and args.measured_np2[i] > 0:
@@ -154,6 +175,11 @@ def main():
                 print(f"check np=2: predicted speed-up {s2:.3f}, measured {m:.3f}, "
                       f"difference {100 * (s2 - m) / m:+.1f} %")
         print()
+    if args.table:
+        with open(args.table, "w") as f:
+            f.write("# written by perf/replay_model.py (perf/run_scaling_benchmarks.sh); read by `raceway plan`\n")
+            f.write("scene,network,ranks,predicted_wall_s,speedup,efficiency\n")
+            f.write("\n".join(table) + "\n")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Scaling past two ranks (sub-segment tasks, scheduler/plan.hpp; perf/results/parallel_notes.md):
+#   scaling_speedup.txt: wall time np=1 and np=2 (RUNS runs each, alternating, median) on the
+#     high-fidelity scene jobs/scenes/6309_R3_fine_traction.toml (64 x 64 traction grid, its
+#     ball-race contacts cut into 13 blocks) and on the shipped jobs/scenes/6309_R3.toml (5 x 5: no
+#     contact is cut); every line carries `uptime`'s load (2 shared cores: under load the timings
+#     measure the neighbours too);
+#   replay_scaling.txt: the replay model (perf/replay_model.py) from the one-rank runs, P = 1..64,
+#     checked against the measured np=2 speed-up; np=3 and 4 are run oversubscribed (2 cores) and
+#     compared bitwise with np=1 (correctness only: their wall time is no timing);
+#   rank_table.csv: the model's predicted efficiency per scene and P, read by `raceway plan`.
+# END_TIME=... shortens the high-fidelity run (default: the scene's 0.1 s).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="$root/perf/results"
+raceway="${RACEWAY:-$root/build/raceway}"  # RACEWAY=...: a copy, to keep building meanwhile
+runs=${RUNS:-3}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+export OMPI_MCA_mpi_yield_when_idle=${MPI_YIELD:-1}  # as perf/run_parallel_benchmarks.sh
+py=/usr/bin/python3
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+load() { uptime | sed 's/.*load average: /load /'; }
+wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
+median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+
+fine="$tmp/fine.toml"
+sed -e "s/^end_time = .*/end_time = \"${END_TIME:-0.1 s}\"/" "$root/jobs/scenes/6309_R3_fine_traction.toml" >"$fine"
+cp "$root/jobs/scenes/6309_R3.toml" "$tmp/shipped.toml"
+
+speedup() {  # speedup NAME SCENE
+  local name=$1 scene=$2 w1=() w2=()
+  echo "# $name: $(basename "$scene"), wall = run summary's wall_time_s"
+  for i in $(seq "$runs"); do
+    "$raceway" run "$scene" -o "$tmp/${name}1.h5" --summary-json "$tmp/${name}1.json" --scheduler-log >/dev/null 2>&1
+    w1+=("$(wall "$tmp/${name}1.json")")
+    echo "run $i np=1 wall ${w1[-1]} s  ($(load))"
+    mpirun -np 2 "$raceway" run "$scene" -o "$tmp/${name}2.h5" --summary-json "$tmp/${name}2.json" >/dev/null 2>&1
+    w2+=("$(wall "$tmp/${name}2.json")")
+    echo "run $i np=2 wall ${w2[-1]} s  ($(load))"
+  done
+  local m1 m2
+  m1=$(median "${w1[@]}")
+  m2=$(median "${w2[@]}")
+  echo "$name: median np=1 $m1 s, np=2 $m2 s: speed-up $(awk -v a="$m1" -v b="$m2" 'BEGIN {printf "%.3f", a / b}')"
+  "$py" -c 'import h5py, sys; a = h5py.File(sys.argv[1])["scheduler"].attrs; print("  np=2 time-averaged imbalance %.3f" % a["time_averaged_imbalance"])' "$tmp/${name}2.h5"
+}
+
+{
+  echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores; measured under load (other work shares the cores)"
+  speedup fine "$fine"
+  speedup shipped "$tmp/shipped.toml"
+} 2>&1 | tee "$out/scaling_speedup.txt"
+
+# Oversubscribed np=3, 4: correctness only (the same bits as np=1), not timings.
+for np in 3 4; do
+  mpirun --oversubscribe -np "$np" "$raceway" run "$fine" -o "$tmp/fine$np.h5" >/dev/null 2>&1
+done
+"$py" "$root/tests/parallel/compare_outputs.py" "$tmp/fine1.h5" "$tmp/fine2.h5" "$tmp/fine3.h5" "$tmp/fine4.h5" |
+  sed 's|^|# np=2, 3, 4 against np=1: |' | sed "s|$tmp/||g" >>"$out/scaling_speedup.txt"
+lat=$(awk '$1 == 8 {print $2}' "$out/pingpong.txt")
+bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
+measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")
+cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction.h5"
+cp "$tmp/shipped1.h5" "$tmp/6309_R3.h5"
+{
+  echo "# $(date -u +%FT%TZ); $(load); one-rank runs from scaling_speedup.txt"
+  "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --measured-np2 "$measured" \
+    --measured-np2 "$(sed -n 's/^shipped: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")" \
+\
+    --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3.h5"
+} 2>&1 | sed "s|$tmp/||g" | tee "$out/replay_scaling.txt"
