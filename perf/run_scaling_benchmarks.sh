@@ -9,7 +9,10 @@
 #     checked against the measured np=2 speed-up; np=3 and 4 are run oversubscribed (2 cores) and
 #     compared bitwise with np=1 (correctness only: their wall time is no timing);
 #   rank_table.csv: the model's predicted efficiency per scene and P, read by `raceway plan`.
-# END_TIME=... shortens the high-fidelity run (default: the scene's 0.1 s).
+# END_TIME: length of the timed high-fidelity runs (default 20 ms: one revolution; under the load
+# of a shared machine the scene's full 0.1 s took 160 s at np=1 and 500 s at np=2). The replay's
+# predictions for P = 1..64 come from a one-rank run of the whole scene (0.1 s; FULL_RUN=FILE.h5:
+# an existing one, recorded with --scheduler-log), its check at np=2 from the timed runs.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$root/perf/results"
@@ -26,7 +29,7 @@ wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_tim
 median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 
 fine="$tmp/fine.toml"
-sed -e "s/^end_time = .*/end_time = \"${END_TIME:-0.1 s}\"/" "$root/jobs/scenes/6309_R3_fine_traction.toml" >"$fine"
+sed -e "s/^end_time = .*/end_time = \"${END_TIME:-20 ms}\"/" "$root/jobs/scenes/6309_R3_fine_traction.toml" >"$fine"
 cp "$root/jobs/scenes/6309_R3.toml" "$tmp/shipped.toml"
 
 speedup() {  # speedup NAME SCENE
@@ -62,12 +65,16 @@ done
 lat=$(awk '$1 == 8 {print $2}' "$out/pingpong.txt")
 bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
 measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")
-cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction.h5"
+if [[ -n "${FULL_RUN:-}" ]]; then
+  cp "$FULL_RUN" "$tmp/6309_R3_fine_traction.h5"
+else
+  "$raceway" run "$root/jobs/scenes/6309_R3_fine_traction.toml" -o "$tmp/6309_R3_fine_traction.h5" --scheduler-log >/dev/null 2>&1
+fi
+cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction_timed.h5"
 cp "$tmp/shipped1.h5" "$tmp/6309_R3.h5"
 {
   echo "# $(date -u +%FT%TZ); $(load); one-rank runs from scaling_speedup.txt"
-  "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --measured-np2 "$measured" \
+  "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --measured-np2 0 --measured-np2 "$measured" \
     --measured-np2 "$(sed -n 's/^shipped: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")" \
-\
-    --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3.h5"
+    --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3_fine_traction_timed.h5" "$tmp/6309_R3.h5"
 } 2>&1 | sed "s|$tmp/||g" | tee "$out/replay_scaling.txt"

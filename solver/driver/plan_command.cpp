@@ -18,6 +18,9 @@
 #ifndef RACEWAY_FIDELITY_TABLE
 #define RACEWAY_FIDELITY_TABLE "perf/results/fidelity_table.csv"
 #endif
+#ifndef RACEWAY_RANK_TABLE
+#define RACEWAY_RANK_TABLE "perf/results/rank_table.csv"
+#endif
 
 namespace raceway::plan {
 
@@ -28,6 +31,9 @@ using solver::OptionsError;
 /// An option is recommended only when it saves at least 5 % of the time: the table's timings (the
 /// smaller CPU time of two runs) scatter by a few per cent.
 constexpr double kLeastSaving = 0.95;
+/// A scene deserves the most ranks whose predicted parallel efficiency is at least this (a rank
+/// that returns less than 70 % of its time is better spent on another scene of a campaign).
+constexpr double kLeastEfficiency = 0.7;
 
 /// The fields of one CSV line. Written by hand: the table is Python's csv output (fields quoted
 /// only when they hold a comma or a quote, quotes doubled), and ten lines of splitting do not
@@ -266,6 +272,60 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
 
 }  // namespace
 
+std::vector<RankRow> read_rank_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw OptionsError(fmt::format("{}: cannot read the rank table (--rank-table; written by "
+                                          "perf/replay_model.py --table)", path));
+  std::vector<RankRow> rows;
+  std::string line;
+  bool header = true;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto f = csv_fields(line);
+    if (header) {
+      if (f.size() != 6 || f[0] != "scene" || f[2] != "ranks" || f[5] != "efficiency")
+        throw OptionsError(fmt::format("{}:{}: expected the header scene,network,ranks,predicted_wall_s,speedup,"
+                                       "efficiency", path, number));
+      header = false;
+      continue;
+    }
+    RankRow r;
+    const double ranks = f.size() == 6 ? number_or_zero(f[2]) : NAN;
+    if (f.size() == 6) r = {f[0], f[1], static_cast<int>(ranks), number_or_zero(f[4]), number_or_zero(f[5])};
+    if (f.size() != 6 || !(ranks >= 1) || ranks != std::floor(ranks) || !(r.speedup > 0) || !(r.efficiency > 0))
+      throw OptionsError(fmt::format("{}:{}: expected six fields with ranks >= 1 and positive speed-up and "
+                                     "efficiency, found '{}'", path, number, line));
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+int deserved_ranks(const std::vector<RankRow>& rows, const std::string& network) {
+  int best = 1;
+  for (const auto& r : rows)
+    if (r.network == network && r.efficiency >= kLeastEfficiency) best = std::max(best, r.ranks);
+  return best;
+}
+
+void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path) {
+  if (rows.empty()) {
+    std::printf("ranks: no replay prediction for this scene in %s (perf/run_scaling_benchmarks.sh)\n", path.c_str());
+    return;
+  }
+  std::set<std::string> networks;
+  for (const auto& r : rows) networks.insert(r.network);
+  std::printf("ranks (replay model of a recorded one-rank run, %s):\n", path.c_str());
+  for (const auto& net : networks) {
+    std::string line;
+    for (const auto& r : rows)
+      if (r.network == net && (r.ranks <= 4 || r.ranks % 8 == 0))
+        line += fmt::format(" {}: {:.2f}", r.ranks, r.efficiency);
+    std::printf("  network %s: efficiency by ranks%s\n", net.c_str(), line.c_str());
+    std::printf("  -> %d rank(s): the most with a predicted efficiency of at least %.2f (each rank beyond gives "
+                "back less than that share of its time)\n", deserved_ranks(rows, net), kLeastEfficiency);
+  }
+}
+
 CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
   auto* plan = app.add_subcommand("plan", "what each modelling choice of a scene costs and changes, and the cheapest "
                                           "settings meeting --target (measured data: perf/results/fidelity_table.csv)");
@@ -276,6 +336,10 @@ CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
                    "repeatable");
   options.table_path = RACEWAY_FIDELITY_TABLE;
   plan->add_option("--table", options.table_path, "the fidelity table")->capture_default_str();
+  options.rank_table_path = RACEWAY_RANK_TABLE;
+  plan->add_option("--rank-table", options.rank_table_path,
+                   "predicted parallel efficiency per scene and rank count (perf/replay_model.py --table)")
+      ->capture_default_str();
   return plan;
 }
 
@@ -291,10 +355,19 @@ int plan_command(const PlanOptions& options) {
     known.insert(r.scene);
     if (r.scene == name) rows.push_back(std::move(r));
   }
-  if (rows.empty())
+  std::vector<RankRow> ranks;
+  for (auto& r : read_rank_table(options.rank_table_path))
+    if (r.scene == name) ranks.push_back(std::move(r));
+  if (rows.empty() && ranks.empty())
     throw OptionsError(fmt::format("{}: no measured data for scene '{}' (the table has {}); measure it with "
                                    "perf/fidelity_table.py --scenes {}", options.table_path, name,
                                    fmt::join(known, ", "), name));
+  if (rows.empty()) {  // a scene measured for its parallel run only
+    std::printf("plan for %s (%s): no fidelity data (%s), ranks only\n", options.scene_path.c_str(),
+                scene.scene.name.c_str(), options.table_path.c_str());
+    print_rank_advice(ranks, options.rank_table_path);
+    return 0;
+  }
   const auto find = [&](const char* option) -> const FidelityRow* {
     for (const auto& r : rows)
       if (r.choice == "reference" && r.option == option) return &r;
@@ -308,6 +381,7 @@ int plan_command(const PlanOptions& options) {
               scene.bearing.is_ball_bearing() ? "ball" : "cylindrical roller",
               scene.bearing.is_ball_bearing() ? "spatial" : "planar");
   print_choices(rows);
+  print_rank_advice(ranks, options.rank_table_path);
   if (targets.empty()) {
     std::puts("no --target given: add e.g. --target cage_speed=1% for the cheapest settings that meet it");
     return 0;

@@ -2,7 +2,10 @@
 // modelling choice of the scene costs and what it changes, from measured data kept in the
 // repository (perf/results/fidelity_table.csv, refreshed by perf/fidelity_table.py), and recommends
 // the cheapest combination of choices whose predicted change meets every target, printed as
-// `--set section.key=value` overrides.
+// `--set section.key=value` overrides; and, from the replay model's table
+// (perf/results/rank_table.csv, written by perf/replay_model.py --table: the model is Python and
+// needs a recorded run, so the executable reads its predictions instead of porting it), how many
+// ranks the scene deserves.
 #pragma once
 
 #include <array>
@@ -55,7 +58,25 @@ struct PlanOptions {
   std::string scene_path;
   std::vector<std::string> targets;
   std::string table_path;
+  std::string rank_table_path;
 };
+
+/// One row of the rank table (perf/results/rank_table.csv, written by perf/replay_model.py --table):
+/// the replay model's prediction for a scene at a rank count on a network.
+struct RankRow {
+  std::string scene, network;
+  int ranks = 1;
+  double speedup = 1, efficiency = 1;
+};
+
+/// The rows of the rank table at PATH; throws solver::OptionsError naming the file and line.
+std::vector<RankRow> read_rank_table(const std::string& path);
+
+/// The most ranks whose predicted efficiency on NETWORK is at least 0.7 (1 when none).
+int deserved_ranks(const std::vector<RankRow>& rows, const std::string& network);
+
+/// Prints the rank advice for a scene's rows (a note when there are none).
+void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path);
 
 /// Adds the `plan` subcommand to APP; the options land in OPTIONS.
 CLI::App* add_plan_command(CLI::App& app, PlanOptions& options);

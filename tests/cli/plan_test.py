@@ -9,7 +9,12 @@
     second half by no more than the targets against the scene as shipped run the same way (both
     measured as perf/fidelity_table.py measures them).
   refusals: an unknown quantity, a tolerance that is not positive, a scene without measured data,
-    a missing table, a bad scene: exit 2, one line naming what is wrong, nothing on stdout.
+    a missing table, a bad scene, a malformed rank table: exit 2, one line naming what is wrong,
+    nothing on stdout.
+  ranks: the rank advice (how many ranks a scene deserves: the most whose predicted efficiency is
+    at least 0.7) from a rank table written here, for a scene that has only rank data, and from the
+    repository's own table (perf/results/rank_table.csv) for the high-fidelity scene, against the
+    count read from that table directly.
 """
 import csv
 import os
@@ -79,6 +84,9 @@ def refusals(work):
     scene = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
     bad_scene = os.path.join(work, "bad.toml")
     open(bad_scene, "w").write(open(scene).read().replace('rolling_elements = 8', 'rolling_elements = -8'))
+    bad_ranks = os.path.join(work, "bad_ranks.csv")
+    open(bad_ranks, "w").write("scene,network,ranks,predicted_wall_s,speedup,efficiency\n6309_R3,here,1,1,1,1\n"
+                               "6309_R3,here,two,1,1,1\n")
     other = os.path.join(work, "no_data_here.toml")
     open(other, "w").write(open(scene).read())
     for args, expected in [((scene, "--target", "cage_sped=1%"), "unknown quantity 'cage_sped'"),
@@ -86,15 +94,51 @@ def refusals(work):
                            ((scene, "--target", "cage_speed"), "QUANTITY=TOLERANCE"),
                            ((other, "--target", "cage_speed=1%"), "no measured data for scene 'no_data_here'"),
                            ((scene, "--table", os.path.join(work, "missing.csv")), "cannot read the fidelity table"),
-                           ((bad_scene,), "rolling_elements")]:
+                           ((bad_scene,), "rolling_elements"),
+                           ((scene, "--rank-table", bad_ranks), "bad_ranks.csv:3: expected six fields")]:
         p = plan(*args)
         check(p.returncode == 2, f"plan {' '.join(args[1:])}: exit {p.returncode}, expected 2")
         check(expected in p.stderr, f"plan {' '.join(args[1:])}: stderr does not name '{expected}': {p.stderr}")
         check(p.stdout == "", f"plan {' '.join(args[1:])}: printed before refusing: {p.stdout[:200]}")
 
 
+def deserved(p, network):
+    lines = p.stdout.splitlines()
+    for i, line in enumerate(lines):
+        if line.strip().startswith(f"network {network}:"):
+            return int(lines[i + 1].split("->")[1].split()[0])
+    return None
+
+
+def ranks(work):
+    scene = os.path.join(work, "ranks_only.toml")
+    open(scene, "w").write(open(os.path.join(source, "jobs", "scenes", "6309_R3.toml")).read())
+    table = os.path.join(work, "ranks.csv")
+    effs = {1: 1.0, 2: 0.95, 4: 0.85, 8: 0.72, 16: 0.69, 32: 0.71}  # 32: past a dip, still counted
+    with open(table, "w") as f:
+        f.write("# test\nscene,network,ranks,predicted_wall_s,speedup,efficiency\n")
+        for p, e in effs.items():
+            f.write(f"ranks_only,here,{p},1,{p * e},{e}\nranks_only,cluster,{p},1,{p * min(e, 0.6 if p > 2 else e)},"
+                    f"{min(e, 0.6 if p > 2 else e)}\n")
+    p = plan(scene, "--rank-table", table)
+    print(p.stdout)
+    check(p.returncode == 0, f"plan exit {p.returncode}: {p.stderr}")
+    check(deserved(p, "here") == 32, f"network here: expected 32 ranks, got {deserved(p, 'here')}")
+    check(deserved(p, "cluster") == 2, f"network cluster: expected 2 ranks, got {deserved(p, 'cluster')}")
+    fine = os.path.join(source, "jobs", "scenes", "6309_R3_fine_traction.toml")
+    real = os.path.join(source, "perf", "results", "rank_table.csv")
+    rows = [r for r in csv.DictReader(l for l in open(real) if not l.startswith("#"))
+            if r["scene"] == "6309_R3_fine_traction" and r["network"] == "here"]
+    check(len(rows) > 0, "the repository's rank table has no rows for 6309_R3_fine_traction")
+    expected = max([int(r["ranks"]) for r in rows if float(r["efficiency"]) >= 0.7] or [1])
+    p = plan(fine)
+    print(p.stdout)
+    check(p.returncode == 0, f"plan exit {p.returncode}: {p.stderr}")
+    check(deserved(p, "here") == expected, f"fine scene: expected {expected} ranks, got {deserved(p, 'here')}")
+
+
 with tempfile.TemporaryDirectory() as work:
-    {"recommendation": recommendation, "refusals": refusals}[case](work)
+    {"recommendation": recommendation, "refusals": refusals, "ranks": ranks}[case](work)
 if failures:
     print(f"{case}: {len(failures)} failure(s)", file=sys.stderr)
     sys.exit(1)

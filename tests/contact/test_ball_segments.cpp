@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "ball_cases.hpp"
 
@@ -197,6 +200,50 @@ TEST(BallGroove, SpinMomentOpposesSpin) {
       EXPECT_NEAR(r.diagnostics.spin_velocity, spin, 1e-12 * std::abs(spin));
       EXPECT_LT(r.on_b.moment.dot(n_into_ring) * spin, 0.0);
       EXPECT_LT(r.diagnostics.traction_force, 1e-9 * r.diagnostics.normal_force);  // symmetric
+    }
+  }
+}
+
+// A fine traction grid is computed in fixed blocks so that one contact can be shared between
+// processes: block k at the contact's kinematics, the blocks summed in block order, and the contact
+// completed with that sum give exactly evaluate's bits (no tolerance), for limiting shear with
+// spin and slide, loaded and apart. The grid decides the blocks: 5 x 5 is one, 40 x 40 several.
+TEST(BallGroove, TractionBlocksGiveEvaluatesBits) {
+  PointTraction coarse;
+  EXPECT_EQ(traction_block_count(coarse), 1);
+  coarse.grid_x = coarse.grid_y = 128;
+  EXPECT_GT(traction_block_count(coarse), 32);
+  EXPECT_LE(traction_block_count(coarse), max_traction_blocks);
+  for (const bool outer : {false, true}) {
+    const SpatialCase c = groove_case(outer);
+    auto seg = std::get<BallGrooveSegment>(make_segment(c));
+    seg.traction.model = TractionModel::limiting_shear;
+    seg.traction.grid_x = seg.traction.grid_y = 40;
+    const int blocks = traction_block_count(seg);
+    ASSERT_GT(blocks, 1);
+    for (const double approach : {2e-5, -1e-6}) {
+      Placement p = place(c, std::abs(approach), 0.7);
+      if (approach < 0) p = placed(c, approach, 0.7, motions()[1]);
+      p.b.angular_velocity += 40.0 * p.normal_on_b;  // spin on top of the rolling
+      p.b.velocity += Vec3(1e-3, -2e-3, 5e-4);       // and some sliding
+      const SpatialSegmentResult whole = evaluate(seg, p.a, p.b);
+      std::vector<TractionResult> parts;
+      for (int k = 0; k < blocks; ++k) parts.push_back(evaluate_traction_block(seg, p.a, p.b, k));
+      const SpatialSegmentResult cut = evaluate_with_traction(seg, p.a, p.b, sum_traction_blocks(parts));
+      EXPECT_EQ(whole.valid, cut.valid);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(whole.on_a.force[i], cut.on_a.force[i]);
+        EXPECT_EQ(whole.on_a.moment[i], cut.on_a.moment[i]);
+        EXPECT_EQ(whole.on_b.force[i], cut.on_b.force[i]);
+        EXPECT_EQ(whole.on_b.moment[i], cut.on_b.moment[i]);
+      }
+      EXPECT_EQ(whole.diagnostics.traction_force, cut.diagnostics.traction_force);
+      EXPECT_EQ(whole.diagnostics.power_loss, cut.diagnostics.power_loss);
+      EXPECT_EQ(whole.diagnostics.normal_force, cut.diagnostics.normal_force);
+      if (approach > 0) {
+        EXPECT_GT(whole.diagnostics.traction_force, 0.0);
+        EXPECT_THROW(evaluate_traction_block(seg, p.a, p.b, blocks), std::invalid_argument);
+      }
     }
   }
 }

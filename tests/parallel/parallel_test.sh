@@ -8,6 +8,9 @@
 #     (--replan-every-step), and with rank 0 evaluating no tasks (--master-share 0), on a short
 #     seed 002 run and a short 6309 R3 run; /scheduler and timing
 #     fields of the summary are left out (tests/parallel/compare_outputs.py).
+#   bitwise_cut: the same on a short run of the high-fidelity scene (6309_R3_fine_traction: its
+#     ball-race contacts cut into traction-grid blocks, sub-tasks the master combines), where the
+#     plans really cut segments over ranks (checked in the plan log lines).
 #   worker_failure, master_failure: an exception inside a task on rank 1 (or 0) at evaluation 30
 #     (test-only --inject-failure): the job ends within the timeout, non-zero, with the rank's
 #     message.
@@ -34,6 +37,7 @@ mpi() {
 # Short scenes from the job files (the physics of the full runs, fewer revolutions).
 sed -e 's/^end_time = .*/end_time = "6 ms"/' "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/planar.toml"
 sed -e 's/^end_time = .*/end_time = "3 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
+sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fine_traction.toml" >"$work/cut.toml"
 
 bitwise() {
   local scene=$1
@@ -43,6 +47,7 @@ bitwise() {
     mpi "$np" run "$scene" -o "$work/np$np.h5"
     [[ $rc -eq 0 ]] || { fail "np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
     grep -q "contact tasks on all ranks" "$work/log" || fail "np $np: no parallel run announced"
+    cp "$work/log" "$work/log.np$np"
     files+=("$work/np$np.h5")
   done
   for np in 2 3; do
@@ -127,6 +132,11 @@ stopped_worker() {
 case "$case_name" in
 bitwise_planar) bitwise "$work/planar.toml" ;;
 bitwise_spatial) bitwise "$work/spatial.toml" ;;
+bitwise_cut)
+  bitwise "$work/cut.toml"
+  # Segments were really cut over ranks in some plan (the 13 blocks of a loaded contact).
+  cat "$work"/log.np* | grep -qE "and [1-9][0-9]* segment\(s\) split" || fail "no plan cut a segment over ranks"
+  ;;
 worker_failure) injected 1 ;;
 master_failure) injected 0 ;;
 integration_failure)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
 
 #include "scheduler/plan.hpp"
 
@@ -110,4 +111,44 @@ TEST(Plan, RejectsMismatchedInput) {
   const auto cat = bearing(3, 2, 0);
   EXPECT_THROW(make_plan(std::vector<double>(5, 1.0), cat, std::vector<double>{1.0, 1.0}), std::invalid_argument);
   EXPECT_THROW(make_plan(std::vector<double>(6, 1.0), cat, std::vector<double>{0.0, 0.0}), std::invalid_argument);
+}
+
+// Segments cut into sub-tasks (TaskCatalogue::parent): 8 balls, each a groove contact cut into 20
+// parts and a pocket contact; two balls loaded (their groove parts 0.5 s each, 10 s a groove),
+// the others light (0.01 s a groove). On 16 ranks the two loaded grooves are each far above a
+// rank's share (24.6 / 16 = 1.54): level 2 cuts them and balances to within 10 %, where moving
+// whole segments cannot do better than 10 / 1.54 = 6.5. The light grooves are moved whole: their
+// parts stay together on one rank.
+TEST(Plan, HeavySegmentsAreCutLightOnesMoveWhole) {
+  TaskCatalogue cat;
+  std::vector<double> cost;
+  int segment = 0;
+  for (int e = 0; e < 8; ++e) {
+    for (int k = 0; k < 20; ++k) {
+      cat.group.push_back(e), cat.bodies.push_back({0, 1 + e}), cat.parent.push_back(segment);
+      cost.push_back(e < 2 ? 0.5 : 0.0005);
+    }
+    ++segment;
+    cat.group.push_back(e), cat.bodies.push_back({9, 1 + e}), cat.parent.push_back(segment++);
+    cost.push_back(0.5);
+  }
+  cat.task_count = static_cast<int>(cost.size());
+  const std::vector<double> cap(16, 1.0);
+  const Plan cut = make_plan(cost, cat, cap);
+  EXPECT_LT(cut.predicted_imbalance, 1.1);
+  EXPECT_EQ(cut.split_parents, 2);  // the two loaded grooves, nothing else
+  EXPECT_EQ(count_split_parents(cut.owner, cat.parent), 2);
+  for (int e = 2; e < 8; ++e) {
+    std::set<int> ranks;
+    for (int k = 0; k < 20; ++k) ranks.insert(cut.owner[static_cast<std::size_t>(21 * e + k)]);
+    EXPECT_EQ(ranks.size(), 1u) << "light groove of ball " << e;
+  }
+  PlanOptions whole;
+  whole.split_share = 1e9;  // never cut: segments move whole
+  const Plan uncut = make_plan(cost, cat, cap, whole);
+  EXPECT_GT(uncut.predicted_imbalance, 6.0);
+  EXPECT_EQ(uncut.split_parents, 0);
+  // A parent per task is required when given.
+  cat.parent.pop_back();
+  EXPECT_THROW(make_plan(cost, cat, cap), std::invalid_argument);
 }
