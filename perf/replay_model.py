@@ -99,7 +99,8 @@ def read_run(path):
         if g.attrs["ranks"] != 1:
             sys.exit(f"{path}: recorded with {g.attrs['ranks']} ranks; the replay needs a one-rank run")
         summary = json.loads(f.attrs["summary_json"])
-        run = {"path": path, "wall": summary["wall_time_s"], "group": [int(x) for x in g["task_group"][()]],
+        run = {"path": path, "wall": summary["wall_time_s"], "split": summary.get("time_split_s", {}),
+               "output_write": summary.get("output_write_time_s", 0.0), "group": [int(x) for x in g["task_group"][()]],
                "parent": [int(x) for x in g["task_segment"][()]] if "task_segment" in g else None,
                "context": int(g.attrs["context_size"]), "phases": {}}
         for ph in ("rhs", "jacobian"):
@@ -114,8 +115,8 @@ def read_run(path):
     return run
 
 
-def predict(run, ranks, latency, bandwidth):
-    serial = run["wall"] - sum(p["total"] for p in run["phases"].values())
+def predict(run, ranks, latency, bandwidth, serial_cut=0.0):
+    serial = run["wall"] - sum(p["total"] for p in run["phases"].values()) - serial_cut
     t = serial
     for ph in run["phases"].values():
         cost, group = ph["cost"], run["group"]
@@ -159,6 +160,14 @@ def main():
         print("largest possible speed-up of the task part (sum / largest task): " +
               ", ".join(f"{k} {sum(v['cost']) / max(v['cost']):.1f}" for k, v in run["phases"].items()) +
               f"; Amdahl bound from the serial part alone: {run['wall'] / serial:.1f}")
+        sp = run["split"]
+        if sp:
+            print("rank 0's serial part, from the run's time split: integrator %.3f s, Newton linear algebra %.3f s, "
+                  "output writing %.3f s, other (model, start-up, file) %.3f s, the rest (executor and combining "
+                  "cut segments' parts) %.3f s" % (sp.get("integrator", 0), sp.get("linear_setup", 0) + sp.get("linear_solve", 0),
+                  run["output_write"], sp.get("other", 0),
+                  serial - sp.get("integrator", 0) - sp.get("linear_setup", 0) - sp.get("linear_solve", 0)
+                  - run["output_write"] - sp.get("other", 0)))
         for name, lat, bw in networks:
             print(f"network {name}: latency {lat * 1e6:.2f} us, bandwidth {bw / 1e9:.2f} GB/s")
             print("   P  predicted_wall_s  speedup  efficiency")
@@ -169,6 +178,15 @@ def main():
                 table.append(f"{scene},{name},{p},{tp:.4f},{t1 / tp:.3f},{t1 / tp / p:.3f}")
             effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
             print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
+            if run["output_write"] > 0:
+                cut = run["output_write"]
+                effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
+                print(f"  what if output writing ({cut:.3f} s) left rank 0 (T(1) kept): " +
+                      ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
+                cut += run["split"].get("other", 0)
+                effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
+                print(f"  what if output writing and start-up ({cut:.3f} s) left rank 0: " +
+                      ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
             if name == "here" and i < len(args.measured_np2) and args.measured_np2[i] > 0:
                 s2 = t1 / predict(run, 2, lat, bw)[0]
                 m = args.measured_np2[i]
