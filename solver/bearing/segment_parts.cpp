@@ -47,6 +47,22 @@ std::vector<Column> jacobian_columns(const Model& m, const Segment& seg) {
   return columns;
 }
 
+/// Segment-major records from task-major ones (`size` doubles each): an uncut segment's record is
+/// its task's; for a cut one, combine(s, its parts' records, its record) fills it.
+template <class Combine>
+void gather_segments(const std::vector<int>& first_task, const std::vector<int>& parts, const std::vector<double>& tasks,
+                     std::size_t size, std::vector<double>& segments, Combine combine) {
+  segments.resize(first_task.size() * size);
+  for (std::size_t s = 0; s < first_task.size(); ++s) {
+    const double* first = tasks.data() + static_cast<std::size_t>(first_task[s]) * size;
+    double* out = segments.data() + s * size;
+    if (parts[s] == 1)
+      std::copy_n(first, size, out);
+    else
+      combine(s, first, out);
+  }
+}
+
 const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg) {
   return std::get<contact::BallGrooveSegment>(m.laws[static_cast<std::size_t>(seg.law)]);
 }
@@ -73,16 +89,9 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
 
 void Equations::combine_rhs_parts(double t, const double* z) {
   const std::size_t size = SegmentRecord::size;
-  records_.resize(model_.segments.size() * size);
   std::array<contact::TractionResult, contact::max_traction_blocks> blocks{};
-  for (std::size_t s = 0; s < model_.segments.size(); ++s) {
-    const double* first = task_records_.data() + static_cast<std::size_t>(first_task_[s]) * size;
-    double* out = records_.data() + s * size;
+  gather_segments(first_task_, parts_, task_records_, size, records_, [&](std::size_t s, const double* first, double* out) {
     const auto parts = static_cast<std::size_t>(parts_[s]);
-    if (parts == 1) {
-      std::copy_n(first, size, out);
-      continue;
-    }
     for (std::size_t k = 0; k < parts; ++k) {
       const double* rec = first + k * size;
       blocks[k] = {rec[0], rec[1], rec[2], rec[3]};
@@ -92,7 +101,7 @@ void Equations::combine_rhs_parts(double t, const double* z) {
         groove_law(model_, seg), model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z),
         contact::sum_traction_blocks(std::span<const contact::TractionResult>(blocks.data(), parts)));
     write_result(result, std::span<double>(out, size));
-  }
+  });
 }
 
 void Equations::jacobian_part(const double* context, int s, int part, std::span<double> rec) const {
@@ -130,15 +139,8 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
 
 void Equations::combine_jacobian_parts(const double* z) {
   const std::size_t size = jacobian_record;
-  jac_records_.resize(model_.segments.size() * size);
-  for (std::size_t s = 0; s < model_.segments.size(); ++s) {
-    const double* first = jac_task_records_.data() + static_cast<std::size_t>(first_task_[s]) * size;
-    double* out = jac_records_.data() + s * size;
+  gather_segments(first_task_, parts_, jac_task_records_, size, jac_records_, [&](std::size_t s, const double* first, double* out) {
     const auto parts = static_cast<std::size_t>(parts_[s]);
-    if (parts == 1) {
-      std::copy_n(first, size, out);
-      continue;
-    }
     std::copy_n(first, SegmentRecord::size, out);  // the base point is part 0's first evaluation
     bool ok = true;
     for (std::size_t k = 0; k < parts; ++k) ok = ok && first[k * size + SegmentRecord::valid] != 0.0;
@@ -151,7 +153,7 @@ void Equations::combine_jacobian_parts(const double* z) {
       for (int i = 0; i < SegmentRecord::wrench_rows; ++i) out[offset + static_cast<std::size_t>(i)] = (r[i] - out[i]) * inv;
     }
     out[SegmentRecord::valid] = ok ? 1.0 : 0.0;
-  }
+  });
 }
 
 }  // namespace raceway::solver
