@@ -78,23 +78,26 @@ def set_key(text, section, key, value):
     return "\n".join(lines) + "\n"
 
 
-def scene_text(name, rtol, solver_keys=None):
+def scene_text(name, rtol, solver_keys=None, shorten=True):
+    """The scene with rtol and solver_keys set; shorten: with SCENES' end time and output interval."""
     text = open(os.path.join(ROOT, "jobs", "scenes", name + ".toml")).read()
-    for key, value in SCENES[name].items():
+    for key, value in (SCENES[name] if shorten else {}).items():
         text = set_key(text, "scene", key, f'"{value}"')
     for key, value in (solver_keys or {}).items():
         text = set_key(text, "solver", key, value)
     return set_key(text, "solver", "rtol", repr(rtol))
 
 
-def run(binary, name, method, rtol, workdir, timeout):
-    """One run; returns its summary (with 'h5' the output path) or a dict with 'failed'."""
+def run(binary, name, method, rtol, workdir, timeout, shorten=True):
+    """One run; returns its summary (with 'h5' the output path) or a dict with 'failed'.
+    shorten=False: the scene's own end time and output interval (perf/default_tolerances.py)."""
     tag = f"{name}_{method}_{rtol:.0e}"
     scene = os.path.join(workdir, tag + ".toml")
     cli_method, solver_keys = VARIANTS[method]
-    solver_keys = {"max_order": DEFAULT_ORDER[cli_method], "atol": "{}", **solver_keys}
+    # The method in the scene too: max_order's bounds are checked against the scene's method.
+    solver_keys = {"method": f'"{cli_method}"', "max_order": DEFAULT_ORDER[cli_method], "atol": "{}", **solver_keys}
     with open(scene, "w") as f:
-        f.write(scene_text(name, rtol, solver_keys))
+        f.write(scene_text(name, rtol, solver_keys, shorten))
     out, summary = os.path.join(workdir, tag + ".h5"), os.path.join(workdir, tag + ".json")
     start = time.monotonic()
     try:
