@@ -54,10 +54,11 @@ def one_run(binary, name, variant, damping, factor, workdir, timeout):
     text = open(os.path.join(wp.ROOT, "jobs", "scenes", name + ".toml")).read()
     for key, value in {**wp.SCENES[name], **MAP_WINDOW.get(name, {})}.items():
         text = wp.set_key(text, "scene", key, f'"{value}"')
-    # The solver settings the maps were measured with: the method's default order, absolute
+    # The solver settings the maps were measured with: the method (in the scene too: max_order's
+    # bounds are checked against it), its default order, absolute
     # tolerances following rtol, seed 002 at its former rtol 1e-7.
-    keys = {"max_order": wp.DEFAULT_ORDER[method], "atol": "{}", **({"rtol": "1e-7"} if name == "seed002_40hz" else {}),
-            **keys}
+    keys = {"method": f'"{method}"', "max_order": wp.DEFAULT_ORDER[method], "atol": "{}",
+            **({"rtol": "1e-7"} if name == "seed002_40hz" else {}), **keys}
     for key, value in keys.items():
         text = wp.set_key(text, "solver", key, value)
     text = wp.set_key(text, CONTACT[name], "damping_factor", f'"{damping}"')
