@@ -54,6 +54,9 @@ BALL_CHOICES = {
     "tolerance": {"rtol 1e-4": ["solver.rtol=1e-4"], "rtol 1e-5": ["solver.rtol=1e-5"],
                   "rtol 1e-7": ["solver.rtol=1e-7"]},
 }
+# The method options of a ball scene that ships another method than bdf: bdf at its default order
+# takes the shipped method's place among the options.
+BDF_OPTION = {"bdf": ['solver.method="bdf"', "solver.max_order=5"]}
 # Film: the EHL rolling resistance (its traction is the choice above); only where the scene has one.
 FILM = {"film": {"off": ["contact.ball_race.rolling_resistance=false"]}}
 ROLLER_CHOICES = {
@@ -82,7 +85,8 @@ def shortened(name):
 
 
 def choices_of(text):
-    """The scene's choices: the other gravity setting, the film law only where there is a lubricant."""
+    """The scene's choices: the other gravity setting, the film law only where there is a lubricant, the
+    methods other than the shipped one."""
     spatial = re.search(r'^model\s*=\s*"spatial"', text, re.M)
     choices = dict(BALL_CHOICES if spatial else ROLLER_CHOICES)
     if re.search(r"^gravity\s*=\s*false", text, re.M):
@@ -91,6 +95,9 @@ def choices_of(text):
         del choices["traction_law"]  # tanh already; the film law needs a lubricant
     if spatial and re.search(r"^rolling_resistance\s*=\s*true", text, re.M):
         choices.update(FILM)
+    shipped = re.search(r'^method\s*=\s*"(\w+)"', text, re.M)
+    if spatial and shipped and shipped.group(1) in choices["method"]:
+        choices["method"] = {**BDF_OPTION, **{k: v for k, v in choices["method"].items() if k != shipped.group(1)}}
     return choices
 
 

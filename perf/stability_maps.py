@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Stability maps: where the integration methods fail or crawl.
 
-  perf/stability_maps.py [--binary build/raceway] [--scenes seed002_40hz 6309_R3] [--out perf/results]
+  perf/stability_maps.py [--binary build/raceway] [--scenes seed002_40hz 6309_R3 qj215_validation]
+                         [--timeout 60] [--out perf/results]
 
 Over a grid of (race contact damping factor) x (driven-ring speed) runs each method variant on a
-short run of the scene at its own rtol (the end time shortened: perf/work_precision.py's SCENES) and
+short run of the scene at its own rtol (the end time shortened: perf/work_precision.py's SCENES,
+QJ215 further: MAP_WINDOW) and
 records whether the run finishes, its cost (wall time, right-hand sides, steps) and its error-test
 and Newton failures. Variants: bdf (orders 1-5), bdf_sld (with stability-limit detection), bdf2
 (max_order 2, A-stable), adams, erk (Dormand-Prince) and ark (SDIRK 4(3)). A run fails when the
@@ -34,6 +36,10 @@ DAMPING = ["0.05 s/m", "0.5 s/m", "5 s/m", "50 s/m"]
 SPEED_FACTORS = [0.25, 1.0, 4.0, 10.0]
 CONTACT = {"seed002_40hz": "contact.roller_race", "6309_R3": "contact.ball_race",
            "qj215_validation": "contact.ball_race"}
+# Shorter runs than perf/work_precision.py's where the whole grid would not fit in about half an
+# hour: QJ215's 0.3 s (5 revolutions) becomes 50 ms (the balls' race contacts, before the cage
+# touches them at about 0.2 s), so 96 runs cost what 16 of the long ones would.
+MAP_WINDOW = {"qj215_validation": {"end_time": "50 ms"}}
 
 
 def scaled_speed(text, factor):
@@ -46,12 +52,13 @@ def scaled_speed(text, factor):
 def one_run(binary, name, variant, damping, factor, workdir, timeout):
     method, keys = VARIANTS[variant]
     text = open(os.path.join(wp.ROOT, "jobs", "scenes", name + ".toml")).read()
-    for key, value in wp.SCENES[name].items():
+    for key, value in {**wp.SCENES[name], **MAP_WINDOW.get(name, {})}.items():
         text = wp.set_key(text, "scene", key, f'"{value}"')
-    # The solver settings the maps were measured with: the method's default order, absolute
+    # The solver settings the maps were measured with: the method (in the scene too: max_order's
+    # bounds are checked against it), its default order, absolute
     # tolerances following rtol, seed 002 at its former rtol 1e-7.
-    keys = {"max_order": wp.DEFAULT_ORDER[method], "atol": "{}", **({"rtol": "1e-7"} if name == "seed002_40hz" else {}),
-            **keys}
+    keys = {"method": f'"{method}"', "max_order": wp.DEFAULT_ORDER[method], "atol": "{}",
+            **({"rtol": "1e-7"} if name == "seed002_40hz" else {}), **keys}
     for key, value in keys.items():
         text = wp.set_key(text, "solver", key, value)
     text = wp.set_key(text, CONTACT[name], "damping_factor", f'"{damping}"')
