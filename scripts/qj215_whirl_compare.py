@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Seed 001's cage-stability metrics (vortex radius ratio, sigma_v of eq. 9) of QJ215 speed-sweep
-campaigns, three ways, into a CSV and a figure (docs/campaigns/qj215_whirl.md):
+"""Seed 001's cage-stability metrics (vortex radius ratio, sigma_v of eq. 9) of QJ215 sweep campaigns
+(one swept axis: speed, axial or radial load), three ways, into a CSV and a figure
+(docs/campaigns/qj215_whirl.md):
 
   - `mean_centre`: about the centre of the window's samples, as `raceway report` and the campaign
     table (io/report/report_metrics.py centroid_metrics over the last half of the run);
@@ -8,6 +9,9 @@ campaigns, three ways, into a CSV and a figure (docs/campaigns/qj215_whirl.md):
     turns (the mean centre of a circle swept 4.5 times sits r / (4.5 pi) off its centre, which alone
     gives a ratio of 0.14);
   - `axis`: about the bearing axis (the orbit's centre under a pure axial load).
+
+Seed 001's figures 10, 12 and 14 are drawn as what its text says of them (trend and range): their
+values are not in the text.
 
 Usage: qj215_whirl_compare.py OUT_PREFIX LABEL=CAMPAIGN_DIR [LABEL=CAMPAIGN_DIR ...]
 writes OUT_PREFIX.csv and OUT_PREFIX.png. Needs h5py, numpy, matplotlib.
@@ -58,10 +62,28 @@ def metrics_of(h5_path):
     return out
 
 
+# The swept quantity of each campaign table column, in the unit seed 001 plots it in.
+AXES = {"speed": ("inner ring speed, r/min", rm.RPM), "axial_load": ("axial load Fa, N", 1.0),
+        "radial_load": ("radial load Fr, N", -1.0)}
+
+# Seed 001's figures as its text describes them (sections 4.1-4.3; the figures' values are not in
+# the text): the shape of the vortex radius ratio over the sweep, 0 at its minimum, and what the
+# text says. Anchored at our value at the seed's minimum: a statement of trend and range, not data.
+SEED_SHAPES = {
+    "speed": ("seed 001 Fig. 10 (text: min at 3000 r/min, range 0.15)",
+              [1000, 2000, 3000, 4000, 5000, 6000, 7000, 8000], [0.15, 0.075, 0, 0.05, 0.1, 0.135, 0.145, 0.15], 3000),
+    "axial_load": ("seed 001 Fig. 12 (text: min at 3000 N, range 0.45)",
+                   [1000, 2000, 3000, 4000, 5000], [0.3, 0.15, 0, 0.2, 0.45], 3000),
+    "radial_load": ("seed 001 Fig. 14 (text: rising, above 1.0 at 600 N)",
+                    [100, 200, 300, 400, 500, 600], None, None),
+}
+
+
 def rows_of(label, campaign_dir):
     table = pathlib.Path(campaign_dir) / "campaign_table.csv"
     for r in csv.DictReader(table.open()):
-        row = {"case": label, "speed_rpm": float(r["speed_si"]) * rm.RPM, "status": r["status"]}
+        axis = next(k for k in r if k in AXES)
+        row = {"case": label, "axis": axis, "value": float(r[f"{axis}_si"]) * AXES[axis][1], "status": r["status"]}
         h5 = pathlib.Path(campaign_dir) / f"{r['scene']}.h5"
         if h5.exists():
             row.update(metrics_of(h5))
@@ -78,35 +100,32 @@ def plot(rows, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
     cases = list(dict.fromkeys(r["case"] for r in rows))
+    axis = rows[0]["axis"]
     for case in cases:
         rs = [r for r in rows if r["case"] == case]
-        n = [r["speed_rpm"] for r in rs]
+        n = [r["value"] for r in rs]
         for ax, key in zip(axes, ("whole_turns_vortex_radius_ratio", "whole_turns_sigma_v", "axis_radius_mean_um")):
             fallback = key.replace("whole_turns", "mean_centre")
             ax.plot(n, [r.get(key, r.get(fallback, math.nan)) for r in rs], "o-", label=case)
-    # Seed 001, Figure 10, as its text describes it (section 4.1; the figure's values are not in
-    # the text): both ratios fall to a minimum at 3000 r/min, rise after it and level off; the
-    # radius ratio varies by 0.15 over 1000..8000 r/min. Drawn as that shape, anchored at our
-    # 3000 r/min value of the first case: a statement of trend and range, not digitised points.
-    first = [r for r in rows if r["case"] == cases[0]]
-    at3000 = next((r for r in first if abs(r["speed_rpm"] - 3000) < 1), None)
-    if at3000 is not None:
-        base = at3000.get("whole_turns_vortex_radius_ratio", math.nan)
-        shape_n = [1000, 2000, 3000, 4000, 5000, 6000, 7000, 8000]
-        shape = [0.15, 0.075, 0.0, 0.05, 0.1, 0.135, 0.145, 0.15]
-        axes[0].plot(shape_n, [base + s for s in shape], "k:", lw=1.5,
-                     label="seed 001 Fig. 10 (text: min at 3000, range 0.15)")
+    label, shape_x, shape, minimum_at = SEED_SHAPES[axis]
+    anchor = next((r for r in rows if r["case"] == cases[0] and minimum_at is not None
+                   and abs(r["value"] - minimum_at) < 1e-6 * minimum_at), None)
+    if anchor is not None:
+        base = anchor.get("whole_turns_vortex_radius_ratio", math.nan)
+        axes[0].plot(shape_x, [base + v for v in shape], "k:", lw=1.5, label=label)
+    else:
+        axes[0].plot([shape_x[-1]], [1.0], "kv", label=label)
     axes[0].set_ylabel("vortex radius ratio (max - min) / mean")
     axes[1].set_ylabel("sigma_v (seed 001 eq. 9)")
     axes[2].set_ylabel("mean cage-centre distance from the axis, um")
     axes[2].axhline(100, color="0.5", ls="--", lw=0.8)
-    axes[2].text(1000, 101, "land clearance", fontsize=8, color="0.4")
+    axes[2].text(shape_x[0], 101, "land clearance", fontsize=8, color="0.4")
     for ax in axes:
-        ax.set_xlabel("inner ring speed, r/min")
+        ax.set_xlabel(AXES[axis][0])
         ax.grid(alpha=0.3)
+        ax.set_yscale("log")
     axes[0].legend(fontsize=7)
-    fig.suptitle("QJ215, Fa = 1000 N: cage whirl against speed (last 10 of 20 revolutions; ratios over whole whirl turns)",
-                 fontsize=10)
+    fig.suptitle("QJ215: cage whirl (last 10 of 20 revolutions; ratios over whole whirl turns)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
