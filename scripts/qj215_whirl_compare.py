@@ -14,7 +14,10 @@ Seed 001's figures 10, 12 and 14 are drawn as what its text says of them (trend 
 values are not in the text.
 
 Usage: qj215_whirl_compare.py OUT_PREFIX LABEL=CAMPAIGN_DIR [LABEL=CAMPAIGN_DIR ...]
-writes OUT_PREFIX.csv and OUT_PREFIX.png. Needs h5py, numpy, matplotlib.
+writes OUT_PREFIX.csv and OUT_PREFIX.png;
+       qj215_whirl_compare.py --orbits OUT.png LABEL=RUN.h5 [LABEL=RUN.h5 ...]
+draws the cage centre's orbit of each run (first half grey, second half in colour) in the land
+clearance. Needs h5py, numpy, matplotlib.
 """
 import csv
 import math
@@ -124,13 +127,41 @@ def plot(rows, path):
         ax.set_xlabel(AXES[axis][0])
         ax.grid(alpha=0.3)
         ax.set_yscale("log")
+    axes[1].set_ylim(bottom=1e-4)  # a motionless centre's sigma_v (1e-16, rounding) lies below
     axes[0].legend(fontsize=7)
     fig.suptitle("QJ215: cage whirl (last 10 of 20 revolutions; ratios over whole whirl turns)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
 
+def plot_orbits(path, specs, clearance_um=100.0):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(specs), figsize=(3.2 * len(specs), 3.6), squeeze=False)
+    circle = np.linspace(0, rm.TWO_PI, 361)
+    for ax, spec in zip(axes[0], specs):
+        label, _, h5_path = spec.partition("=")
+        with h5py.File(h5_path, "r") as f:
+            p = 1e6 * f["cage/position"][:, :2]
+        half = len(p) // 2
+        ax.plot(clearance_um * np.cos(circle), clearance_um * np.sin(circle), "k--", lw=0.6)
+        ax.plot(p[:half + 1, 0], p[:half + 1, 1], color="0.75", lw=0.4)
+        ax.plot(p[half:, 0], p[half:, 1], lw=0.6)
+        ax.set_aspect("equal")
+        ax.set_xlim(-1.15 * clearance_um, 1.15 * clearance_um)
+        ax.set_ylim(-1.15 * clearance_um, 1.15 * clearance_um)
+        ax.set_title(label, fontsize=8)
+        ax.set_xlabel("x, um")
+    axes[0][0].set_ylabel("y, um")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main(argv):
+    if len(argv) >= 4 and argv[1] == "--orbits":
+        plot_orbits(argv[2], argv[3:])
+        return 0
     if len(argv) < 3:
         print(__doc__, file=sys.stderr)
         return 2
