@@ -394,7 +394,8 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
       rep.iterations, rep.residual, q_max, cage_speed * 30.0 / pi, seat.orbit * 30.0 / pi);
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const auto cage_at = [&](Coordinate c) { return rep.state[static_cast<std::size_t>(cage.slot[c])]; };
-  if (cage_at(sx) != 0.0) rep.summary += fmt::format("; cage started {:.4g} um off-centre along +x", 1e6 * cage_at(sx));
+  if (m.scene->cage.initial_offset != 0.0)
+    rep.summary += fmt::format("; cage started {:.4g} um off-centre along +x", 1e6 * m.scene->cage.initial_offset);
   if (cage_at(sz) != 0.0 || cage_at(sax) != 0.0 || cage_at(say) != 0.0)
     rep.summary += fmt::format("; cage at the balls: {:.4g} mm off the mid-plane, tilted ({:.3g}, {:.3g}) mrad, "
                                "largest pocket force {:.3g} N",
