@@ -115,6 +115,8 @@ struct CageSpec {
   double inner_diameter = 0;    ///< m, cage bore (spatial; 0 = d_m - 0.6 D)
   double outer_diameter = 0;    ///< m, cage outside diameter (spatial; 0 = d_m + 0.6 D)
   double width = 0;             ///< m, axial width of the cage (spatial; 0 = 0.8 ring width)
+  double initial_offset = 0;    ///< m, the cage centre's start along +x from the seated place (spatial)
+  double mass_eccentricity = 0; ///< m, centre of mass off the cage axis, along the cage frame's x (spatial)
   CageSupport support;          ///< spatial: spindle-mounted cage
 };
 

@@ -304,6 +304,20 @@ void land_clearance_fits(const Row&, const Section& s, Bind& b) {
   });
 }
 
+// A cage started off-centre must start free: inside its land clearance and its pockets' play.
+void cage_offset_within_clearances(const Row&, const Section& s, Bind& b) {
+  const auto& cage = b.scene.cage;
+  const double offset = cage.initial_offset;
+  const bool land = cage.guidance != CageGuidance::rolling_element;
+  const double limit = land ? std::min(cage.land_clearance, 0.5 * cage.pocket_clearance) : 0.5 * cage.pocket_clearance;
+  s.check(offset < limit, "initial_offset", [&] {
+    return fmt::format("initial offset of {} must be smaller than {} ({}): the cage must start clear of {}", mm(offset),
+                       land && cage.land_clearance <= 0.5 * cage.pocket_clearance ? "the land clearance"
+                                                                                    : "half the pocket clearance",
+                       mm(limit), land ? "its land and the balls" : "the balls");
+  });
+}
+
 // A land is a shoulder of a ring: it cannot be wider than the ring.
 void land_width_within_rings(const Row&, const Section& s, Bind& b) {
   const double land = b.scene.cage.land_width, ring = b.scene.bearing.ring_width;

@@ -66,6 +66,7 @@ void outside_beyond_outer_race(const Row& row, const Section& s, Bind& b);
 void ring_wider_than_ball(const Row& row, const Section& s, Bind& b);
 void ball_pocket_clearance_fits(const Row& row, const Section& s, Bind& b);
 void land_clearance_fits(const Row& row, const Section& s, Bind& b);
+void cage_offset_within_clearances(const Row& row, const Section& s, Bind& b);
 void land_width_within_rings(const Row& row, const Section& s, Bind& b);
 void cage_bore_between_race_and_pitch(const Row& row, const Section& s, Bind& b);
 void cage_outside_between_pitch_and_race(const Row& row, const Section& s, Bind& b);

@@ -61,6 +61,9 @@ constexpr Bounds kAxialPosition{.lo = -1e-3, .hi = 1e-3, .unit = "um",
 constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
                                .note = " (a sanity limit: ball bearings run at a few mrad)"};
 
+constexpr Bounds kMassEccentricity{.lo = 0, .hi = 1e-3, .unit = "um",
+                                   .note = " (machined cages are balanced to some micrometres; 1 mm is a sanity limit)"};
+
 constexpr Row kRows[] = {
     // ---- [scene] --------------------------------------------------------------------------------
     {.section = "scene", .key = "name", .kind = text, .field = FIELD(scene.scene.name),
@@ -191,6 +194,16 @@ constexpr Row kRows[] = {
     {.section = "cage", .key = "width", .kind = number, .field = FIELD(scene.cage.width), .dim = dim::length,
      .bounds = positive, .def = derived(cage_width_default, "0.8 ring_width"), .bearings = ball_bearings,
      .elsewhere = kSpatialCage, .then = cage_width_fits, .meaning = "axial width of the cage (at most ring_width)"},
+    {.section = "cage", .key = "initial_offset", .kind = number, .field = FIELD(scene.cage.initial_offset),
+     .dim = dim::length, .bounds = non_negative, .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialCage,
+     .then = cage_offset_within_clearances, .example = "50 um",
+     .meaning = "the cage centre starts this far along +x from where the seated balls put it, at rest (a disturbed "
+                "start: a centred cage under symmetric forces stays centred)"},
+    {.section = "cage", .key = "mass_eccentricity", .kind = number, .field = FIELD(scene.cage.mass_eccentricity),
+     .dim = dim::length, .bounds = kMassEccentricity, .def = value(0), .bearings = ball_bearings,
+     .elsewhere = kSpatialCage, .example = "10 um",
+     .meaning = "distance of the cage's centre of mass from its axis (static unbalance = mass x this), along the cage "
+                "frame's x: its centrifugal force turns with the cage"},
     {.section = "cage", .key = "support", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
      .elsewhere = kSpatialCage, .then = cage_support_has_spring, .sub = "cage.support",
      .meaning = "a cage on a spindle: a spring and a damper per direction"},

@@ -130,6 +130,7 @@ class SpatialDynamics final : public BodyDynamics {
     Wrench w;
     auto state = [&](int c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
     if (body.slot[svy] >= 0) w.force.y() -= body.mass * m_.gravity;
+    if (body.kind == BodyKind::cage && m_.scene->cage.mass_eccentricity > 0) w.force += unbalance_force(body, z);
     if (body.ring) {
       const auto& l = body.ring->load;
       w.force += Vec3(l.fx(t), l.fy(t), l.fz(t));
@@ -160,6 +161,20 @@ class SpatialDynamics final : public BodyDynamics {
       }
     }
     return w;
+  }
+
+  /// The cage's static unbalance: its centre of mass sits at rho = R (e, 0, 0) from its axis (the
+  /// state's centre), so Newton for the centre of mass, m (a + alpha x rho + w x (w x rho)) = F, puts
+  /// -m w x (w x rho) on the centre's equation: the centrifugal force of the offset, turning with
+  /// the cage (m e w_z^2 outwards when it turns about its axis). The Euler term -m alpha x rho and
+  /// the offset's change of the inertia tensor are left out (the cage's speed is nearly steady and
+  /// e is micrometres against its radius): not a potential, so the energy sum does not hold it.
+  Vec3 unbalance_force(const Body& body, const double* z) const {
+    const auto& sl = body.slot;
+    const Mat3 r = cardan_rotation(z[sl[sax]], z[sl[say]], z[sl[saz]]);
+    const Vec3 rho = r.col(0) * m_.scene->cage.mass_eccentricity;
+    const Vec3 w = r * Vec3(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
+    return -body.mass * w.cross(w.cross(rho));
   }
 
   /// Cardan x-y-z angle rates from the body-frame angular velocity, and Euler's equations.

@@ -220,12 +220,14 @@ TEST(JobScenes, Seed001QJ215ValidationInSI) {
 
 // Seed 001's three sweeps are campaign files over the validation scene (jobs/campaigns/): each
 // scene is the validation scene with the swept speed or loads, 20 inner-ring revolutions and 600
-// output samples per revolution, as in the paper.
+// output samples per revolution, as in the paper. Their "_unbalance" twins are the same sweeps with
+// a cage unbalance of 50 um (docs/campaigns/qj215_whirl.md), the validation scene's cage otherwise.
 TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
   const Scene reference = job("qj215_validation");
   struct Case {
     std::string campaign;
     std::vector<double> rpm, fa, fr;
+    double unbalance = 0;
   };
   std::vector<Case> cases(3);
   cases[0].campaign = "qj215_speed";
@@ -234,6 +236,12 @@ TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
   for (int v = 1000; v <= 5000; v += 1000) cases[1].rpm.push_back(1000), cases[1].fa.push_back(v), cases[1].fr.push_back(0);
   cases[2].campaign = "qj215_radial";
   for (int v = 100; v <= 600; v += 100) cases[2].rpm.push_back(1000), cases[2].fa.push_back(2000), cases[2].fr.push_back(v);
+  for (int k = 0; k < 3; ++k) {
+    Case twin = cases[static_cast<std::size_t>(k)];
+    twin.campaign += "_unbalance";
+    twin.unbalance = 50e-6;
+    cases.push_back(twin);
+  }
   for (const Case& c : cases) {
     SCOPED_TRACE(c.campaign);
     const auto campaign = driver::load_campaign((kSourceDir / "jobs" / "campaigns" / (c.campaign + ".toml")).string());
@@ -249,6 +257,8 @@ TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
       EXPECT_EQ(s.bearing.rolling_elements, reference.bearing.rolling_elements);
       EXPECT_EQ(s.bearing.ball.inner_conformity, reference.bearing.ball.inner_conformity);
       EXPECT_EQ(s.cage.land_clearance, reference.cage.land_clearance);
+      EXPECT_DOUBLE_EQ(s.cage.mass_eccentricity, c.unbalance);
+      EXPECT_EQ(s.cage.initial_offset, reference.cage.initial_offset);
       EXPECT_EQ(s.ball_race.traction.friction_coefficient, reference.ball_race.traction.friction_coefficient);
     }
   }

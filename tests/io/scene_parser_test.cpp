@@ -372,6 +372,25 @@ TEST(SpatialScene, MoreRules) {
             "cage.width");
   EXPECT_EQ(error_of(spatial("pocket_clearance = \"0.4 mm\"", "pocket_clearance = \"0.4 mm\"\nsupport = {}")).key(),
             "cage.support");
+  // a disturbed start must leave the cage clear of its pockets (ball-guided) and of its land; the
+  // unbalance has a sanity limit; neither is a planar cage's
+  EXPECT_EQ(error_of(spatial("pocket_clearance = \"0.4 mm\"", "pocket_clearance = \"0.4 mm\"\ninitial_offset = \"0.2 mm\""))
+                .key(),
+            "cage.initial_offset");
+  EXPECT_EQ(error_of(spatial("guidance = \"rolling_element\"",
+                             "guidance = \"outer_land\"\nland_clearance = \"0.1 mm\"\ninitial_offset = \"0.1 mm\""))
+                .key(),
+            "cage.initial_offset");
+  const Scene offset = parse(spatial("guidance = \"rolling_element\"",
+                                     "guidance = \"outer_land\"\nland_clearance = \"0.1 mm\"\ninitial_offset = \"50 um\"\n"
+                                     "mass_eccentricity = \"20 um\""));
+  EXPECT_DOUBLE_EQ(offset.cage.initial_offset, 50e-6);
+  EXPECT_DOUBLE_EQ(offset.cage.mass_eccentricity, 20e-6);
+  EXPECT_EQ(error_of(spatial("pocket_clearance = \"0.4 mm\"", "pocket_clearance = \"0.4 mm\"\nmass_eccentricity = \"2 mm\""))
+                .key(),
+            "cage.mass_eccentricity");
+  EXPECT_EQ(error_of(edited("material = \"brass\"", "material = \"brass\"\ninitial_offset = \"10 um\"")).key(),
+            "cage.initial_offset");
   // a land-guided cage must clear the land it rides on
   EXPECT_EQ(error_of(spatial("guidance = \"rolling_element\"",
                              "guidance = \"outer_land\"\nland_clearance = \"0.1 mm\"\nouter_diameter = \"89.9 mm\""))
