@@ -16,9 +16,9 @@ namespace {
 constexpr double kReferenceRpm = 1000;
 constexpr double kStepsPerRevolutionAtReference = 6.17e3;  // steps per revolution at 1000 r/min
 constexpr double kStepsPerRevolutionExponent = -0.905;     // ~ 1 / speed: steps follow the simulated time
-constexpr double kWallPerStepAtReference = 4.21e-4;        // s per step at 1000 r/min, 28 balls
+constexpr double kWallPerStepAtReference = 4.21e-4;        // s per step at 1000 r/min, 15 balls
 constexpr double kWallPerStepExponent = 0.541;
-constexpr double kReferenceElements = 28;
+constexpr double kReferenceElements = 15;  // QJ215
 
 /// The makespan of the costs, longest first, each on the group free first.
 double makespan(std::vector<double> costs, int groups) {
