@@ -1,6 +1,7 @@
 #include "solver/driver/campaign_plan.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,11 +45,12 @@ GroupSizeChoice choose_group_size(int world_size, const std::vector<double>& cos
   GroupSizeChoice choice;
   const double serial = makespan(costs, world_size);
   double best = INFINITY;
+  std::vector<int> unknown;
   for (int g = 1; g <= std::max(world_size, 1); ++g) {
     const double s = g == 1 ? 1.0 : speedup(g);
     const int groups = std::max(world_size, 1) / g;
     if (!(s > 0) || !std::isfinite(s)) {
-      choice.reasons.push_back(fmt::format("{} ranks per scene: no predicted speed-up, not considered", g));
+      unknown.push_back(g);
       continue;
     }
     std::vector<double> scaled(costs);
@@ -61,6 +63,9 @@ GroupSizeChoice choose_group_size(int world_size, const std::vector<double>& cos
         serial > 0 ? span / serial : 1.0));
     if (span < best * (1 - 1e-9)) best = span, choice.ranks_per_group = g;
   }
+  if (!unknown.empty())
+    choice.reasons.push_back(fmt::format("ranks per scene without a predicted speed-up, not considered: {}",
+                                         fmt::join(unknown, ", ")));
   choice.reasons.push_back(fmt::format(
       "chosen: {} ranks per scene, the shortest predicted campaign ({} scenes on {} ranks){}", choice.ranks_per_group,
       costs.size(), world_size,

@@ -36,7 +36,9 @@ TEST(CampaignGroups, FewScenesOnManyRanksShareThem) {
   // Sizes without a prediction are skipped: without 4, groups of 2 (1 / 1.26 against 2 / 1.46).
   const auto without4 = choose_group_size(8, {1.0, 1.0}, [](int p) { return p == 4 ? NAN : qj215_speedup(p); });
   EXPECT_EQ(without4.ranks_per_group, 2);
-  EXPECT_NE(without4.reasons[3].find("4 ranks per scene: no predicted speed-up"), std::string::npos);
+  EXPECT_EQ(without4.reasons.size(), 5u);  // sizes 1, 2 and 8; the sizes without a prediction; the choice
+  EXPECT_NE(without4.reasons[3].find("without a predicted speed-up, not considered: 3, 4, 5, 6, 7"), std::string::npos)
+      << without4.reasons[3];
 }
 
 TEST(CampaignGroups, OneLongSceneAmongShortOnesGetsTheRanks) {
