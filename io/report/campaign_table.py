@@ -139,10 +139,12 @@ def scene_metrics(path, settling_time):
 
 
 def _statuses(folder):
-    """The latest exit code and diagnosis of every scene from DIR/campaign_status_*.json."""
+    """The latest exit code and diagnosis of every scene from DIR/campaign_status_*.json: one file per
+    call of a whole campaign (campaign_status_N.json) or of an array task (campaign_status_<id>_N.json),
+    the later calls' last."""
     found = {}
-    for path in sorted(glob.glob(os.path.join(folder, "campaign_status_*.json")),
-                       key=lambda p: int(p.rsplit("_", 1)[1].split(".")[0])):
+    paths = glob.glob(os.path.join(folder, "campaign_status_*.json"))
+    for path in sorted(paths, key=lambda p: (os.path.getmtime(p), int(p.rsplit("_", 1)[1].split(".")[0]))):
         with open(path, encoding="utf-8") as f:
             found.update(json.load(f).get("scenes_this_call", {}))
     return found
