@@ -58,13 +58,22 @@ for sid, scene in manifest["scenes"].items():
         summary = json.loads(f.attrs["summary_json"])
         p = summary["scene_parameters"]
         ratio = p["bearing.roller_diameter"]["value"] / p["bearing.pitch_diameter"]["value"]
+        loads = f[f"segments/{inner}/normal_force"][:][keep]
+        # Impacts: runs of samples above the threshold (1 % of the window's largest bar force, at
+        # least 1 mN) on one bar of one pocket; the cages turn in +z, so the front bar is cage_bar_front.
+        bars = {b: f[f"segments/cage_bar_{b}/normal_force"][:][keep] for b in ("front", "rear")}
+        threshold = max(0.01 * max(abs(v).max() for v in bars.values()), 1e-3)
+        runs = {b: sum(int(np.sum(np.diff(np.concatenate([[0], (abs(v[:, k]) > threshold).astype(int), [0]])) == 1))
+                       for k in range(v.shape[1])) for b, v in bars.items()}
         epicyclic = 0.5 * (f["inner_ring/angular_velocity"][:][keep] * (1 - ratio)
                            + f["outer_ring/angular_velocity"][:][keep] * (1 + ratio))
     assert pocket.max() > 0, f"{sid}: no pocket force, the pocket metrics are not checked"
     expect = {"cage_speed_rpm": w.mean() * 60 / (2 * np.pi), "cage_slip": 1 - w.mean() / epicyclic.mean(),
               "pocket_force_mean_n": pocket.mean(), "pocket_force_peak_n": pocket.max(), "cage_whirl_radius_m": r.mean(),
               "cage_whirl_radius_std_m": r.std(), "max_element_load_mean_n": load.mean(),
-              "window_samples": keep.sum()}
+              "window_samples": keep.sum(), "element_load_min_n": loads.min(), "element_load_max_n": loads.max(),
+              "impacts_front_per_rev": runs["front"] / 0.5, "impacts_rear_per_rev": runs["rear"] / 0.5}
+    assert runs["front"] + runs["rear"] > 0, f"{sid}: no impacts, the impact counts are not checked"
     for key, value in expect.items():
         got = float(row[key])
         if not abs(got - value) <= 1e-12 * max(abs(value), 1e-30):
@@ -306,7 +315,17 @@ report = json.load(open(sys.argv[2]))
 row = rows["s001"]
 assert float(row["power_loss_w"]) == report["power_loss"]["total_mean_w"] > 0, (row["power_loss_w"], report["power_loss"])
 assert float(row["pocket_force_rms_n"]) == report["pocket_forces"]["rms_circumferential_force_n"]
-assert "vortex_radius_ratio" in row and "sigma_v" in row
+import math
+same = lambda text, value: float(text) == value if text else value is None or math.isnan(value)  # NaN: empty, null
+for key in ("vortex_radius_ratio", "sigma_v", "whirl_frequency_hz"):
+    assert same(row[key], report["cage_centroid"][key]), (key, row[key], report["cage_centroid"][key])
+# Impacts: the report's contact events on the front and rear bars in the window, per revolution of
+# the inner ring (a quarter revolution here at constant speed).
+assert abs(float(row["window_revolutions"]) - 0.25) < 1e-6, row["window_revolutions"]
+for bar in ("front", "rear"):
+    events = report["pocket_forces"][bar]["events"]
+    assert float(row[f"impacts_{bar}_per_rev"]) == events / float(row["window_revolutions"]), (bar, row, events)
+    assert float(row[f"pocket_force_{bar}_peak_n"]) == report["pocket_forces"][bar]["peak_n"]
 assert "cage_speed_rpm" in row and "steps" in row and "cage_slip" not in row and "wall_time_s" not in row, list(row)
 PY
   ;;
