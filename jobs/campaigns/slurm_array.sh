@@ -65,16 +65,10 @@ task)
   scene=${SLURM_ARRAY_TASK_ID:?an array task needs SLURM_ARRAY_TASK_ID}
   echo "raceway campaign $campaign -> $output: scene $scene (array job ${SLURM_ARRAY_JOB_ID:-?}, ${SLURM_NTASKS:-1} ranks)"
   # --resume: a scene that has a checkpoint continues from it, a finished one is skipped.
+  # shellcheck source=jobs/campaigns/slurm_common.sh
+  source "$(dirname "$self")/slurm_common.sh"
   # shellcheck disable=SC2086  # the launcher is a command with its options
-  $launcher "$raceway" campaign "$campaign" -o "$output" --only "$scene" --resume &
-  child=$!
-  trap 'echo "SIGUSR1: asking scene $scene to checkpoint and stop"; kill -USR1 $child' USR1
-  # wait returns early (status > 128) when the trap runs: wait until the launcher has really ended.
-  while true; do
-    wait $child
-    code=$?
-    kill -0 $child 2> /dev/null || break
-  done
+  run_passing_usr1 $launcher "$raceway" campaign "$campaign" -o "$output" --only "$scene" --resume
   echo "scene $scene: raceway exited with code $code"
   exit "$code"
   ;;
