@@ -145,7 +145,7 @@ struct CampaignProgress {
   }
 };
 
-void write_status(const std::string& dir, const std::string& only, const CampaignProgress& p,
+void write_status(const std::string& dir, const std::string& only_id, const CampaignProgress& p,
                   const scheduler::DispatchRecord& rec, int groups, int ranks) {
   io::JsonObject status, scenes;
   for (const scheduler::JobResult& r : p.finished) {
@@ -166,7 +166,7 @@ void write_status(const std::string& dir, const std::string& only, const Campaig
   status.add("scenes_this_call", std::move(scenes));
   // One file per call: a resumed campaign keeps the record of the earlier calls; an array task's
   // (--only) name holds its scene, so that tasks running at once never share one.
-  const std::string stem = only.empty() ? "campaign_status_" : fmt::format("campaign_status_{}_", only);
+  const std::string stem = only_id.empty() ? "campaign_status_" : fmt::format("campaign_status_{}_", only_id);
   int n = 0;
   while (fs::exists(fs::path(dir) / fmt::format("{}{}.json", stem, n))) ++n;
   io::write_json_file((fs::path(dir) / fmt::format("{}{}.json", stem, n)).string(), status);
@@ -292,7 +292,9 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   }
   if (rank == 0) {
     const scheduler::DispatchRecord record = dispatcher->join();
-    write_status(req.output_dir, req.only, progress, record, g.group_count, g.world_size);
+    const int only = only_scene(c, req.only);  // validated by prepare()
+    write_status(req.output_dir, only < 0 ? "" : c.scenes[static_cast<std::size_t>(only)].id, progress, record,
+                 g.group_count, g.world_size);
     const std::size_t finished = progress.done;
     spdlog::info("campaign: {} of {} scenes done, {} failed, in {} ({} groups; busy {:.1f} s, waiting for the "
                  "dispatcher {:.3f} s, idle at the end {:.1f} s)", finished, progress.total, progress.failed,

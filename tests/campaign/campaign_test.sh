@@ -242,6 +242,7 @@ slurm_array)
   kill -USR1 $t2
   wait $t2; rc=$?
   [[ $rc == 4 ]] || fail "task 2 after SIGUSR1: exit $rc, expected 4: $(tail -3 "$work/t2.log")"
+  grep -q '"exit_code": 4' "$work/c/campaign_status_s002_0.json" || fail "s002's record: $(cat "$work/c/"campaign_status_*)"
   (task 3 "$mpiexec -np 2") > "$work/t3.log" 2>&1 || fail "task 3: $(tail -3 "$work/t3.log")"
   [[ -f "$work/c/campaign_table.csv" ]] && fail "an array task wrote the table"
   # The aggregation step: s001 (killed) and s002 (stopped) again, with a new aggregation step.
@@ -276,6 +277,18 @@ for a, b in zip(ref, got):
         print(f"{a['scene']} {k}: one allocation {a[k]}, array {b[k]}"); bad += 1
 sys.exit(1 if bad else 0)
 PY
+  # A scene that fails twice (its wall-clock budget) is recorded and not submitted again; the
+  # aggregation step writes the table with it and exits 1.
+  failing=$source_dir/tests/campaign/failing_campaign.toml
+  for i in 0 1; do
+    (exec env SLURM_ARRAY_TASK_ID=$i RACEWAY_ARRAY_STEP=task RACEWAY_LAUNCHER="" bash "$script" "$failing" "$work/f") \
+      > "$work/f$i.log" 2>&1
+  done
+  RACEWAY_ARRAY_STEP=report RACEWAY_SLURM_SCRIPT=$script bash "$script" "$failing" "$work/f" > "$work/rf.log" 2>&1 \
+    && fail "aggregation with a failed scene exited 0"
+  [[ $(wc -l < "$work/sbatch_args") == 4 ]] || fail "a failed scene was submitted again"
+  grep -q "(1 failed, 0 not finished)" "$work/rf.log" || fail "aggregation: $(cat "$work/rf.log")"
+  grep -q "^s001,.*,failed,2," "$work/f/campaign_table.csv" || fail "failed scene: $(cat "$work/f/campaign_table.csv")"
   ;;
 overrides)
   "$raceway" run --set scene.end_time="20 ms" --set 'inner_ring.speed="2000 rpm"' -o "$work/o.h5" \
