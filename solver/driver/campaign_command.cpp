@@ -175,8 +175,6 @@ void write_status(const std::string& dir, const std::string& only_id, const Camp
 /// The table and plots of DIR (io/report/campaign_table.py); 0 on success.
 int make_table(const std::string& dir) {
   const char* py = std::getenv("RACEWAY_PYTHON");
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // for `raceway report` of spatial scenes
   // Beside the report's script (io/report/CMakeLists.txt: share/raceway/report of the build or install).
   const std::string report = io::report_script_path();
   if (report.empty()) {
@@ -184,7 +182,7 @@ int make_table(const std::string& dir) {
     return 1;
   }
   const std::string command =
-      fmt::format("RACEWAY_EXECUTABLE='{}' '{}' '{}' '{}'", ec ? "" : self.string(), py && *py ? py : "/usr/bin/python3",
+      fmt::format("'{}' '{}' '{}'", py && *py ? py : "/usr/bin/python3",
                   (fs::path(report).parent_path() / "campaign_table.py").string(), dir);
   const int status = std::system(command.c_str());
   if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
