@@ -6,46 +6,71 @@
 Reads DIR/campaign.json (the scenes, their axis values and settling times, written by raceway) and
 every DIR/<id>.h5, and writes DIR/campaign_table.csv and DIR/campaign_table.json (one row per scene:
 the swept values as given and in SI, the metrics over the window after the settling time, the run's
-steps and wall time, its status and diagnosis) and DIR/plots/<metric>_vs_<axis>.png.
+steps and wall time, its status and diagnosis; the JSON also holds every column's unit) and
+DIR/plots/<metric>_vs_<axis>.png.
 
-Metrics, over the samples with t >= settling time:
-  cage_speed_rpm            mean cage angular speed about the bearing axis
-  cage_slip                 1 - mean cage speed / mean epicyclic (kinematic) cage speed
-  cage_whirl_radius_m       mean distance of the cage centre from the outer ring's centre (orbit)
-  cage_whirl_radius_std_m   its standard deviation (the spread of the orbit)
-  pocket_force_mean_n       mean normal force of the pocket contacts (every pocket and sample)
-  pocket_force_peak_n       the largest of them
-  max_element_load_mean_n   mean over samples of the largest rolling element's inner-race load
-Spatial scenes also get the cage-centroid metrics of `raceway report` (io/report/cage_metrics.cpp,
-seed 001 eq. 9) over the same window, when RACEWAY_EXECUTABLE names the raceway executable (raceway
-campaign sets it): vortex_radius_ratio, sigma_v, whirl_frequency_hz, pocket_force_rms_n (RMS net
-circumferential pocket force) and power_loss_w (mean total).
-Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/matplotlib missing.
+The metrics are those of `raceway report` (report_summary.summarize over the same window, planar
+and spatial alike: one definition of the cage slip, the vortex metrics of seed 001 eq. 9, the
+pocket impacts and forces, the power loss), plus the cage's orbit about the outer ring's centre;
+UNITS below lists every column. Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/matplotlib missing.
 """
 import csv
 import glob
 import json
+import math
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 try:
     import numpy as np
+    import report_metrics as rm
     from raceway_output import RacewayOutput
+    from report_data import read_run
+    from report_summary import summarize
 except ImportError as e:  # pragma: no cover
     print(f"campaign_table: {e}", file=sys.stderr)
     sys.exit(3)
 
-METRICS = ["cage_speed_rpm", "cage_slip", "cage_whirl_radius_m", "cage_whirl_radius_std_m", "pocket_force_mean_n",
-           "pocket_force_peak_n", "max_element_load_mean_n"]
-RPM = 60.0 / (2.0 * np.pi)
-#: The campaign file's metric names (campaign.metrics) and their columns.
+#: Every metric column (in the table's order), its unit and meaning; over t >= the settling time.
+UNITS = {
+    "cage_speed_rpm": ("rpm", "mean cage angular speed about the bearing axis"),
+    "cage_slip": ("1", "1 - mean cage speed / mean kinematic cage speed at the loaded contact angle "
+                       "(spatial: cage/rolling_speed; planar: epicyclic from the rings' speeds)"),
+    "cage_whirl_radius_m": ("m", "mean distance of the cage centre from the outer ring's centre (the orbit)"),
+    "cage_whirl_radius_std_m": ("m", "its standard deviation (the spread of the orbit)"),
+    "vortex_radius_ratio": ("1", "(max - min) / mean distance of the cage centre from its mean (seed 001 eq. 9)"),
+    "sigma_v": ("1", "vortex velocity deviation ratio: std / mean of the cage centre's speed (seed 001 eq. 9)"),
+    "whirl_frequency_hz": ("Hz", "mean rate of the cage centre's angle about its mean centre"),
+    "impacts_front_per_rev": ("1/rev", "pocket impacts on the front bars per revolution of the driven ring"),
+    "impacts_rear_per_rev": ("1/rev", "pocket impacts on the rear bars per revolution of the driven ring"),
+    "pocket_force_mean_n": ("N", "mean normal force of the pocket contacts (every pocket and sample)"),
+    "pocket_force_peak_n": ("N", "the largest of them"),
+    "pocket_force_rms_n": ("N", "RMS pocket force: spatial, net circumferential per pocket; planar, of the bars' "
+                                "normal forces (front and rear)"),
+    "pocket_force_front_peak_n": ("N", "largest front-bar force"),
+    "pocket_force_rear_peak_n": ("N", "largest rear-bar force"),
+    "max_element_load_mean_n": ("N", "mean over samples of the largest rolling element's inner-race load"),
+    "element_load_min_n": ("N", "smallest inner-race load of any rolling element in the window"),
+    "element_load_max_n": ("N", "largest inner-race load of any rolling element in the window"),
+    "power_loss_w": ("W", "mean total power loss of the contacts (when the output has it)"),
+    "window_revolutions": ("rev", "revolutions of the driven ring relative to the other in the window"),
+    "window_samples": ("1", "output samples in the window"),
+    "steps": ("1", "integration steps of the whole run"),
+    "wall_time_s": ("s", "wall time of the whole run (the last call, when resumed)"),
+}
+METRICS = [m for m in UNITS if m not in ("window_revolutions", "window_samples", "steps", "wall_time_s")]
+#: The campaign file's metric names (campaign.metrics; solver/driver/campaign_file.cpp) and their columns.
 COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
               "cage_whirl_radius": ["cage_whirl_radius_m", "cage_whirl_radius_std_m"],
-              "pocket_force": ["pocket_force_mean_n", "pocket_force_peak_n"],
-              "max_element_load": ["max_element_load_mean_n"], "steps": ["steps"], "wall_time": ["wall_time_s"]}
+              "vortex": ["vortex_radius_ratio", "sigma_v", "whirl_frequency_hz"],
+              "impacts": ["impacts_front_per_rev", "impacts_rear_per_rev"],
+              "pocket_force": ["pocket_force_mean_n", "pocket_force_peak_n", "pocket_force_rms_n",
+                               "pocket_force_front_peak_n", "pocket_force_rear_peak_n"],
+              "max_element_load": ["max_element_load_mean_n"],
+              "element_load_range": ["element_load_min_n", "element_load_max_n"],
+              "power_loss": ["power_loss_w"], "steps": ["steps"], "wall_time": ["wall_time_s"]}
 
 
 def _axial(w):
@@ -54,96 +79,72 @@ def _axial(w):
     return w if w.ndim == 1 else w[:, 2]
 
 
-def _epicyclic(out, params):
-    if "cage/epicyclic_speed" in out:
-        return np.asarray(out["cage/epicyclic_speed"], dtype=float)
-    ratio = params["bearing.roller_diameter"]["value"] / params["bearing.pitch_diameter"]["value"]
-    wi, wo = _axial(out["inner_ring/angular_velocity"]), _axial(out["outer_ring/angular_velocity"])
-    return 0.5 * (wi * (1 - ratio) + wo * (1 + ratio))
+def _number(value):
+    return float(value) if isinstance(value, (int, float)) and math.isfinite(value) else None
 
 
-def _segment_kinds(out, word):
-    return [k for k in out.segment_kinds() if word in k]
-
-
-def _forces(out, kinds, keep):
-    blocks = [np.asarray(out[f"segments/{k}/normal_force"], dtype=float)[keep] for k in kinds]
-    return np.concatenate(blocks, axis=1) if blocks else np.zeros((int(keep.sum()), 0))
-
-
-def _element_loads(out, keep):
-    """[T x elements]: each rolling element's inner-race normal force (its segments summed)."""
-    kinds = [k for k in out.segment_kinds() if "inner" in k and ("groove" in k or "race" in k)]
-    if not kinds:
-        return np.zeros((int(keep.sum()), 0))
-    kind = kinds[0]
-    force = np.asarray(out[f"segments/{kind}/normal_force"], dtype=float)[keep]
-    if f"segments/{kind}/ball" in out:
-        owner = np.asarray(out[f"segments/{kind}/ball"]).astype(int).ravel()
-        loads = np.zeros((force.shape[0], owner.max() + 1))
-        for j, b in enumerate(owner):
-            loads[:, b] += force[:, j]
-        return loads
-    return force
+def _pocket_columns(summary, window_revolutions):
+    """Impacts per revolution (the report's contact events: runs of samples above its threshold on one
+    bar of one pocket, the same runs its impact markers mark), RMS and peaks of the bar forces."""
+    p = summary.get("pocket_forces")
+    if not p:
+        return {}
+    front, rear = p["front"], p["rear"]
+    rms = p.get("rms_circumferential_force_n")
+    if rms is None:
+        rms = math.sqrt(0.5 * (front["rms_n"] ** 2 + rear["rms_n"] ** 2))
+    per_rev = (lambda n: n / window_revolutions) if window_revolutions > 0 else (lambda n: None)
+    return {"impacts_front_per_rev": per_rev(front["events"]), "impacts_rear_per_rev": per_rev(rear["events"]),
+            "pocket_force_rms_n": rms, "pocket_force_front_peak_n": front["peak_n"],
+            "pocket_force_rear_peak_n": rear["peak_n"]}
 
 
 def scene_metrics(path, settling_time):
-    """The metrics of one output file over t >= settling_time (a dict), and its summary."""
+    """The metrics of one output file over t >= settling_time (a dict), and its run summary."""
+    run = read_run(path)
+    report, _ = summarize(run, settling_time)
+    w = rm.select_window(run.time, settling_time)
     with RacewayOutput(path) as out:
-        t = np.asarray(out["time"], dtype=float)
-        keep = t >= settling_time - 1e-12 * max(1.0, abs(settling_time))
         summary = out.summary
-        params = summary.get("scene_parameters", {})
-        cage = _axial(out["cage/angular_velocity"])[keep]
-        epi = _epicyclic(out, params)[keep]
+        keep = np.zeros(len(run.time), dtype=bool)
+        keep[w.slice] = True
         cage_xy = np.asarray(out["cage/position"], dtype=float)[keep][:, :2]
         ring_xy = np.asarray(out["outer_ring/position"], dtype=float)[keep][:, :2]
-        radius = np.hypot(*(cage_xy - ring_xy).T)
-        pocket = _forces(out, _segment_kinds(out, "pocket") + _segment_kinds(out, "cage_bar"), keep)
-        loads = _element_loads(out, keep)
-        m = {
-            "cage_speed_rpm": float(np.mean(cage) * RPM),
-            "cage_slip": float(1.0 - np.mean(cage) / np.mean(epi)) if np.mean(epi) != 0 else float("nan"),
-            "cage_whirl_radius_m": float(np.mean(radius)),
-            "cage_whirl_radius_std_m": float(np.std(radius)),
-            "pocket_force_mean_n": float(np.mean(pocket)) if pocket.size else 0.0,
-            "pocket_force_peak_n": float(np.max(pocket)) if pocket.size else 0.0,
-            "max_element_load_mean_n": float(np.mean(np.max(loads, axis=1))) if loads.size else 0.0,
-            "samples": int(keep.sum()),
-        }
+        relative = np.abs(_axial(out["inner_ring/angular_velocity"]) - _axial(out["outer_ring/angular_velocity"]))
+        pocket = [np.asarray(out[f"segments/{k}/normal_force"], dtype=float)[keep] for k in out.segment_kinds()
+                  if "pocket" in k or "cage_bar" in k]
+    radius = np.hypot(*(cage_xy - ring_xy).T)
+    pocket = np.concatenate(pocket, axis=1) if pocket else np.zeros((int(keep.sum()), 0))
+    revolutions = float(rm.time_mean(run.time, relative, w)) * w.length / (2 * math.pi)
+    cs, centroid, loads = report["cage_speed"], report["cage_centroid"], run.element_load[w.slice]
+    m = {
+        "cage_speed_rpm": cs["mean_rpm"],
+        "cage_slip": cs.get("slip_rolling", cs["slip"]),
+        "cage_whirl_radius_m": float(np.mean(radius)),
+        "cage_whirl_radius_std_m": float(np.std(radius)),
+        "vortex_radius_ratio": _number(centroid["vortex_radius_ratio"]),
+        "sigma_v": _number(centroid["sigma_v"]),
+        "whirl_frequency_hz": _number(centroid["whirl_frequency_hz"]),
+        "pocket_force_mean_n": float(np.mean(pocket)) if pocket.size else 0.0,
+        "pocket_force_peak_n": float(np.max(pocket)) if pocket.size else 0.0,
+        "max_element_load_mean_n": float(np.mean(np.max(loads, axis=1))) if loads.size else 0.0,
+        "element_load_min_n": float(np.min(loads)) if loads.size else 0.0,
+        "element_load_max_n": float(np.max(loads)) if loads.size else 0.0,
+        "power_loss_w": _number(report.get("power_loss", {}).get("total_mean_w")),
+        "window_revolutions": revolutions,
+        "samples": w.samples,
+    }
+    m.update(_pocket_columns(report, revolutions))
     return m, summary
 
 
-SPATIAL_METRICS = ["vortex_radius_ratio", "sigma_v", "whirl_frequency_hz", "pocket_force_rms_n", "power_loss_w"]
-
-
-def report_metrics(folder, sid, settling_time):
-    """`raceway report --no-plots` of a spatial scene over t >= settling_time: its cage-centroid
-    metrics, or {} without RACEWAY_EXECUTABLE (a failed report is an error)."""
-    exe = os.environ.get("RACEWAY_EXECUTABLE")
-    if not exe:
-        return {}
-    out = os.path.join(folder, "reports", sid)
-    # Run from a rank of mpirun: the child must not take mpirun's environment for its own (its
-    # MPI_Init would fail), so it starts as a singleton.
-    env = {k: v for k, v in os.environ.items()
-           if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "ORTE_")) or k.startswith("OMPI_ALLOW_RUN_AS_ROOT")}
-    subprocess.run([exe, "report", os.path.join(folder, sid + ".h5"), "-o", out, "--no-plots",
-                    "--window-start", repr(settling_time)], check=True, capture_output=True, env=env)
-    with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
-        r = json.load(f)
-    centroid = r["cage_centroid"]
-    return {"vortex_radius_ratio": centroid["vortex_radius_ratio"], "sigma_v": centroid["sigma_v"],
-            "whirl_frequency_hz": centroid["whirl_frequency_hz"],
-            "pocket_force_rms_n": r.get("pocket_forces", {}).get("rms_circumferential_force_n"),
-            "power_loss_w": r.get("power_loss", {}).get("total_mean_w")}
-
-
 def _statuses(folder):
-    """The latest exit code and diagnosis of every scene from DIR/campaign_status_*.json."""
+    """The latest exit code and diagnosis of every scene from DIR/campaign_status_*.json: one file per
+    call of a whole campaign (campaign_status_N.json) or of an array task (campaign_status_<id>_N.json),
+    the later calls' last."""
     found = {}
-    for path in sorted(glob.glob(os.path.join(folder, "campaign_status_*.json")),
-                       key=lambda p: int(p.rsplit("_", 1)[1].split(".")[0])):
+    paths = glob.glob(os.path.join(folder, "campaign_status_*.json"))
+    for path in sorted(paths, key=lambda p: (os.path.getmtime(p), int(p.rsplit("_", 1)[1].split(".")[0]))):
         with open(path, encoding="utf-8") as f:
             found.update(json.load(f).get("scenes_this_call", {}))
     return found
@@ -166,9 +167,8 @@ def build_table(folder):
                 manifest.setdefault("axis_units", {})[name] = params.get(key, {}).get("unit", "")
                 value = params.get(key, {}).get("value")
                 row[f"{name}_si"] = value if isinstance(value, (int, float)) else None
-            row.update({k: metrics[k] for k in METRICS})
-            if summary.get("model_kind") == "spatial":
-                row.update(report_metrics(folder, sid, scene["settling_time_s"]))
+            row.update({k: metrics.get(k) for k in METRICS})
+            row["window_revolutions"] = metrics["window_revolutions"]
             row["window_samples"] = metrics["samples"]
             row["steps"] = summary.get("steps")
             row["wall_time_s"] = summary.get("wall_time_s")
@@ -189,17 +189,18 @@ def metric_columns(manifest):
 
 def write_table(folder, manifest, rows):
     metrics, run = metric_columns(manifest)
-    if any(k in r for r in rows for k in SPATIAL_METRICS):
-        metrics = metrics + SPATIAL_METRICS
     columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + metrics + \
-        ["window_samples"] + run + ["status", "attempts", "diagnosis"]
+        ["window_revolutions", "window_samples"] + run + ["status", "attempts", "diagnosis"]
+    units = {c: UNITS[c][0] for c in columns if c in UNITS}
+    units.update({f"{a}_si": manifest.get("axis_units", {}).get(a, "") for a in manifest["axes"]})
     with open(os.path.join(folder, "campaign_table.csv"), "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
         for r in rows:
             w.writerow({k: r.get(k, "") for k in columns})
     with open(os.path.join(folder, "campaign_table.json"), "w", encoding="utf-8") as f:
-        json.dump({"campaign": manifest["campaign"], "columns": columns, "rows": rows}, f, indent=1)
+        json.dump({"campaign": manifest["campaign"], "columns": columns, "units": units,
+                   "meaning": {c: UNITS[c][1] for c in columns if c in UNITS}, "rows": rows}, f, indent=1)
 
 
 def plot_trends(folder, manifest, rows):
@@ -213,8 +214,7 @@ def plot_trends(folder, manifest, rows):
     written = []
     for axis in axes:
         others = [a for a in axes if a != axis]
-        spatial = [m for m in SPATIAL_METRICS if any(m in r for r in done)]
-        for metric in metric_columns(manifest)[0] + spatial:
+        for metric in metric_columns(manifest)[0]:
             fig, ax = plt.subplots(figsize=(6, 4))
             groups = {}
             for r in done:
@@ -222,10 +222,11 @@ def plot_trends(folder, manifest, rows):
             for label, group in groups.items():
                 group = sorted(group, key=lambda r: r[f"{axis}_si"] if r[f"{axis}_si"] is not None else 0)
                 x = [r[f"{axis}_si"] for r in group]
-                ax.plot(x, [r[metric] for r in group], "o-", label=f"{others[0]} = {label}" if others else None)
+                y = [r[metric] if r.get(metric) is not None else np.nan for r in group]
+                ax.plot(x, y, "o-", label=f"{others[0]} = {label}" if others else None)
             unit = manifest.get("axis_units", {}).get(axis, "")
             ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}){f' [{unit}]' if unit else ''}")
-            ax.set_ylabel(metric)
+            ax.set_ylabel(f"{metric} [{UNITS[metric][0]}]")
             ax.set_title(f"{manifest['campaign']}: {metric}")
             if others:
                 ax.legend(fontsize="small")

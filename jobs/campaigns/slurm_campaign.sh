@@ -30,16 +30,10 @@ self=${self:-$0}
 resume=()
 [[ -f "$output/campaign.json" ]] && resume=(--resume)
 echo "raceway campaign $campaign -> $output (job $job_number of at most $max_jobs, ${SLURM_JOB_ID:-no Slurm job id}) ${resume[*]}"
+# shellcheck source=jobs/campaigns/slurm_common.sh
+source "$(dirname "$self")/slurm_common.sh"
 # shellcheck disable=SC2086  # the launcher is a command with its options
-$launcher "$raceway" campaign "$campaign" -o "$output" "${resume[@]}" &
-child=$!
-trap 'echo "SIGUSR1: asking the campaign to checkpoint and stop"; kill -USR1 $child' USR1
-# wait returns early (status > 128) when the trap runs: wait until the launcher has really ended.
-while true; do
-  wait $child
-  code=$?
-  kill -0 $child 2> /dev/null || break
-done
+run_passing_usr1 $launcher "$raceway" campaign "$campaign" -o "$output" "${resume[@]}"
 echo "raceway campaign exited with code $code"
 if [[ $code == 4 ]]; then
   if (( job_number >= max_jobs )); then

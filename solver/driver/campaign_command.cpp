@@ -15,12 +15,16 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "io/h5/output_lock.hpp"
 #include "io/json/summary_json.hpp"
 #include "io/report/report.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "scheduler/campaign_dispatch.hpp"
 #include "solver/driver/campaign_file.hpp"
+#include "solver/driver/campaign_plan.hpp"
+#include "solver/driver/plan_command.hpp"
 #include "solver/driver/scene_on_ranks.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
 #include "solver/run/run.hpp"
@@ -63,13 +67,17 @@ void write_manifest(const Campaign& c, const std::string& dir) {
     one.add("overrides", std::move(overrides));
     one.add("end_time_s", s.end_time);
     one.add("settling_time_s", s.settling_time);
+    one.add("predicted_steps", s.predicted_steps);
     one.add("predicted_cost", s.predicted_cost);
     scenes.add(s.id, std::move(one));
   }
   m.add("axes", std::move(axes));
   m.add("metrics", std::move(metrics));
   m.add("scenes", std::move(scenes));
-  io::write_json_file((fs::path(dir) / "campaign.json").string(), m);
+  // Array tasks write it at the same time: each through a file of its own, renamed (atomic).
+  const fs::path own = fs::path(dir) / fmt::format(".campaign_{}.json", getpid());
+  io::write_json_file(own.string(), m);
+  fs::rename(own, fs::path(dir) / "campaign.json");
 }
 
 /// One scene on the ranks of the group; the leader's exit code and diagnosis.
@@ -137,8 +145,8 @@ struct CampaignProgress {
   }
 };
 
-void write_status(const std::string& dir, const CampaignProgress& p, const scheduler::DispatchRecord& rec,
-                  int groups, int ranks) {
+void write_status(const std::string& dir, const std::string& only_id, const CampaignProgress& p,
+                  const scheduler::DispatchRecord& rec, int groups, int ranks) {
   io::JsonObject status, scenes;
   for (const scheduler::JobResult& r : p.finished) {
     io::JsonObject one;
@@ -156,17 +164,17 @@ void write_status(const std::string& dir, const CampaignProgress& p, const sched
                                                     {"group_idle_at_end_s", rec.group_idle_at_end}};
   for (const auto& [name, value] : seconds) status.add(name, value);
   status.add("scenes_this_call", std::move(scenes));
-  // One file per call: a resumed campaign keeps the record of the earlier calls.
+  // One file per call: a resumed campaign keeps the record of the earlier calls; an array task's
+  // (--only) name holds its scene, so that tasks running at once never share one.
+  const std::string stem = only_id.empty() ? "campaign_status_" : fmt::format("campaign_status_{}_", only_id);
   int n = 0;
-  while (fs::exists(fs::path(dir) / fmt::format("campaign_status_{}.json", n))) ++n;
-  io::write_json_file((fs::path(dir) / fmt::format("campaign_status_{}.json", n)).string(), status);
+  while (fs::exists(fs::path(dir) / fmt::format("{}{}.json", stem, n))) ++n;
+  io::write_json_file((fs::path(dir) / fmt::format("{}{}.json", stem, n)).string(), status);
 }
 
 /// The table and plots of DIR (io/report/campaign_table.py); 0 on success.
 int make_table(const std::string& dir) {
   const char* py = std::getenv("RACEWAY_PYTHON");
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);  // for `raceway report` of spatial scenes
   // Beside the report's script (io/report/CMakeLists.txt: share/raceway/report of the build or install).
   const std::string report = io::report_script_path();
   if (report.empty()) {
@@ -174,18 +182,29 @@ int make_table(const std::string& dir) {
     return 1;
   }
   const std::string command =
-      fmt::format("RACEWAY_EXECUTABLE='{}' '{}' '{}' '{}'", ec ? "" : self.string(), py && *py ? py : "/usr/bin/python3",
+      fmt::format("'{}' '{}' '{}'", py && *py ? py : "/usr/bin/python3",
                   (fs::path(report).parent_path() / "campaign_table.py").string(), dir);
   const int status = std::system(command.c_str());
   if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
   return status == 0 ? 0 : 1;
 }
 
+/// The scene --only names: its index in sweep order (a Slurm array task id) or its id; -1 for none.
+int only_scene(const Campaign& c, const std::string& only) {
+  if (only.empty()) return -1;
+  for (std::size_t i = 0; i < c.scenes.size(); ++i)
+    if (c.scenes[i].id == only || std::to_string(i) == only) return static_cast<int>(i);
+  throw solver::OptionsError(fmt::format("--only {}: no such scene in {} (indices 0..{} in sweep order, or ids s000..{})",
+                                         only, c.file, c.scenes.size() - 1, c.scenes.back().id));
+}
+
 /// Rank 0: the campaign, the output folder and the scenes left to run; throws on bad input.
 std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
+  const int only = only_scene(c, req.only);
   fs::create_directories(req.output_dir);
   std::vector<int> left;
   for (std::size_t i = 0; i < c.scenes.size(); ++i) {
+    if (only >= 0 && static_cast<int>(i) != only) continue;
     const std::string out = output_of(req.output_dir, c.scenes[i]);
     const bool started = fs::exists(out) || fs::exists(out + ".partial");
     if (started && !req.resume)
@@ -198,19 +217,52 @@ std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
   return left;
 }
 
+/// The predicted speed-up of the campaign's base scene: raceway plan's (plan::predicted_speedup over
+/// the fidelity table's rows of the scene file's name).
+SpeedupPrediction planned_speedup(const Campaign& c) {
+  const std::string scene = fs::path(c.scene_path).stem().string();
+  std::vector<plan::FidelityRow> rows;
+  try {
+    for (auto& r : plan::read_fidelity_table(plan::fidelity_table_path()))
+      if (r.scene == scene) rows.push_back(std::move(r));
+  } catch (const std::exception& e) {
+    spdlog::warn("campaign: no predicted speed-up ({}): 1 rank per scene", e.what());
+  }
+  return [rows](int ranks) { return plan::predicted_speedup(rows, ranks); };
+}
+
+/// Rank 0: the ranks per scene. --only: all of them on its scene; fixed by the campaign file; or
+/// chosen from the predicted speed-up and the scenes' predicted costs (logged with the reasons).
+int group_size(const Campaign& c, const CampaignRequest& req, const std::vector<int>& left, int world) {
+  if (!req.only.empty()) return world;
+  if (c.ranks_per_scene > 0) return c.ranks_per_scene;
+  std::vector<double> costs;
+  for (const int j : left) costs.push_back(c.scenes[static_cast<std::size_t>(j)].predicted_cost);
+  const GroupSizeChoice choice = choose_group_size(world, costs, planned_speedup(c));
+  spdlog::info("campaign: ranks per scene not fixed by {}; from the predicted speed-up of {} ({}):", c.file,
+               fs::path(c.scene_path).stem().string(), plan::fidelity_table_path());
+  for (const std::string& line : choice.reasons) spdlog::info("campaign:   {}", line);
+  return choice.ranks_per_group;
+}
+
 int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   std::vector<int> left;
-  int code = 0;
-  if (rank == 0) code = exit_code_of([&] {
+  int decided[2] = {0, 1};  // exit code, ranks per scene
+  int world = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &world);
+  if (rank == 0) decided[0] = exit_code_of([&] {
       left = prepare(c, req);
-      spdlog::info("campaign '{}': {} scenes, {} finished, {} to run, into {}", c.name, c.scenes.size(),
-                   c.scenes.size() - left.size(), left.size(), req.output_dir);
+      spdlog::info("campaign '{}': {} scenes, {} finished, {} to run{}, into {}", c.name, c.scenes.size(),
+                   c.scenes.size() - left.size(), left.size(), req.only.empty() ? "" : " (--only " + req.only + ")",
+                   req.output_dir);
+      decided[1] = group_size(c, req, left, world);
       return 0;
     });
-  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (code != 0) return code;
+  MPI_Bcast(decided, 2, MPI_INT, 0, MPI_COMM_WORLD);
+  if (decided[0] != 0) return decided[0];
+  int code = 0;
   install_stop_signals();
-  scheduler::CampaignGroups g = scheduler::split_campaign_groups(MPI_COMM_WORLD, c.ranks_per_scene);
+  scheduler::CampaignGroups g = scheduler::split_campaign_groups(MPI_COMM_WORLD, decided[1]);
   CampaignProgress progress{c, 0, 0, 0, 0, seconds_now(), 0, 0, {}};
   std::unique_ptr<scheduler::CampaignDispatcher> dispatcher;
   if (rank == 0) {
@@ -238,7 +290,9 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   }
   if (rank == 0) {
     const scheduler::DispatchRecord record = dispatcher->join();
-    write_status(req.output_dir, progress, record, g.group_count, g.world_size);
+    const int only = only_scene(c, req.only);  // validated by prepare()
+    write_status(req.output_dir, only < 0 ? "" : c.scenes[static_cast<std::size_t>(only)].id, progress, record,
+                 g.group_count, g.world_size);
     const std::size_t finished = progress.done;
     spdlog::info("campaign: {} of {} scenes done, {} failed, in {} ({} groups; busy {:.1f} s, waiting for the "
                  "dispatcher {:.3f} s, idle at the end {:.1f} s)", finished, progress.total, progress.failed,
@@ -246,7 +300,8 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     code = g_stop_signal != 0 ? 4 : progress.failed > 0 ? 1 : 0;
     if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
     if (finished < progress.total && code == 0) code = 1;
-    if (code == 0) code = make_table(req.output_dir);
+    // An array task (--only) leaves the table to `raceway campaign report DIR` after the last one.
+    if (code == 0 && req.only.empty()) code = make_table(req.output_dir);
   }
   scheduler::free_campaign_groups(g);
   scheduler::broadcast_waiting_idle(code, MPI_COMM_WORLD);
@@ -254,13 +309,25 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
 }
 
 /// `raceway campaign check FILE`: the scenes the campaign would run.
-int check_campaign(const Campaign& c) {
-  std::printf("campaign '%s': %zu scenes from %s (%s sweep), %d rank(s) per scene\n", c.name.c_str(), c.scenes.size(),
-              c.scene_path.c_str(), c.sweep.c_str(), c.ranks_per_scene);
+int check_campaign(const Campaign& c, int ranks) {
+  const std::string per_scene =
+      c.ranks_per_scene > 0 ? fmt::format("{} rank(s) per scene", c.ranks_per_scene) : "ranks per scene not fixed";
+  std::printf("campaign '%s': %zu scenes from %s (%s sweep), %s\n", c.name.c_str(), c.scenes.size(),
+              c.scene_path.c_str(), c.sweep.c_str(), per_scene.c_str());
+  std::puts("  (predicted for one rank from the speed: steps and wall time, solver/driver/campaign_plan.hpp)");
   for (const CampaignScene& s : c.scenes) {
     std::string values;
     for (std::size_t a = 0; a < c.axes.size(); ++a) values += fmt::format("  {}={}", c.axes[a].name, s.axis_values[a]);
-    std::printf("  %s  %.6g s (settling %.6g s)%s\n", s.id.c_str(), s.end_time, s.settling_time, values.c_str());
+    std::printf("  %s  %.6g s (settling %.6g s)  predicted %.0f steps, %.1f s%s\n", s.id.c_str(), s.end_time,
+                s.settling_time, s.predicted_steps, s.predicted_cost, values.c_str());
+  }
+  if (ranks > 0 && c.ranks_per_scene == 0) {
+    std::vector<double> costs;
+    for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
+    std::printf("on %d ranks, from the predicted speed-up of %s (%s):\n", ranks,
+                fs::path(c.scene_path).stem().string().c_str(), plan::fidelity_table_path().c_str());
+    for (const std::string& line : choose_group_size(ranks, costs, planned_speedup(c)).reasons)
+      std::printf("  %s\n", line.c_str());
   }
   std::puts("campaign OK");
   return 0;
@@ -275,6 +342,11 @@ CLI::App* add_campaign_command(CLI::App& app, CampaignRequest& request) {
   c->add_option("-o,--output-dir", request.output_dir, "folder of the scenes' outputs, the table and the plots");
   c->add_flag("--resume", request.resume, "skip finished scenes, resume interrupted ones from their checkpoints");
   c->add_flag("--check", request.check, "validate the campaign and list its scenes (like campaign check FILE)");
+  c->add_option("--only", request.only,
+                "run one scene, its index in sweep order (a Slurm array task id) or its id (s003), on all ranks; "
+                "no table: `campaign report DIR` makes it (jobs/campaigns/slurm_array.sh)");
+  c->add_option("--ranks", request.check_ranks, "with check: the ranks per scene a campaign on N ranks would choose")
+      ->check(CLI::PositiveNumber);
   return c;
 }
 
@@ -301,7 +373,7 @@ int campaign_command(const CampaignRequest& req) {
       code = exit_code_for(e);
     }
   }
-  if (code != 0 || check) return rank == 0 && code == 0 ? check_campaign(c) : code;
+  if (code != 0 || check) return rank == 0 && code == 0 ? check_campaign(c, req.check_ranks) : code;
   if (req.output_dir.empty()) {
     if (rank == 0) spdlog::error("campaign: no output folder; give -o DIR");
     return 2;

@@ -1,5 +1,5 @@
-// `raceway campaign FILE -o DIR [--resume]`, `raceway campaign check FILE` and
-// `raceway campaign report DIR` (docs/campaigns.md).
+// `raceway campaign FILE -o DIR [--resume] [--only SCENE]`, `raceway campaign check FILE [--ranks N]`
+// and `raceway campaign report DIR` (docs/campaigns.md).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,6 +12,8 @@ struct CampaignRequest {
   std::vector<std::string> args;  ///< FILE, or check FILE, or report DIR
   std::string output_dir;
   bool resume = false, check = false;
+  std::string only;    ///< one scene (index in sweep order or id): a Slurm array task; no table
+  int check_ranks = 0;  ///< check: the group size a campaign on this many ranks would choose
 };
 
 /// Adds the campaign command to the command line; returns it (parsed: `*command`).

@@ -11,6 +11,7 @@
 
 #include "io/scene/scene_parser.hpp"
 #include "io/scene/units.hpp"
+#include "solver/driver/campaign_plan.hpp"
 
 namespace raceway::driver {
 
@@ -203,18 +204,22 @@ CampaignScene expand_scene(const Reader& r, const Campaign& c, const RunLength& 
     r.fail(len.line, "campaign.settling_time",
            fmt::format("scene {}: the settling time {:.6g} s is not shorter than the run ({:.6g} s)", s.id,
                        s.settling_time, s.end_time));
-  // The cost model of the dispatch order: integration steps grow with the revolutions turned (a
-  // few hundred per revolution) and the contacts; output with the samples.
+  // The dispatch order's cost: the measured relation of steps and wall time to speed.
   const double revolutions = s.end_time * omega / (2 * std::numbers::pi);
-  s.predicted_cost = revolutions * scene.bearing.rolling_elements + scene.scene.end_time / scene.scene.output_interval / 100;
+  const SceneCost cost = predict_scene_cost(revolutions, omega * 60 / (2 * std::numbers::pi), scene.bearing.rolling_elements);
+  s.predicted_steps = cost.steps;
+  s.predicted_cost = cost.wall_seconds;
   return s;
 }
 
 }  // namespace
 
 const std::vector<std::string>& known_campaign_metrics() {
-  static const std::vector<std::string> names{"cage_speed", "cage_slip",        "cage_whirl_radius", "pocket_force",
-                                              "max_element_load", "steps", "wall_time"};
+  // The table's column groups (io/report/campaign_table.py, COLUMNS_OF).
+  static const std::vector<std::string> names{"cage_speed",   "cage_slip",        "cage_whirl_radius",
+                                              "vortex",       "impacts",          "pocket_force",
+                                              "max_element_load", "element_load_range", "power_loss",
+                                              "steps",        "wall_time"};
   return names;
 }
 

@@ -8,7 +8,7 @@
 //   revolutions = 20                           # of the driven ring; or end_time = "0.5 s"
 //   settling_revolutions = 10                  # skipped by the metrics; or settling_time = "0.2 s"
 //   samples_per_revolution = 600               # output interval (optional; else the scene's)
-//   ranks_per_scene = 1
+//   ranks_per_scene = 1                        # optional: else chosen from the predicted speed-up
 //   set = { "output.checkpoint_interval" = "20 ms" }   # overrides for every scene
 //   [[axis]]
 //   key = "inner_ring.speed"
@@ -37,13 +37,14 @@ struct CampaignScene {
   std::vector<std::string> axis_values;  ///< one per axis, as given
   std::vector<std::string> overrides;    ///< every --set of the scene, axis values and run length included
   double end_time = 0, settling_time = 0;  ///< s
-  double predicted_cost = 0;               ///< for the order of dispatch: simulated revolutions x samples
+  double predicted_steps = 0;              ///< integration steps (solver/driver/campaign_plan.hpp)
+  double predicted_cost = 0;               ///< one-rank wall time (s), for the order of dispatch
 };
 
 struct Campaign {
   std::string file, name, scene_path, sweep = "product";
   std::vector<std::string> metrics;
-  int ranks_per_scene = 1;
+  int ranks_per_scene = 0;  ///< 0: not fixed, chosen from the predicted speed-up at run time
   std::vector<CampaignAxis> axes;
   std::vector<CampaignScene> scenes;
   std::string base_text;  ///< the base scene's text

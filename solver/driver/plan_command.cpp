@@ -326,6 +326,15 @@ void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path
   }
 }
 
+std::string fidelity_table_path() { return RACEWAY_FIDELITY_TABLE; }
+
+double predicted_speedup(const std::vector<FidelityRow>& rows, int ranks) {
+  if (ranks == 1) return 1;
+  for (const auto& r : rows)
+    if (r.choice == "ranks" && r.option == std::to_string(ranks) && r.cost_ratio > 0) return 1 / r.cost_ratio;
+  return NAN;
+}
+
 CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
   auto* plan = app.add_subcommand("plan", "what each modelling choice of a scene costs and changes, and the cheapest "
                                           "settings meeting --target (measured data: perf/results/fidelity_table.csv)");
@@ -334,7 +343,7 @@ CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
   plan->add_option("--target", options.targets,
                    "QUANTITY=TOLERANCE, relative or with %: cage_speed, max_load (roller/ball loads), pocket_force; "
                    "repeatable");
-  options.table_path = RACEWAY_FIDELITY_TABLE;
+  options.table_path = fidelity_table_path();
   plan->add_option("--table", options.table_path, "the fidelity table")->capture_default_str();
   options.rank_table_path = RACEWAY_RANK_TABLE;
   plan->add_option("--rank-table", options.rank_table_path,

@@ -54,6 +54,15 @@ Target parse_target(const std::string& text);
 /// "combination" row replaces the prediction of its set of overrides by its measurement).
 Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets);
 
+/// The fidelity table of the source tree (perf/results/fidelity_table.csv), unless --table names another.
+std::string fidelity_table_path();
+
+/// The predicted speed-up of the scene whose rows are ROWS on RANKS ranks against one rank: the
+/// `ranks` rows of the fidelity table (perf/replay_model.py's prediction; 1 / their cost ratio),
+/// which `raceway plan` offers as options and `raceway campaign` sizes its groups by. The one
+/// function that says it: NaN when the table has no prediction for RANKS, 1 for one rank.
+double predicted_speedup(const std::vector<FidelityRow>& rows, int ranks);
+
 struct PlanOptions {
   std::string scene_path;
   std::vector<std::string> targets;
