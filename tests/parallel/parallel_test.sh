@@ -15,6 +15,12 @@
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
+#   output_disk_full: the parallel output (each rank writes the segment diagnostics it evaluated,
+#     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
+#     file-size limit lowered with prlimit) when the output is written: exit 1 within seconds,
+#     the failure (rank, file, dataset, system's reason) said by rank 0 and by rank 1, no crash.
+#   killed_worker: rank 1 is killed (SIGKILL) mid-run, with output written every few samples: the
+#     job ends (non-zero, no hang) and no rank is left behind.
 set -u
 case_name=${1:?case}
 raceway=${2:?raceway}
@@ -59,6 +65,9 @@ with h5py.File(sys.argv[1], "r") as f:
     sys.exit(0 if plans >= evaluations and g.attrs["ranks"] > 1 else 1)
 PY
   done
+  # Rank 0 writing the whole file (no MPI-IO).
+  mpi 2 run "$scene" -o "$work/serial2.h5" --serial-output
+  [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "--serial-output np 2: exit code $rc: $(tail -3 "$work/log")"
   # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
   mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0
   if [[ $rc -eq 0 ]]; then
@@ -124,7 +133,64 @@ stopped_worker() {
   [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
 }
 
+# The pid of rank $2 under the mpirun started as job $1 (empty if not found).
+rank_pid() {
+  local mpirun_pid victim=""
+  mpirun_pid=$(pgrep -P "$1" -f "$mpiexec" | head -n 1)
+  [[ -n "$mpirun_pid" ]] || mpirun_pid=$1
+  while read -r pid rank; do [[ "$rank" == "$2" ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
+  echo "$victim"
+}
+
+output_disk_full() {
+  sed -e 's/^end_time = .*/end_time = "30 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/disk.toml"
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/disk.toml" -o "$work/d.h5" --master-share 0 \
+    >"$work/log" 2>&1 &
+  local job=$!
+  # The first progress line: the layout is on disk, the rows are in memory until the end.
+  for _ in $(seq 400); do grep -q " s of " "$work/log" && break; sleep 0.05; done
+  local victim size
+  victim=$(rank_pid "$job" 1)
+  [[ -n "$victim" ]] || { fail "rank 1 not found"; kill "$job"; wait "$job"; return; }
+  size=$(stat -c %s "$work/d.h5.partial" 2>/dev/null || echo 0)
+  prlimit --pid "$victim" --fsize=$((size + 4096)) || fail "prlimit failed"
+  local start=$(date +%s)
+  wait "$job"
+  rc=$?
+  local elapsed=$(($(date +%s) - start))
+  echo "rank 1 limited to $((size + 4096)) bytes: exit $rc after $elapsed s"
+  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung; 134, 139: a crash)"
+  grep -q "rank 0 of 2: error: .*rank 1 of 2: writing the shared series of '.*d.h5.partial' failed: '/segments/.*File too large" "$work/log" ||
+    [[ $(grep -c "rank 1 of 2: writing the shared series of .*File too large" "$work/log") -ge 2 ]] ||
+    fail "the failure is not said by both ranks with the rank, file, dataset and reason: $(tail -5 "$work/log")"
+  grep -qiE "segmentation|signal 11|core dumped" "$work/log" && fail "crashed: $(tail -5 "$work/log")"
+  [[ -e "$work/d.h5" ]] && fail "d.h5 written although a rank could not write"
+}
+
+killed_worker() {
+  # Output every 0.1 ms with a flush every few samples (small buffer): a kill lands in or near a write.
+  sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/k.h5" >"$work/log" 2>&1 &
+  local job=$!
+  for _ in $(seq 100); do grep -q " s of " "$work/log" && break; sleep 0.2; done
+  local victim
+  victim=$(rank_pid "$job" 1)
+  [[ -n "$victim" ]] || { fail "rank 1 not found"; kill "$job"; wait "$job"; return; }
+  local start=$(date +%s)
+  kill -KILL "$victim"
+  wait "$job"
+  rc=$?
+  local elapsed=$(($(date +%s) - start))
+  echo "killed rank 1 (pid $victim): exit $rc after $elapsed s"
+  [[ $rc -ne 0 && $rc -ne 124 ]] || fail "exit code $rc (0: a silent success; 124: the job hung)"
+  [[ $elapsed -le 60 ]] || fail "took $elapsed s to end"
+  pgrep -f "$work/long.toml" >/dev/null && fail "a rank is left behind"
+  [[ -e "$work/k.h5" ]] && fail "k.h5 written by a failed job"
+}
+
 case "$case_name" in
+output_disk_full) output_disk_full ;;
+killed_worker) killed_worker ;;
 bitwise_planar) bitwise "$work/planar.toml" ;;
 bitwise_spatial) bitwise "$work/spatial.toml" ;;
 worker_failure) injected 1 ;;
