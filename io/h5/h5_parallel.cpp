@@ -2,6 +2,10 @@
 #include "io/h5/h5_parallel.hpp"
 
 #include <hdf5.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <cstring>
@@ -86,6 +90,18 @@ std::string write_entry(hid_t file, hid_t dxpl, const SharedRows& r, bool write)
   return error;
 }
 
+/// Why this process cannot add `bytes` to `file`: its file-size limit (RLIMIT_FSIZE, which a
+/// reservation beyond the end of the file does not check), a full disk; "" if it can.
+std::string no_room(const std::string& file, std::size_t bytes) {
+  struct rlimit limit {};
+  struct stat st {};
+  if (::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && ::stat(file.c_str(), &st) == 0 &&
+      static_cast<std::size_t>(st.st_size) + bytes > limit.rlim_cur)
+    return fmt::format("{} (this process's file-size limit is {} bytes, the file has {})", std::strerror(EFBIG),
+                       limit.rlim_cur, st.st_size);
+  return h5::reserve_disk(file, bytes);
+}
+
 /// The first failure over all ranks (the lowest failing rank's text), the same on every rank.
 std::string agree_on_error(MPI_Comm comm, int rank, const std::string& mine) {
   int failing[2] = {mine.empty() ? 1 << 30 : rank, rank}, lowest[2] = {0, 0};
@@ -115,6 +131,17 @@ std::string write_shared_rows(MPI_Comm comm, std::string& file, std::vector<Shar
       error = e.what();
     }
   }
+  // Every rank reserves the disk its part may take (the rows uncompressed, twice: the chunks are
+  // allocated filled, then stored again) before any rank writes: a full disk or a file-size limit
+  // on one rank is then said before the collective calls, inside which a rank that fails half-way
+  // would leave the others waiting.
+  std::size_t bytes = std::size_t{256} << 10;
+  for (const SharedRows& r : rows) bytes += 2 * r.rows * r.row_size * sizeof(double);
+  if (const std::string reason = error.empty() ? no_room(file, bytes) : ""; !reason.empty())
+    error = fmt::format("no room for the next {:.1f} MB: {}", static_cast<double>(bytes) / 1e6, reason);
+  if (const std::string before = agree_on_error(comm, rank, error.empty() ? "" : fmt::format(
+          "rank {} of {}: writing the shared series of '{}' failed: {}", rank, size, file, error)); !before.empty())
+    return before + "; nothing was written, the file keeps its last flush";
   h5::ErrorSilencer quiet;
   const Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   const Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);

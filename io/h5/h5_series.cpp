@@ -40,23 +40,6 @@ void fsync_file(const std::string& path) {
   (void)::close(fd);
 }
 
-// Reserves `bytes` of disk after the end of `path` (fallocate, FALLOC_FL_KEEP_SIZE: the size does not
-// change), so that a flush finds a full disk before it writes anything rather than half-way through
-// rewriting the file's metadata. "" when reserved or when the file system cannot reserve (then the
-// flush itself reports a full disk); else the system's reason.
-std::string reserve_disk(const std::string& path, std::size_t bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd < 0) return "";
-  struct stat st {};
-  std::string error;
-  if (::fstat(fd, &st) == 0 &&
-      ::fallocate(fd, FALLOC_FL_KEEP_SIZE, st.st_size, static_cast<off_t>(bytes)) != 0 && errno != EOPNOTSUPP &&
-      errno != ENOSYS)
-    error = std::strerror(errno);
-  (void)::close(fd);
-  return error;
-}
-
 // Gives back the reserved blocks past the end of the file (truncating to its own size).
 void release_disk(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
@@ -480,7 +463,7 @@ std::map<std::string, std::vector<double>> H5SeriesWriter::unwritten_rows() cons
 void H5SeriesWriter::reserve_for_flush() {
   // The buffered rows (at most: compressed they take less) and the metadata.
   const std::size_t bytes = buffered_bytes_ + (std::size_t{256} << 10);
-  if (const std::string error = reserve_disk(partial_path_, bytes); !error.empty()) {
+  if (const std::string error = h5::reserve_disk(partial_path_, bytes); !error.empty()) {
     const std::string message = fmt::format("H5SeriesWriter: no room to write the next {:.1f} MB of '{}': {}; {}",
                                             static_cast<double>(bytes) / 1e6, partial_path_, error,
                                             flushed_ ? "the file keeps the rows of its last flush"
