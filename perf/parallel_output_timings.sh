@@ -4,7 +4,7 @@
 # the scenes' default sampling, 1 and 2 ranks, 3 repeats each; one line per run with the machine's
 # load average (uptime). perf/results/output_notes.md, "Parallel output (MPI-IO)", reads the medians.
 #
-#   perf/parallel_output_timings.sh RACEWAY OUT_DIR [SCENES_DIR]
+#   [SCENES="..."] [REPEATS=3] [MODES="np1 np2_serial np2_parallel"] perf/parallel_output_timings.sh RACEWAY OUT_DIR [SCENES_DIR]
 set -eu
 raceway=${1:?raceway}
 out=${2:?output folder}
@@ -12,9 +12,9 @@ scenes=${3:-$(dirname "$0")/../jobs/scenes}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -p "$out"
 printf "scene\tranks\twriter\trepeat\twall_s\toutput_s\toutput_write_s\tload_1min\n"
-for scene in 6309_R3 qj215_validation seed002_40hz; do
-  for repeat in 1 2 3; do
-    for mode in np1 np2_serial np2_parallel; do
+for scene in ${SCENES:-6309_R3 qj215_validation seed002_40hz}; do
+  for repeat in $(seq 1 "${REPEATS:-3}"); do
+    for mode in ${MODES:-np1 np2_serial np2_parallel}; do
       case $mode in
         np1) cmd=("$raceway") ;;
         np2_serial) cmd=(mpirun -np 2 "$raceway") ;;

@@ -19,8 +19,8 @@
 #     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
 #     file-size limit lowered with prlimit) when the output is written: exit 1 (no hang), the
 #     failure (rank, file, system's reason) said by rank 0 and by rank 1, no crash.
-#   killed_worker: rank 1 is killed (SIGKILL) mid-run, with output written every few samples: the
-#     job ends (non-zero, no hang) and no rank is left behind.
+#   killed_worker: rank 1 is killed (SIGKILL) mid-run, holding rows of the parallel output: the job
+#     ends (non-zero, no hang) and no rank is left behind.
 set -u
 case_name=${1:?case}
 raceway=${2:?raceway}
@@ -102,6 +102,15 @@ ranks_of() {
   done
 }
 
+# The pid of rank $2 under the mpirun started as job $1 (empty if not found).
+rank_pid() {
+  local mpirun_pid victim=""
+  mpirun_pid=$(pgrep -P "$1" -f "$mpiexec" | head -n 1)
+  [[ -n "$mpirun_pid" ]] || mpirun_pid=$1
+  while read -r pid rank; do [[ "$rank" == "$2" ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
+  echo "$victim"
+}
+
 stopped_worker() {
   sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
   timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/s.h5" --rank-timeout 3 \
@@ -110,11 +119,9 @@ stopped_worker() {
   # Wait for the integration to start (the linear solver is announced just before), then stop rank 1.
   for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
   sleep 1
-  local mpirun_pid victim=""
-  mpirun_pid=$(pgrep -P "$job" -f "$mpiexec" | head -n 1)
-  [[ -n "$mpirun_pid" ]] || mpirun_pid=$job
-  while read -r pid rank; do [[ "$rank" == 1 ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
-  [[ -n "$victim" ]] || { fail "rank 1 not found under mpirun $mpirun_pid"; kill "$job"; wait "$job"; return; }
+  local victim
+  victim=$(rank_pid "$job" 1)
+  [[ -n "$victim" ]] || { fail "rank 1 not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
   local start=$(date +%s)
   kill -STOP "$victim"
   wait "$job"
@@ -131,15 +138,6 @@ stopped_worker() {
     kill -CONT "$victim"; kill -KILL "$victim"
   fi
   [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
-}
-
-# The pid of rank $2 under the mpirun started as job $1 (empty if not found).
-rank_pid() {
-  local mpirun_pid victim=""
-  mpirun_pid=$(pgrep -P "$1" -f "$mpiexec" | head -n 1)
-  [[ -n "$mpirun_pid" ]] || mpirun_pid=$1
-  while read -r pid rank; do [[ "$rank" == "$2" ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
-  echo "$victim"
 }
 
 output_disk_full() {
@@ -167,7 +165,7 @@ output_disk_full() {
 }
 
 killed_worker() {
-  # Output every 0.1 ms with a flush every few samples (small buffer): a kill lands in or near a write.
+  # Rank 1 holds its segments' rows of every sample since the last write: the job must still end.
   sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
   timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/k.h5" >"$work/log" 2>&1 &
   local job=$!
