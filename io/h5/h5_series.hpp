@@ -28,6 +28,8 @@
 // Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous. A
 // chunk of whole rows is filtered on a background thread as soon as its rows are appended and
 // stored at the next flush (H5Dwrite_chunk); a series' last, partial chunk is filtered at commit.
+// Shared series are filtered by HDF5's pipeline inside the collective write (HDF5 1.10 has no
+// H5Dwrite_chunk under MPI-IO), and their chunks are allocated early (see create_series_dataset).
 //
 // Errors: every HDF5 failure throws std::runtime_error naming the file, the object and the
 // innermost HDF5 error message (e.g. "No space left on device" at the flush that hits a full disk);
