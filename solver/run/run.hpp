@@ -26,7 +26,7 @@ struct Progress {
 };
 
 /// The parallel output (docs/output_layout.md, "Who writes"), given by the driver when the run has
-/// more ranks and no --serial-output: the segment diagnostics are written by the ranks that
+/// more ranks and --parallel-output: the segment diagnostics are written by the ranks that
 /// evaluated them, every rank taking part in their writes (io/h5/h5_parallel.hpp).
 class SharedOutput {
  public:

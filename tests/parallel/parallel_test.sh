@@ -15,7 +15,7 @@
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
-#   output_disk_full: the parallel output (each rank writes the segment diagnostics it evaluated,
+#   output_disk_full: the parallel output (--parallel-output: each rank writes the segment diagnostics it evaluated,
 #     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
 #     file-size limit lowered with prlimit) when the output is written: exit 1 (no hang), the
 #     failure (rank, file, system's reason) said by rank 0 and by rank 1, no crash.
@@ -46,13 +46,13 @@ bitwise() {
   "$raceway" run "$scene" -o "$work/np1.h5" >"$work/log" 2>&1 || { fail "np 1 run failed: $(tail -3 "$work/log")"; return; }
   local files=()
   for np in 2 3 4; do
-    mpi "$np" run "$scene" -o "$work/np$np.h5"
+    mpi "$np" run "$scene" -o "$work/np$np.h5" --parallel-output
     [[ $rc -eq 0 ]] || { fail "np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
     grep -q "contact tasks on all ranks" "$work/log" || fail "np $np: no parallel run announced"
     files+=("$work/np$np.h5")
   done
   for np in 2 3; do
-    mpi "$np" run "$scene" -o "$work/forced$np.h5" --replan-every-step
+    mpi "$np" run "$scene" -o "$work/forced$np.h5" --replan-every-step --parallel-output
     [[ $rc -eq 0 ]] || { fail "forced re-planning np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
     files+=("$work/forced$np.h5")
     # The plans must really have changed: at least one per evaluation.
@@ -65,11 +65,11 @@ with h5py.File(sys.argv[1], "r") as f:
     sys.exit(0 if plans >= evaluations and g.attrs["ranks"] > 1 else 1)
 PY
   done
-  # Rank 0 writing the whole file (no MPI-IO).
-  mpi 2 run "$scene" -o "$work/serial2.h5" --serial-output
-  [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "--serial-output np 2: exit code $rc: $(tail -3 "$work/log")"
+  # Rank 0 writing the whole file (the default, no MPI-IO).
+  mpi 2 run "$scene" -o "$work/serial2.h5"
+  [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "np 2, rank 0 writing: exit code $rc: $(tail -3 "$work/log")"
   # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
-  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0
+  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0 --parallel-output
   if [[ $rc -eq 0 ]]; then
     files+=("$work/share0.h5")
     /usr/bin/python3 -c "import sys, h5py; sys.exit(0 if h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][0] == 0 else 1)" \
@@ -142,7 +142,7 @@ stopped_worker() {
 
 output_disk_full() {
   sed -e 's/^end_time = .*/end_time = "30 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/disk.toml"
-  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/disk.toml" -o "$work/d.h5" --master-share 0 \
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/disk.toml" -o "$work/d.h5" --master-share 0 --parallel-output \
     >"$work/log" 2>&1 &
   local job=$!
   # The first progress line: the layout is on disk, the rows are in memory until the end.
@@ -167,7 +167,7 @@ output_disk_full() {
 killed_worker() {
   # Rank 1 holds its segments' rows of every sample since the last write: the job must still end.
   sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
-  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/k.h5" >"$work/log" 2>&1 &
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/k.h5" --parallel-output >"$work/log" 2>&1 &
   local job=$!
   for _ in $(seq 100); do grep -q " s of " "$work/log" && break; sleep 0.2; done
   local victim
