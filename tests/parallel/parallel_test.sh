@@ -111,35 +111,6 @@ rank_pid() {
   echo "$victim"
 }
 
-stopped_worker() {
-  sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
-  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/s.h5" --rank-timeout 3 \
-    >"$work/log" 2>&1 &
-  local job=$!
-  # Wait for the integration to start (the linear solver is announced just before), then stop rank 1.
-  for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
-  sleep 1
-  local victim
-  victim=$(rank_pid "$job" 1)
-  [[ -n "$victim" ]] || { fail "rank 1 not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
-  local start=$(date +%s)
-  kill -STOP "$victim"
-  wait "$job"
-  rc=$?
-  local elapsed=$(($(date +%s) - start))
-  echo "stopped rank 1 (pid $victim): exit $rc after $elapsed s"
-  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
-  grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
-    fail "no message naming rank 1: $(tail -3 "$work/log")"
-  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end"
-  # No rank is left behind (a zombie, reaped with its parent, is gone).
-  if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
-    fail "the stopped rank $victim is still alive"
-    kill -CONT "$victim"; kill -KILL "$victim"
-  fi
-  [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
-}
-
 output_disk_full() {
   sed -e 's/^end_time = .*/end_time = "30 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/disk.toml"
   timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/disk.toml" -o "$work/d.h5" --master-share 0 --parallel-output \
@@ -164,21 +135,47 @@ output_disk_full() {
   [[ -e "$work/d.h5" ]] && fail "d.h5 written although a rank could not write"
 }
 
-killed_worker() {
-  # Rank 1 holds its segments' rows of every sample since the last write: the job must still end.
+# signal_worker SIGNAL OUT ARGS...: a 10 s run of the default scene on 2 ranks writing OUT (with
+# ARGS), rank 1 sent SIGNAL a second after the integration starts; waits for the job and sets
+# $rc, $elapsed (seconds from the signal to the end) and $victim (rank 1's pid; empty: not found).
+signal_worker() {
+  local signal=$1 out=$2
+  shift 2
   sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
-  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/k.h5" --parallel-output >"$work/log" 2>&1 &
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$out" "$@" >"$work/log" 2>&1 &
   local job=$!
-  for _ in $(seq 100); do grep -q " s of " "$work/log" && break; sleep 0.2; done
-  local victim
+  # Wait for the integration to start (the linear solver is announced just before).
+  for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
+  sleep 1
   victim=$(rank_pid "$job" 1)
-  [[ -n "$victim" ]] || { fail "rank 1 not found"; kill "$job"; wait "$job"; return; }
+  [[ -n "$victim" ]] || { fail "rank 1 not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
   local start=$(date +%s)
-  kill -KILL "$victim"
+  kill -"$signal" "$victim"
   wait "$job"
   rc=$?
-  local elapsed=$(($(date +%s) - start))
-  echo "killed rank 1 (pid $victim): exit $rc after $elapsed s"
+  elapsed=$(($(date +%s) - start))
+  echo "rank 1 (pid $victim) sent SIG$signal: exit $rc after $elapsed s"
+}
+
+stopped_worker() {
+  signal_worker STOP "$work/s.h5" --rank-timeout 3
+  [[ -n "$victim" ]] || return
+  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
+  grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
+    fail "no message naming rank 1: $(tail -3 "$work/log")"
+  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end"
+  # No rank is left behind (a zombie, reaped with its parent, is gone).
+  if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
+    fail "the stopped rank $victim is still alive"
+    kill -CONT "$victim"; kill -KILL "$victim"
+  fi
+  [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
+}
+
+# Rank 1 holds its segments' rows of every sample since the last write: the job must still end.
+killed_worker() {
+  signal_worker KILL "$work/k.h5" --parallel-output
+  [[ -n "$victim" ]] || return
   [[ $rc -ne 0 && $rc -ne 124 ]] || fail "exit code $rc (0: a silent success; 124: the job hung)"
   [[ $elapsed -le 60 ]] || fail "took $elapsed s to end"
   pgrep -f "$work/long.toml" >/dev/null && fail "a rank is left behind"
