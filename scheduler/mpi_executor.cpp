@@ -440,6 +440,18 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   }
 }
 
+const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
+  if (!is_master() || !attached_ || stopped_) throw std::logic_error("MpiExecutor::output is for rank 0, between attach() and stop()");
+  if (payload.size() + header_size > message_size_) throw std::invalid_argument("MpiExecutor::output: payload too long");
+  if (size_ > 1) {
+    std::fill(message_.begin(), message_.end(), 0.0);
+    message_[0] = command_output;
+    std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
+    broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
+  }
+  return owner_[static_cast<int>(Phase::rhs)];
+}
+
 bool MpiExecutor::await_start() {
   if (is_master()) throw std::logic_error("MpiExecutor::await_start is for workers");
   double start[header_size];
@@ -454,7 +466,7 @@ bool MpiExecutor::await_start() {
   return true;
 }
 
-void MpiExecutor::serve(const TaskCatalogue& catalogue) {
+void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_output) {
   if (is_master() || !attached_) throw std::logic_error("MpiExecutor::serve is for workers, after await_start()");
   if (catalogue.task_count != catalogue_.task_count || catalogue.context_size != catalogue_.context_size)
     fail("this rank's model has " + std::to_string(catalogue.task_count) + " tasks and context " +
@@ -466,6 +478,12 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue) {
     const double command = message_[0];
     const int phase = static_cast<int>(message_[1]);
     if (command == command_stop) return;
+    if (command == command_output) {
+      if (!on_output) fail("protocol error: an output command, but this rank has no output handler");
+      on_output(std::span<const double>(message_.data() + header_size, message_size_ - header_size), last_rhs_tasks_,
+                last_rhs_records_);
+      continue;
+    }
     if (phase < 0 || phase >= phase_count) fail("protocol error: bad phase from rank 0");
     if (command == command_plan) {
       std::vector<int> owner(static_cast<std::size_t>(catalogue_.task_count));
@@ -487,6 +505,10 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue) {
     evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
                  record_size, function, reply.data(), reply.data() + n * rs);
     MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, 0, phase, comm_);
+    if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
+      last_rhs_tasks_ = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+      last_rhs_records_.assign(reply.begin(), reply.begin() + static_cast<std::ptrdiff_t>(n * rs));
+    }
   }
 }
 

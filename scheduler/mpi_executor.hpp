@@ -6,6 +6,9 @@
 //   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, send back
 //                                 their records and measured seconds (one message);
 //   plan (phase, owner per task) -> adopt a new plan for that phase;
+//   output (payload)           -> call serve()'s output handler with the payload and the records of
+//                                 this rank's last rhs evaluation (the parallel output's samples
+//                                 and collective writes, solver/driver/parallel_output.hpp);
 //   stop                       -> leave serve().
 // Every command is one broadcast of a fixed-size buffer (header + max(context, task count)), so a
 // worker never needs to know in advance which command comes. Broadcasts are non-blocking
@@ -87,12 +90,21 @@ class MpiExecutor final : public Executor {
   /// Worker: waits for the master's attach() (returns true) or stop (false: the master failed
   /// before it had a model, and has reported why).
   bool await_start();
+  /// Master: brings the workers into an output operation: each calls serve()'s output handler with
+  /// `payload` (at most max(context size, task count) doubles) and the tasks and records of its
+  /// last rhs evaluation. Returns the rank of each task in that evaluation.
+  const std::vector<int>& output(std::span<const double> payload);
+
+  /// A worker's part of output(): payload, the tasks of its last rhs evaluation, their records.
+  using OutputHandler = std::function<void(std::span<const double> payload, std::span<const int> tasks,
+                                           std::span<const double> records)>;
   /// Worker: evaluates tasks for the master until stop. The catalogue must be built from the
   /// same scene as the master's (checked: task count and context size).
-  void serve(const TaskCatalogue& catalogue);
+  void serve(const TaskCatalogue& catalogue, const OutputHandler& on_output = {});
 
  private:
-  static constexpr double command_start = 1, command_evaluate = 2, command_plan = 3, command_stop = 4;
+  static constexpr double command_start = 1, command_evaluate = 2, command_plan = 3, command_stop = 4,
+                          command_output = 5;
   static constexpr int header_size = 6;
 
   [[noreturn]] void fail(const std::string& what) const;
@@ -129,6 +141,8 @@ class MpiExecutor final : public Executor {
   double smoothed_imbalance_[phase_count] = {};
   double replan_seconds_[phase_count] = {};
   std::vector<std::vector<double>> receive_;
+  std::vector<int> last_rhs_tasks_;     ///< worker: its tasks in the last rhs evaluation
+  std::vector<double> last_rhs_records_;
   ScheduleLog log_;
 };
 

@@ -40,23 +40,6 @@ void fsync_file(const std::string& path) {
   (void)::close(fd);
 }
 
-// Reserves `bytes` of disk after the end of `path` (fallocate, FALLOC_FL_KEEP_SIZE: the size does not
-// change), so that a flush finds a full disk before it writes anything rather than half-way through
-// rewriting the file's metadata. "" when reserved or when the file system cannot reserve (then the
-// flush itself reports a full disk); else the system's reason.
-std::string reserve_disk(const std::string& path, std::size_t bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd < 0) return "";
-  struct stat st {};
-  std::string error;
-  if (::fstat(fd, &st) == 0 &&
-      ::fallocate(fd, FALLOC_FL_KEEP_SIZE, st.st_size, static_cast<off_t>(bytes)) != 0 && errno != EOPNOTSUPP &&
-      errno != ENOSYS)
-    error = std::strerror(errno);
-  (void)::close(fd);
-  return error;
-}
-
 // Gives back the reserved blocks past the end of the file (truncating to its own size).
 void release_disk(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
@@ -101,6 +84,17 @@ static hid_t make_file_access_plist() {
     return -1;
   }
   return fapl;
+}
+
+void H5SeriesWriter::reopen_handles() {
+  const Handle fapl(make_file_access_plist(), H5Pclose);
+  if (!fapl.ok()) fail("making the file access property list", "/");
+  file_ = H5Fopen(partial_path_.c_str(), H5F_ACC_RDWR, fapl.get());
+  if (file_ < 0) fail("opening the file again after the collective write (H5Fopen)", "/");
+  for (auto& [path, s] : series_) {
+    s.dataset = H5Dopen2(file_, path.c_str(), H5P_DEFAULT);
+    if (s.dataset < 0) fail("opening the series again after the collective write (H5Dopen2)", path);
+  }
 }
 
 void prepare_hdf5_library() {
@@ -160,7 +154,8 @@ H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
       flushed_(other.flushed_),
       series_(std::move(other.series_)),
       by_id_(std::move(other.by_id_)),
-      compressor_(std::move(other.compressor_)) {
+      compressor_(std::move(other.compressor_)),
+      shared_writer_(std::move(other.shared_writer_)) {
   other.series_.clear();
   other.by_id_.clear();
 }
@@ -181,6 +176,7 @@ H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
     series_ = std::move(other.series_);
     by_id_ = std::move(other.by_id_);
     compressor_ = std::move(other.compressor_);
+    shared_writer_ = std::move(other.shared_writer_);
     other.series_.clear();
     other.by_id_.clear();
   }
@@ -236,7 +232,11 @@ H5SeriesWriter::Hid H5SeriesWriter::create_series_dataset(const std::string& key
   if (!dcpl.ok() || H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
       H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &nan) < 0 ||
       (options_.shuffle && H5Pset_shuffle(dcpl.get()) < 0) ||
-      (options_.gzip_level > 0 && H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options_.gzip_level)) < 0)) {
+      (options_.gzip_level > 0 && H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options_.gzip_level)) < 0) ||
+      // A shared series' chunks are allocated (and filled) when the collective write extends it:
+      // HDF5 1.10.8's collective filtered write reads a partly written chunk that was never
+      // allocated at an undefined address (the last, edge chunk) and fails.
+      (s.shared && H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY) < 0)) {
     fail("setting the dataset creation properties", key);
   }
   const hid_t dataset = H5Dcreate2(file_, key.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT);
@@ -274,7 +274,7 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
 }
 
 void H5SeriesWriter::define_series(const std::string& path, std::vector<std::size_t> row_shape,
-                                   const std::string& units, const std::string& description) {
+                                   const std::string& units, const std::string& description, bool shared) {
   require_open("define_series");
   ErrorSilencer quiet;
   const std::string key = h5::normalize(path);
@@ -286,7 +286,11 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   if (std::find(row_shape.begin(), row_shape.end(), std::size_t{0}) != row_shape.end()) {
     throw std::invalid_argument(fmt::format("H5SeriesWriter::define_series: series '{}' has a zero row dimension", key));
   }
+  if (shared && (!shared_writer_ || row_shape.size() != 1))
+    throw std::invalid_argument(fmt::format("H5SeriesWriter::define_series: shared series '{}' needs a shared writer "
+                                            "and rows of one dimension", key));
   Series s;
+  s.shared = shared;
   s.row_shape.assign(row_shape.begin(), row_shape.end());
   s.row_size = product(row_shape);
   s.chunk_rows = chunk_shape(s.row_shape, options_.chunk_bytes)[0];
@@ -296,7 +300,8 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   s.path = key;
   // Chunks of whole rows that start at a chunk boundary (always, but after a partial write at the
   // end) go to the background compressor.
-  s.direct = compressor_ && std::equal(s.row_shape.begin(), s.row_shape.end(),
+  if (shared) s.mine.assign(s.buffer.size(), 1);  // a resumed series' rows: all this process's
+  s.direct = !shared && compressor_ && std::equal(s.row_shape.begin(), s.row_shape.end(),
                                        chunk_shape(s.row_shape, options_.chunk_bytes).begin() + 1) &&
              s.rows_written % s.chunk_rows == 0;
   s.next_chunk = s.rows_written / s.chunk_rows;
@@ -330,10 +335,21 @@ void H5SeriesWriter::append(SeriesId id, std::span<const double> row) {
     throw std::invalid_argument(fmt::format("H5SeriesWriter::append: series '{}' in '{}' takes rows of {} values, got {}",
                                             s.path, partial_path_, s.row_size, row.size()));
   }
+  if (s.shared && s.mine.size() < s.buffer.size() + row.size()) s.mine.insert(s.mine.end(), row.size(), 1);
   s.buffer.insert(s.buffer.end(), row.begin(), row.end());
   buffered_bytes_ += row.size_bytes();
   submit_whole_chunks(s);
   if (buffered_bytes_ >= options_.max_buffered_bytes) flush();
+}
+
+void H5SeriesWriter::append(SeriesId id, std::span<const double> row, std::span<const unsigned char> mine) {
+  require_open("append");
+  if (id >= by_id_.size() || !by_id_[id]->shared || mine.size() != row.size())
+    throw std::invalid_argument(fmt::format("H5SeriesWriter::append: series {} in '{}' is not shared, or the row's "
+                                            "owners do not match it", id, partial_path_));
+  Series& s = *by_id_[id];
+  s.mine.insert(s.mine.end(), mine.begin(), mine.end());
+  append(id, row);
 }
 
 void H5SeriesWriter::submit_whole_chunks(Series& s) {
@@ -354,12 +370,15 @@ std::size_t H5SeriesWriter::rows(const std::string& path) const {
   return it->second.rows_written + it->second.buffer.size() / it->second.row_size;
 }
 
+std::size_t H5SeriesWriter::rows_to_write(const Series& s, bool whole_chunks_only) {
+  const std::size_t n = s.buffer.size() / s.row_size;
+  if (!whole_chunks_only) return n;
+  const std::size_t end = (s.rows_written + n) / s.chunk_rows * s.chunk_rows;  // the last whole chunk's end
+  return end > s.rows_written ? end - s.rows_written : 0;
+}
+
 void H5SeriesWriter::write_buffer(const std::string& path, Series& s, bool whole_chunks_only) {
-  std::size_t n = s.buffer.size() / s.row_size;
-  if (whole_chunks_only) {
-    const std::size_t end = (s.rows_written + n) / s.chunk_rows * s.chunk_rows;  // the last whole chunk's end
-    n = end > s.rows_written ? end - s.rows_written : 0;
-  }
+  const std::size_t n = rows_to_write(s, whole_chunks_only);
   if (n == 0) return;
   std::vector<hsize_t> new_dims{static_cast<hsize_t>(s.rows_written + n)};
   new_dims.insert(new_dims.end(), s.row_shape.begin(), s.row_shape.end());
@@ -429,7 +448,9 @@ void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
         s.filtered.emplace(chunk, compressor_->submit(padded_chunk(s, rows - tail, tail)));
     }
   }
-  for (auto& [path, s] : series_) write_buffer(path, s, whole_chunks_only);
+  for (auto& [path, s] : series_)
+    if (!s.shared) write_buffer(path, s, whole_chunks_only);
+  write_shared(whole_chunks_only);
 }
 
 std::map<std::string, std::vector<double>> H5SeriesWriter::unwritten_rows() const {
@@ -442,7 +463,7 @@ std::map<std::string, std::vector<double>> H5SeriesWriter::unwritten_rows() cons
 void H5SeriesWriter::reserve_for_flush() {
   // The buffered rows (at most: compressed they take less) and the metadata.
   const std::size_t bytes = buffered_bytes_ + (std::size_t{256} << 10);
-  if (const std::string error = reserve_disk(partial_path_, bytes); !error.empty()) {
+  if (const std::string error = h5::reserve_disk(partial_path_, bytes); !error.empty()) {
     const std::string message = fmt::format("H5SeriesWriter: no room to write the next {:.1f} MB of '{}': {}; {}",
                                             static_cast<double>(bytes) / 1e6, partial_path_, error,
                                             flushed_ ? "the file keeps the rows of its last flush"

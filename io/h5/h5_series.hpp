@@ -28,6 +28,8 @@
 // Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous. A
 // chunk of whole rows is filtered on a background thread as soon as its rows are appended and
 // stored at the next flush (H5Dwrite_chunk); a series' last, partial chunk is filtered at commit.
+// Shared series are filtered by HDF5's pipeline inside the collective write (HDF5 1.10 has no
+// H5Dwrite_chunk under MPI-IO), and their chunks are allocated early (see create_series_dataset).
 //
 // Errors: every HDF5 failure throws std::runtime_error naming the file, the object and the
 // innermost HDF5 error message (e.g. "No space left on device" at the flush that hits a full disk);
@@ -39,10 +41,12 @@
 // Paths are absolute or relative to the root ("bodies/cage/position" == "/bodies/cage/position");
 // missing intermediate groups are created.
 //
-// Parallel output (later): the file access and data transfer property lists are each made in one
-// place (make_file_access_plist() and open_file(), see h5_series.cpp); switching to the MPI-IO
-// driver with collective transfers changes those two places, and background_compression = false
-// (HDF5 1.10 has no H5Dwrite_chunk under MPI-IO; there each rank filters the chunks it writes).
+// Parallel output (docs/output_layout.md, "Who writes"): series defined `shared` (after
+// share_series_with()) are written by several ranks together: each appended row says which of its
+// cells are this process's (the others' ranks hold the rest), and at a flush the writer closes its
+// own (sec2) handle, hands the rows of every shared series to the shared writer (a collective write
+// of all ranks through the MPI-IO driver, io::write_shared_rows in io/h5/h5_parallel.hpp) and opens the file again. The
+// other series, attributes and fixed arrays stay this process's alone, as in a serial run.
 #pragma once
 
 #include <concepts>
@@ -59,6 +63,7 @@
 #include <vector>
 
 #include "io/h5/chunk_compressor.hpp"
+#include "io/h5/shared_rows.hpp"
 
 namespace raceway::io {
 
@@ -109,7 +114,12 @@ class H5SeriesWriter {
   /// "description" are written as variable-length UTF-8 strings. Throws std::invalid_argument if
   /// the series is already defined or a row dimension is 0.
   void define_series(const std::string& path, std::vector<std::size_t> row_shape,
-                     const std::string& units, const std::string& description);
+                     const std::string& units, const std::string& description, bool shared = false);
+
+  /// The collective write of the shared series' rows (io::write_shared_rows on every rank): it
+  /// must write them or throw std::runtime_error. Set before the first shared series is defined.
+  using SharedWriter = std::function<void(std::vector<SharedRows>&)>;
+  void share_series_with(SharedWriter writer) { shared_writer_ = std::move(writer); }
 
   /// Appends one row (row.size() must be the product of the series' row_shape, else
   /// std::invalid_argument; unknown series: std::invalid_argument). Rows are buffered in memory and
@@ -121,6 +131,9 @@ class H5SeriesWriter {
   using SeriesId = std::size_t;
   SeriesId series_id(const std::string& path) const;
   void append(SeriesId id, std::span<const double> row);
+  /// A shared series' row: `mine[i]` != 0 where cell i is this process's to write (the values of the
+  /// others are kept too, for unwritten_rows(), but another rank writes them).
+  void append(SeriesId id, std::span<const double> row, std::span<const unsigned char> mine);
 
   /// Makes the series at `scale_path` (a [T] series, e.g. /time) the HDF5 dimension scale of the
   /// first dimension of every series defined so far (H5DS: h5py's ds.dims[0][0] is then it).
@@ -196,6 +209,8 @@ class H5SeriesWriter {
     bool direct = false;                   // chunks of whole rows, written with H5Dwrite_chunk
     std::size_t next_chunk = 0;            // first chunk not yet handed to the compressor
     std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
+    bool shared = false;                   // written by all ranks together (share_series_with)
+    std::vector<unsigned char> mine;       // shared: per buffered value, whether this process writes it
   };
 
   H5SeriesWriter(std::string final_path, const H5WriterOptions& options);
@@ -204,6 +219,10 @@ class H5SeriesWriter {
   Hid open_series_dataset(const std::string& key, Series& s);
   void require_open(const char* what) const;
   void write_buffer(const std::string& path, Series& s, bool whole_chunks_only);
+  static std::size_t rows_to_write(const Series& s, bool whole_chunks_only);
+  void write_shared(bool whole_chunks_only);  // h5_shared_series.cpp
+  void close_handles() noexcept;              // the datasets and the file; the series stay defined
+  void reopen_handles();
   void write_chunks(const std::string& path, Series& s, std::size_t rows);  // H5Dwrite_chunk from rows_written
   void submit_whole_chunks(Series& s);  // to the background compressor
   /// A whole chunk's values from `rows` buffered rows starting at buffer row `first_row`.
@@ -234,6 +253,7 @@ class H5SeriesWriter {
   std::map<std::string, Series, std::less<>> series_;
   std::vector<Series*> by_id_;  // SeriesId -> series_ node (map nodes do not move)
   std::unique_ptr<ChunkCompressor> compressor_;  // background_compression
+  SharedWriter shared_writer_;
 };
 
 }  // namespace raceway::io

@@ -1,6 +1,16 @@
 // Internal helpers of io/h5 (h5_support.hpp).
 #include "io/h5/h5_support.hpp"
 
+#include <cstring>
+
+#include <cerrno>
+
+#include <unistd.h>
+
+#include <sys/stat.h>
+
+#include <fcntl.h>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -136,6 +146,23 @@ int link_exists(hid_t file, const std::string& path) {
     if (e == 0) return 0;
   }
   return 1;
+}
+
+// Reserves `bytes` of disk after the end of `path` (fallocate, FALLOC_FL_KEEP_SIZE: the size does not
+// change), so that a flush finds a full disk before it writes anything rather than half-way through
+// rewriting the file's metadata. "" when reserved or when the file system cannot reserve (then the
+// flush itself reports a full disk); else the system's reason.
+std::string reserve_disk(const std::string& path, std::size_t bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return "";
+  struct stat st {};
+  std::string error;
+  if (::fstat(fd, &st) == 0 &&
+      ::fallocate(fd, FALLOC_FL_KEEP_SIZE, st.st_size, static_cast<off_t>(bytes)) != 0 && errno != EOPNOTSUPP &&
+      errno != ENOSYS)
+    error = std::strerror(errno);
+  (void)::close(fd);
+  return error;
 }
 
 }  // namespace raceway::io::h5

@@ -52,4 +52,9 @@ hid_t make_dcpl();
 /// Whether a link `path` exists in the file (missing parents: false); -1 on an HDF5 error.
 int link_exists(hid_t file, const std::string& path);
 
+/// Reserves `bytes` of disk after the end of the file at `path` (fallocate, FALLOC_FL_KEEP_SIZE: its
+/// size does not change), so that a write finds a full disk (or a file-size limit) before it
+/// writes anything. "" when reserved or when the file system cannot reserve; else the system's reason.
+std::string reserve_disk(const std::string& path, std::size_t bytes);
+
 }  // namespace raceway::io::h5

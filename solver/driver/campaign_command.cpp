@@ -90,7 +90,7 @@ scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Camp
   scheduler::MpiExecutorOptions options;
   scheduler::MpiExecutor executor(g.group, options);
   if (!g.leader()) {
-    if (broadcast_scene(g.group, source, true)) serve_scene_tasks(source, executor);
+    if (broadcast_scene(g.group, source, true)) serve_scene_tasks(source, executor, g.group);
   } else {
     broadcast_scene(g.group, source, true);
     try {

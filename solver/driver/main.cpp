@@ -49,6 +49,7 @@
 #include "solver/run/output_writer.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
+#include "solver/driver/parallel_output.hpp"
 #include "solver/driver/scene_on_ranks.hpp"
 #include "solver/driver/campaign_command.hpp"
 
@@ -140,6 +141,7 @@ class LevelPrefix : public spdlog::custom_flag_formatter {
 struct RunRequest {
   std::string output, summary_json, result_options;
   bool scheduler_log = false, resume = false;
+  solver::SharedOutput* shared_output = nullptr;  ///< the parallel output; nullptr: rank 0 writes all
 };
 
 int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
@@ -153,6 +155,7 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.output_path = output;
   options.scheduler_log = request.scheduler_log;
   options.resume = request.resume;
+  options.shared_output = request.shared_output;
   options.result_options = request.result_options;
   options.stop_signal = &driver::g_stop_signal;
   options.mpi_library = driver::mpi_library_version();
@@ -254,7 +257,7 @@ struct CommandLine {
   std::string schedule = "adaptive", inject;
   std::string method;  ///< --method: the scene's [solver] method, replaced
   std::vector<std::string> overrides;  ///< --set section.key=VALUE
-  bool replan_every_evaluation = false, scheduler_log = false, resume = false;
+  bool replan_every_evaluation = false, scheduler_log = false, resume = false, parallel_output = false;
   io::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false, animate = false, xdmf = false, vtk = false;
@@ -304,6 +307,9 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
       ->capture_default_str();
   run->add_flag("--resume", cl.resume,
                 "continue OUT.h5.partial from its last checkpoint (OUT.h5.checkpoint); start afresh when there is none");
+  run->add_flag("--parallel-output", cl.parallel_output,
+                "with several ranks each writes the segment diagnostics it evaluated (HDF5 MPI-IO, collective "
+                "writes); default: rank 0 writes the whole file (perf/results/output_notes.md: faster here)");
   run->add_flag("--scheduler-log", cl.scheduler_log,
                 "write the task scheduler's log (/scheduler) also for a serial run (always with several ranks)");
   // Test-only options (hidden: empty group).
@@ -391,14 +397,18 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   driver::install_stop_signals();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
   if (rank != 0) {
-    driver::serve_scene_tasks(source, executor);
+    driver::serve_scene_tasks(source, executor, comm);
   } else {
     if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
                                scheduler::schedule_policy_name(cl.exec_options.policy));
     code = exit_code_of([&] {
       // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
       const solver::PetscRuntime petsc(cl.petsc_options);
-      const RunRequest request{cl.output, cl.summary_json, cl.petsc_options, cl.scheduler_log, cl.resume};
+      // --parallel-output: with several ranks each writes the segment diagnostics it evaluated
+      // (MPI-IO); by default rank 0 writes everything (measured cheaper, output_notes.md).
+      driver::MpiSharedOutput shared(comm, executor);
+      const RunRequest request{cl.output, cl.summary_json, cl.petsc_options, cl.scheduler_log, cl.resume,
+                               size > 1 && cl.parallel_output ? &shared : nullptr};
       return run_command(scene, request, executor);
     });
     executor.stop();  // releases the workers (also after a failure)

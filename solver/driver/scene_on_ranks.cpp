@@ -1,5 +1,7 @@
 #include "solver/driver/scene_on_ranks.hpp"
 
+#include "solver/driver/parallel_output.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -82,11 +84,16 @@ bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {
   return true;
 }
 
-void serve_scene_tasks(const SceneSource& source, scheduler::MpiExecutor& executor) {
+void serve_scene_tasks(const SceneSource& source, scheduler::MpiExecutor& executor, MPI_Comm comm) {
   try {
     const io::Scene scene = io::parse_scene(source.text, source.source, source.overrides);
     if (!executor.await_start()) return;  // rank 0 failed before it had a model and says why
-    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c) { executor.serve(c); });
+    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c, const std::map<std::string, solver::SegmentSeries>& s) {
+      WorkerOutput output(comm, s);  // the parallel output's samples and writes (unused with --serial-output)
+      executor.serve(c, [&](std::span<const double> payload, std::span<const int> tasks, std::span<const double> records) {
+        output(payload, tasks, records);
+      });
+    });
   } catch (const std::exception& e) {
     std::fprintf(stderr, "[raceway] rank %d: error: %s\n", executor.rank(), e.what());
     std::fflush(stderr);

@@ -44,8 +44,9 @@ struct SceneSource {
 /// one (`ok` false on rank 0: it reports why).
 bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok);
 
-/// A worker rank: builds the model of the scene and evaluates tasks until rank 0 stops it. Any
-/// error here ends the whole job (MPI_Abort) with this rank's message.
-void serve_scene_tasks(const SceneSource& scene, scheduler::MpiExecutor& executor);
+/// A worker rank: builds the model of the scene and evaluates tasks until rank 0 stops it, taking
+/// part in the parallel output on `comm` (the executor's) when rank 0 asks. Any error here ends
+/// the whole job (MPI_Abort) with this rank's message.
+void serve_scene_tasks(const SceneSource& scene, scheduler::MpiExecutor& executor, MPI_Comm comm);
 
 }  // namespace raceway::driver

@@ -80,8 +80,9 @@ bool is_line_family(const SegmentLaw& law) {
 }
 
 template <class Table>
-void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns) {
-  for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning);
+void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns,
+                        bool shared) {
+  for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning, shared);
 }
 
 template <class Table>
@@ -169,8 +170,27 @@ BodySample sample_body(const Model& m, int b, double t, const std::vector<double
   return s;
 }
 
-OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments)
-    : file_(file), m_(m), segments_(segments) {
+std::map<std::string, SegmentSeries> segment_series(const Model& m) {
+  std::map<std::string, SegmentSeries> all;
+  for (int k = 0; k < segment_kind_count; ++k) {
+    std::vector<int> segments;
+    for (std::size_t s = 0; s < m.segments.size(); ++s)
+      if (static_cast<int>(m.segments[s].kind) == k) segments.push_back(static_cast<int>(s));
+    if (segments.empty()) continue;
+    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k)) + "/";
+    auto add = [&](const auto& fields) {
+      for (std::size_t f = 0; f < fields.size(); ++f) all[g + fields[f].name] = {static_cast<int>(f), segments};
+    };
+    if (is_line_family(m.laws[static_cast<std::size_t>(m.segments[static_cast<std::size_t>(segments[0])].law)]))
+      add(contact::line_diagnostic_fields);
+    else
+      add(contact::point_diagnostic_fields);
+  }
+  return all;
+}
+
+OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments, bool shared_segments)
+    : file_(file), m_(m), segments_(segments), shared_(shared_segments) {
   file_.define_series("/time", {}, "s", "output times (interpolated, not solver steps)");
   file_.define_series("/energy", {}, "J", "kinetic + elastic + support + load potential energy");
   for (int b = 0; b < m.first_element; ++b)
@@ -216,10 +236,10 @@ void OutputWriter::define_segment_groups() {
     if (m_.kind == io::ModelKind::spatial)
       file_.write_array(g + "/ball", {elements.size()}, elements, "-", "ball index (0-based) of each column; -1 for cage-land");
     if (line_family_[k]) {
-      define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size());
+      define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size(), shared_);
       diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::line_diagnostic_fields);
     } else {
-      define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size());
+      define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size(), shared_);
       diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::point_diagnostic_fields);
     }
   }
@@ -270,7 +290,7 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
 }
 
 void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
-                          double energy) {
+                          double energy, const std::vector<int>* segment_rank) {
   file_.append(time_, std::span<const double>(&t, 1));
   file_.append(energy_, std::span<const double>(&energy, 1));
   append_bodies(t, z, zdot, eq);
@@ -278,10 +298,18 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
   for (int k = 0; k < segment_kind_count; ++k) {
     const std::vector<int>& index = index_[k];
     row_.resize(index.size());
+    if (shared_) {
+      mine_.resize(index.size());
+      for (std::size_t i = 0; i < index.size(); ++i)
+        mine_[i] = segment_rank == nullptr || (*segment_rank)[static_cast<std::size_t>(index[i])] == 0;
+    }
     for (std::size_t d = 0; d < diagnostic_ids_[k].size(); ++d) {
       for (std::size_t i = 0; i < index.size(); ++i)
         row_[i] = eq.diagnostic(static_cast<std::size_t>(index[i]), static_cast<int>(d));
-      file_.append(diagnostic_ids_[k][d], row_);
+      if (shared_)
+        file_.append(diagnostic_ids_[k][d], row_, mine_);
+      else
+        file_.append(diagnostic_ids_[k][d], row_);
     }
   }
 }

@@ -4,6 +4,7 @@
 // the planar components (x, y, rotation about z) of the same quantities a spatial one stores in full.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,13 +40,25 @@ void check_output_size(const OutputEstimate& estimate, const io::Scene& scene);
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
                        const Wrench& net);
 
+/// The segment diagnostic series of the layout (the series the parallel output shares between
+/// ranks), by path: the diagnostic's position in its family's field table and the segment of each
+/// column.
+struct SegmentSeries {
+  int field = 0;
+  std::vector<int> segments;
+};
+std::map<std::string, SegmentSeries> segment_series(const Model& m);
+
 class OutputWriter {
  public:
-  /// Defines the layout for the model (segment diagnostics only if `segments`).
-  OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments);
+  /// Defines the layout for the model (segment diagnostics only if `segments`; written by all
+  /// ranks together if `shared_segments`: the file has a shared writer, see H5SeriesWriter).
+  OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments, bool shared_segments = false);
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
+  /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
+  /// process writes the diagnostics of rank 0's).
   void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
-              double energy);
+              double energy, const std::vector<int>* segment_rank = nullptr);
 
   /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
   /// balls roll at); the nominal angle when none is loaded.
@@ -57,7 +70,8 @@ class OutputWriter {
 
   io::H5SeriesWriter& file_;
   const Model& m_;
-  bool segments_;
+  bool segments_, shared_;
+  std::vector<unsigned char> mine_;  ///< reused: which cells of a shared row this process writes
   // The series' handles in the order append() writes them (looked up once, not per sample).
   io::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
   std::vector<io::H5SeriesWriter::SeriesId> border_ids_, element_ids_;

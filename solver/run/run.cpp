@@ -82,6 +82,10 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
                                                    resumed->unwritten_rows)
                       : io::H5SeriesWriter::create(options.output_path);
+  if (options.shared_output)  // the segment diagnostics: written by every rank together
+    file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<io::SharedRows>& rows) {
+      shared->write(path, rows);
+    });
   file.set_attribute("/", "scene_text", scene.text);
   file.set_attribute("/", "scene_source", scene.source);
   // --set section.key=VALUE, one per line as given (applied over scene_text)
@@ -169,7 +173,7 @@ class RunLoop {
 
  private:
   double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-  void record(double t);
+  void record(double t, long sample);
   void checkpoint(CheckpointKind kind, long sample, double t);
   RunSummary finish(double t);
 
@@ -192,12 +196,13 @@ class RunLoop {
   double diagnostics_seconds_ = 0;  // of output_seconds_: the right-hand sides at output times
 };
 
-void RunLoop::record(double t) {
+void RunLoop::record(double t, long sample) {
   const double before = wall();
   eq_.rhs(t, z_.data(), zdot_.data());
   diagnostics_seconds_ += wall() - before;
   const double e = eq_.energy(t, z_.data());
-  out_->append(t, z_, zdot_, eq_, e);
+  const std::vector<int>* segment_rank = options_.shared_output ? &options_.shared_output->sample(sample) : nullptr;
+  out_->append(t, z_, zdot_, eq_, e, segment_rank);
   totals_.record(t, z_, eq_, e);
   output_seconds_ += wall() - before;
 }
@@ -250,7 +255,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   zdot_.resize(z_.size());
   double t_last = resumed ? resumed->time : t0;
   file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
-  out_.emplace(*file_, model_, scene_.output.segments);
+  out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr);
   file_->set_attribute("/", "restart_times", restart_times_);
   // The layout in the file: from here on the .partial file is readable after the process is
   // killed. A fresh run does not wait for the disk here: a power loss now loses nothing a resume
@@ -258,7 +263,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   file_->flush(resumed.has_value());
   integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
   last_checkpoint_wall_ = wall();
-  if (!resumed) record(t0);
+  if (!resumed) record(t0, 0);
   for (long i = first; i <= samples_; ++i) {
     const double t = t0 + static_cast<double>(i) * dt_;
     try {
@@ -268,7 +273,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
       file_->flush();
       throw;  // the .partial file stays, the previous output is untouched
     }
-    record(t);
+    record(t, i);
     t_last = t;
     if (options_.on_progress)
       options_.on_progress({t, scene_.scene.end_time, totals_.revolutions(), wall(),
@@ -328,13 +333,14 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   return loop.run(resumed);
 }
 
-void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve) {
+void serve_scene(const io::Scene& scene,
+                 const std::function<void(const scheduler::TaskCatalogue&, const std::map<std::string, SegmentSeries>&)>& serve) {
   // The equations need an executor, but a worker's never call run(): their tasks are called by
   // `serve` with the master's context.
   scheduler::SerialExecutor unused;
   const Model model = build_model(scene);
   const Equations eq(model, unused);
-  serve(eq.task_catalogue());
+  serve(eq.task_catalogue(), segment_series(model));
 }
 
 }  // namespace raceway::solver

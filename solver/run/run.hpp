@@ -4,10 +4,12 @@
 
 #include <csignal>
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "io/h5/shared_rows.hpp"
 #include "io/scene/scene.hpp"
 #include "io/json/summary_json.hpp"
 #include "scheduler/executor.hpp"
@@ -21,6 +23,20 @@ struct Progress {
   double revolutions = 0;         ///< of the driven ring
   double wall_seconds = 0;
   long steps = 0;
+};
+
+/// The parallel output (docs/output_layout.md, "Who writes"), given by the driver when the run has
+/// more ranks and --parallel-output: the segment diagnostics are written by the ranks that
+/// evaluated them, every rank taking part in their writes (io/h5/h5_parallel.hpp).
+class SharedOutput {
+ public:
+  virtual ~SharedOutput() = default;
+  /// Right after the right-hand side at output sample `sample`: the other ranks keep the
+  /// diagnostics of their segments for the file. Returns each segment's rank in that evaluation.
+  virtual const std::vector<int>& sample(long sample) = 0;
+  /// The collective write of the shared series' rows of `file` (io::write_shared_rows on every
+  /// rank); throws std::runtime_error naming the failure.
+  virtual void write(const std::string& file, std::vector<io::SharedRows>& rows) = 0;
 };
 
 struct RunOptions {
@@ -45,6 +61,8 @@ struct RunOptions {
   /// Set (by a signal handler) to a signal number: the run writes a checkpoint at the next output
   /// time, flushes and closes the output and throws RunInterrupted.
   const volatile std::sig_atomic_t* stop_signal = nullptr;
+  /// Parallel output (not owned); nullptr: rank 0 writes the whole file (serial output).
+  SharedOutput* shared_output = nullptr;
 };
 
 /// A run stopped by a signal after writing a checkpoint (continue it with --resume).
@@ -90,7 +108,10 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
 
 /// The worker side of a run: builds the same model and equations as run_scene does on the
 /// master and hands their task catalogue to `serve` (which evaluates tasks until the master stops
-/// it, e.g. scheduler::MpiExecutor::serve). No integration, no output.
-void serve_scene(const io::Scene& scene, const std::function<void(const scheduler::TaskCatalogue&)>& serve);
+/// it, e.g. scheduler::MpiExecutor::serve) with the layout's segment series (segment_series(), for
+/// the parallel output's worker side). No integration.
+struct SegmentSeries;
+void serve_scene(const io::Scene& scene,
+                 const std::function<void(const scheduler::TaskCatalogue&, const std::map<std::string, SegmentSeries>&)>& serve);
 
 }  // namespace raceway::solver

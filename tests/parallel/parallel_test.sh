@@ -18,6 +18,12 @@
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
+#   output_disk_full: the parallel output (--parallel-output: each rank writes the segment diagnostics it evaluated,
+#     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
+#     file-size limit lowered with prlimit) when the output is written: exit 1 (no hang), the
+#     failure (rank, file, system's reason) said by rank 0 and by rank 1, no crash.
+#   killed_worker: rank 1 is killed (SIGKILL) mid-run, holding rows of the parallel output: the job
+#     ends (non-zero, no hang) and no rank is left behind.
 set -u
 case_name=${1:?case}
 raceway=${2:?raceway}
@@ -44,14 +50,14 @@ bitwise() {
   "$raceway" run "$scene" -o "$work/np1.h5" >"$work/log" 2>&1 || { fail "np 1 run failed: $(tail -3 "$work/log")"; return; }
   local files=()
   for np in 2 3 4; do
-    mpi "$np" run "$scene" -o "$work/np$np.h5"
+    mpi "$np" run "$scene" -o "$work/np$np.h5" --parallel-output
     [[ $rc -eq 0 ]] || { fail "np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
     grep -q "contact tasks on all ranks" "$work/log" || fail "np $np: no parallel run announced"
     cp "$work/log" "$work/log.np$np"
     files+=("$work/np$np.h5")
   done
   for np in 2 3; do
-    mpi "$np" run "$scene" -o "$work/forced$np.h5" --replan-every-step
+    mpi "$np" run "$scene" -o "$work/forced$np.h5" --replan-every-step --parallel-output
     [[ $rc -eq 0 ]] || { fail "forced re-planning np $np: exit code $rc: $(tail -3 "$work/log")"; continue; }
     files+=("$work/forced$np.h5")
     # The plans must really have changed: at least one per evaluation.
@@ -64,8 +70,11 @@ with h5py.File(sys.argv[1], "r") as f:
     sys.exit(0 if plans >= evaluations and g.attrs["ranks"] > 1 else 1)
 PY
   done
+  # Rank 0 writing the whole file (the default, no MPI-IO).
+  mpi 2 run "$scene" -o "$work/serial2.h5"
+  [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "np 2, rank 0 writing: exit code $rc: $(tail -3 "$work/log")"
   # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
-  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0
+  mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0 --parallel-output
   if [[ $rc -eq 0 ]]; then
     files+=("$work/share0.h5")
     /usr/bin/python3 -c "import sys, h5py; sys.exit(0 if h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][0] == 0 else 1)" \
@@ -98,25 +107,64 @@ ranks_of() {
   done
 }
 
-stopped_worker() {
-  sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
-  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$work/s.h5" --rank-timeout 3 \
+# The pid of rank $2 under the mpirun started as job $1 (empty if not found).
+rank_pid() {
+  local mpirun_pid victim=""
+  mpirun_pid=$(pgrep -P "$1" -f "$mpiexec" | head -n 1)
+  [[ -n "$mpirun_pid" ]] || mpirun_pid=$1
+  while read -r pid rank; do [[ "$rank" == "$2" ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
+  echo "$victim"
+}
+
+output_disk_full() {
+  sed -e 's/^end_time = .*/end_time = "30 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/disk.toml"
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/disk.toml" -o "$work/d.h5" --master-share 0 --parallel-output \
     >"$work/log" 2>&1 &
   local job=$!
-  # Wait for the integration to start (the linear solver is announced just before), then stop rank 1.
-  for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
-  sleep 1
-  local mpirun_pid victim=""
-  mpirun_pid=$(pgrep -P "$job" -f "$mpiexec" | head -n 1)
-  [[ -n "$mpirun_pid" ]] || mpirun_pid=$job
-  while read -r pid rank; do [[ "$rank" == 1 ]] && victim=$pid; done < <(ranks_of "$mpirun_pid")
-  [[ -n "$victim" ]] || { fail "rank 1 not found under mpirun $mpirun_pid"; kill "$job"; wait "$job"; return; }
+  # The first progress line: the layout is on disk, the rows are in memory until the end.
+  for _ in $(seq 400); do grep -q " s of " "$work/log" && break; sleep 0.05; done
+  local victim size
+  victim=$(rank_pid "$job" 1)
+  [[ -n "$victim" ]] || { fail "rank 1 not found"; kill "$job"; wait "$job"; return; }
+  size=$(stat -c %s "$work/d.h5.partial" 2>/dev/null || echo 0)
+  prlimit --pid "$victim" --fsize=$((size + 4096)) || fail "prlimit failed"
   local start=$(date +%s)
-  kill -STOP "$victim"
   wait "$job"
   rc=$?
   local elapsed=$(($(date +%s) - start))
-  echo "stopped rank 1 (pid $victim): exit $rc after $elapsed s"
+  echo "rank 1 limited to $((size + 4096)) bytes: exit $rc after $elapsed s"
+  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung; 134, 139: a crash)"
+  [[ $(grep -c "rank 1 of 2: writing the shared series of '.*d.h5.partial' failed: .*File too large" "$work/log") -ge 2 ]] ||
+    fail "the failure is not said by both ranks with the rank, file, dataset and reason: $(tail -5 "$work/log")"
+  grep -qiE "segmentation|signal 11|core dumped" "$work/log" && fail "crashed: $(tail -5 "$work/log")"
+  [[ -e "$work/d.h5" ]] && fail "d.h5 written although a rank could not write"
+}
+
+# signal_worker SIGNAL OUT ARGS...: a 10 s run of the default scene on 2 ranks writing OUT (with
+# ARGS), rank 1 sent SIGNAL a second after the integration starts; waits for the job and sets
+# $rc, $elapsed (seconds from the signal to the end) and $victim (rank 1's pid; empty: not found).
+signal_worker() {
+  local signal=$1 out=$2
+  shift 2
+  sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$out" "$@" >"$work/log" 2>&1 &
+  local job=$!
+  # Wait for the integration to start (the linear solver is announced just before).
+  for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
+  sleep 1
+  victim=$(rank_pid "$job" 1)
+  [[ -n "$victim" ]] || { fail "rank 1 not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
+  local start=$(date +%s)
+  kill -"$signal" "$victim"
+  wait "$job"
+  rc=$?
+  elapsed=$(($(date +%s) - start))
+  echo "rank 1 (pid $victim) sent SIG$signal: exit $rc after $elapsed s"
+}
+
+stopped_worker() {
+  signal_worker STOP "$work/s.h5" --rank-timeout 3
+  [[ -n "$victim" ]] || return
   [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
   grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
     fail "no message naming rank 1: $(tail -3 "$work/log")"
@@ -129,7 +177,19 @@ stopped_worker() {
   [[ -e "$work/s.h5" ]] && fail "s.h5 written by a failed job"
 }
 
+# Rank 1 holds its segments' rows of every sample since the last write: the job must still end.
+killed_worker() {
+  signal_worker KILL "$work/k.h5" --parallel-output
+  [[ -n "$victim" ]] || return
+  [[ $rc -ne 0 && $rc -ne 124 ]] || fail "exit code $rc (0: a silent success; 124: the job hung)"
+  [[ $elapsed -le 60 ]] || fail "took $elapsed s to end"
+  pgrep -f "$work/long.toml" >/dev/null && fail "a rank is left behind"
+  [[ -e "$work/k.h5" ]] && fail "k.h5 written by a failed job"
+}
+
 case "$case_name" in
+output_disk_full) output_disk_full ;;
+killed_worker) killed_worker ;;
 bitwise_planar) bitwise "$work/planar.toml" ;;
 bitwise_spatial) bitwise "$work/spatial.toml" ;;
 bitwise_cut)
