@@ -449,7 +449,22 @@ const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
     std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
     broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
   }
-  return owner_[static_cast<int>(Phase::rhs)];
+  holder_ = piece_holders(owner_[static_cast<int>(Phase::rhs)], catalogue_.parent);
+  return holder_;
+}
+
+std::vector<int> piece_holders(std::span<const int> owner, std::span<const int> parent) {
+  if (parent.empty()) return {owner.begin(), owner.end()};
+  const int pieces = *std::max_element(parent.begin(), parent.end()) + 1;
+  std::vector<int> tasks(static_cast<std::size_t>(pieces), 0), holder(static_cast<std::size_t>(pieces), 0);
+  for (std::size_t t = 0; t < parent.size(); ++t) {
+    const auto p = static_cast<std::size_t>(parent[t]);
+    ++tasks[p];
+    holder[p] = owner[t];
+  }
+  for (std::size_t p = 0; p < holder.size(); ++p)
+    if (tasks[p] > 1) holder[p] = 0;  // a piece cut into tasks: the master combines its records
+  return holder;
 }
 
 bool MpiExecutor::await_start() {
@@ -472,6 +487,11 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     fail("this rank's model has " + std::to_string(catalogue.task_count) + " tasks and context " +
          std::to_string(catalogue.context_size) + ", rank 0's has " + std::to_string(catalogue_.task_count) + " and " +
          std::to_string(catalogue_.context_size) + " (different scene or build?)");
+  std::vector<int> piece_tasks;  // per piece (catalogue.parent): its task count
+  for (const int p : catalogue.parent) {
+    if (static_cast<std::size_t>(p) >= piece_tasks.size()) piece_tasks.resize(static_cast<std::size_t>(p) + 1, 0);
+    ++piece_tasks[static_cast<std::size_t>(p)];
+  }
   std::vector<double> reply;
   for (;;) {
     broadcast(message_.data(), static_cast<int>(message_size_), "a command");
@@ -506,8 +526,18 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
                  record_size, function, reply.data(), reply.data() + n * rs);
     MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, 0, phase, comm_);
     if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
-      last_rhs_tasks_ = tasks_of_[phase][static_cast<std::size_t>(rank_)];
-      last_rhs_records_.assign(reply.begin(), reply.begin() + static_cast<std::ptrdiff_t>(n * rs));
+      // Only whole pieces: a cut piece's tasks hold parts, which the master combines and writes.
+      last_rhs_tasks_.clear();
+      last_rhs_records_.clear();
+      const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+      for (std::size_t i = 0; i < n; ++i) {
+        const int task = mine[i];
+        const int piece = catalogue.parent.empty() ? task : catalogue.parent[static_cast<std::size_t>(task)];
+        if (!catalogue.parent.empty() && piece_tasks[static_cast<std::size_t>(piece)] != 1) continue;
+        last_rhs_tasks_.push_back(piece);
+        last_rhs_records_.insert(last_rhs_records_.end(), reply.begin() + static_cast<std::ptrdiff_t>(i * rs),
+                                 reply.begin() + static_cast<std::ptrdiff_t>((i + 1) * rs));
+      }
     }
   }
 }

@@ -91,11 +91,14 @@ class MpiExecutor final : public Executor {
   /// before it had a model, and has reported why).
   bool await_start();
   /// Master: brings the workers into an output operation: each calls serve()'s output handler with
-  /// `payload` (at most max(context size, task count) doubles) and the tasks and records of its
-  /// last rhs evaluation. Returns the rank of each task in that evaluation.
+  /// `payload` (at most max(context size, task count) doubles) and the pieces it evaluated whole in
+  /// its last rhs evaluation, with their records. Returns, per piece (TaskCatalogue::parent; per
+  /// task without one), the rank holding its record in that evaluation (piece_holders).
   const std::vector<int>& output(std::span<const double> payload);
 
-  /// A worker's part of output(): payload, the tasks of its last rhs evaluation, their records.
+  /// A worker's part of output(): payload, the pieces (TaskCatalogue::parent, or tasks) of its last
+  /// rhs evaluation that it evaluated whole, their records (a cut piece's parts are left out: rank 0
+  /// combines them).
   using OutputHandler = std::function<void(std::span<const double> payload, std::span<const int> tasks,
                                            std::span<const double> records)>;
   /// Worker: evaluates tasks for the master until stop. The catalogue must be built from the
@@ -141,9 +144,15 @@ class MpiExecutor final : public Executor {
   double smoothed_imbalance_[phase_count] = {};
   double replan_seconds_[phase_count] = {};
   std::vector<std::vector<double>> receive_;
-  std::vector<int> last_rhs_tasks_;     ///< worker: its tasks in the last rhs evaluation
+  std::vector<int> holder_;              ///< master: output()'s answer
+  std::vector<int> last_rhs_tasks_;     ///< worker: the pieces it evaluated whole in the last rhs evaluation
   std::vector<double> last_rhs_records_;
   ScheduleLog log_;
 };
+
+/// Per piece (`parent`; per task when it is empty), the rank that holds the piece's final record
+/// after an evaluation with `owner` per task: the owner of its task when it is one task, rank 0
+/// (which combines the parts in a fixed order) when it is cut into several.
+std::vector<int> piece_holders(std::span<const int> owner, std::span<const int> parent);
 
 }  // namespace raceway::scheduler
