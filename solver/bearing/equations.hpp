@@ -68,6 +68,8 @@ class Equations final : public DynamicSystem {
   void rhs_task(std::span<const double> context, int s, std::span<double> rec) const;
   void jacobian_task(std::span<const double> context, int s, std::span<double> rec) const;
   void add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const;
+  /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian.
+  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
 
   const Model& model_;
   scheduler::Executor& executor_;

@@ -23,6 +23,7 @@ const char* segment_kind_name(SegmentKind k) {
     case SegmentKind::ball_outer_groove: return "ball_outer_groove";
     case SegmentKind::ball_pocket: return "ball_pocket";
     case SegmentKind::cage_land: return "cage_land";
+    case SegmentKind::cage_bridge: return "cage_bridge";
   }
   return "?";
 }
@@ -44,6 +45,12 @@ Model build_model(const io::Scene& scene) {
   builder.cage(m, scene);
   m.border_size = m.state_size;
   builder.rolling_elements(m, scene);
+  if (!m.border_bodies_after_elements.empty()) {
+    m.first_bridge = static_cast<int>(m.bodies.size());
+    m.bridge_count = static_cast<int>(m.border_bodies_after_elements.size());
+    for (Body& b : m.border_bodies_after_elements) m.bodies.push_back(std::move(b));
+    m.border_bodies_after_elements.clear();
+  }
   m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
   builder.segments(m, scene);
   return m;
@@ -128,6 +135,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:
+    case BodyKind::cage_bridge:
       k.rotation = cardan_rotation(v[sax], v[say], v[saz]);
       k.angular_velocity = k.rotation * Vec3(v[swx], v[swy], v[swz]);
       break;
