@@ -35,20 +35,27 @@ BridgeBeam bridge_beam(const io::Scene& scene, double cage_height) {
 void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
   if (scene.cage.bridges != io::CageBridges::flexible) return;
   const BridgeBeam beam = bridge_beam(scene, cage_height);
-  const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  // The bridge's modal inertia moves with it: the cage keeps the rest of its inertia.
+  const double bridge_inertia = beam.modal_mass * m.pitch_radius * m.pitch_radius;
+  cage.axial_inertia -= m.element_count * bridge_inertia;
+  if (!(cage.axial_inertia > 0))
+    throw std::runtime_error(fmt::format("cage.inertia: the flexible bridges' inertia ({} x {:.4g} kg m^2) exceeds "
+                                         "the cage's",
+                                         m.element_count, bridge_inertia));
   for (int k = 0; k < m.element_count; ++k) {
     Body b;
     b.name = fmt::format("cage_bridge[{}]", k);
     b.kind = BodyKind::cage_bridge;
     b.index = k;
     b.mass = beam.modal_mass;
-    // Tangential deflection u = pitch radius x (angle - cage angle): the inertia for the angle.
-    b.axial_inertia = beam.modal_mass * m.pitch_radius * m.pitch_radius;
+    // Its states: the angle and rate relative to the cage; u = pitch radius x angle.
+    b.axial_inertia = bridge_inertia;
     b.carrier = m.cage;
     for (Coordinate c : {sx, sy, svx, svy}) b.slot[c] = cage.slot[c];
     b.offset = m.state_size;
-    add_state(m, b, saz, VariableClass::angle, "theta");
-    add_state(m, b, swz, VariableClass::angular_velocity, "omega");
+    add_state(m, b, saz, VariableClass::angle, "bending_angle");
+    add_state(m, b, swz, VariableClass::angular_velocity, "bending_rate");
     b.size = m.state_size - b.offset;
     m.border_bodies_after_elements.push_back(b);
   }

@@ -35,8 +35,9 @@ struct BridgeBeam {
 BridgeBeam bridge_beam(const io::Scene& scene, double cage_height);
 
 /// With [cage] bridges = "flexible": one body per bridge (bridge k lies between pockets k and
-/// k + 1), riding on the cage's translation, its angle and rate two border states. Call right
-/// after the cage's states; the bodies follow the rolling elements (Model::bodies).
+/// k + 1), riding on the cage (Body::carrier): its angle and rate relative to the cage's (its
+/// bending) are two border states, and the cage keeps its inertia less the bridges' modal inertia.
+/// Call right after the cage's states; the bodies follow the rolling elements (Model::bodies).
 void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height);
 
 /// The bridge springs (one cage_bridge segment per bridge), after the pocket segments.

@@ -191,6 +191,8 @@ void Equations::add_rate_derivative(int b, int state, const double* z, const Wre
   dynamics_->contact_rate_derivative(b, z, dw, rates);
   for (int c = svx; c < coordinate_count; ++c)
     if (body.slot[c] >= 0 && rates[c] != 0.0) jac.add(body.slot[c], state, rates[c]);
+  if (rates[swz] != 0.0)  // a rider's angle is relative: its acceleration less its carrier's
+    for (int r : body.riders) jac.add(model_.bodies[static_cast<std::size_t>(r)].slot[swz], state, -rates[swz]);
 }
 
 void Equations::add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const {
@@ -201,18 +203,24 @@ void Equations::add_segment_jacobian(int s, const double* rec, const double* z, 
   int column = 0;
   for (int side = 0; side < 2; ++side) {
     for (int k = 0; k < coordinate_count; ++k) {
-      const int state = bodies[side]->slot[k];
-      if (state < 0) continue;
+      const int own = bodies[side]->slot[k];
+      if (own < 0) continue;
       const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column++;
-      for (int target = 0; target < 2; ++target) {
-        const Body& rb = *bodies[target];
-        if (!rb.has_states()) continue;
-        Wrench dw;
-        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
-        add_rate_derivative(body_index[target], state, z, dw, jac);
-        if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
-          dw.moment = contact::Vec3::Zero();
-          add_rate_derivative(rb.carrier, state, z, dw, jac);
+      // A rider's kinematics hold its carrier's angle plus its own: the column counts for both.
+      const int carrier = bodies[side]->carrier;
+      const bool relative = carrier >= 0 && (k == saz || k == swz);
+      for (const int state : {own, relative ? model_.bodies[static_cast<std::size_t>(carrier)].slot[k] : -1}) {
+        if (state < 0) continue;
+        for (int target = 0; target < 2; ++target) {
+          const Body& rb = *bodies[target];
+          if (!rb.has_states()) continue;
+          Wrench dw;
+          for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+          add_rate_derivative(body_index[target], state, z, dw, jac);
+          if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
+            dw.moment = contact::Vec3::Zero();
+            add_rate_derivative(rb.carrier, state, z, dw, jac);
+          }
         }
       }
     }

@@ -50,6 +50,8 @@ Model build_model(const io::Scene& scene) {
     m.bridge_count = static_cast<int>(m.border_bodies_after_elements.size());
     for (Body& b : m.border_bodies_after_elements) m.bodies.push_back(std::move(b));
     m.border_bodies_after_elements.clear();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (m.bodies[b].carrier >= 0) m.bodies[static_cast<std::size_t>(m.bodies[b].carrier)].riders.push_back(static_cast<int>(b));
   }
   m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
   builder.segments(m, scene);
@@ -112,7 +114,13 @@ contact::PlanarKinematics Model::planar_kinematics(int b, double t, const double
   auto state = [&](Coordinate c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
   double omega = state(swz);
   if (body.ring && body.ring->motion == io::RingMotion::driven) omega = body.ring->speed(t);
-  return {state(sx), state(sy), state(saz), state(svx), state(svy), omega};
+  double theta = state(saz);
+  if (body.carrier >= 0) {  // a rider's angle and rate are relative to its carrier's
+    const Body& carrier = bodies[static_cast<std::size_t>(body.carrier)];
+    theta += z[carrier.slot[saz]];
+    omega += z[carrier.slot[swz]];
+  }
+  return {state(sx), state(sy), theta, state(svx), state(svy), omega};
 }
 
 double Model::ring_spin(int b, double t, const double* z) const {

@@ -50,10 +50,11 @@ struct Body {
   std::array<int, coordinate_count> slot{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   int offset = 0, size = 0;       ///< contiguous block of this body's states
   const io::RingSpec* ring = nullptr;  ///< rings: motion, drive, loads, support
-  /// A body that rides on another's translation (a flexible cage bridge on the cage): its x, y and
-  /// their rates are the carrier's states (its slots point at them), the force on it moves the
-  /// carrier, its own states (angle, rate) take the moment. -1: none.
+  /// A body that rides on another (a flexible cage bridge on the cage): its x, y and their rates
+  /// are the carrier's states (its slots point at them), its own angle and rate are relative to the
+  /// carrier's (its bending); the force on it moves the carrier, the moment on it bends it. -1: none.
   int carrier = -1;
+  std::vector<int> riders;  ///< the bodies whose carrier this is
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };

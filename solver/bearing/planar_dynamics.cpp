@@ -54,7 +54,7 @@ class PlanarDynamics final : public BodyDynamics {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     for (int c = 0; c < coordinate_count; ++c) rates[c] = 0;
     if (body.carrier >= 0) {  // a bridge's force moves its carrier (Equations); its own rate takes the moment
-      rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);
+      rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);  // (less the carrier's: Equations)
       return;
     }
     const double inv_mass = 1.0 / body.mass;
@@ -107,7 +107,8 @@ class PlanarDynamics final : public BodyDynamics {
         if (const auto frame = carrier_frame(*m_.scene, t)) e += frame->potential(body.mass, x, y);
       }
       if (sl[swz] >= 0) {
-        const double w = z[sl[swz]];
+        double w = z[sl[swz]];
+        if (body.carrier >= 0) w += z[m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz]];
         e += 0.5 * body.axial_inertia * w * w;
       }
     }
@@ -115,8 +116,10 @@ class PlanarDynamics final : public BodyDynamics {
   }
 
  private:
-  /// A flexible cage bridge: the moment on it turns it (its angle and rate are its own states);
-  /// the force on it went to the cage, which carries it (Equations).
+  /// A flexible cage bridge: the moment on it bends it; the force on it went to the cage, which
+  /// carries it (Equations). Its states are its angle and rate relative to the cage, so its
+  /// acceleration is its absolute one, I w' = M (+ the frame's Euler moment), less the cage's,
+  /// which the cage's rates hold already: bodies are visited in order, the cage before its bridges.
   void bridge_rates(const Body& body, double t, const double* z, const Wrench& contacts, Wrench& net,
                     double* zdot) const {
     const auto& sl = body.slot;
@@ -124,8 +127,9 @@ class PlanarDynamics final : public BodyDynamics {
     net = Wrench{};
     net.moment.z() = mz;
     if (const auto frame = carrier_frame(*m_.scene, t)) mz += frame->moment(body.axial_inertia);
+    const int carrier_rate = m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz];
     zdot[sl[saz]] = z[sl[swz]];
-    zdot[sl[swz]] = mz / body.axial_inertia;
+    zdot[sl[swz]] = mz / body.axial_inertia - zdot[carrier_rate];
   }
 
   const Model& m_;

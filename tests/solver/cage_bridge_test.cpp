@@ -8,7 +8,8 @@
 //    (4.7300)^2 sqrt(E I / (m L^3)).
 //  - The Jacobian of a bearing whose bars ride on bridges (shared slots, the force passed on to the
 //    cage) against central differences of the right-hand side.
-//  - Action and reaction: the contact forces and moments summed over all bodies vanish.
+//  - Action and reaction: the contact forces and moments summed over all bodies vanish; the cage and
+//    its bridges change their angular momentum by the moment of the contacts on them.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -72,13 +73,13 @@ TEST(CageBridge, StaticDeflectionMatchesTheClampedBeam) {
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge)];  // ahead of pocket 0
   const auto angle = static_cast<std::size_t>(bridge.slot[saz]);
-  const double cage_angle = z[static_cast<std::size_t>(cage.slot[saz])];
 
-  // The bridge's static deflection: its angular acceleration zero, by the secant method.
-  auto acceleration = [&](double deflection_angle) {
-    z[angle] = cage_angle + deflection_angle;
+  // The bridge's static deflection: its absolute angular acceleration (its own, relative to the
+  // cage, plus the cage's) zero, by the secant method.
+  auto acceleration = [&](double bending_angle) {
+    z[angle] = bending_angle;
     EXPECT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
-    return zdot[static_cast<std::size_t>(bridge.slot[swz])];
+    return zdot[static_cast<std::size_t>(bridge.slot[swz])] + zdot[static_cast<std::size_t>(cage.slot[swz])];
   };
   double a = 0, fa = acceleration(a), b = 1e-4, fb = acceleration(b);
   for (int i = 0; i < 60 && std::abs(b - a) > 1e-15; ++i) {
@@ -131,9 +132,11 @@ TEST(CageBridge, BendingFrequencyMatchesTheClampedBeamMode) {
   const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge + 5)];
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const double phi = 1e-5;
-  z[static_cast<std::size_t>(bridge.slot[saz])] = z[static_cast<std::size_t>(cage.slot[saz])] + phi;
+  z[static_cast<std::size_t>(bridge.slot[saz])] = phi;
   ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
-  const double omega = std::sqrt(-zdot[static_cast<std::size_t>(bridge.slot[swz])] / phi);
+  // On a cage held still: the bridge's absolute acceleration (relative plus the cage's).
+  const double absolute = zdot[static_cast<std::size_t>(bridge.slot[swz])] + zdot[static_cast<std::size_t>(cage.slot[swz])];
+  const double omega = std::sqrt(-absolute / phi);
   const double e = scene.material(scene.cage.material).youngs_modulus;
   const double span = scene.bearing.roller_length;
   const double mass = scene.material(scene.cage.material).density * thickness * height * span;
@@ -154,7 +157,7 @@ TEST(CageBridge, JacobianMatchesCentralDifferences) {
   std::vector<double> z = pressed_state(m, 20e-6);
   const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge)];
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
-  z[static_cast<std::size_t>(bridge.slot[saz])] = z[static_cast<std::size_t>(cage.slot[saz])] + 1e-4;
+  z[static_cast<std::size_t>(bridge.slot[saz])] = 1e-4;
   z[static_cast<std::size_t>(bridge.slot[swz])] = 3.0;  // and moving: the damper works
   const int nb = m.border_size, blocks = m.element_count, bs = m.block_size;
   BorderedMatrix jac(nb, blocks, bs);
@@ -177,7 +180,8 @@ TEST(CageBridge, JacobianMatchesCentralDifferences) {
   // The entries that carry the bridge: its acceleration from its angle and from the roller's
   // position, the cage's acceleration from the roller's position (the force passed on).
   for (const auto& [row, col] : {std::pair{bridge.slot[swz], bridge.slot[saz]}, {bridge.slot[swz], roller.slot[sx]},
-                                 {cage.slot[svx], roller.slot[sx]}, {cage.slot[swz], bridge.slot[saz]}}) {
+                                 {cage.slot[svx], roller.slot[sx]}, {cage.slot[swz], bridge.slot[saz]},
+                                 {bridge.slot[swz], cage.slot[saz]}}) {
     ASSERT_GT(std::abs(fd(row, col)), 1.0) << m.state_name[static_cast<std::size_t>(row)];
     EXPECT_NEAR(model(row, col), fd(row, col), 1e-4 * std::abs(fd(row, col)))
         << m.state_name[static_cast<std::size_t>(row)] << " / " << m.state_name[static_cast<std::size_t>(col)];
@@ -211,6 +215,29 @@ TEST(CageBridge, ActionEqualsReaction) {
   ASSERT_GT(largest, 1000.0);
   EXPECT_LT(force.norm(), 1e-9 * largest);
   EXPECT_LT(std::abs(moment), 1e-9 * largest * m.pitch_radius);
+
+  // The cage with its bridges: the rate of their angular momentum about the cage centre is the
+  // moment of the contacts on them (the bridge springs are internal). A bridge's angle and rate
+  // are relative to the cage's, so its absolute acceleration is its own plus the cage's.
+  const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  const double cage_rate = zdot[static_cast<std::size_t>(cage.slot[swz])];
+  double momentum_rate = cage.axial_inertia * cage_rate, external = 0;
+  for (int k = 0; k < m.bridge_count; ++k) {
+    const Body& b = m.bodies[static_cast<std::size_t>(m.first_bridge + k)];
+    momentum_rate += b.axial_inertia * (cage_rate + zdot[static_cast<std::size_t>(b.slot[swz])]);
+  }
+  for (std::size_t s = 0; s < m.segments.size(); ++s) {
+    const Segment& seg = m.segments[s];
+    if (seg.kind == SegmentKind::cage_bridge) continue;
+    const double* rec = eq.segment_records().data() + s * SegmentRecord::size;
+    const auto on_cage = [&](int b) { return b == m.cage || m.bodies[static_cast<std::size_t>(b)].carrier == m.cage; };
+    if (on_cage(seg.body_a)) external += rec[SegmentRecord::on_a + 5];
+    if (on_cage(seg.body_b)) external += rec[SegmentRecord::on_b + 5];
+  }
+  std::printf("[ bridge ] cage and bridges: angular momentum rate %.6g N m, contact moment %.6g N m\n", momentum_rate,
+              external);
+  ASSERT_GT(std::abs(external), 10.0);
+  EXPECT_NEAR(momentum_rate, external, 1e-9 * std::abs(external));
 }
 
 }  // namespace
