@@ -8,6 +8,8 @@
 // of it and the one behind), so its states cannot live in a roller's block.
 #pragma once
 
+#include <vector>
+
 #include "io/scene/scene.hpp"
 #include "solver/bearing/model.hpp"
 
@@ -42,6 +44,12 @@ void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height);
 
 /// The bridge springs (one cage_bridge segment per bridge), after the pocket segments.
 void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_height);
+
+/// Absolute tolerances of the bridges' bending states. The angle class's (rtol rad) would allow
+/// k R rtol of bridge force, 21 N at rtol 1e-6 in seed 003's bearing, the size of the pocket
+/// forces without the carrier: the bending angle gets rtol F / (k R), F the largest ring load (at
+/// least 1 N), so the bridge force is resolved to rtol F; its rate that times the bending frequency.
+void set_bridge_tolerances(const Model& m, std::vector<double>& atol);
 
 /// The body carrying the bar ahead of (side +1) or behind (side -1) pocket k: a bridge, or the cage.
 int pocket_bar_body(const Model& m, int k, int side);

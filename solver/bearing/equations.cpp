@@ -18,7 +18,10 @@ FiniteDifferenceSteps::FiniteDifferenceSteps(const Model& model)
     : relative_(model.scene->solver.jacobian_perturbation),
       scale_(static_cast<std::size_t>(model.state_size)),
       position_step_(static_cast<std::size_t>(model.state_size), 0.0) {
-  const auto atol = model.absolute_tolerance();
+  // The class scales, not the bridges' tighter bending tolerances: a bridge's kinematics add its
+  // bending angle to the cage's, so a smaller step would drown in the sum's round-off.
+  const auto atol = physical_absolute_tolerance(*model.scene, model.state_class, model.pitch_radius,
+                                                model.element_radius);
   for (std::size_t i = 0; i < scale_.size(); ++i) {
     scale_[i] = atol[i] / model.scene->solver.rtol;
     const auto c = model.state_class[i];

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/cage_bridges.hpp"
+
 namespace raceway::solver {
 
 using contact::Mat3;
@@ -211,7 +213,9 @@ std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const st
 }
 
 std::vector<double> Model::absolute_tolerance() const {
-  return physical_absolute_tolerance(*scene, state_class, pitch_radius, element_radius);
+  std::vector<double> atol = physical_absolute_tolerance(*scene, state_class, pitch_radius, element_radius);
+  set_bridge_tolerances(*this, atol);
+  return atol;
 }
 
 }  // namespace raceway::solver

@@ -284,7 +284,7 @@ std::string describe_roller_model(const Model& m) {
       }
       case BodyKind::cage: why = "x, y, angle and rates: its pockets are not symmetric"; break;
       case BodyKind::rolling_element: why = "x, y, spin rate: the contact does not depend on its angle"; break;
-      case BodyKind::cage_bridge: why = "angle and rate (its deflection against the cage): border states"; break;
+      case BodyKind::cage_bridge: why = "bending angle and rate (relative to the cage): border states"; break;
     }
     const bool repeated = b.kind == BodyKind::rolling_element || b.kind == BodyKind::cage_bridge;
     const int count = b.kind == BodyKind::cage_bridge ? m.bridge_count : m.element_count;
