@@ -72,21 +72,13 @@ void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_heig
                           fmt::format("cage_bridge[{}]", k)});
 }
 
-namespace {
-double largest(const io::TimeFunction& f) {
-  double v = 0;
-  for (double x : f.values) v = std::max(v, std::abs(x));
-  return v;
-}
-}  // namespace
-
 void set_bridge_tolerances(const Model& m, std::vector<double>& atol) {
   const Segment* spring = m.first_segment(SegmentKind::cage_bridge);
   if (!spring) return;
   const auto& law = m.law<contact::CageBridgeSegment>(*spring);
   double load = 1.0;
   for (const io::RingSpec* r : {&m.scene->inner_ring, &m.scene->outer_ring})
-    load = std::max({load, largest(r->load.fx), largest(r->load.fy)});
+    load = std::max({load, max_abs(r->load.fx), max_abs(r->load.fy)});
   const double angle = m.scene->solver.rtol * load / (law.stiffness * law.radius);
   const double frequency = std::sqrt(law.stiffness * law.radius * law.radius /
                                      m.bodies[static_cast<std::size_t>(m.first_bridge)].axial_inertia);

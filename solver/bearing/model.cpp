@@ -183,13 +183,11 @@ double Model::epicyclic_cage_speed(double t, double contact_angle) const {
   return 0.5 * (speed(inner_ring) * (1.0 - gamma) + speed(outer_ring) * (1.0 + gamma));
 }
 
-namespace {
 double max_abs(const io::TimeFunction& f) {
   double v = 0;
   for (double x : f.values) v = std::max(v, std::abs(x));
   return v;
 }
-}  // namespace
 
 std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
                                                 double pitch_radius, double rolling_element_radius) {

@@ -161,6 +161,8 @@ struct ModelBuilder {
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
 
+/// The largest magnitude a time function takes (its table's values; it interpolates linearly).
+double max_abs(const io::TimeFunction& f);
 /// Mass of a ring-shaped body (hollow cylinder) [kg].
 double annulus_mass(double density, double r_in, double r_out, double width);
 /// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.
