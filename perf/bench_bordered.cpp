@@ -10,7 +10,8 @@
 // bearing, 13 rollers; 6309, 8 balls; QJ215, 15 balls). Each time is the minimum over repetitions
 // (other engineers share the 2 cores: the minimum is the least disturbed), the median beside it.
 //
-// Output: CSV on stdout (one row per scene and backend), notes on stderr.
+// Output: CSV on stdout (one row per scene and backend), notes on stderr. With scene files of
+// jobs/scenes after the three optional arguments, only those scenes.
 // Run: perf/run_bordered_scaling.sh (records perf/results/bordered_scaling.{csv,txt,png}).
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -168,6 +169,12 @@ int main(int argc, char** argv) {
     const int max_dense = argc > 2 ? std::atoi(argv[2]) : 512;  // largest N for the dense baseline
     std::printf("scene,N,states,backend,jacobian_min_s,jacobian_median_s,setup_solve_min_s,setup_solve_median_s,solve_min_s,"
                 "solve_median_s,setup_reps,solve_reps,difference_to_petsc,residual\n");
+    if (argc > 4) {  // only the named scenes of jobs/scenes (e.g. a larger border: seed003_flexible_bridges.toml)
+      for (int a = 4; a < argc; ++a)
+        measure_bearing(argv[a], io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + argv[a]), budget,
+                        max_dense);
+      return 0;
+    }
     for (int n : {8, 16, 32, 64, 128, 256, 512}) measure_bearing("synthetic", synthetic_scene(n), budget, max_dense);
     // The real bearings: N = 8..16.
     for (const char* file : {"6309_R3.toml", "qj215_validation.toml"})

@@ -100,4 +100,18 @@ struct CageLandSegment {
 SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& ring);
 
+/// A flexible cage bridge (the bar between two pockets) on the cage. A = cage, B = the bridge, a
+/// body that translates with the cage and turns on its own: its angle less the cage's is the
+/// bridge's deflection angle, `radius` times it the tangential deflection u at the pocket force.
+/// The bridge's bending is a linear spring-damper, k u + c u' (on the bridge, against u; on the
+/// cage, the reaction), both as moments about the common centre (a beam model, seed 003 2.2.1).
+/// Diagnostics: approach = u [m] and normal_force = k u [N], both signed (+: deflected in the
+/// positive sense of rotation); elastic_energy k u^2 / 2; power_loss c u'^2.
+struct CageBridgeSegment {
+  double radius = 0;     ///< m, where the pocket force acts on the bridge (the pitch radius)
+  double stiffness = 0;  ///< N/m, tangential
+  double damping = 0;    ///< N s/m, tangential
+};
+SegmentResult evaluate(const CageBridgeSegment& s, const PlanarKinematics& cage, const PlanarKinematics& bridge);
+
 }  // namespace raceway::contact

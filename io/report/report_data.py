@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from raceway_output import RacewayOutput
+from report_bridges import bridge_forces
 from report_metrics import cage_direction, element_loads, split_bar_forces
 
 
@@ -41,6 +42,8 @@ class BearingRun:
     bar_rear: np.ndarray = None    # [T x n] N
     pocket_circumferential: np.ndarray = None  # [T x n] N (spatial)
     land_force: np.ndarray = None  # [T] N
+    bridge_force: np.ndarray = None  # [T x n] N, signed (report_bridges.py)
+    bridges_flexible: bool = False   # /segments/cage_bridge present
     driven_moment: np.ndarray = None  # [T] N m, net moment about z on the driven ring
     driven_speed: np.ndarray = None   # [T] rad/s
     contact: dict = field(default_factory=dict)  # kind -> {names, element, normal_force, ...} (spatial)
@@ -128,6 +131,7 @@ def read_planar(out):
         run.bar_front, run.bar_rear = (front, rear) if run.direction > 0 else (rear, front)
     if "segments/cage_land/normal_force" in out:
         run.land_force = np.sum(_need(out, "segments/cage_land/normal_force"), axis=1)
+    run.bridge_force, run.bridges_flexible = bridge_forces(out)
     _driven(out, run, 2)
     _sum_power(out, run)
     return run

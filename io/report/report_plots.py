@@ -15,6 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+import report_bridges  # noqa: E402
 import report_metrics as rm  # noqa: E402
 
 WIDTH_IN, HEIGHT_IN, DPI = 16.0, 6.5, 100  # 1600 x 650 px
@@ -245,6 +246,8 @@ def draw_all(run, summary, folder):
         plots += [pocket_force_time, pocket_force_azimuth]
     if run.contact:
         plots += [contact_angle, contact_pressure, film_thickness]
+    if "cage_bridges" in summary:
+        plots += [report_bridges.bridge_force_time, report_bridges.bridge_force_azimuth]
     if "cage_land" in summary:
         plots.append(cage_land)
     if "friction" in summary:

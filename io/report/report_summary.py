@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 import report_metrics as rm
+from report_bridges import summarize_bridges
 
 DEG = 180.0 / math.pi
 
@@ -177,6 +178,9 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
     for key in ("mean", "min", "max"):
         az[f"{run.element}_load_{key}_n"] = list(b[key])
     s["azimuth"] = az
+    bridges = summarize_bridges(run, w, bins)
+    if bridges:
+        s["cage_bridges"] = bridges
     fields = contact_fields(run, w)
     if fields:
         s["contact"] = fields

@@ -93,6 +93,8 @@ struct BearingGeometry {
 
 enum class CageGuidance { inner_land, outer_land, rolling_element };
 enum class PocketShape { cylindrical, spherical };
+/// Roller cages: the bars between the pockets rigid with the cage, or each a clamped beam.
+enum class CageBridges { rigid, flexible };
 
 struct CageSupport {          ///< cage on a spindle (seed 000's aerostatic spindle); 0 = none
   double radial_stiffness = 0, radial_damping = 0;  ///< N/m, N s/m (x and y)
@@ -118,6 +120,11 @@ struct CageSpec {
   double initial_offset = 0;    ///< m, the cage centre's start along +x from the seated place (spatial)
   double mass_eccentricity = 0; ///< m, centre of mass off the cage axis, along the cage frame's x (spatial)
   CageSupport support;          ///< spatial: spindle-mounted cage
+  CageBridges bridges = CageBridges::rigid;  ///< roller cages: rigid or flexible bars (bridges)
+  double bridge_stiffness = 0;  ///< N/m, tangential, under the pocket force; 0 = from the beam section
+  double bridge_thickness = 0;  ///< m, circumferential thickness of a bridge; 0 = computed
+  double bridge_height = 0;     ///< m, radial height of a bridge; 0 = computed
+  double bridge_damping_ratio = 0;  ///< structural damping of a bridge's bending
 };
 
 enum class RingMotion { fixed, driven, free };

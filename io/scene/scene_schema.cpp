@@ -25,6 +25,8 @@ constexpr std::string_view kBallOnly =
     "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
 constexpr std::string_view kSpatialCage =
     "only for spatial scenes (model = \"spatial\"): a planar cage moves in x, y and about z";
+constexpr std::string_view kRollerCage =
+    "only for roller bearings: the bars between a roller cage's pockets (a ball cage's pockets are drilled)";
 constexpr std::string_view kSpatialRing =
     "only for spatial scenes (model = \"spatial\"): a planar ring moves in x, y and about z";
 constexpr std::string_view kSpatialDirection =
@@ -177,6 +179,24 @@ constexpr Row kRows[] = {
      .bounds = positive, .def = value(0), .meaning = "0: computed from geometry and material"},
     {.section = "cage", .key = "inertia", .kind = number, .field = FIELD(scene.cage.inertia), .dim = dim::inertia,
      .bounds = positive, .def = value(0), .meaning = "about the bearing axis; 0: computed"},
+    {.section = "cage", .key = "bridges", .kind = choice, .field = FIELD(scene.cage.bridges), .def = word("rigid"),
+     .bearings = roller_bearings, .elsewhere = kRollerCage, .options = kCageBridges, .noun = "bridge model",
+     .meaning = "the bars between the pockets: rigid with the cage, or flexible (each a clamped beam whose "
+                "tangential deflection is a state)"},
+    {.section = "cage", .key = "bridge_stiffness", .kind = number, .field = FIELD(scene.cage.bridge_stiffness),
+     .dim = dim::stiffness, .bounds = positive, .def = value(0), .bearings = roller_bearings,
+     .elsewhere = kRollerCage, .meaning = "flexible bridges: tangential stiffness under the pocket force; 0: "
+                                         "720 E I / L^3 from the section (clamped beam, load along its length)"},
+    {.section = "cage", .key = "bridge_thickness", .kind = number, .field = FIELD(scene.cage.bridge_thickness),
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .meaning = "flexible bridges: circumferential thickness; 0: d_m sin(pi / Z) - D - pocket_clearance"},
+    {.section = "cage", .key = "bridge_height", .kind = number, .field = FIELD(scene.cage.bridge_height),
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .meaning = "flexible bridges: radial height; 0: the cage's radial section"},
+    {.section = "cage", .key = "bridge_damping_ratio", .kind = number,
+     .field = FIELD(scene.cage.bridge_damping_ratio), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
+     .def = value(0.02), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .meaning = "flexible bridges: damping ratio of a bridge's bending mode"},
     {.section = "cage", .key = "pocket_shape", .kind = choice, .field = FIELD(scene.cage.pocket_shape),
      .def = word("cylindrical"), .bearings = ball_bearings, .elsewhere = kSpatialCage, .options = kPocketShapes,
      .noun = "pocket shape", .meaning = "cylindrical (drilled radially: machined cages) or spherical (pressed, snap)"},

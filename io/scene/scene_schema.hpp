@@ -38,7 +38,7 @@ struct Bind {
 /// Where a row's value goes.
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
-                           BearingType*, CageGuidance*, PocketShape*, RingMotion*, RingTilt*, IntegrationMethod*,
+                           BearingType*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, IntegrationMethod*,
                            LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*>;
 
 enum class ValueKind {
@@ -105,6 +105,8 @@ inline constexpr Option kGuidances[] = {{"inner_land", int(CageGuidance::inner_l
                                         {"rolling_element", int(CageGuidance::rolling_element)}};
 inline constexpr Option kPocketShapes[] = {{"cylindrical", int(PocketShape::cylindrical)},
                                            {"spherical", int(PocketShape::spherical)}};
+inline constexpr Option kCageBridges[] = {{"rigid", int(CageBridges::rigid)},
+                                          {"flexible", int(CageBridges::flexible)}};
 inline constexpr Option kRingMotions[] = {
     {"fixed", int(RingMotion::fixed)}, {"driven", int(RingMotion::driven)}, {"free", int(RingMotion::free)}};
 inline constexpr Option kFreeOrFixed[] = {{"free", 1}, {"fixed", 0}};

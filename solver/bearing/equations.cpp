@@ -19,7 +19,10 @@ FiniteDifferenceSteps::FiniteDifferenceSteps(const Model& model)
     : relative_(model.scene->solver.jacobian_perturbation),
       scale_(static_cast<std::size_t>(model.state_size)),
       position_step_(static_cast<std::size_t>(model.state_size), 0.0) {
-  const auto atol = model.absolute_tolerance();
+  // The class scales, not the bridges' tighter bending tolerances: a bridge's kinematics add its
+  // bending angle to the cage's, so a smaller step would drown in the sum's round-off.
+  const auto atol = physical_absolute_tolerance(*model.scene, model.state_class, model.pitch_radius,
+                                                model.element_radius);
   for (std::size_t i = 0; i < scale_.size(); ++i) {
     scale_[i] = atol[i] / model.scene->solver.rtol;
     const auto c = model.state_class[i];
@@ -39,7 +42,8 @@ namespace {
 template <class Law>
 constexpr bool line_family = std::is_same_v<Law, contact::RollerRaceSegment> ||
                              std::is_same_v<Law, contact::CageBarSegment> ||
-                             std::is_same_v<Law, contact::CageLandSegment>;
+                             std::is_same_v<Law, contact::CageLandSegment> ||
+                             std::is_same_v<Law, contact::CageBridgeSegment>;
 
 template <class Law>
 auto kinematics_for(const Model& m, int b, double t, const double* z) {
@@ -91,6 +95,15 @@ void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, 
   }
   write_result(base, rec);
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+}
+
+/// Adds a segment's wrench on body b to the sums; a body riding on a carrier (a flexible cage
+/// bridge) passes the force on to it (both share one centre, so no moment goes with it).
+void add_body_wrench(const Model& m, std::vector<Wrench>& sums, int b, const double* rec) {
+  add_wrench(sums[static_cast<std::size_t>(b)], rec);
+  const int carrier = m.bodies[static_cast<std::size_t>(b)].carrier;
+  if (carrier >= 0)
+    for (int i = 0; i < 3; ++i) sums[static_cast<std::size_t>(carrier)].force[i] += rec[i];
 }
 
 }  // namespace
@@ -179,8 +192,8 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   for (int s = 0; s < nseg; ++s) {
     const double* rec = records_.data() + static_cast<std::size_t>(s) * SegmentRecord::size;
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-    add_wrench(contact_[static_cast<std::size_t>(seg.body_a)], rec + SegmentRecord::on_a);
-    add_wrench(contact_[static_cast<std::size_t>(seg.body_b)], rec + SegmentRecord::on_b);
+    add_body_wrench(model_, contact_, seg.body_a, rec + SegmentRecord::on_a);
+    add_body_wrench(model_, contact_, seg.body_b, rec + SegmentRecord::on_b);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
@@ -191,6 +204,16 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   return status;
 }
 
+void Equations::add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const {
+  const Body& body = model_.bodies[static_cast<std::size_t>(b)];
+  double rates[coordinate_count];
+  dynamics_->contact_rate_derivative(b, z, dw, rates);
+  for (int c = svx; c < coordinate_count; ++c)
+    if (body.slot[c] >= 0 && rates[c] != 0.0) jac.add(body.slot[c], state, rates[c]);
+  if (rates[swz] != 0.0)  // a rider's angle is relative: its acceleration less its carrier's
+    for (int r : body.riders) jac.add(model_.bodies[static_cast<std::size_t>(r)].slot[swz], state, -rates[swz]);
+}
+
 void Equations::add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const {
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   const int body_index[2] = {seg.body_a, seg.body_b};
@@ -199,18 +222,25 @@ void Equations::add_segment_jacobian(int s, const double* rec, const double* z, 
   int column = 0;
   for (int side = 0; side < 2; ++side) {
     for (int k = 0; k < coordinate_count; ++k) {
-      const int state = bodies[side]->slot[k];
-      if (state < 0) continue;
+      const int own = bodies[side]->slot[k];
+      if (own < 0) continue;
       const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column++;
-      for (int target = 0; target < 2; ++target) {
-        const Body& rb = *bodies[target];
-        if (!rb.has_states()) continue;
-        Wrench dw;
-        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
-        double rates[coordinate_count];
-        dynamics_->contact_rate_derivative(body_index[target], z, dw, rates);
-        for (int c = svx; c < coordinate_count; ++c)
-          if (rb.slot[c] >= 0 && rates[c] != 0.0) jac.add(rb.slot[c], state, rates[c]);
+      // A rider's kinematics hold its carrier's angle plus its own: the column counts for both.
+      const int carrier = bodies[side]->carrier;
+      const bool relative = carrier >= 0 && (k == saz || k == swz);
+      for (const int state : {own, relative ? model_.bodies[static_cast<std::size_t>(carrier)].slot[k] : -1}) {
+        if (state < 0) continue;
+        for (int target = 0; target < 2; ++target) {
+          const Body& rb = *bodies[target];
+          if (!rb.has_states()) continue;
+          Wrench dw;
+          for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+          add_rate_derivative(body_index[target], state, z, dw, jac);
+          if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
+            dw.moment = contact::Vec3::Zero();
+            add_rate_derivative(rb.carrier, state, z, dw, jac);
+          }
+        }
       }
     }
   }
@@ -236,8 +266,8 @@ int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
       status = 1;
       last_invalid_ = s;
     }
-    add_wrench(contacts[static_cast<std::size_t>(seg.body_a)], rec + SegmentRecord::on_a);
-    add_wrench(contacts[static_cast<std::size_t>(seg.body_b)], rec + SegmentRecord::on_b);
+    add_body_wrench(model_, contacts, seg.body_a, rec + SegmentRecord::on_a);
+    add_body_wrench(model_, contacts, seg.body_b, rec + SegmentRecord::on_b);
     add_segment_jacobian(s, rec, z, jac);
   }
   dynamics_->add_body_jacobian(t, z, contacts, step_, jac);

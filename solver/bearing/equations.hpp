@@ -77,6 +77,8 @@ class Equations final : public DynamicSystem {
   /// part order (the same bits for any rank count and plan).
   void combine_rhs_parts(double t, const double* z);
   void combine_jacobian_parts(const double* z);
+  /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian.
+  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
 
   const Model& model_;
   scheduler::Executor& executor_;

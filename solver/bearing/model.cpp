@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/cage_bridges.hpp"
+
 namespace raceway::solver {
 
 using contact::Mat3;
@@ -23,6 +25,7 @@ const char* segment_kind_name(SegmentKind k) {
     case SegmentKind::ball_outer_groove: return "ball_outer_groove";
     case SegmentKind::ball_pocket: return "ball_pocket";
     case SegmentKind::cage_land: return "cage_land";
+    case SegmentKind::cage_bridge: return "cage_bridge";
   }
   return "?";
 }
@@ -44,6 +47,14 @@ Model build_model(const io::Scene& scene) {
   builder.cage(m, scene);
   m.border_size = m.state_size;
   builder.rolling_elements(m, scene);
+  if (!m.border_bodies_after_elements.empty()) {
+    m.first_bridge = static_cast<int>(m.bodies.size());
+    m.bridge_count = static_cast<int>(m.border_bodies_after_elements.size());
+    for (Body& b : m.border_bodies_after_elements) m.bodies.push_back(std::move(b));
+    m.border_bodies_after_elements.clear();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (m.bodies[b].carrier >= 0) m.bodies[static_cast<std::size_t>(m.bodies[b].carrier)].riders.push_back(static_cast<int>(b));
+  }
   m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
   builder.segments(m, scene);
   return m;
@@ -105,7 +116,13 @@ contact::PlanarKinematics Model::planar_kinematics(int b, double t, const double
   auto state = [&](Coordinate c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
   double omega = state(swz);
   if (body.ring && body.ring->motion == io::RingMotion::driven) omega = body.ring->speed(t);
-  return {state(sx), state(sy), state(saz), state(svx), state(svy), omega};
+  double theta = state(saz);
+  if (body.carrier >= 0) {  // a rider's angle and rate are relative to its carrier's
+    const Body& carrier = bodies[static_cast<std::size_t>(body.carrier)];
+    theta += z[carrier.slot[saz]];
+    omega += z[carrier.slot[swz]];
+  }
+  return {state(sx), state(sy), theta, state(svx), state(svy), omega};
 }
 
 double Model::ring_spin(int b, double t, const double* z) const {
@@ -128,6 +145,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:
+    case BodyKind::cage_bridge:
       k.rotation = cardan_rotation(v[sax], v[say], v[saz]);
       k.angular_velocity = k.rotation * Vec3(v[swx], v[swy], v[swz]);
       break;
@@ -165,13 +183,11 @@ double Model::epicyclic_cage_speed(double t, double contact_angle) const {
   return 0.5 * (speed(inner_ring) * (1.0 - gamma) + speed(outer_ring) * (1.0 + gamma));
 }
 
-namespace {
 double max_abs(const io::TimeFunction& f) {
   double v = 0;
   for (double x : f.values) v = std::max(v, std::abs(x));
   return v;
 }
-}  // namespace
 
 std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
                                                 double pitch_radius, double rolling_element_radius) {
@@ -195,7 +211,9 @@ std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const st
 }
 
 std::vector<double> Model::absolute_tolerance() const {
-  return physical_absolute_tolerance(*scene, state_class, pitch_radius, element_radius);
+  std::vector<double> atol = physical_absolute_tolerance(*scene, state_class, pitch_radius, element_radius);
+  set_bridge_tolerances(*this, atol);
+  return atol;
 }
 
 }  // namespace raceway::solver

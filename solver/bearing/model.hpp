@@ -36,7 +36,8 @@ enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, 
 inline constexpr int coordinate_count = 12;
 
 enum class VariableClass { position, angle, velocity, angular_velocity };
-enum class BodyKind { inner_ring, outer_ring, cage, rolling_element };
+/// cage_bridge: a flexible bar between two roller pockets (solver/bearing/cage_bridges.cpp).
+enum class BodyKind { inner_ring, outer_ring, cage, rolling_element, cage_bridge };
 
 /// One rigid body. Its degrees of freedom are the coordinates with a slot (the mask).
 struct Body {
@@ -49,6 +50,11 @@ struct Body {
   std::array<int, coordinate_count> slot{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   int offset = 0, size = 0;       ///< contiguous block of this body's states
   const io::RingSpec* ring = nullptr;  ///< rings: motion, drive, loads, support
+  /// A body that rides on another (a flexible cage bridge on the cage): its x, y and their rates
+  /// are the carrier's states (its slots point at them), its own angle and rate are relative to the
+  /// carrier's (its bending); the force on it moves the carrier, the moment on it bends it. -1: none.
+  int carrier = -1;
+  std::vector<int> riders;  ///< the bodies whose carrier this is
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };
@@ -56,15 +62,16 @@ struct Body {
 /// The closed set of segment kinds (each is one dataset group in the output, in this order).
 enum class SegmentKind {
   roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear,
-  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land
+  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge
 };
-inline constexpr int segment_kind_count = 8;
+inline constexpr int segment_kind_count = 9;
 const char* segment_kind_name(SegmentKind k);
 
 /// The contact laws a segment can evaluate, with their parameters (contact/segments). Dispatched
 /// once per segment evaluation by std::visit: a jump table, no virtual call per contact.
 using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
-                                contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3>;
+                                contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3,
+                                contact::CageBridgeSegment>;
 
 /// A contact segment: two bodies (A, B as in contact/segments) and its law in Model::laws.
 struct Segment {
@@ -78,8 +85,13 @@ struct Segment {
 struct Model {
   const io::Scene* scene = nullptr;
   io::ModelKind kind = io::ModelKind::planar;
-  std::vector<Body> bodies;  ///< inner ring, outer ring, cage, rolling elements (in that order, always)
+  /// Inner ring, outer ring, cage, rolling elements (in that order, always), then the flexible cage
+  /// bridges if any: their states are in the border (built with the cage), the bodies come last so
+  /// that rings, cage and rolling elements keep their places.
+  std::vector<Body> bodies;
   int inner_ring = 0, outer_ring = 1, cage = 2, first_element = 3;
+  int first_bridge = -1, bridge_count = 0;  ///< flexible cage bridges: bodies[first_bridge ..)
+  std::vector<Body> border_bodies_after_elements;  ///< built with the border, appended by build_model
   int element_count = 0;
   int state_size = 0;
   int border_size = 0;  ///< states of rings and cage; rolling-element blocks follow
@@ -149,6 +161,8 @@ struct ModelBuilder {
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
 
+/// The largest magnitude a time function takes (its table's values; it interpolates linearly).
+double max_abs(const io::TimeFunction& f);
 /// Mass of a ring-shaped body (hollow cylinder) [kg].
 double annulus_mass(double density, double r_in, double r_out, double width);
 /// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.

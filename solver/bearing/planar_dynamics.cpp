@@ -17,6 +17,7 @@ class PlanarDynamics final : public BodyDynamics {
   void rates(int b, double t, const double* z, const Wrench& contacts, Wrench& net, double* zdot) const override {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     const auto& sl = body.slot;
+    if (body.carrier >= 0) return bridge_rates(body, t, z, contacts, net, zdot);
     double fx = contacts.force.x(), fy = contacts.force.y(), mz = contacts.moment.z();
     if (sl[svy] >= 0) fy -= body.mass * m_.gravity;
     if (body.ring) {
@@ -52,6 +53,10 @@ class PlanarDynamics final : public BodyDynamics {
   void contact_rate_derivative(int b, const double*, const Wrench& dw, double rates[coordinate_count]) const override {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     for (int c = 0; c < coordinate_count; ++c) rates[c] = 0;
+    if (body.carrier >= 0) {  // a bridge's force moves its carrier (Equations); its own rate takes the moment
+      rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);  // (less the carrier's: Equations)
+      return;
+    }
     const double inv_mass = 1.0 / body.mass;
     rates[svx] = dw.force.x() * inv_mass;
     rates[svy] = dw.force.y() * inv_mass;
@@ -64,7 +69,7 @@ class PlanarDynamics final : public BodyDynamics {
     const auto frame = carrier_frame(*m_.scene, t);
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
-      if (sl[sx] >= 0) {
+      if (sl[sx] >= 0 && body.carrier < 0) {  // a bridge's x, y are its carrier's
         jac.add(sl[sx], sl[svx], 1.0);
         jac.add(sl[sy], sl[svy], 1.0);
         if (body.ring && body.ring->support.stiffness > 0) {
@@ -90,7 +95,7 @@ class PlanarDynamics final : public BodyDynamics {
     double e = 0;
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
-      if (sl[svx] >= 0) {
+      if (sl[svx] >= 0 && body.carrier < 0) {  // a bridge's translation is its carrier's
         const double vx = z[sl[svx]], vy = z[sl[svy]];
         const double x = z[sl[sx]], y = z[sl[sy]];
         e += 0.5 * body.mass * (vx * vx + vy * vy);
@@ -102,7 +107,8 @@ class PlanarDynamics final : public BodyDynamics {
         if (const auto frame = carrier_frame(*m_.scene, t)) e += frame->potential(body.mass, x, y);
       }
       if (sl[swz] >= 0) {
-        const double w = z[sl[swz]];
+        double w = z[sl[swz]];
+        if (body.carrier >= 0) w += z[m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz]];
         e += 0.5 * body.axial_inertia * w * w;
       }
     }
@@ -110,6 +116,22 @@ class PlanarDynamics final : public BodyDynamics {
   }
 
  private:
+  /// A flexible cage bridge: the moment on it bends it; the force on it went to the cage, which
+  /// carries it (Equations). Its states are its angle and rate relative to the cage, so its
+  /// acceleration is its absolute one, I w' = M (+ the frame's Euler moment), less the cage's,
+  /// which the cage's rates hold already: bodies are visited in order, the cage before its bridges.
+  void bridge_rates(const Body& body, double t, const double* z, const Wrench& contacts, Wrench& net,
+                    double* zdot) const {
+    const auto& sl = body.slot;
+    double mz = contacts.moment.z();
+    net = Wrench{};
+    net.moment.z() = mz;
+    if (const auto frame = carrier_frame(*m_.scene, t)) mz += frame->moment(body.axial_inertia);
+    const int carrier_rate = m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz];
+    zdot[sl[saz]] = z[sl[swz]];
+    zdot[sl[swz]] = mz / body.axial_inertia - zdot[carrier_rate];
+  }
+
   const Model& m_;
 };
 

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/cage_bridges.hpp"
 #include "solver/bearing/model.hpp"
 
 namespace raceway::solver {
@@ -85,6 +86,7 @@ void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
   c.axial_inertia = cs.inertia > 0 ? cs.inertia : 0.5 * c.mass * (geo.r_in * geo.r_in + geo.r_out * geo.r_out);
   add_planar_states(m, c, true, true, true);
   m.bodies.push_back(c);
+  add_cage_bridges(m, scene, geo.r_out - geo.r_in);
 }
 
 void add_rollers(Model& m, const io::Scene& scene) {
@@ -194,8 +196,10 @@ void add_roller_segments(Model& m, const io::Scene& scene) {
     const int rear = add_law(m, rear_bar);
     m.segments.push_back({SegmentKind::roller_inner_race, m.inner_ring, body, inner, k, fmt::format("roller[{}]/inner_race", k)});
     m.segments.push_back({SegmentKind::roller_outer_race, m.outer_ring, body, outer, k, fmt::format("roller[{}]/outer_race", k)});
-    m.segments.push_back({SegmentKind::cage_bar_front, m.cage, body, front, k, fmt::format("roller[{}]/cage_bar_front", k)});
-    m.segments.push_back({SegmentKind::cage_bar_rear, m.cage, body, rear, k, fmt::format("roller[{}]/cage_bar_rear", k)});
+    m.segments.push_back({SegmentKind::cage_bar_front, pocket_bar_body(m, k, +1), body, front, k,
+                          fmt::format("roller[{}]/cage_bar_front", k)});
+    m.segments.push_back({SegmentKind::cage_bar_rear, pocket_bar_body(m, k, -1), body, rear, k,
+                          fmt::format("roller[{}]/cage_bar_rear", k)});
   }
 }
 
@@ -241,7 +245,9 @@ void add_rings(Model& m, const io::Scene& scene) {
 
 void add_segments(Model& m, const io::Scene& scene) {
   add_roller_segments(m, scene);
-  add_land_segment(m, scene, cage_geometry(m, scene.cage));
+  const CageGeometry geo = cage_geometry(m, scene.cage);
+  add_land_segment(m, scene, geo);
+  add_cage_bridge_segments(m, scene, geo.r_out - geo.r_in);
 }
 
 }  // namespace
@@ -278,12 +284,16 @@ std::string describe_roller_model(const Model& m) {
       }
       case BodyKind::cage: why = "x, y, angle and rates: its pockets are not symmetric"; break;
       case BodyKind::rolling_element: why = "x, y, spin rate: the contact does not depend on its angle"; break;
+      case BodyKind::cage_bridge: why = "bending angle and rate (relative to the cage): border states"; break;
     }
-    if (b.kind == BodyKind::rolling_element && b.index > 0 && b.index < m.element_count - 1) continue;
+    const bool repeated = b.kind == BodyKind::rolling_element || b.kind == BodyKind::cage_bridge;
+    const int count = b.kind == BodyKind::cage_bridge ? m.bridge_count : m.element_count;
+    if (repeated && b.index > 0 && b.index < count - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", b.name, b.mass,
                        b.axial_inertia, b.size, b.offset, b.offset + b.size, why);
-    if (b.kind == BodyKind::rolling_element && b.index == 0 && m.element_count > 2)
-      out += fmt::format("  ... ({} more rollers alike)\n", m.element_count - 2);
+    if (repeated && b.index == 0 && count > 2)
+      out += fmt::format("  ... ({} more {} alike)\n", count - 2,
+                         b.kind == BodyKind::cage_bridge ? "bridges" : "rollers");
   }
   out += fmt::format("border states {}, roller blocks {} x {}\n", m.border_size, m.element_count, m.block_size);
   int counts[segment_kind_count] = {};
@@ -308,6 +318,12 @@ std::string describe_roller_model(const Model& m) {
                        1e3 * l.clearance, l.law.stiffness, l.traction.friction_coefficient);
   } else {
     out += "  no cage_land segment: the cage is guided by the rollers\n";
+  }
+  if (const Segment* bridge = m.first_segment(SegmentKind::cage_bridge)) {
+    const auto& b = m.law<contact::CageBridgeSegment>(*bridge);
+    out += fmt::format("  cage_bridge x{}: flexible bridges (clamped beams), k = {:.4g} N/m, c = {:.4g} N s/m at "
+                       "radius {:.4g} mm; the pocket bars ride on them\n",
+                       count(SegmentKind::cage_bridge), b.stiffness, b.damping, 1e3 * b.radius);
   }
   out += fmt::format("geometry: pitch radius {:.4f} mm, races {:.4f} / {:.4f} mm, roller radius {:.4f} mm\n",
                      1e3 * m.pitch_radius, 1e3 * m.inner_race_radius, 1e3 * m.outer_race_radius,

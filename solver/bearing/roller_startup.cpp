@@ -309,6 +309,11 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   }
   rep.state[cage.slot[saz]] = s.load_direction;
   rep.state[cage.slot[swz]] = wc;
+  for (int k = 0; k < m.bridge_count; ++k) {  // flexible bridges: undeflected
+    const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge + k)];
+    rep.state[bridge.slot[saz]] = 0.0;
+    rep.state[bridge.slot[swz]] = 0.0;
+  }
   rep.summary = fmt::format(
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",

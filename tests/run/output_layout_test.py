@@ -4,7 +4,7 @@ shape and units, every documented one is written, /time is the dimension scale o
 and the root carries the layout version and the build. The files are read with
 io/report/raceway_output.py (the reader users are pointed to).
 
-    output_layout_test.py CASE RACEWAY SOURCE_DIR      CASE: planar, spatial
+    output_layout_test.py CASE RACEWAY SOURCE_DIR      CASE: planar, spatial, planar_bridges
 
 Each case runs a short scene (serial, --scheduler-log, so /scheduler is written and checked too).
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
@@ -127,6 +127,9 @@ def main():
     scene_file, end, sections = {
         "planar": ("seed002_40hz.toml", "2 ms", ["Planar (roller-bearing) runs"]),
         "spatial": ("6309_R3.toml", "1 ms", ["Spatial (ball-bearing) runs"]),
+        "planar_bridges": ("seed003_flexible_bridges.toml", "0.3 ms",
+                           ["Planar (roller-bearing) runs",
+                            'Flexible cage bridges (planar runs with `[cage] bridges = "flexible"`)']),
     }[case]
     sections.append("Scheduler (`/scheduler`, runs on several ranks or with `--scheduler-log`)")
     tables = documented_tables(doc)
