@@ -51,7 +51,7 @@ speedup() {  # speedup NAME SCENE
 }
 
 {
-  echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores; measured under load (other work shares the cores)"
+  echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores; $(load) at the start (on 2 shared cores, other work would be timed too)"
   speedup fine "$fine"
   speedup shipped "$tmp/shipped.toml"
 } 2>&1 | tee "$out/scaling_speedup.txt"
