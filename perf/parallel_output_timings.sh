@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Output's share of run time with the parallel output (each rank writes the segment diagnostics it
-# evaluated, MPI-IO) against rank 0 writing everything (--serial-output: the writer of before), at
+# evaluated, MPI-IO: --parallel-output) against rank 0 writing everything (the default), at
 # the scenes' default sampling, 1 and 2 ranks, 3 repeats each; one line per run with the machine's
 # load average (uptime). perf/results/output_notes.md, "Parallel output (MPI-IO)", reads the medians.
 #
@@ -21,7 +21,7 @@ for scene in ${SCENES:-6309_R3 qj215_validation seed002_40hz}; do
         np2_parallel) cmd=(mpirun -np 2 "$raceway") ;;
       esac
       extra=()
-      [[ $mode == np2_serial ]] && extra=(--serial-output)
+      [[ $mode == np2_parallel ]] && extra=(--parallel-output)
       json="$out/$scene.$mode.$repeat.json"
       load=$(cut -d' ' -f1 /proc/loadavg)
       "${cmd[@]}" run "$scenes/$scene.toml" -o "$out/$scene.$mode.h5" --summary-json "$json" "${extra[@]}" >/dev/null 2>&1
@@ -29,7 +29,7 @@ for scene in ${SCENES:-6309_R3 qj215_validation seed002_40hz}; do
 import json, sys
 j = json.load(open(sys.argv[1]))
 scene, mode, repeat, load = sys.argv[2:]
-ranks, writer = ("1", "rank 0") if mode == "np1" else ("2", "rank 0 (--serial-output)" if "serial" in mode else "all ranks (MPI-IO)")
+ranks, writer = ("1", "rank 0") if mode == "np1" else ("2", "rank 0" if "serial" in mode else "all ranks (MPI-IO)")
 print(f"{scene}\t{ranks}\t{writer}\t{repeat}\t{j['wall_time_s']:.4f}\t{j['output_time_s']:.4f}\t{j['output_write_time_s']:.4f}\t{load}")
 PY
     done
