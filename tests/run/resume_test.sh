@@ -9,6 +9,8 @@
 #     to the end: after every kill the .partial file opens in h5py, and the final file's datasets and
 #     summary are bitwise those of the uninterrupted run (tests/parallel/compare_outputs.py). At 2
 #     ranks the whole mpirun job is killed. The random delays are printed, to repeat a failure.
+#   kill_resume_np2_parallel_output: the same at 2 ranks with every rank writing its segment
+#     diagnostics (--parallel-output, MPI-IO), compared with the uninterrupted run of the same kind.
 #   signals_np1, signals_np2: SIGINT, SIGTERM and SIGUSR1 (np2: to both ranks, and SIGUSR1 to mpirun,
 #     which forwards it) stop the run within 5 s with exit code 4, a signal checkpoint and a readable
 #     .partial holding the samples up to it; --resume then completes the file with every output time
@@ -63,24 +65,28 @@ h5() {
   "$python" -c "import h5py, numpy as np, sys; f = h5py.File(sys.argv[1], 'r'); print($2)" "$1" 2>&1 | tail -1
 }
 
-# reference NP: the uninterrupted run; sets $reference_ms, its wall time in milliseconds.
+# reference NP [OPTION...]: the uninterrupted run; sets $reference_ms, its wall time in milliseconds.
 reference() {
   local np=$1 t0
+  shift
   t0=$(date +%s%N)
-  launch "$np" "$work/ref.h5"
+  launch "$np" "$work/ref.h5" "$@"
   wait "$pid" || fail "the uninterrupted run failed: $(tail -3 "$work/log")"
   reference_ms=$((($(date +%s%N) - t0) / 1000000))
 }
 
+# kill_resume NP [OPTION...]: OPTIONs go to every run (e.g. --parallel-output).
 kill_resume() {
   local np=$1 kills=0 resumed=0 round delays=""
-  reference "$np"
-  local args=()
+  shift
+  local options=("$@")
+  reference "$np" "${options[@]}"
+  local args=("${options[@]}")
   # Four runs killed at random times (each resuming the one before), then a resume to the end.
   for round in 1 2 3 4 5; do
     : >"$work/log"
     launch "$np" "$work/k.h5" "${args[@]}"
-    args=(--resume)
+    args=("${options[@]}" --resume)
     if [[ $round -lt 5 ]]; then
       wait_for_line "$work/log" "Newton linear solver" || true  # printed as the output is opened
       # A random delay below a quarter of the uninterrupted run's wall time, so that the kills land
@@ -204,6 +210,7 @@ refusals() {
 case "$case_name" in
 kill_resume_np1) kill_resume 1 ;;
 kill_resume_np2) kill_resume 2 ;;
+kill_resume_np2_parallel_output) kill_resume 2 --parallel-output ;;
 signals_np1) signals 1 ;;
 signals_np2) signals 2 ;;
 wall_clock)
