@@ -77,21 +77,17 @@ void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, 
   const auto base = contact::evaluate(law, ka, kb);
   bool ok = base.valid;
   std::vector<double> zp(z, z + m.state_size);
-  int column = 0;
-  for (int side = 0; side < 2; ++side) {
-    const int b = side == 0 ? seg.body_a : seg.body_b;
-    for (int c = 0; c < coordinate_count; ++c) {
-      const int j = m.bodies[static_cast<std::size_t>(b)].slot[c];
-      if (j < 0) continue;
-      const double h = step(j, z);
-      zp[static_cast<std::size_t>(j)] = z[j] + h;
-      const auto kp = kinematics_for<Law>(m, b, t, zp.data());
-      const auto r = side == 0 ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
-      zp[static_cast<std::size_t>(j)] = z[j];
-      ok = ok && r.valid;
-      write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
-      ++column;
-    }
+  const std::vector<SegmentColumn> columns = segment_columns(m, seg);
+  for (std::size_t column = 0; column < columns.size(); ++column) {
+    const SegmentColumn& c = columns[column];
+    const auto j = static_cast<std::size_t>(c.state);
+    const double h = step(c.state, z);
+    zp[j] = z[j] + h;
+    const auto kp = kinematics_for<Law>(m, c.body, t, zp.data());
+    const auto r = c.on_a ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
+    zp[j] = z[j];
+    ok = ok && r.valid;
+    write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
   }
   write_result(base, rec);
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
@@ -219,27 +215,25 @@ void Equations::add_segment_jacobian(int s, const double* rec, const double* z, 
   const int body_index[2] = {seg.body_a, seg.body_b};
   const Body* bodies[2] = {&model_.bodies[static_cast<std::size_t>(seg.body_a)],
                            &model_.bodies[static_cast<std::size_t>(seg.body_b)]};
-  int column = 0;
-  for (int side = 0; side < 2; ++side) {
-    for (int k = 0; k < coordinate_count; ++k) {
-      const int own = bodies[side]->slot[k];
-      if (own < 0) continue;
-      const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column++;
-      // A rider's kinematics hold its carrier's angle plus its own: the column counts for both.
-      const int carrier = bodies[side]->carrier;
-      const bool relative = carrier >= 0 && (k == saz || k == swz);
-      for (const int state : {own, relative ? model_.bodies[static_cast<std::size_t>(carrier)].slot[k] : -1}) {
-        if (state < 0) continue;
-        for (int target = 0; target < 2; ++target) {
-          const Body& rb = *bodies[target];
-          if (!rb.has_states()) continue;
-          Wrench dw;
-          for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
-          add_rate_derivative(body_index[target], state, z, dw, jac);
-          if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
-            dw.moment = contact::Vec3::Zero();
-            add_rate_derivative(rb.carrier, state, z, dw, jac);
-          }
+  const std::vector<SegmentColumn> columns = segment_columns(model_, seg);
+  for (std::size_t column = 0; column < columns.size(); ++column) {
+    const SegmentColumn& c = columns[column];
+    const int k = c.coordinate;
+    const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column;
+    // A rider's kinematics hold its carrier's angle plus its own: the column counts for both.
+    const int carrier = model_.bodies[static_cast<std::size_t>(c.body)].carrier;
+    const bool relative = carrier >= 0 && (k == saz || k == swz);
+    for (const int state : {c.state, relative ? model_.bodies[static_cast<std::size_t>(carrier)].slot[k] : -1}) {
+      if (state < 0) continue;
+      for (int target = 0; target < 2; ++target) {
+        const Body& rb = *bodies[target];
+        if (!rb.has_states()) continue;
+        Wrench dw;
+        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+        add_rate_derivative(body_index[target], state, z, dw, jac);
+        if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
+          dw.moment = contact::Vec3::Zero();
+          add_rate_derivative(rb.carrier, state, z, dw, jac);
         }
       }
     }

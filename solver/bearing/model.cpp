@@ -216,4 +216,14 @@ std::vector<double> Model::absolute_tolerance() const {
   return atol;
 }
 
+std::vector<SegmentColumn> segment_columns(const Model& m, const Segment& seg) {
+  std::vector<SegmentColumn> columns;
+  for (int side = 0; side < 2; ++side) {
+    const int b = side == 0 ? seg.body_a : seg.body_b;
+    for (int c = 0; c < coordinate_count; ++c)
+      if (const int j = m.bodies[static_cast<std::size_t>(b)].slot[c]; j >= 0) columns.push_back({b, c, j, side == 0});
+  }
+  return columns;
+}
+
 }  // namespace raceway::solver

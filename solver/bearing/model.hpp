@@ -131,6 +131,16 @@ struct Model {
   std::string describe() const;
 };
 
+/// A column of a segment's Jacobian: a state of body A, then of body B, in coordinate order. The
+/// Jacobian tasks (whole or in parts) and the assembly read this one order.
+struct SegmentColumn {
+  int body = -1;        ///< the body whose state it is
+  int coordinate = -1;  ///< the coordinate (Coordinate) of that body
+  int state = -1;       ///< its index in the state vector
+  bool on_a = true;     ///< body A's (else B's)
+};
+std::vector<SegmentColumn> segment_columns(const Model& m, const Segment& seg);
+
 /// Builds the model of the scene's kind. Throws std::runtime_error naming the scene key when
 /// something cannot be built.
 Model build_model(const io::Scene& scene);

@@ -28,25 +28,6 @@ namespace raceway::solver {
 
 namespace {
 
-/// The state of column c of a segment's Jacobian (body A's states, then B's, in coordinate order)
-/// and the body it belongs to.
-struct Column {
-  int body = -1, state = -1;
-  bool on_a = true;
-};
-
-std::vector<Column> jacobian_columns(const Model& m, const Segment& seg) {
-  std::vector<Column> columns;
-  for (int side = 0; side < 2; ++side) {
-    const int b = side == 0 ? seg.body_a : seg.body_b;
-    for (int c = 0; c < coordinate_count; ++c) {
-      const int j = m.bodies[static_cast<std::size_t>(b)].slot[c];
-      if (j >= 0) columns.push_back({b, j, side == 0});
-    }
-  }
-  return columns;
-}
-
 /// Segment-major records from task-major ones (`size` doubles each): an uncut segment's record is
 /// its task's; for a cut one, combine(s, its parts' records, its record) fills it.
 template <class Combine>
@@ -109,7 +90,7 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
   const double* z = context + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   const auto& law = groove_law(model_, seg);
-  const std::vector<Column> columns = jacobian_columns(model_, seg);
+  const std::vector<SegmentColumn> columns = segment_columns(model_, seg);
   const auto ka = model_.kinematics(seg.body_a, t, z), kb = model_.kinematics(seg.body_b, t, z);
   std::fill(rec.begin(), rec.end(), 0.0);
   bool ok = true;
@@ -123,7 +104,7 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
       ok = ok && base.valid;
       continue;
     }
-    const Column& c = columns[static_cast<std::size_t>(e - 1)];
+    const SegmentColumn& c = columns[static_cast<std::size_t>(e - 1)];
     const auto j = static_cast<std::size_t>(c.state);
     zp[j] = z[j] + step_(c.state, z);
     const auto kp = model_.kinematics(c.body, t, zp.data());
@@ -144,7 +125,7 @@ void Equations::combine_jacobian_parts(const double* z) {
     std::copy_n(first, SegmentRecord::size, out);  // the base point is part 0's first evaluation
     bool ok = true;
     for (std::size_t k = 0; k < parts; ++k) ok = ok && first[k * size + SegmentRecord::valid] != 0.0;
-    const std::vector<Column> columns = jacobian_columns(model_, model_.segments[s]);
+    const std::vector<SegmentColumn> columns = segment_columns(model_, model_.segments[s]);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const std::size_t offset = SegmentRecord::size + SegmentRecord::wrench_rows * c;
       const double* r = first + ((c + 1) % parts) * size + offset;
