@@ -397,7 +397,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   driver::install_stop_signals();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
   if (rank != 0) {
-    driver::serve_scene_tasks(source, executor, comm);
+    driver::serve_scene_tasks(source, executor, comm, cl.parallel_output);
   } else {
     if (size > 1) spdlog::info("{} ranks: contact tasks on all ranks, {} schedule", size,
                                scheduler::schedule_policy_name(cl.exec_options.policy));

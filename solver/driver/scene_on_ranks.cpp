@@ -84,12 +84,14 @@ bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {
   return true;
 }
 
-void serve_scene_tasks(const SceneSource& source, scheduler::MpiExecutor& executor, MPI_Comm comm) {
+void serve_scene_tasks(const SceneSource& source, scheduler::MpiExecutor& executor, MPI_Comm comm,
+                       bool parallel_output) {
   try {
     const io::Scene scene = io::parse_scene(source.text, source.source, source.overrides);
     if (!executor.await_start()) return;  // rank 0 failed before it had a model and says why
     solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c, const std::map<std::string, solver::SegmentSeries>& s) {
-      WorkerOutput output(comm, s);  // the parallel output's samples and writes (unused with --serial-output)
+      if (!parallel_output) return executor.serve(c);  // no handler: no records kept per evaluation
+      WorkerOutput output(comm, s);  // the parallel output's samples and writes
       executor.serve(c, [&](std::span<const double> payload, std::span<const int> tasks, std::span<const double> records) {
         output(payload, tasks, records);
       });

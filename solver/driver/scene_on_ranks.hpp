@@ -44,9 +44,11 @@ struct SceneSource {
 /// one (`ok` false on rank 0: it reports why).
 bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok);
 
-/// A worker rank: builds the model of the scene and evaluates tasks until rank 0 stops it, taking
-/// part in the parallel output on `comm` (the executor's) when rank 0 asks. Any error here ends
-/// the whole job (MPI_Abort) with this rank's message.
-void serve_scene_tasks(const SceneSource& scene, scheduler::MpiExecutor& executor, MPI_Comm comm);
+/// A worker rank: builds the model of the scene and evaluates tasks until rank 0 stops it; with
+/// `parallel_output` (every rank has the same command line) it keeps its diagnostics at output
+/// times and takes part in the parallel output's writes on `comm` (the executor's). Any error here
+/// ends the whole job (MPI_Abort) with this rank's message.
+void serve_scene_tasks(const SceneSource& scene, scheduler::MpiExecutor& executor, MPI_Comm comm,
+                       bool parallel_output = false);
 
 }  // namespace raceway::driver
