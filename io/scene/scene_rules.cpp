@@ -226,6 +226,18 @@ void model_fits_bearing_type(const Row&, const Section&, Bind& b) {
 void clearance_fits_elements(const Row&, const Section& s, Bind& b) {
   const BearingGeometry& g = b.scene.bearing;
   const double dw = element_diameter(b);
+  // A negative clearance is a preload (an interference fit, a tapered seat): roller bearings only,
+  // and at most 1 % of the roller, beyond which the rollers would be crushed before any load.
+  s.check(g.radial_clearance >= 0 || !b.ball(), "radial_clearance", [&] {
+    return fmt::format("a negative clearance ({}, a preload) is for roller bearings; preload a ball bearing by "
+                       "an axial load on a ring",
+                       mm(g.radial_clearance));
+  });
+  s.check(g.radial_clearance >= -0.01 * dw, "radial_clearance", [&] {
+    return fmt::format("a preload of {} (negative clearance) is more than 1 % of the {} diameter ({}); preloads "
+                       "are a few micrometres to a few tens of them",
+                       mm(-g.radial_clearance), element(b), mm(dw));
+  });
   s.check(g.radial_clearance < dw, "radial_clearance", [&] {
     return fmt::format("clearance larger than a {}: {} clearance with {} {}s", element(b), mm(g.radial_clearance),
                        mm(dw), element(b));
