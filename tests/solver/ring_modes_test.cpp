@@ -51,6 +51,15 @@ io::Scene rim_scene(int modes, bool conservative) {
   return s;
 }
 
+/// A rim scene's model and equations.
+struct RimBearing {
+  RimBearing(int modes, bool conservative) : scene(rim_scene(modes, conservative)), m(build_model(scene)), eq(m, ex) {}
+  io::Scene scene;
+  Model m;
+  scheduler::SerialExecutor ex;
+  Equations eq;
+};
+
 /// The rim's section from the scene, independently of the builder.
 struct Section {
   double radius, bending_stiffness, mass_per_length;
@@ -132,10 +141,10 @@ TEST(RingModes, DiametralPinchMatchesTheThinRingAndConverges) {
 }
 
 TEST(RingModes, FrequenciesMatchTheClassicRing) {
-  const io::Scene scene = rim_scene(8, true);
-  const Model m = build_model(scene);
-  scheduler::SerialExecutor ex;
-  Equations eq(m, ex);
+  RimBearing rb(8, true);
+  const io::Scene& scene = rb.scene;
+  const Model& m = rb.m;
+  Equations& eq = rb.eq;
   const Section sec = section_of(scene, m);
   for (int n = 2; n <= 8; ++n) {
     std::vector<double> z = rest_state(m), zdot(z.size());  // the rollers clear of the outer race
@@ -152,11 +161,17 @@ TEST(RingModes, FrequenciesMatchTheClassicRing) {
   }
 }
 
-/// A pinched rim: the outer ring centred, roller 0 pressed into the race, the modes deflected.
-std::vector<double> pinched_state(const Model& m) {
+/// At rest with the outer ring centred on the inner ring.
+std::vector<double> centred_rest_state(const Model& m) {
   std::vector<double> z = rest_state(m);
   const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
   state(z, ring, sx) = state(z, ring, sy) = 0;
+  return z;
+}
+
+/// A pinched rim: the outer ring centred, roller 0 pressed into the race, the modes deflected.
+std::vector<double> pinched_state(const Model& m) {
+  std::vector<double> z = centred_rest_state(m);
   const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
   const double r = m.outer_race_radius - m.element_radius + 12e-6;  // 12 um into the round race
   const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
@@ -169,10 +184,9 @@ std::vector<double> pinched_state(const Model& m) {
 }
 
 TEST(RingModes, GeneralizedForceIsTheWorkConjugate) {
-  const io::Scene scene = rim_scene(6, true);
-  const Model m = build_model(scene);
-  scheduler::SerialExecutor ex;
-  Equations eq(m, ex);
+  RimBearing rb(6, true);
+  const Model& m = rb.m;
+  Equations& eq = rb.eq;
   std::vector<double> z = pinched_state(m), zdot(z.size());
   constexpr int energy_field = contact::field_index(contact::line_diagnostic_fields, "elastic_energy");
   auto race_energy = [&](const std::vector<double>& zz) {
@@ -211,13 +225,10 @@ TEST(RingModes, GeneralizedForceIsTheWorkConjugate) {
 }
 
 TEST(RingModes, FreeVibrationConservesEnergy) {
-  const io::Scene scene = rim_scene(6, true);
-  const Model m = build_model(scene);
-  scheduler::SerialExecutor ex;
-  Equations eq(m, ex);
-  std::vector<double> z = rest_state(m);
-  const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
-  state(z, ring, sx) = state(z, ring, sy) = 0;
+  RimBearing rb(6, true);
+  const Model& m = rb.m;
+  Equations& eq = rb.eq;
+  std::vector<double> z = centred_rest_state(m);
   // Pinch the rim inward at the azimuth of roller 0 and its opposite (mode 2 alone).
   const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
   const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
@@ -267,12 +278,11 @@ TEST(RingModes, FreeVibrationConservesEnergy) {
 }
 
 TEST(RingModes, JacobianMatchesCentralDifferences) {
-  const io::Scene scene = rim_scene(5, false);
-  const Model m = build_model(scene);
-  scheduler::SerialExecutor ex;
-  Equations eq(m, ex);
-  std::vector<double> z = pinched_state(m);
+  RimBearing rb(5, false);
+  const Model& m = rb.m;
   const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
+  std::vector<double> z = pinched_state(m);
+  Equations& eq = rb.eq;
   state(z, roller, svx) = 0.02, state(z, roller, svy) = -0.03, state(z, roller, swz) = 5.0;  // sliding, approaching
   for (int k = 0; k < m.ring_mode_count; ++k) {
     const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
