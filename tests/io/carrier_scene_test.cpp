@@ -3,6 +3,7 @@
 // the planet gear's flexible rim ([outer_ring] flexibility = "ring_modes").
 #include <gtest/gtest.h>
 
+#include <span>
 #include <string>
 
 #include "io/scene/scene_parser.hpp"
@@ -15,6 +16,20 @@ using namespace test;
 
 std::string with_carrier(std::string_view carrier) {
   return std::string(kPlanarMinimal) + "\n[carrier]\n" + std::string(carrier);
+}
+
+/// A scene text and the key and reason of the error it must give.
+struct Bad {
+  std::string text, key, reason;
+};
+
+void expect_errors(std::span<const Bad> bad) {
+  for (const Bad& b : bad) {
+    const SceneError e = error_of(b.text);
+    EXPECT_EQ(e.key(), b.key) << b.text;
+    EXPECT_NE(e.reason().find(b.reason), std::string::npos) << e.what();
+    EXPECT_GT(e.line(), 0) << e.what();
+  }
 }
 
 TEST(CarrierScene, AbsentByDefault) {
@@ -33,9 +48,6 @@ TEST(CarrierScene, ReadInSI) {
 }
 
 TEST(CarrierScene, BadValuesNameTheKey) {
-  struct Bad {
-    std::string text, key, reason;
-  };
   const Bad bad[] = {
       {with_carrier("speed = \"3000 rpm\"\n"), "carrier.radius", "required key is missing"},
       {with_carrier("radius = \"0 mm\"\nspeed = \"3000 rpm\"\n"), "carrier.radius", "must be greater than zero"},
@@ -48,12 +60,7 @@ TEST(CarrierScene, BadValuesNameTheKey) {
       {replaced(with_carrier("radius = \"100 mm\"\nspeed = \"3000 rpm\"\n"), "[scene]\n", "[scene]\ngravity = true\n"),
        "carrier.radius", "cannot take scene.gravity = true"},
   };
-  for (const Bad& b : bad) {
-    const SceneError e = error_of(b.text);
-    EXPECT_EQ(e.key(), b.key) << b.text;
-    EXPECT_NE(e.reason().find(b.reason), std::string::npos) << e.what();
-    EXPECT_GT(e.line(), 0) << e.what();
-  }
+  expect_errors(bad);
 }
 
 std::string with_outer_ring(std::string_view keys) {
@@ -76,9 +83,6 @@ TEST(FlexibleRingScene, RigidByDefaultAndReadInSI) {
 }
 
 TEST(FlexibleRingScene, BadValuesNameTheKey) {
-  struct Bad {
-    std::string text, key, reason;
-  };
   const Bad bad[] = {
       {with_outer_ring("flexibility = \"rubber\"\n"), "outer_ring.flexibility", "ring_modes"},
       {with_outer_ring("modes = 6\n"), "outer_ring.modes", "only with flexibility = \"ring_modes\""},
@@ -96,12 +100,7 @@ TEST(FlexibleRingScene, BadValuesNameTheKey) {
        "outer_ring.flexibility",
        "only for planar roller bearings"},
   };
-  for (const Bad& b : bad) {
-    const SceneError e = error_of(b.text);
-    EXPECT_EQ(e.key(), b.key) << b.text;
-    EXPECT_NE(e.reason().find(b.reason), std::string::npos) << e.what();
-    EXPECT_GT(e.line(), 0) << e.what();
-  }
+  expect_errors(bad);
 }
 
 }  // namespace
