@@ -16,9 +16,9 @@
 // implicit function of all the others').
 //
 // Modal stiffness and mass of a thin ring of mean radius R, bending stiffness E I and mass per
-// length mu (Love's inextensional ring; Soedel, "Vibrations of Shells and Plates", the ring's
-// inextensional modes): the strain energy (E I / 2) int ((w'' + w) / R^2)^2 R dtheta and the kinetic
-// energy (mu / 2) int (w'^2 + v'^2) R dtheta of w = a cos(n theta) give
+// length mu (Love's inextensional ring, as in Soedel, docs/references.md: the ring's
+// inextensional modes): the strain energy (E I / 2) int ((d2w/dtheta2 + w) / R^2)^2 R dtheta and the kinetic
+// energy (mu / 2) int ((dw/dt)^2 + (dv/dt)^2) R dtheta of w = a cos(n theta) give
 //
 //   k_n = pi E I (n^2 - 1)^2 / R^3,   m_n = pi mu R (1 + 1 / n^2),
 //   omega_n^2 = E I n^2 (n^2 - 1)^2 / (mu R^4 (n^2 + 1))           (the classic ring frequency).

@@ -1,7 +1,7 @@
 // The flexible outer ring (solver/bearing/ring_modes.hpp): a thin rim whose inextensional bending
 // modes n = 2..N are states.
 //  - Static: two opposite radial point loads P (a diametral pinch) on the modal ring, each mode at
-//    rest under its generalized force, against the classic thin-ring result for the shortening of
+//    rest under its generalized force, against the thin-ring result (Roark, docs/references.md) for the shortening of
 //    the loaded diameter, (pi/4 - 2/pi) P R^3 / (E I), computed here from the scene; and the modal
 //    sum's convergence: its error is the tail sum_{even n > N} 1/(n^2 - 1)^2 of the exact series.
 //  - The free frequency of each mode against the classic ring frequency
