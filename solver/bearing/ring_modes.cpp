@@ -130,6 +130,9 @@ void rim_jacobian_record(const contact::RollerRaceSegment& law, const Model& m, 
   bool ok = base.valid;
   std::vector<double> zp(z, z + m.state_size);
   const std::vector<SegmentColumn> columns = segment_columns(m, seg);
+  // A planar ring has at most 5 states and a roller 5: with the shift columns 14 of the record's 24.
+  if (columns.size() + rim_shift_columns > 2 * coordinate_count)
+    throw std::logic_error("rim_jacobian_record: more columns than a Jacobian record holds");
   double* out = rec.data() + SegmentRecord::size;
   for (const SegmentColumn& c : columns) {
     const auto j = static_cast<std::size_t>(c.state);
