@@ -117,6 +117,15 @@ std::optional<std::string> moving_ring_only(const Section&, const Bind& b) {
   if (b.ring->motion != RingMotion::fixed) return std::nullopt;
   return "not allowed with motion = \"fixed\": a fixed ring is held in every direction";
 }
+std::optional<std::string> outer_ring_only(const Section& s, const Bind&) {
+  if (s.path() == "outer_ring") return std::nullopt;
+  return "only for [outer_ring]: the planet gear's rim (a flexible inner ring is not modelled)";
+}
+std::optional<std::string> ring_modes_only(const Section& s, const Bind& b) {
+  if (auto why = outer_ring_only(s, b)) return why;
+  if (b.ring->flexibility == RingFlexibility::ring_modes) return std::nullopt;
+  return "only with flexibility = \"ring_modes\": a rigid ring has no bending modes";
+}
 std::optional<std::string> prescribed_tilt_only(const Section&, const Bind& b) {
   if (b.ring->tilt == RingTilt::prescribed) return std::nullopt;
   return fmt::format("only for tilt = \"prescribed\"; this ring's tilt is \"{}\"", tilt_name(*b.ring));

@@ -315,6 +315,8 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
     rep.state[bridge.slot[saz]] = 0.0;
     rep.state[bridge.slot[swz]] = 0.0;
   }
+  for (int k = 0; k < m.ring_mode_count; ++k)  // a flexible outer ring: round, at rest
+    for (Coordinate c : {sx, sy, svx, svy}) rep.state[m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)].slot[c]] = 0.0;
   rep.summary = fmt::format(
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",
