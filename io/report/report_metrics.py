@@ -114,8 +114,8 @@ def whole_turn_window(time, x, y, window):
     turns = math.floor((swept_from[0] + step) / TWO_PI * (1 + 1e-9))
     if turns < 1:
         return window, 0
-    begin = int(np.argmin(np.abs(swept_from + step - turns * TWO_PI)))
-    return select_window(time, start=float(np.asarray(time, dtype=float)[window.begin + begin])), turns
+    begin = window.begin + int(np.argmin(np.abs(swept_from + step - turns * TWO_PI)))
+    return Window(begin, window.end, float(np.asarray(time, dtype=float)[begin]), window.t_end, False), turns
 
 
 def centroid_metrics(time, x, y, vx, vy, window, cage_speed_mean):

@@ -61,6 +61,14 @@ phase = np.linspace(0, 2 * math.pi, 200001)[:-1]
 speed = np.hypot(a * np.sin(phase), b * np.cos(phase))
 near(m["sigma_v"], speed.std() / speed.mean(), 1e-4, "ellipse: sigma_v")
 
+# A window that ends before the run: its whole turns end with it (the first 2.5 of the 4.5 turns).
+t, x, y, vx, vy, _ = orbit(100e-6, 100e-6, 4.5, 2700)
+m = rm.centroid_metrics(t, x, y, vx, vy, rm.Window(0, 1500, 0.0, t[1499], False), 1.0)
+near(m["vortex_turns"], 2, 0, "the first 2.5 turns: 2 whole turns")
+near(m["vortex_window_start_s"], 300 * 1e-4, 1e-12, "... from sample 300")
+near(m["vortex_window_s"], 1199 * 1e-4, 1e-12, "... to sample 1499")
+near(m["vortex_radius_ratio"], 0.0, 1e-9, "... a circle: ratio 0")
+
 # Less than one turn: no whole turn to take, the whole window about its mean centre.
 t, x, y, vx, vy, w = orbit(100e-6, 100e-6, 0.6, 600)
 m = rm.centroid_metrics(t, x, y, vx, vy, w, 1.0)

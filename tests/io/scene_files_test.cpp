@@ -221,7 +221,7 @@ TEST(JobScenes, Seed001QJ215ValidationInSI) {
 // Seed 001's three sweeps are campaign files over the validation scene (jobs/campaigns/): each
 // scene is the validation scene with the swept speed or loads, 20 inner-ring revolutions and 600
 // output samples per revolution, as in the paper. Their "_unbalance" twins are the same sweeps with
-// a cage unbalance of 50 um (docs/campaigns/qj215_whirl.md), 30 revolutions and six realisations
+// a cage unbalance of 50 um (docs/campaigns/qj215_whirl.md), 60 revolutions and four realisations
 // per point (the cage started 0 to 75 um off-centre), the validation scene's cage otherwise.
 TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
   const Scene reference = job("qj215_validation");
@@ -242,8 +242,8 @@ TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
     Case twin = cases[static_cast<std::size_t>(k)];
     twin.campaign += "_unbalance";
     twin.unbalance = 50e-6;
-    twin.revolutions = 30;
-    twin.offsets = {0.0, 15e-6, 30e-6, 45e-6, 60e-6, 75e-6};
+    twin.revolutions = 60;
+    twin.offsets = {0.0, 25e-6, 50e-6, 75e-6};
     cases.push_back(twin);
   }
   for (const Case& c : cases) {
