@@ -42,6 +42,12 @@ SEED_TRENDS = {
 }
 
 
+# The size of seed 001's ratios its text gives: drawn as a line over the stated stretch of the sweep.
+SEED_SIZES = {"speed": (0.15, [1000, 8000]), "axial_load": (0.45, [1000, 5000]), "radial_load": (1.0, [550, 650])}
+SEED_SIZES_TEXT = {"speed": "the ratio's range over the sweep, 0.15", "axial_load": "the ratio's range, 0.45",
+                   "radial_load": "the ratio above 1.0 at 600 N"}
+
+
 def read_table(campaign_dir):
     """The done rows of a campaign table, each with its swept `value` in seed 001's unit."""
     rows = list(csv.DictReader((pathlib.Path(campaign_dir) / "campaign_table.csv").open()))
@@ -51,7 +57,8 @@ def read_table(campaign_dir):
         if r["status"] != "done":
             continue
         r = dict(r, axis=axis, value=round(float(r[f"{axis}_si"]) * AXES[axis][1], 6))
-        for k in METRICS + ("cage_whirl_radius_m", "vortex_turns", "whirl_frequency_hz", "cage_speed_rpm"):
+        for k in METRICS + ("cage_whirl_radius_m", "vortex_turns", "whirl_frequency_hz", "cage_speed_rpm",
+                            "window_revolutions"):
             r[k] = float(r[k]) if r.get(k) else math.nan
         out.append(r)
     return axis, out
@@ -128,6 +135,27 @@ def print_blocks(per_run):
         print(f"| {value:g} | " + " | ".join(cells) + " |")
 
 
+def plot_blocks(axis, per_run, path):
+    """Each metric's mean over the realisations in each block against the block's end, one line per point."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for value in sorted({b["value"] for b in per_run}):
+        bs = [b for b in per_run if b["value"] == value]
+        ends = sorted({b["to_rev"] for b in bs})
+        for ax, k in zip(axes, METRICS):
+            ax.semilogy(ends, [np.mean([b[k] for b in bs if b["to_rev"] == e]) for e in ends], "o-", label=f"{value:g}")
+    for ax, k in zip(axes, METRICS):
+        ax.set_xlabel("end of the block of revolutions")
+        ax.set_ylabel(f"{k}, mean over the realisations")
+        ax.grid(alpha=0.3)
+    axes[0].legend(title=AXES[axis][0], fontsize=7)
+    fig.suptitle("settling: the vortex metrics over successive blocks of revolutions", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def rtol_check(rows, rtol_dir):
     """Each run of the rtol campaign against the run of the same point and realisation, and the
     realisations' spread at that point."""
@@ -151,8 +179,10 @@ def plot(axis, stats, rows, path, rtol_rows=()):
     x = [p["value"] for p in stats]
     for ax, k in zip(axes, METRICS):
         ax.plot([r["value"] for r in rows], [r[k] for r in rows], ".", color="0.6", ms=5, label="each realisation")
-        ax.errorbar(x, [p[f"{k}_mean"] for p in stats], yerr=[p[f"{k}_std"] for p in stats], fmt="o-", capsize=3,
-                    label="mean +- standard deviation")
+        mean = np.array([p[f"{k}_mean"] for p in stats])
+        spread = [mean - [p[f"{k}_min"] for p in stats], [p[f"{k}_max"] for p in stats] - mean]
+        ax.errorbar(x, mean, yerr=spread, fmt="o-", capsize=3, label="mean, bars: range over the realisations")
+        ax.set_yscale("log")
         if rtol_rows:
             ax.plot([r["value"] for r in rtol_rows], [r[f"{k}_tight"] for r in rtol_rows], "rx", ms=6,
                     label="rtol 1e-8")
@@ -160,6 +190,8 @@ def plot(axis, stats, rows, path, rtol_rows=()):
     axes[2].axhline(100, color="0.5", ls="--", lw=0.8)
     axes[2].text(x[0], 101, "land clearance", fontsize=8, color="0.4")
     axes[2].set_ylim(0, 110)
+    seed_range, seed_x = SEED_SIZES[axis]
+    axes[0].plot(seed_x, [seed_range] * len(seed_x), "k:", label=f"seed 001: {SEED_SIZES_TEXT[axis]}")
     axes[0].set_ylabel("vortex radius ratio (max - min) / mean")
     axes[1].set_ylabel("sigma_v (seed 001 eq. 9)")
     axes[2].set_ylabel("mean cage-centre distance from the axis, um")
@@ -167,9 +199,9 @@ def plot(axis, stats, rows, path, rtol_rows=()):
         ax.set_xlabel(AXES[axis][0])
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    n = stats[0]["realisations"]
-    fig.suptitle(f"QJ215, cage unbalance 50 um: {n} realisations per point, the last whole whirl turns of revolutions "
-                 f"10-30. {SEED_TRENDS[axis][0]}", fontsize=9)
+    n, window = stats[0]["realisations"], float(np.mean([r["window_revolutions"] for r in rows]))
+    fig.suptitle(f"QJ215, cage unbalance 50 um: {n} realisations per point, the whole whirl turns of the last "
+                 f"{window:.0f} revolutions. {SEED_TRENDS[axis][0]}", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -249,6 +281,7 @@ def main(argv):
         per_run = blocks(campaign_dir, rows, int(options["--blocks"]))
         write_csv(f"{prefix}_blocks.csv", per_run)
         print_blocks(per_run)
+        plot_blocks(axis, per_run, f"{prefix}_settling.png")
     return 0
 
 
