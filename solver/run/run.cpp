@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -63,6 +64,7 @@ io::JsonObject RunSummary::to_json() const {
   j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
   j.add("output_time_s", output_seconds);
   j.add("output_write_time_s", output_write_seconds);
+  j.add("output_thread_time_s", output_thread_seconds);
   j.add("scene_overrides", scene_overrides);
   j.add("scene_parameters", scene_parameters);
   return j;
@@ -80,9 +82,13 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
       prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
   if (options.on_info) options.on_info(solver_line);
   const Model& model = eq.model();
+  io::H5WriterOptions storage;
+  // Written by the output thread (not the parallel output): flushed every 4 MiB of rows there, so
+  // that the commit at the end, on the run's thread, has little left to store and to sync.
+  if (!options.shared_output) storage.max_buffered_bytes = std::size_t{4} << 20;
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
-                                                   resumed->unwritten_rows)
-                      : io::H5SeriesWriter::create(options.output_path);
+                                                   resumed->unwritten_rows, storage)
+                      : io::H5SeriesWriter::create(options.output_path, storage);
   if (options.shared_output)  // the segment diagnostics: written by every rank together
     file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<io::SharedRows>& rows) {
       shared->write(path, rows);
@@ -269,6 +275,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   sum.timing = integrator_->timing();
   sum.output_seconds = output_seconds_;
   sum.output_write_seconds = output_seconds_ - diagnostics_seconds_;
+  sum.output_thread_seconds = output_thread_ ? output_thread_->busy_seconds() : 0.0;
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
   file_->set_attribute("/", "summary_json", sum.to_json().dump());
@@ -308,7 +315,10 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     output_thread_ = std::make_unique<OutputThread>(
         z_.size(), [this](double t, long sample, const std::vector<double>& z) {
           write_sample(*sample_eq_, t, sample, z, sample_zdot_);
-        });
+        },
+        // Up to 1024 samples queued (the run's thread waits only when the output thread is that far
+        // behind: on a loaded machine it is descheduled for tens of ms), at most 64 MiB of states.
+        std::clamp<std::size_t>((std::size_t{64} << 20) / (sizeof(double) * z_.size()), 16, 1024));
   integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
   last_checkpoint_wall_ = wall();
   if (!resumed) record(t0, 0);
