@@ -311,6 +311,9 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   // killed. A fresh run does not wait for the disk here: a power loss now loses nothing a resume
   // could use (there is no checkpoint yet); a resumed file holds the rows of the earlier runs.
   file_->flush(resumed.has_value());
+  if (options_.on_info)
+    options_.on_info(fmt::format("output {} {}: readable from here on, also after a kill", file_->partial_path(),
+                                 resumed ? "reopened" : "laid out"));
   if (sample_eq_)
     output_thread_ = std::make_unique<OutputThread>(
         z_.size(), [this](double t, long sample, const std::vector<double>& z) {

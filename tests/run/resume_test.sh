@@ -88,15 +88,22 @@ kill_resume() {
     launch "$np" "$work/k.h5" "${args[@]}"
     args=("${options[@]}" --resume)
     if [[ $round -lt 5 ]]; then
-      wait_for_line "$work/log" "Newton linear solver" || true  # printed as the output is opened
+      wait_for_line "$work/log" "readable from here on" || true  # printed once the output's layout is flushed
       # A random delay below a quarter of the uninterrupted run's wall time, so that the kills land
       # mid-run on a fast machine as on a slow one.
       local delay
       delay=$(printf '%d.%03d' 0 $((RANDOM % (reference_ms / 4 < 999 ? reference_ms / 4 + 1 : 999))))
       delays+=" $delay"
       sleep "$delay"
-      [[ $np -gt 1 ]] && pkill -KILL -P "$pid" 2>/dev/null
+      local ranks=""
+      [[ $np -gt 1 ]] && ranks=$(pgrep -P "$pid" | tr '\n' ' ') && pkill -KILL -P "$pid" 2>/dev/null
       kill -KILL "$pid" 2>/dev/null
+      # The ranks are not mpirun's to wait for: wait until they are gone (a process killed inside
+      # an fsync lives until the disk answers, and holds the file's lock until then).
+      local rank
+      for rank in $ranks; do
+        for _ in $(seq 1 200); do kill -0 "$rank" 2>/dev/null || break; sleep 0.05; done
+      done
     fi
     wait "$pid" 2>/dev/null
     local rc=$?
