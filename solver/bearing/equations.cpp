@@ -181,7 +181,7 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
   executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
-  if (cut_) combine_rhs_parts(t, z);
+  if (cut_) combine_rhs_parts();
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
   for (auto& w : contact_) w = {};
   int status = 0;

@@ -75,7 +75,7 @@ class Equations final : public DynamicSystem {
   void jacobian_part(const double* context, int s, int part, std::span<double> rec) const;
   /// Master: the segment records from the tasks' records, combining each cut segment's parts in
   /// part order (the same bits for any rank count and plan).
-  void combine_rhs_parts(double t, const double* z);
+  void combine_rhs_parts();
   void combine_jacobian_parts(const double* z);
   /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian.
   void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
