@@ -69,9 +69,12 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
   const double* z = context + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   contact::PreparedGrooveContact prepared;
-  const contact::TractionResult block =
-      contact::evaluate_traction_block(groove_law(model_, seg), model_.kinematics(seg.body_a, t, z),
-                                       model_.kinematics(seg.body_b, t, z), part, part < 2 ? &prepared : nullptr);
+  // Mode 1 (the seating): the ring at rest.
+  const auto [ring, ball] = context[1 + model_.state_size] != 0.0
+                                ? groove_kinematics_at_rest(model_, seg, t, z)
+                                : std::pair{model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)};
+  const contact::TractionResult block = contact::evaluate_traction_block(groove_law(model_, seg), ring, ball, part,
+                                                                         part < 2 ? &prepared : nullptr);
   std::fill(rec.begin(), rec.end(), 0.0);
   rec[0] = block.force_x;
   rec[1] = block.force_y;
@@ -84,11 +87,11 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
   }
 }
 
-void Equations::combine_rhs_parts() {
+void Equations::combine_rhs_parts(std::vector<double>& records) {
   const std::size_t size = SegmentRecord::size;
   std::array<contact::TractionResult, contact::max_traction_blocks> blocks{};
   std::array<double, 2 * prepared_share> prepared{};
-  gather_segments(first_task_, parts_, task_records_, size, records_, [&](std::size_t s, const double* first, double* out) {
+  gather_segments(first_task_, parts_, task_records_, size, records, [&](std::size_t s, const double* first, double* out) {
     const auto parts = static_cast<std::size_t>(parts_[s]);
     for (std::size_t k = 0; k < parts; ++k) {
       const double* rec = first + k * size;
