@@ -364,7 +364,10 @@ double place_cage(const Model& m, std::vector<double>& z) {
 StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset, Equations* equations) {
   Seating seat(m, t0);
   seat.azimuth_offset = azimuth_offset;
-  seat.equations = equations;
+  // Through the executor only where contacts are heavy (cut into traction blocks): a light contact
+  // (one block, a few us) costs less on rank 0 than a round of messages per residual, and on shared
+  // cores each round waits for a descheduled rank.
+  seat.equations = equations && equations->has_cut_segments() ? equations : nullptr;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(seat.unknowns.size()));
   Eigen::VectorXd r;
   int iterations = 0;

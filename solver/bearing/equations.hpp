@@ -63,6 +63,8 @@ class Equations final : public DynamicSystem {
   /// a right-hand side (spread over the ranks; a cut contact's parts combined as in rhs()), the
   /// same bits as contact::evaluate on rank 0. Leaves the last rhs() records as they were.
   void add_groove_loads_at_rest(double t, const double* z, std::vector<contact::SpatialWrench>& sums);
+  /// Some segment is cut into parts (a heavy contact: several traction blocks).
+  bool has_cut_segments() const { return cut_; }
   /// Index of the segment that most recently reported leaving its valid range, or -1.
   int last_invalid_segment() const { return last_invalid_; }
 

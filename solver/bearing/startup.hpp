@@ -25,9 +25,9 @@ struct StartupReport {
 /// The consistent initial state of the model at t0. `azimuth_offset` (spatial) turns the whole
 /// ball set and the cage about z (ball k starts at offset + 2 pi k / Z): with the loads turned by
 /// the same angle, the same physical state. Throws std::runtime_error when no equilibrium is found.
-/// `equations` (spatial): the seating's contact evaluations go through its executor, spread over
-/// the ranks like a right-hand side's (Equations::add_groove_loads_at_rest: the same bits);
-/// nullptr: evaluated here.
+/// `equations` (spatial): where it has heavy contacts (cut into parts), the seating's contact
+/// evaluations go through its executor, spread over the ranks like a right-hand side's
+/// (Equations::add_groove_loads_at_rest: the same bits); otherwise, or nullptr: evaluated here.
 StartupReport initial_state(const Model& model, double t0, double azimuth_offset = 0.0, Equations* equations = nullptr);
 
 /// Planar roller bearing: ring centres moved until the roller contact forces balance the loads
