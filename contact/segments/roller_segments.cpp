@@ -205,4 +205,16 @@ SegmentResult evaluate(const CageBridgeSegment& s, const PlanarKinematics& cage,
   return r;
 }
 
+SegmentResult evaluate(const RingModeSegment& s, const PlanarKinematics&, const PlanarKinematics& mode) {
+  SegmentResult r;
+  const double amplitude = std::hypot(mode.x, mode.y);
+  r.valid = std::isfinite(amplitude) && std::isfinite(mode.vx) && std::isfinite(mode.vy);
+  r.on_b = {-(s.stiffness * mode.x + s.damping * mode.vx), -(s.stiffness * mode.y + s.damping * mode.vy), 0.0};
+  r.diagnostics.approach = amplitude;
+  r.diagnostics.normal_force = s.stiffness * amplitude;
+  r.diagnostics.elastic_energy = 0.5 * s.stiffness * amplitude * amplitude;
+  r.diagnostics.power_loss = s.damping * (mode.vx * mode.vx + mode.vy * mode.vy);
+  return r;
+}
+
 }  // namespace raceway::contact

@@ -114,4 +114,17 @@ struct CageBridgeSegment {
 };
 SegmentResult evaluate(const CageBridgeSegment& s, const PlanarKinematics& cage, const PlanarKinematics& bridge);
 
+/// One bending mode n of a flexible outer ring (the rim of a planet gear): A = the ring, B = the
+/// mode, a body whose x and y are the amplitudes a, b of the rim's radial displacement
+/// w = a cos(n theta) + b sin(n theta) (solver/bearing/ring_modes.hpp) and vx, vy their rates. The
+/// rim's elasticity in that mode is a linear spring-damper on the amplitudes: -(k a + c a', k b + c b')
+/// on B. It is internal to the ring: a bending mode (n >= 2) has no resultant, so nothing acts on A.
+/// Diagnostics: approach = sqrt(a^2 + b^2) [m], normal_force = k sqrt(a^2 + b^2) [N] (the modal
+/// force), elastic_energy k (a^2 + b^2) / 2; power_loss c (a'^2 + b'^2).
+struct RingModeSegment {
+  double stiffness = 0;  ///< N/m, modal
+  double damping = 0;    ///< N s/m, modal
+};
+SegmentResult evaluate(const RingModeSegment& s, const PlanarKinematics& ring, const PlanarKinematics& mode);
+
 }  // namespace raceway::contact

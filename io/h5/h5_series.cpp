@@ -151,6 +151,7 @@ H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
       resume_rows_(other.resume_rows_),
       resume_unwritten_(std::move(other.resume_unwritten_)),
       buffered_bytes_(std::exchange(other.buffered_bytes_, 0)),
+      residual_bytes_(std::exchange(other.residual_bytes_, 0)),
       flushed_(other.flushed_),
       series_(std::move(other.series_)),
       by_id_(std::move(other.by_id_)),
@@ -172,6 +173,7 @@ H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
     resume_rows_ = other.resume_rows_;
     resume_unwritten_ = std::move(other.resume_unwritten_);
     buffered_bytes_ = std::exchange(other.buffered_bytes_, 0);
+    residual_bytes_ = std::exchange(other.residual_bytes_, 0);
     flushed_ = other.flushed_;
     series_ = std::move(other.series_);
     by_id_ = std::move(other.by_id_);
@@ -270,6 +272,7 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
   s.rows_written = file_rows;
   s.buffer = std::move(tail);
   buffered_bytes_ += s.buffer.size() * sizeof(double);
+  residual_bytes_ = buffered_bytes_;  // the partial chunks of the interrupted run's last flush
   return keep.release();
 }
 
@@ -339,7 +342,9 @@ void H5SeriesWriter::append(SeriesId id, std::span<const double> row) {
   s.buffer.insert(s.buffer.end(), row.begin(), row.end());
   buffered_bytes_ += row.size_bytes();
   submit_whole_chunks(s);
-  if (buffered_bytes_ >= options_.max_buffered_bytes) flush();
+  // The rows left after a flush (the partial chunks) do not count towards the next one: a file of
+  // many series would otherwise flush at every row.
+  if (buffered_bytes_ >= options_.max_buffered_bytes + residual_bytes_) flush();
 }
 
 void H5SeriesWriter::append(SeriesId id, std::span<const double> row, std::span<const unsigned char> mine) {
@@ -482,6 +487,7 @@ void H5SeriesWriter::flush(bool wait_for_disk) {
   release_disk(partial_path_);
   if (wait_for_disk) fsync_file(partial_path_);
   flushed_ = true;
+  residual_bytes_ = buffered_bytes_;
 }
 
 void H5SeriesWriter::abandon() noexcept {

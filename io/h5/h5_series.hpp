@@ -78,7 +78,8 @@ struct H5WriterOptions {
   int gzip_level = 1;          ///< deflate level of every series (0: no compression)
   bool shuffle = true;         ///< byte shuffle before deflate (doubles compress about 10 % better)
   std::size_t chunk_bytes = 16 * 1024;  ///< target chunk size of a series (whole rows when a row fits)
-  std::size_t max_buffered_bytes = std::size_t{32} << 20;  ///< buffered rows beyond this: flush()
+  /// Rows appended since the last flush beyond this (the partial chunks it left do not count): flush().
+  std::size_t max_buffered_bytes = std::size_t{32} << 20;
   /// Filter (shuffle, deflate) each chunk of whole rows on a background thread as soon as its rows
   /// are appended, and store it at the next flush with H5Dwrite_chunk (io/h5/chunk_compressor.hpp):
   /// the same stored bytes as HDF5's pipeline, off the caller's thread. false: HDF5 filters them
@@ -249,6 +250,7 @@ class H5SeriesWriter {
   std::size_t resume_rows_ = 0;
   std::map<std::string, std::vector<double>> resume_unwritten_;
   std::size_t buffered_bytes_ = 0;
+  std::size_t residual_bytes_ = 0;  // buffered after the last flush (its partial chunks)
   bool flushed_ = false;        // a flush() completed: the file on disk is consistent
   std::map<std::string, Series, std::less<>> series_;
   std::vector<Series*> by_id_;  // SeriesId -> series_ node (map nodes do not move)

@@ -40,8 +40,13 @@ UNITS = {
                        "(spatial: cage/rolling_speed; planar: epicyclic from the rings' speeds)"),
     "cage_whirl_radius_m": ("m", "mean distance of the cage centre from the outer ring's centre (the orbit)"),
     "cage_whirl_radius_std_m": ("m", "its standard deviation (the spread of the orbit)"),
-    "vortex_radius_ratio": ("1", "(max - min) / mean distance of the cage centre from its mean (seed 001 eq. 9)"),
-    "sigma_v": ("1", "vortex velocity deviation ratio: std / mean of the cage centre's speed (seed 001 eq. 9)"),
+    "vortex_radius_ratio": ("1", "(max - min) / mean distance of the cage centre from the vortex centre (seed 001 "
+                                 "eq. 9), over the last vortex_turns whole whirl turns of the window: the vortex "
+                                 "centre is their mean"),
+    "sigma_v": ("1", "vortex velocity deviation ratio: std / mean of the cage centre's speed (seed 001 eq. 9), "
+                     "over the same whole turns"),
+    "vortex_turns": ("1", "whole whirl turns the vortex metrics are taken over (0: less than one turn in the "
+                          "window, then over the whole window about its mean centre)"),
     "whirl_frequency_hz": ("Hz", "mean rate of the cage centre's angle about its mean centre"),
     "impacts_front_per_rev": ("1/rev", "pocket impacts on the front bars per revolution of the driven ring"),
     "impacts_rear_per_rev": ("1/rev", "pocket impacts on the rear bars per revolution of the driven ring"),
@@ -64,7 +69,7 @@ METRICS = [m for m in UNITS if m not in ("window_revolutions", "window_samples",
 #: The campaign file's metric names (campaign.metrics; solver/driver/campaign_file.cpp) and their columns.
 COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
               "cage_whirl_radius": ["cage_whirl_radius_m", "cage_whirl_radius_std_m"],
-              "vortex": ["vortex_radius_ratio", "sigma_v", "whirl_frequency_hz"],
+              "vortex": ["vortex_radius_ratio", "sigma_v", "vortex_turns", "whirl_frequency_hz"],
               "impacts": ["impacts_front_per_rev", "impacts_rear_per_rev"],
               "pocket_force": ["pocket_force_mean_n", "pocket_force_peak_n", "pocket_force_rms_n",
                                "pocket_force_front_peak_n", "pocket_force_rear_peak_n"],
@@ -124,6 +129,7 @@ def scene_metrics(path, settling_time):
         "cage_whirl_radius_std_m": float(np.std(radius)),
         "vortex_radius_ratio": _number(centroid["vortex_radius_ratio"]),
         "sigma_v": _number(centroid["sigma_v"]),
+        "vortex_turns": centroid["vortex_turns"],
         "whirl_frequency_hz": _number(centroid["whirl_frequency_hz"]),
         "pocket_force_mean_n": float(np.mean(pocket)) if pocket.size else 0.0,
         "pocket_force_peak_n": float(np.max(pocket)) if pocket.size else 0.0,

@@ -97,25 +97,51 @@ def cage_direction(mean_speed):
 
 # ---- cage centroid (seed 001 section 4) ---------------------------------------------------------
 
-def centroid_metrics(time, x, y, vx, vy, window, cage_speed_mean):
-    """Vortex metrics of the cage centre. The vortex radius is measured about the window's mean
-    centre (a radial load shifts the orbit); the axis_ ones about the bearing axis. sigma_v = std /
-    mean of the centre speed |v| (seed 001 eq. 9, from the velocity series). Whirl: mean rate of
-    the unwrapped angle about the mean centre, + counter-clockwise."""
+def whole_turn_window(time, x, y, window):
+    """The longest end of `window` in which the centre sweeps a whole number (>= 1) of turns about
+    the window's mean centre, and that number; (`window`, 0) when it holds less than one turn.
+
+    Over whole turns the mean of the samples is the orbit's centre (for a circle or an ellipse swept
+    at a steady rate); over a part-swept one it is not: the mean of a circle swept 4.5 times lies
+    1 / (4.5 pi) = 0.071 of its radius off the centre, which alone gives a vortex radius ratio of 0.14."""
     s = window.slice
-    x, y, vx, vy = (np.asarray(a, dtype=float)[s] for a in (x, y, vx, vy))
-    cx, cy = float(np.mean(x)), float(np.mean(y))
-    m = {"centre_x_m": cx, "centre_y_m": cy}
-    for prefix, (ox, oy) in (("vortex_radius", (cx, cy)), ("axis_radius", (0.0, 0.0))):
-        r = np.hypot(x - ox, y - oy)
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    phi = np.unwrap(np.arctan2(y[s] - np.mean(y[s]), x[s] - np.mean(x[s])))
+    swept_from = np.abs(phi[-1] - phi)  # angle swept from each sample to the window's end
+    # Each sample stands for one output interval, so n samples stand for the angle of n - 1 steps
+    # plus one: N samples a period apart of N hold one turn exactly, and their mean is its centre.
+    step = swept_from[0] / (len(swept_from) - 1)
+    turns = math.floor((swept_from[0] + step) / TWO_PI * (1 + 1e-9))
+    if turns < 1:
+        return window, 0
+    begin = window.begin + int(np.argmin(np.abs(swept_from + step - turns * TWO_PI)))
+    return Window(begin, window.end, float(np.asarray(time, dtype=float)[begin]), window.t_end, False), turns
+
+
+def centroid_metrics(time, x, y, vx, vy, window, cage_speed_mean):
+    """Vortex metrics of the cage centre (seed 001 section 4, eq. 9), over the whole whirl turns at
+    the end of the window (whole_turn_window; the whole window when it holds less than one turn):
+    the vortex radius is the distance from the mean centre of those turns (a radial load shifts
+    the orbit), its ratio (max - min) / mean; sigma_v = std / mean of the centre speed |v| over the
+    same samples. The axis_ radius is about the bearing axis over the whole window. Whirl: mean rate
+    of the unwrapped angle about the vortex centre over the whole window, + counter-clockwise."""
+    x, y, vx, vy = (np.asarray(a, dtype=float) for a in (x, y, vx, vy))
+    s = window.slice
+    vortex, turns = whole_turn_window(time, x, y, window)
+    v = vortex.slice
+    cx, cy = float(np.mean(x[v])), float(np.mean(y[v]))
+    m = {"centre_x_m": cx, "centre_y_m": cy, "vortex_turns": turns, "vortex_window_start_s": vortex.t_begin,
+         "vortex_window_s": vortex.length}
+    for prefix, (ox, oy), w in (("vortex_radius", (cx, cy), v), ("axis_radius", (0.0, 0.0), s)):
+        r = np.hypot(x[w] - ox, y[w] - oy)
         mean = float(np.mean(r))
         m.update({f"{prefix}_mean_m": mean, f"{prefix}_min_m": float(r.min()), f"{prefix}_max_m": float(r.max()),
                   f"{prefix}_ratio": ratio_or_nan(float(r.max() - r.min()), mean)})
-    speed = np.hypot(vx, vy)
+    speed = np.hypot(vx[v], vy[v])
     m["speed_mean_m_s"] = float(np.mean(speed))
     m["speed_std_m_s"] = float(np.std(speed, ddof=1))
     m["sigma_v"] = ratio_or_nan(m["speed_std_m_s"], m["speed_mean_m_s"])
-    phi = np.arctan2(y - cy, x - cx)
+    phi = np.arctan2(y[s] - cy, x[s] - cx)
     swept = float(np.sum(np.remainder(np.diff(phi) + math.pi, TWO_PI) - math.pi))
     # A centre that does not move (radii at the rounding level of its coordinates) has no whirl.
     if not m["vortex_radius_max_m"] > 64 * np.finfo(float).eps * (abs(cx) + abs(cy)):

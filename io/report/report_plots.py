@@ -96,7 +96,8 @@ def cage_centroid(run, s, folder):
     ax2.plot(run.time, r, lw=0.7)
     shade_window(ax2, s)
     ax2.set_xlabel("time [s]")
-    ax2.set_ylabel("distance from the window's mean centre [um]")
+    ax2.set_ylabel("distance from the vortex centre [um]")
+    ax2.axvline(c["vortex_window_start_s"], color="k", lw=0.8, ls=":")  # the vortex metrics' whole turns
     return save(fig, folder, "cage_centroid.png")
 
 

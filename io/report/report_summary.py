@@ -207,7 +207,8 @@ def headlines(s, run):
                      f"slip {100 * cs['slip_rolling']:.3f} %")
     c = s["cage_centroid"]
     lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
-                 f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f}, whirl {c['whirl_frequency_rad_s']:.3g} "
+                 f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f} over the last {c['vortex_turns']} whole "
+                 f"whirl turns ({c['vortex_window_s']:.4g} s), whirl {c['whirl_frequency_rad_s']:.3g} "
                  f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
     if "pocket_forces" in s:
         p = s["pocket_forces"]

@@ -146,6 +146,9 @@ struct RingSupport {        ///< linear spring-damper to ground, per translation
 /// Tilt of a ring about x and y (spatial scenes): held aligned, free (integrated), or a prescribed
 /// misalignment given as functions of time (seed 000 case M24).
 enum class RingTilt { fixed, free, prescribed };
+/// The outer ring's raceway: rigid, or a thin elastic ring whose in-plane inextensional bending modes
+/// n = 2..modes are states (solver/bearing/ring_modes.hpp; planar roller bearings, outer ring only).
+enum class RingFlexibility { rigid, ring_modes };
 
 struct RingSpec {
   RingMotion motion = RingMotion::fixed;
@@ -160,6 +163,11 @@ struct RingSpec {
   double mass = 0;          ///< kg; 0 = computed from geometry and material
   double inertia = 0;       ///< kg m^2; 0 = computed
   double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial); 0 = computed
+  RingFlexibility flexibility = RingFlexibility::rigid;  ///< planar outer ring: rigid or modal rim
+  int modes = 0;                 ///< ring_modes: the highest bending mode number kept (n = 2..modes)
+  double rim_thickness = 0;      ///< m, radial, of the rim's bending section; 0 = outside - race radius
+  double rim_width = 0;          ///< m, axial, of the rim's bending section; 0 = ring width
+  double rim_damping_ratio = 0;  ///< ring_modes: modal damping ratio of every bending mode
 };
 
 /// Contact laws, chosen by name in the scene. The parser looks every name up in the law registry

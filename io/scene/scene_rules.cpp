@@ -117,6 +117,15 @@ std::optional<std::string> moving_ring_only(const Section&, const Bind& b) {
   if (b.ring->motion != RingMotion::fixed) return std::nullopt;
   return "not allowed with motion = \"fixed\": a fixed ring is held in every direction";
 }
+std::optional<std::string> outer_ring_only(const Section& s, const Bind&) {
+  if (s.path() == "outer_ring") return std::nullopt;
+  return "only for [outer_ring]: the planet gear's rim (a flexible inner ring is not modelled)";
+}
+std::optional<std::string> ring_modes_only(const Section& s, const Bind& b) {
+  if (auto why = outer_ring_only(s, b)) return why;
+  if (b.ring->flexibility == RingFlexibility::ring_modes) return std::nullopt;
+  return "only with flexibility = \"ring_modes\": a rigid ring has no bending modes";
+}
 std::optional<std::string> prescribed_tilt_only(const Section&, const Bind& b) {
   if (b.ring->tilt == RingTilt::prescribed) return std::nullopt;
   return fmt::format("only for tilt = \"prescribed\"; this ring's tilt is \"{}\"", tilt_name(*b.ring));
@@ -226,6 +235,18 @@ void model_fits_bearing_type(const Row&, const Section&, Bind& b) {
 void clearance_fits_elements(const Row&, const Section& s, Bind& b) {
   const BearingGeometry& g = b.scene.bearing;
   const double dw = element_diameter(b);
+  // A negative clearance is a preload (an interference fit, a tapered seat): roller bearings only,
+  // and at most 1 % of the roller, beyond which the rollers would be crushed before any load.
+  s.check(g.radial_clearance >= 0 || !b.ball(), "radial_clearance", [&] {
+    return fmt::format("a negative clearance ({}, a preload) is for roller bearings; preload a ball bearing by "
+                       "an axial load on a ring",
+                       mm(g.radial_clearance));
+  });
+  s.check(g.radial_clearance >= -0.01 * dw, "radial_clearance", [&] {
+    return fmt::format("a preload of {} (negative clearance) is more than 1 % of the {} diameter ({}); preloads "
+                       "are a few micrometres to a few tens of them",
+                       mm(-g.radial_clearance), element(b), mm(dw));
+  });
   s.check(g.radial_clearance < dw, "radial_clearance", [&] {
     return fmt::format("clearance larger than a {}: {} clearance with {} {}s", element(b), mm(g.radial_clearance),
                        mm(dw), element(b));

@@ -41,6 +41,8 @@ std::optional<std::string> unless_ball_material(const Section& s, const Bind& b)
 std::optional<std::string> land_guided_only(const Section& s, const Bind& b);
 std::optional<std::string> driven_ring_only(const Section& s, const Bind& b);
 std::optional<std::string> moving_ring_only(const Section& s, const Bind& b);
+std::optional<std::string> outer_ring_only(const Section& s, const Bind& b);
+std::optional<std::string> ring_modes_only(const Section& s, const Bind& b);
 std::optional<std::string> prescribed_tilt_only(const Section& s, const Bind& b);
 std::optional<std::string> force_needs_free_centre(const Section& s, const Bind& b);
 std::optional<std::string> axial_force_needs_axially_free(const Section& s, const Bind& b);

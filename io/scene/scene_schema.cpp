@@ -46,6 +46,9 @@ constexpr std::string_view kBallRaceContact =
 constexpr std::string_view kPlanarCarrier =
     "only for planar roller bearings (model = \"planar\"): the carrier's frame terms act in the bearing's plane";
 
+constexpr std::string_view kPlanarRim =
+    "only for planar roller bearings (model = \"planar\"): the rim's in-plane bending modes";
+
 constexpr std::string_view kMaxOrderText = "5 (bdf), 12 (adams), 8 (erk), 5 (ark)";
 constexpr std::string_view kMaxOrderDefaultText = "5 (bdf), 12 (adams), 5 (erk), 4 (ark)";
 
@@ -130,8 +133,8 @@ constexpr Row kRows[] = {
     {.section = "bearing", .key = "pitch_diameter", .kind = number, .field = FIELD(scene.bearing.pitch_diameter),
      .dim = dim::length, .bounds = positive, .meaning = "diameter d_m of the circle through the element centres"},
     {.section = "bearing", .key = "radial_clearance", .kind = number, .field = FIELD(scene.bearing.radial_clearance),
-     .dim = dim::length, .bounds = non_negative, .def = value(0), .then = clearance_fits_elements,
-     .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2)"},
+     .dim = dim::length, .def = value(0), .then = clearance_fits_elements,
+     .meaning = "diametral clearance P_d: race diameters are d_m -/+ (D + P_d/2); negative: a preload (roller bearings, at most 1 % of D)"},
     {.section = "bearing", .key = "contact_angle", .kind = number, .field = FIELD(scene.bearing.ball.free_contact_angle),
      .dim = dim::angle, .bounds = kFreeContactAngle, .bearings = ball_bearings, .elsewhere = kBallOnly,
      .when = contact_angle_applies, .missing = kContactAngleMissing, .example = "40 deg",
@@ -286,6 +289,28 @@ constexpr Row kRows[] = {
     {.section = "*_ring", .key = "transverse_inertia", .kind = number, .field = FIELD(ring->transverse_inertia),
      .dim = dim::inertia, .bounds = positive, .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialRing,
      .meaning = "about a diameter; 0: computed"},
+    {.section = "*_ring", .key = "flexibility", .kind = choice, .field = FIELD(ring->flexibility),
+     .def = word("rigid"), .bearings = roller_bearings, .elsewhere = kPlanarRim, .when = outer_ring_only,
+     .options = kRingFlexibilities, .noun = "ring flexibility",
+     .meaning = "the outer ring's raceway: rigid, or ring_modes (a thin elastic rim whose in-plane inextensional "
+                "bending modes n = 2..modes are states: a planet gear's rim, seed 003 2.3)"},
+    {.section = "*_ring", .key = "modes", .kind = integer, .field = FIELD(ring->modes), .bounds = {.lo = 2, .hi = 40},
+     .def = value(8), .bearings = roller_bearings, .elsewhere = kPlanarRim, .when = ring_modes_only,
+     .meaning = "flexibility = \"ring_modes\": the highest bending mode number kept (the point-load deflection "
+                "converges as 1 / modes^3)"},
+    {.section = "*_ring", .key = "rim_thickness", .kind = number, .field = FIELD(ring->rim_thickness),
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kPlanarRim,
+     .when = ring_modes_only, .example = "8 mm",
+     .meaning = "flexibility = \"ring_modes\": radial thickness of the rim's bending section; 0: (outside diameter "
+                "- outer race diameter) / 2"},
+    {.section = "*_ring", .key = "rim_width", .kind = number, .field = FIELD(ring->rim_width), .dim = dim::length,
+     .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kPlanarRim,
+     .when = ring_modes_only, .meaning = "flexibility = \"ring_modes\": axial width of the rim's bending section; 0: "
+                                        "the ring width"},
+    {.section = "*_ring", .key = "rim_damping_ratio", .kind = number, .field = FIELD(ring->rim_damping_ratio),
+     .dim = dim::none, .bounds = {.lo = 0, .hi = 1}, .def = value(0.02), .bearings = roller_bearings,
+     .elsewhere = kPlanarRim, .when = ring_modes_only,
+     .meaning = "flexibility = \"ring_modes\": damping ratio of every bending mode"},
 
     // ---- [*_ring.misalignment] ------------------------------------------------------------------
     {.section = "*_ring.misalignment", .key = "x", .kind = time_function, .field = FIELD(ring->misalignment_x),

@@ -38,7 +38,7 @@ struct Bind {
 /// Where a row's value goes.
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
-                           BearingType*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, IntegrationMethod*,
+                           BearingType*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
                            LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*>;
 
 enum class ValueKind {
@@ -109,6 +109,8 @@ inline constexpr Option kCageBridges[] = {{"rigid", int(CageBridges::rigid)},
                                           {"flexible", int(CageBridges::flexible)}};
 inline constexpr Option kRingMotions[] = {
     {"fixed", int(RingMotion::fixed)}, {"driven", int(RingMotion::driven)}, {"free", int(RingMotion::free)}};
+inline constexpr Option kRingFlexibilities[] = {{"rigid", int(RingFlexibility::rigid)},
+                                                {"ring_modes", int(RingFlexibility::ring_modes)}};
 inline constexpr Option kFreeOrFixed[] = {{"free", 1}, {"fixed", 0}};
 inline constexpr Option kRingTilts[] = {
     {"fixed", int(RingTilt::fixed)}, {"free", int(RingTilt::free)}, {"prescribed", int(RingTilt::prescribed)}};

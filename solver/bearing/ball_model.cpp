@@ -346,7 +346,8 @@ std::string describe_ball_model(const Model& m) {
       case BodyKind::rolling_element:
         why = fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)", m.element_count);
         break;
-      case BodyKind::cage_bridge: break;  // roller cages only
+      case BodyKind::cage_bridge:  // roller bearings only
+      case BodyKind::ring_mode: break;
     }
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
                        b.name, b.mass, b.axial_inertia, b.transverse_inertia, b.size, why);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "solver/bearing/ring_modes.hpp"
+
 namespace raceway::solver {
 
 std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model);
@@ -43,7 +45,8 @@ template <class Law>
 constexpr bool line_family = std::is_same_v<Law, contact::RollerRaceSegment> ||
                              std::is_same_v<Law, contact::CageBarSegment> ||
                              std::is_same_v<Law, contact::CageLandSegment> ||
-                             std::is_same_v<Law, contact::CageBridgeSegment>;
+                             std::is_same_v<Law, contact::CageBridgeSegment> ||
+                             std::is_same_v<Law, contact::RingModeSegment>;
 
 template <class Law>
 auto kinematics_for(const Model& m, int b, double t, const double* z) {
@@ -117,7 +120,8 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
   // Counted here, not in the tasks, which may run on other ranks.
   for (const Segment& seg : model.segments) {
     jacobian_segment_evaluations_ += 1 + state_count(model.bodies[static_cast<std::size_t>(seg.body_a)]) +
-                                     state_count(model.bodies[static_cast<std::size_t>(seg.body_b)]);
+                                     state_count(model.bodies[static_cast<std::size_t>(seg.body_b)]) +
+                                     (on_rim(model, seg) ? rim_shift_columns : 0);
     elastic_energy_field_.push_back(std::visit(
         [](const auto& law) { return elastic_energy_field<std::decay_t<decltype(law)>>(); },
         model.laws[static_cast<std::size_t>(seg.law)]));
@@ -137,6 +141,8 @@ void Equations::rhs_task(std::span<const double> context, int task, std::span<do
   const double* z = context.data() + 1;
   if (context.back() != 0.0) return rest_task(s, t, z, rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  if (on_rim(model_, seg))
+    return write_result(evaluate_on_rim(model_.law<contact::RollerRaceSegment>(seg), model_, seg, t, z), rec);
   std::visit(
       [&](const auto& law) {
         using Law = std::decay_t<decltype(law)>;
@@ -194,6 +200,9 @@ void Equations::jacobian_task(std::span<const double> context, int task, std::sp
   if (parts_[static_cast<std::size_t>(s)] > 1)
     return jacobian_part(context.data(), s, task - first_task_[static_cast<std::size_t>(s)], rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  if (on_rim(model_, seg))
+    return rim_jacobian_record(model_.law<contact::RollerRaceSegment>(seg), model_, step_, seg, context[0],
+                               context.data() + 1, rec);
   std::visit([&](const auto& law) { segment_jacobian_record(model_, step_, law, seg, context[0], context.data() + 1, rec); },
              model_.laws[static_cast<std::size_t>(seg.law)]);
 }
@@ -233,6 +242,7 @@ int Equations::rhs(double t, const double* z, double* zdot) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     add_body_wrench(model_, contact_, seg.body_a, rec + SegmentRecord::on_a);
     add_body_wrench(model_, contact_, seg.body_b, rec + SegmentRecord::on_b);
+    if (on_rim(model_, seg)) add_rim_forces(seg, t, z, rec, contact_);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
@@ -283,6 +293,71 @@ void Equations::add_segment_jacobian(int s, const double* rec, const double* z, 
   }
 }
 
+void Equations::add_rim_forces(const Segment& seg, double t, const double* z, const double* rec,
+                               std::vector<Wrench>& sums) const {
+  const RimPoint p = rim_point(model_, model_.planar_kinematics(seg.body_a, t, z),
+                               model_.planar_kinematics(seg.body_b, t, z), z);
+  add_modal_forces(model_, p, rec + SegmentRecord::on_a, sums);
+}
+
+// A rim contact (ring_modes.hpp): its force on the ring drives the modes through Q = f . phi_n(theta),
+// theta the contact's azimuth. Rows of the modes: dQ/dz = (df/dz) . phi_n + f . phi_n'(theta) dtheta/dz,
+// with phi_a' = -(n - 1/n) sin(n theta) e_r and phi_b' = (n - 1/n) cos(n theta) e_r (e_r' = e_t,
+// e_t' = -e_r). Columns of the modes: the contact depends on them through the rim's displacement
+// u = sum phi_n a_n at the contact, so d(wrench)/d a_n = d(wrench)/d u . phi_n from the record's
+// shift columns, for the ring's, the roller's and the modes' own rows.
+void Equations::add_rim_jacobian(const Segment& seg, const double* rec, double t, const double* z,
+                                 BorderedMatrix& jac) const {
+  const Model& m = model_;
+  const RimPoint p = rim_point(m, m.planar_kinematics(seg.body_a, t, z), m.planar_kinematics(seg.body_b, t, z), z);
+  const double co = p.cos_theta, si = p.sin_theta;
+  const ModeShapes shape(co, si, m.ring_mode_count + 1);
+  const double radial = rec[SegmentRecord::on_a] * co + rec[SegmentRecord::on_a + 1] * si;
+  // The modes' rows from a column: d (force on the ring) and d theta.
+  auto add_mode_rows = [&](int state, const double* d, double dtheta) {
+    const double dr = d[0] * co + d[1] * si, dt = -d[0] * si + d[1] * co;
+    for (int k = 0; k < m.ring_mode_count; ++k) {
+      const int n = k + 2;
+      const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n, turn = (n - inv_n) * radial * dtheta;
+      Wrench dq;
+      dq.force.x() = dr * c - dt * s * inv_n - turn * s;
+      dq.force.y() = dr * s + dt * c * inv_n + turn * c;
+      add_rate_derivative(m.first_ring_mode + k, state, z, dq, jac);
+    }
+  };
+  const std::vector<SegmentColumn> columns = segment_columns(m, seg);
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    const SegmentColumn& c = columns[i];
+    const double side = c.on_a ? -1.0 : 1.0;  // theta is the roller's azimuth about the ring's centre
+    const double dtheta = c.coordinate == sx ? -side * si / p.distance : c.coordinate == sy ? side * co / p.distance : 0.0;
+    add_mode_rows(c.state, rec + SegmentRecord::size + SegmentRecord::wrench_rows * i, dtheta);
+  }
+  const double* shift = rec + SegmentRecord::size + SegmentRecord::wrench_rows * columns.size();
+  for (int k = 0; k < m.ring_mode_count; ++k) {
+    const Body& mode = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
+    const int n = k + 2;
+    const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n;
+    // phi_a = c e_r - (s / n) e_t, phi_b = s e_r + (c / n) e_t, as x, y components.
+    const double phi[2][2] = {{c * co + s * inv_n * si, c * si - s * inv_n * co},
+                              {s * co - c * inv_n * si, s * si + c * inv_n * co}};
+    for (const auto& [state, shape_index, rate] : {std::tuple{mode.slot[sx], 0, 0}, std::tuple{mode.slot[sy], 1, 0},
+                                                   std::tuple{mode.slot[svx], 0, 1}, std::tuple{mode.slot[svy], 1, 1}}) {
+      double d[SegmentRecord::wrench_rows];
+      const double* dx = shift + SegmentRecord::wrench_rows * (2 * rate);
+      const double* dy = dx + SegmentRecord::wrench_rows;
+      for (int r = 0; r < SegmentRecord::wrench_rows; ++r) d[r] = dx[r] * phi[shape_index][0] + dy[r] * phi[shape_index][1];
+      for (int target = 0; target < 2; ++target) {
+        const int b = target == 0 ? seg.body_a : seg.body_b;
+        if (!m.bodies[static_cast<std::size_t>(b)].has_states()) continue;
+        Wrench dw;
+        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+        add_rate_derivative(b, state, z, dw, jac);
+      }
+      add_mode_rows(state, d, 0.0);
+    }
+  }
+}
+
 int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   ++jac_count_;
   const int nseg = static_cast<int>(model_.segments.size());
@@ -306,6 +381,10 @@ int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
     add_body_wrench(model_, contacts, seg.body_a, rec + SegmentRecord::on_a);
     add_body_wrench(model_, contacts, seg.body_b, rec + SegmentRecord::on_b);
     add_segment_jacobian(s, rec, z, jac);
+    if (on_rim(model_, seg)) {
+      add_rim_forces(seg, t, z, rec, contacts);
+      add_rim_jacobian(seg, rec, t, z, jac);
+    }
   }
   dynamics_->add_body_jacobian(t, z, contacts, step_, jac);
   return status;

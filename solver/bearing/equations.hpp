@@ -95,6 +95,10 @@ class Equations final : public DynamicSystem {
   /// A whole segment's rhs record in the seating's mode (context's last entry 1).
   void rest_task(int s, double t, const double* z, std::span<double> rec) const;
   void combine_jacobian_parts(const double* z);
+  /// A contact on a flexible rim (ring_modes.hpp): its force's share on the ring's modes, and its
+  /// Jacobian terms through the rim's displacement and the modes' generalized forces.
+  void add_rim_forces(const Segment& seg, double t, const double* z, const double* rec, std::vector<Wrench>& sums) const;
+  void add_rim_jacobian(const Segment& seg, const double* rec, double t, const double* z, BorderedMatrix& jac) const;
   /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian.
   void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
 

@@ -26,6 +26,7 @@ const char* segment_kind_name(SegmentKind k) {
     case SegmentKind::ball_pocket: return "ball_pocket";
     case SegmentKind::cage_land: return "cage_land";
     case SegmentKind::cage_bridge: return "cage_bridge";
+    case SegmentKind::outer_ring_mode: return "outer_ring_mode";
   }
   return "?";
 }
@@ -48,9 +49,13 @@ Model build_model(const io::Scene& scene) {
   m.border_size = m.state_size;
   builder.rolling_elements(m, scene);
   if (!m.border_bodies_after_elements.empty()) {
-    m.first_bridge = static_cast<int>(m.bodies.size());
-    m.bridge_count = static_cast<int>(m.border_bodies_after_elements.size());
-    for (Body& b : m.border_bodies_after_elements) m.bodies.push_back(std::move(b));
+    for (Body& b : m.border_bodies_after_elements) {
+      const int index = static_cast<int>(m.bodies.size());
+      int& first = b.kind == BodyKind::ring_mode ? m.first_ring_mode : m.first_bridge;
+      if (first < 0) first = index;
+      ++(b.kind == BodyKind::ring_mode ? m.ring_mode_count : m.bridge_count);
+      m.bodies.push_back(std::move(b));
+    }
     m.border_bodies_after_elements.clear();
     for (std::size_t b = 0; b < m.bodies.size(); ++b)
       if (m.bodies[b].carrier >= 0) m.bodies[static_cast<std::size_t>(m.bodies[b].carrier)].riders.push_back(static_cast<int>(b));
@@ -146,6 +151,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       break;
     case BodyKind::cage:
     case BodyKind::cage_bridge:
+    case BodyKind::ring_mode:  // planar only
       k.rotation = cardan_rotation(v[sax], v[say], v[saz]);
       k.angular_velocity = k.rotation * Vec3(v[swx], v[swy], v[swz]);
       break;

@@ -36,8 +36,9 @@ enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, 
 inline constexpr int coordinate_count = 12;
 
 enum class VariableClass { position, angle, velocity, angular_velocity };
-/// cage_bridge: a flexible bar between two roller pockets (solver/bearing/cage_bridges.cpp).
-enum class BodyKind { inner_ring, outer_ring, cage, rolling_element, cage_bridge };
+/// cage_bridge: a flexible bar between two roller pockets (solver/bearing/cage_bridges.cpp);
+/// ring_mode: a bending mode of a flexible outer ring, its amplitudes as x and y (ring_modes.hpp).
+enum class BodyKind { inner_ring, outer_ring, cage, rolling_element, cage_bridge, ring_mode };
 
 /// One rigid body. Its degrees of freedom are the coordinates with a slot (the mask).
 struct Body {
@@ -62,16 +63,16 @@ struct Body {
 /// The closed set of segment kinds (each is one dataset group in the output, in this order).
 enum class SegmentKind {
   roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear,
-  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge
+  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge, outer_ring_mode
 };
-inline constexpr int segment_kind_count = 9;
+inline constexpr int segment_kind_count = 10;
 const char* segment_kind_name(SegmentKind k);
 
 /// The contact laws a segment can evaluate, with their parameters (contact/segments). Dispatched
 /// once per segment evaluation by std::visit: a jump table, no virtual call per contact.
 using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
                                 contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3,
-                                contact::CageBridgeSegment>;
+                                contact::CageBridgeSegment, contact::RingModeSegment>;
 
 /// A contact segment: two bodies (A, B as in contact/segments) and its law in Model::laws.
 struct Segment {
@@ -85,12 +86,15 @@ struct Segment {
 struct Model {
   const io::Scene* scene = nullptr;
   io::ModelKind kind = io::ModelKind::planar;
-  /// Inner ring, outer ring, cage, rolling elements (in that order, always), then the flexible cage
-  /// bridges if any: their states are in the border (built with the cage), the bodies come last so
-  /// that rings, cage and rolling elements keep their places.
+  /// Inner ring, outer ring, cage, rolling elements (in that order, always), then the outer ring's
+  /// bending modes and the flexible cage bridges if any: their states are in the border (built with
+  /// the rings and the cage), the bodies come last so that rings, cage and rolling elements keep
+  /// their places.
   std::vector<Body> bodies;
   int inner_ring = 0, outer_ring = 1, cage = 2, first_element = 3;
   int first_bridge = -1, bridge_count = 0;  ///< flexible cage bridges: bodies[first_bridge ..)
+  /// A flexible outer ring's bending modes (n = 2, 3, ..): bodies[first_ring_mode ..), border states.
+  int first_ring_mode = -1, ring_mode_count = 0;
   std::vector<Body> border_bodies_after_elements;  ///< built with the border, appended by build_model
   int element_count = 0;
   int state_size = 0;

@@ -18,6 +18,7 @@ class PlanarDynamics final : public BodyDynamics {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     const auto& sl = body.slot;
     if (body.carrier >= 0) return bridge_rates(body, t, z, contacts, net, zdot);
+    if (body.kind == BodyKind::ring_mode) return mode_rates(body, z, contacts, net, zdot);
     double fx = contacts.force.x(), fy = contacts.force.y(), mz = contacts.moment.z();
     if (sl[svy] >= 0) fy -= body.mass * m_.gravity;
     if (body.ring) {
@@ -79,7 +80,7 @@ class PlanarDynamics final : public BodyDynamics {
             jac.add(sl[svx + d], sl[svx + d], -sup.damping / body.mass);
           }
         }
-        if (frame) {
+        if (frame && body.kind != BodyKind::ring_mode) {
           const auto d = frame->force_derivative();
           const int columns[4] = {sl[sx], sl[sy], sl[svx], sl[svy]};
           for (int row = 0; row < 2; ++row)
@@ -99,6 +100,7 @@ class PlanarDynamics final : public BodyDynamics {
         const double vx = z[sl[svx]], vy = z[sl[svy]];
         const double x = z[sl[sx]], y = z[sl[sy]];
         e += 0.5 * body.mass * (vx * vx + vy * vy);
+        if (body.kind == BodyKind::ring_mode) continue;  // a mode's x, y are amplitudes: no field acts on them
         e += body.mass * m_.gravity * y;
         if (body.ring) {
           e -= body.ring->load.fx(t) * x + body.ring->load.fy(t) * y;
@@ -130,6 +132,20 @@ class PlanarDynamics final : public BodyDynamics {
     const int carrier_rate = m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz];
     zdot[sl[saz]] = z[sl[swz]];
     zdot[sl[swz]] = mz / body.axial_inertia - zdot[carrier_rate];
+  }
+
+  /// A bending mode of a flexible outer ring (ring_modes.hpp): its amplitudes' accelerations are
+  /// the generalized forces (contacts and the mode's own spring, both in `contacts`) over the modal
+  /// mass. Neither gravity nor the carrier frame's forces act on a bending mode (their fields are
+  /// uniform or linear across the rim: they project onto n = 0 and 1 only).
+  void mode_rates(const Body& body, const double* z, const Wrench& contacts, Wrench& net, double* zdot) const {
+    const auto& sl = body.slot;
+    net = Wrench{};
+    net.force.x() = contacts.force.x(), net.force.y() = contacts.force.y();
+    zdot[sl[sx]] = z[sl[svx]];
+    zdot[sl[sy]] = z[sl[svy]];
+    zdot[sl[svx]] = contacts.force.x() / body.mass;
+    zdot[sl[svy]] = contacts.force.y() / body.mass;
   }
 
   const Model& m_;

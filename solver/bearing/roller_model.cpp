@@ -12,6 +12,7 @@
 
 #include "solver/bearing/cage_bridges.hpp"
 #include "solver/bearing/model.hpp"
+#include "solver/bearing/ring_modes.hpp"
 
 namespace raceway::solver {
 
@@ -241,6 +242,7 @@ void add_rings(Model& m, const io::Scene& scene) {
            width, density);
   add_ring(m, BodyKind::outer_ring, "outer_ring", scene.outer_ring, m.outer_race_radius,
            0.5 * g.outer_outside_diameter, width, density);
+  add_ring_modes(m, scene);
 }
 
 void add_segments(Model& m, const io::Scene& scene) {
@@ -248,6 +250,7 @@ void add_segments(Model& m, const io::Scene& scene) {
   const CageGeometry geo = cage_geometry(m, scene.cage);
   add_land_segment(m, scene, geo);
   add_cage_bridge_segments(m, scene, geo.r_out - geo.r_in);
+  add_ring_mode_segments(m, scene);
 }
 
 }  // namespace
@@ -285,15 +288,21 @@ std::string describe_roller_model(const Model& m) {
       case BodyKind::cage: why = "x, y, angle and rates: its pockets are not symmetric"; break;
       case BodyKind::rolling_element: why = "x, y, spin rate: the contact does not depend on its angle"; break;
       case BodyKind::cage_bridge: why = "bending angle and rate (relative to the cage): border states"; break;
+      case BodyKind::ring_mode: why = "the outer ring's bending mode: amplitudes and rates, border states"; break;
     }
-    const bool repeated = b.kind == BodyKind::rolling_element || b.kind == BodyKind::cage_bridge;
-    const int count = b.kind == BodyKind::cage_bridge ? m.bridge_count : m.element_count;
-    if (repeated && b.index > 0 && b.index < count - 1) continue;
+    const bool repeated = b.kind != BodyKind::inner_ring && b.kind != BodyKind::outer_ring && b.kind != BodyKind::cage;
+    const int count = b.kind == BodyKind::cage_bridge ? m.bridge_count
+                      : b.kind == BodyKind::ring_mode ? m.ring_mode_count
+                                                      : m.element_count;
+    const int first = b.kind == BodyKind::ring_mode ? 2 : 0;  // modes are numbered from n = 2
+    if (repeated && b.index > first && b.index < first + count - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", b.name, b.mass,
                        b.axial_inertia, b.size, b.offset, b.offset + b.size, why);
-    if (repeated && b.index == 0 && count > 2)
+    if (repeated && b.index == first && count > 2)
       out += fmt::format("  ... ({} more {} alike)\n", count - 2,
-                         b.kind == BodyKind::cage_bridge ? "bridges" : "rollers");
+                         b.kind == BodyKind::cage_bridge ? "bridges"
+                         : b.kind == BodyKind::ring_mode ? "modes"
+                                                         : "rollers");
   }
   out += fmt::format("border states {}, roller blocks {} x {}\n", m.border_size, m.element_count, m.block_size);
   int counts[segment_kind_count] = {};
@@ -324,6 +333,15 @@ std::string describe_roller_model(const Model& m) {
     out += fmt::format("  cage_bridge x{}: flexible bridges (clamped beams), k = {:.4g} N/m, c = {:.4g} N s/m at "
                        "radius {:.4g} mm; the pocket bars ride on them\n",
                        count(SegmentKind::cage_bridge), b.stiffness, b.damping, 1e3 * b.radius);
+  }
+  if (m.ring_mode_count > 0) {
+    const RimRing rim = rim_ring(*m.scene, m.outer_race_radius, m.bodies[static_cast<std::size_t>(m.outer_ring)].mass);
+    out += fmt::format("  outer_ring_mode x{}: flexible outer ring, thin rim of mean radius {:.4g} mm, section {:.4g} x "
+                       "{:.4g} mm, E I = {:.4g} N m^2, {:.4g} kg/m; modes n = 2..{}: k_2 = {:.4g} N/m, f_2 = {:.4g} Hz, "
+                       "f_{} = {:.4g} Hz; the outer-race contacts see the rim's displacement\n",
+                       m.ring_mode_count, 1e3 * rim.radius, 1e3 * rim.thickness, 1e3 * rim.width,
+                       rim.bending_stiffness, rim.mass_per_length, rim.highest_mode, rim.stiffness[0],
+                       rim.frequency(2) / (2 * pi), rim.highest_mode, rim.frequency(rim.highest_mode) / (2 * pi));
   }
   out += fmt::format("geometry: pitch radius {:.4f} mm, races {:.4f} / {:.4f} mm, roller radius {:.4f} mm\n",
                      1e3 * m.pitch_radius, 1e3 * m.inner_race_radius, 1e3 * m.outer_race_radius,

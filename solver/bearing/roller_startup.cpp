@@ -200,7 +200,8 @@ Eigen::VectorXd newton_on_rings(const Seating& s, const std::vector<int>& free_r
 /// problem regular and is relaxed in stages (1e9 to 1e3 N/m, then none), each stage starting next
 /// to its solution.
 ///
-/// At zero clearance the direct Newton is tried first; at high speed the rollers' centrifugal
+/// At zero clearance, or a negative one (a preload: every roller pressed in, the rings centred
+/// and stiff in every direction), the direct Newton is tried first; at high speed the rollers' centrifugal
 /// force presses them into the outer race and opens a play of its own, so when the direct Newton
 /// fails the continuation is used there too.
 Eigen::VectorXd seat_rings(const Seating& s, const std::vector<int>& free_rings, double load_scale,
@@ -218,7 +219,7 @@ Eigen::VectorXd seat_rings(const Seating& s, const std::vector<int>& free_rings,
   Eigen::VectorXd x;
   rep.iterations = 0;
   rep.residual = std::numeric_limits<double>::infinity();
-  if (clearance == 0) {
+  if (clearance <= 0) {
     try {
       rep.residual = solve(false, x);
     } catch (const std::runtime_error&) {
@@ -314,6 +315,8 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
     rep.state[bridge.slot[saz]] = 0.0;
     rep.state[bridge.slot[swz]] = 0.0;
   }
+  for (int k = 0; k < m.ring_mode_count; ++k)  // a flexible outer ring: round, at rest
+    for (Coordinate c : {sx, sy, svx, svy}) rep.state[m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)].slot[c]] = 0.0;
   rep.summary = fmt::format(
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",

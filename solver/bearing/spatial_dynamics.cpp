@@ -36,7 +36,8 @@ class SpatialDynamics final : public BodyDynamics {
       case BodyKind::cage: cage_rates(body, z, r, zdot); break;
       case BodyKind::inner_ring:
       case BodyKind::outer_ring: ring_rates(body, m_.ring_spin(b, t, z), z, r, zdot); break;
-      case BodyKind::cage_bridge: break;  // flexible bridges belong to planar roller cages
+      case BodyKind::cage_bridge:  // flexible bridges and ring modes belong to planar roller bearings
+      case BodyKind::ring_mode: break;
     }
   }
 
@@ -63,7 +64,8 @@ class SpatialDynamics final : public BodyDynamics {
         rates[swy] = w.moment.y() / body.transverse_inertia;
         rates[swz] = w.moment.z() / body.axial_inertia;
         break;
-      case BodyKind::cage_bridge: break;  // flexible bridges belong to planar roller cages
+      case BodyKind::cage_bridge:  // flexible bridges and ring modes belong to planar roller bearings
+      case BodyKind::ring_mode: break;
     }
   }
 

@@ -445,9 +445,9 @@ int main(int argc, char** argv) {
   io::prepare_hdf5_library();  // before MPI_Init
   // A campaign's dispatcher is a thread beside world rank 0's own scenes (scheduler/campaign_dispatch.hpp).
   const bool campaign = argc > 1 && std::string_view(argv[1]) == "campaign";
+  // Otherwise rank 0 has threads that never call MPI (the output thread, the chunk compressor).
   int threads = 0;
-  if (campaign) MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &threads);
-  else MPI_Init(&argc, &argv);
+  MPI_Init_thread(&argc, &argv, campaign ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED, &threads);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);

@@ -76,7 +76,8 @@ double component(const BodySample& s, Quantity q, int c) {
 
 bool is_line_family(const SegmentLaw& law) {
   return std::holds_alternative<contact::RollerRaceSegment>(law) || std::holds_alternative<contact::CageBarSegment>(law) ||
-         std::holds_alternative<contact::CageLandSegment>(law) || std::holds_alternative<contact::CageBridgeSegment>(law);
+         std::holds_alternative<contact::CageLandSegment>(law) || std::holds_alternative<contact::CageBridgeSegment>(law) ||
+         std::holds_alternative<contact::RingModeSegment>(law);
 }
 
 template <class Table>

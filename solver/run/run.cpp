@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/run/checkpoint.hpp"
+#include "solver/run/output_thread.hpp"
 #include "solver/run/output_writer.hpp"
 #include "solver/run/run_profile.hpp"
 #include "solver/run/run_totals.hpp"
@@ -62,6 +64,7 @@ io::JsonObject RunSummary::to_json() const {
   j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
   j.add("output_time_s", output_seconds);
   j.add("output_write_time_s", output_write_seconds);
+  j.add("output_thread_time_s", output_thread_seconds);
   j.add("scene_overrides", scene_overrides);
   j.add("scene_parameters", scene_parameters);
   return j;
@@ -79,9 +82,13 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
       prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
   if (options.on_info) options.on_info(solver_line);
   const Model& model = eq.model();
+  io::H5WriterOptions storage;
+  // Written by the output thread (not the parallel output): flushed every 4 MiB of rows there, so
+  // that the commit at the end, on the run's thread, has little left to store and to sync.
+  if (!options.shared_output) storage.max_buffered_bytes = std::size_t{4} << 20;
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
-                                                   resumed->unwritten_rows)
-                      : io::H5SeriesWriter::create(options.output_path);
+                                                   resumed->unwritten_rows, storage)
+                      : io::H5SeriesWriter::create(options.output_path, storage);
   if (options.shared_output)  // the segment diagnostics: written by every rank together
     file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<io::SharedRows>& rows) {
       shared->write(path, rows);
@@ -175,8 +182,16 @@ class RunLoop {
  private:
   double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
   void record(double t, long sample);
+  /// The output of one sample: the right-hand side at (t, z) for the diagnostics on `eq`, the rows,
+  /// the summary's sums (on the output thread, or on this one with the parallel output). Returns the
+  /// right-hand side's wall seconds.
+  double write_sample(Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot);
+  /// Waits for the output thread's samples (before anything reads the file, the sums or the counts).
+  void drain_output(bool rethrow = true);
   void checkpoint(CheckpointKind kind, long sample, double t);
-  RunSummary finish(double t);
+  /// The summary into the file (after the output thread's samples; their failure is rethrown if
+  /// `rethrow`, else left to the failure being reported).
+  RunSummary finish(double t, bool rethrow = true);
 
   const io::Scene& scene_;
   const RunOptions& options_;
@@ -195,20 +210,47 @@ class RunLoop {
   std::vector<double> z_, zdot_, restart_times_;
   double output_seconds_ = 0, last_checkpoint_wall_ = 0;
   double diagnostics_seconds_ = 0;  // of output_seconds_: the right-hand sides at output times
+  // The output thread's own equations (the same tasks, evaluated there in full on a serial
+  // executor: the same records bit for bit) and the thread. Without them (the parallel output, whose
+  // workers keep the diagnostics of the right-hand side they evaluated) the run's thread writes.
+  scheduler::SerialExecutor sample_executor_;
+  std::unique_ptr<Equations> sample_eq_;
+  std::vector<double> sample_zdot_;
+  std::unique_ptr<OutputThread> output_thread_;  // after what its work uses: it ends first
 };
+
+double RunLoop::write_sample(Equations& eq, double t, long sample, const std::vector<double>& z,
+                             std::vector<double>& zdot) {
+  const double before = wall();
+  eq.rhs(t, z.data(), zdot.data());
+  const double rhs_seconds = wall() - before;
+  const double e = eq.energy(t, z.data());
+  const std::vector<int>* segment_rank = options_.shared_output ? &options_.shared_output->sample(sample) : nullptr;
+  out_->append(t, z, zdot, eq, e, segment_rank);
+  totals_.record(t, z, eq, e);
+  return rhs_seconds;
+}
 
 void RunLoop::record(double t, long sample) {
   const double before = wall();
-  eq_.rhs(t, z_.data(), zdot_.data());
-  diagnostics_seconds_ += wall() - before;
-  const double e = eq_.energy(t, z_.data());
-  const std::vector<int>* segment_rank = options_.shared_output ? &options_.shared_output->sample(sample) : nullptr;
-  out_->append(t, z_, zdot_, eq_, e, segment_rank);
-  totals_.record(t, z_, eq_, e);
+  totals_.turn_to(t);
+  if (output_thread_) {
+    output_thread_->submit(t, sample, z_);
+  } else {
+    diagnostics_seconds_ += write_sample(eq_, t, sample, z_, zdot_);
+  }
+  output_seconds_ += wall() - before;
+}
+
+void RunLoop::drain_output(bool rethrow) {
+  if (!output_thread_) return;
+  const double before = wall();
+  output_thread_->drain(rethrow);
   output_seconds_ += wall() - before;
 }
 
 void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
+  drain_output();
   const double before = wall();
   file_->flush();  // first the rows, then the checkpoint that names them
   Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_};
@@ -222,7 +264,8 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
   output_seconds_ += last_checkpoint_wall_ - before;
 }
 
-RunSummary RunLoop::finish(double t) {
+RunSummary RunLoop::finish(double t, bool rethrow) {
+  drain_output(rethrow);
   RunSummary sum;
   sum.model_kind = model_.kind == io::ModelKind::spatial ? "spatial" : "planar";
   totals_.summarize(sum, t, integrator_->statistics(), eq_, executor_, wall());
@@ -233,6 +276,7 @@ RunSummary RunLoop::finish(double t) {
   sum.timing = integrator_->timing();
   sum.output_seconds = output_seconds_;
   sum.output_write_seconds = output_seconds_ - diagnostics_seconds_;
+  sum.output_thread_seconds = output_thread_ ? output_thread_->busy_seconds() : 0.0;
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
   file_->set_attribute("/", "summary_json", sum.to_json().dump());
@@ -244,6 +288,12 @@ RunSummary RunLoop::finish(double t) {
 RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   const double t0 = 0.0;
   long first = 1;  // the first sample integrated to
+  if (!options_.shared_output) {
+    sample_eq_ = std::make_unique<Equations>(model_, sample_executor_);
+    sample_executor_.attach(sample_eq_->task_catalogue());
+    sample_zdot_.resize(static_cast<std::size_t>(model_.state_size));
+    totals_.count_also(*sample_eq_, sample_executor_);
+  }
   if (resumed) {
     totals_.restore(*resumed, eq_, executor_);
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
@@ -262,6 +312,14 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   // killed. A fresh run does not wait for the disk here: a power loss now loses nothing a resume
   // could use (there is no checkpoint yet); a resumed file holds the rows of the earlier runs.
   file_->flush(resumed.has_value());
+  if (sample_eq_)
+    output_thread_ = std::make_unique<OutputThread>(
+        z_.size(), [this](double t, long sample, const std::vector<double>& z) {
+          write_sample(*sample_eq_, t, sample, z, sample_zdot_);
+        },
+        // Up to 1024 samples queued (the run's thread waits only when the output thread is that far
+        // behind: on a loaded machine it is descheduled for tens of ms), at most 64 MiB of states.
+        std::clamp<std::size_t>((std::size_t{64} << 20) / (sizeof(double) * z_.size()), 16, 1024));
   integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
   last_checkpoint_wall_ = wall();
   if (!resumed) record(t0, 0);
@@ -270,7 +328,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     try {
       integrator_->advance_to(t, z_);
     } catch (const IntegrationFailure&) {
-      finish(t_last);
+      finish(t_last, false);
       file_->flush();
       throw;  // the .partial file stays, the previous output is untouched
     }
@@ -289,6 +347,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
                                      "continue with raceway run ... -o {} --resume",
                                      static_cast<int>(*options_.stop_signal), t, i, samples_, options_.output_path));
   }
+  drain_output();
   const double before_commit = wall();
   RunSummary sum = finish(t_last);
   std::error_code ec;

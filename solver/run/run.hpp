@@ -76,10 +76,15 @@ struct RunSummary {
   IntegratorStatistics stats;
   long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
   double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
-  double output_seconds = 0;  ///< wall time of the output: diagnostics at output times, writing, checkpoints
+  /// Wall time of the output on the run's thread: handing the samples to the output thread (or, with
+  /// the parallel output, the diagnostics at output times and writing), checkpoints, the commit.
+  double output_seconds = 0;
   /// Of output_seconds, all but the right-hand sides at output times (sampling, appending, filtering,
   /// flushes, checkpoints, the commit): what the writer costs rank 0.
   double output_write_seconds = 0;
+  /// Wall time the output thread worked (the right-hand sides at output times, appending, flushes
+  /// there), beside the run's thread; 0 when the run's thread writes (the parallel output).
+  double output_thread_seconds = 0;
   double cage_speed_rpm = 0;            ///< mean over the second half of the run
   double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
   double cage_slip = 0;                 ///< 1 - cage / epicyclic

@@ -28,31 +28,40 @@ constexpr CounterField kCounters[] = {{"steps", &IntegratorStatistics::steps},
 constexpr const char* kBaseNames[] = {"model_rhs_evaluations", "model_jacobian_evaluations", "segment_evaluations",
                                       "rhs_seconds", "jacobian_seconds", "wall_seconds"};
 
+}  // namespace
+
 // The counters of this process (equations, executor, wall clock), in kBaseNames order.
-void process_counts(const Equations& eq, const scheduler::Executor& executor, double wall, double out[6]) {
+void RunTotals::process_counts(const Equations& eq, const scheduler::Executor& executor, double wall,
+                               double out[6]) const {
   out[0] = static_cast<double>(eq.rhs_evaluations());
   out[1] = static_cast<double>(eq.jacobian_evaluations());
   out[2] = static_cast<double>(eq.segment_evaluations());
   out[3] = executor.total_seconds(scheduler::Phase::rhs);
   out[4] = executor.total_seconds(scheduler::Phase::jacobian);
   out[5] = wall;
+  if (also_eq_ == nullptr) return;
+  out[0] += static_cast<double>(also_eq_->rhs_evaluations());
+  out[2] += static_cast<double>(also_eq_->segment_evaluations());
+  out[3] += also_executor_->total_seconds(scheduler::Phase::rhs);
 }
-
-}  // namespace
 
 RunTotals::RunTotals(const Model& m, double end_time)
     : m_(m),
       end_(end_time),
       drive_(m.scene->inner_ring.motion == io::RingMotion::driven ? &m.scene->inner_ring : &m.scene->outer_ring) {}
 
-void RunTotals::record(double t, const std::vector<double>& z, const Equations& eq, double energy) {
-  if (samples_ == 0) energy_initial_ = energy, last_t_ = t;
-  energy_final_ = energy;
-  energy_max_drift_ = std::max(energy_max_drift_, std::abs(energy - energy_initial_));
-  ++samples_;
+void RunTotals::turn_to(double t) {
+  if (!turned_) last_t_ = t, turned_ = true;
   if (drive_->motion == io::RingMotion::driven)
     revolutions_ += 0.5 * (drive_->speed(last_t_) + drive_->speed(t)) * (t - last_t_) / (2 * std::numbers::pi);
   last_t_ = t;
+}
+
+void RunTotals::record(double t, const std::vector<double>& z, const Equations& eq, double energy) {
+  if (samples_ == 0) energy_initial_ = energy;
+  energy_final_ = energy;
+  energy_max_drift_ = std::max(energy_max_drift_, std::abs(energy - energy_initial_));
+  ++samples_;
   if (t < 0.5 * end_ - 1e-12) return;
   // The second half's means (summary): contact force and load on the inner ring, cage speed.
   force_sum_ += eq.contact_loads()[static_cast<std::size_t>(m_.inner_ring)].force;
@@ -102,7 +111,7 @@ void RunTotals::restore(const Checkpoint& cp, const Equations& eq, const schedul
   process_counts(eq, executor, 0.0, now);
   for (int i = 0; i < 6; ++i) base_[i] = get(kBaseNames[i]) - now[i];
   energy_initial_ = get("energy_initial"), energy_final_ = get("energy_final"), energy_max_drift_ = get("energy_max_drift");
-  revolutions_ = get("revolutions"), last_t_ = get("last_t"), samples_ = std::lround(get("output_samples"));
+  revolutions_ = get("revolutions"), last_t_ = get("last_t"), turned_ = true, samples_ = std::lround(get("output_samples"));
   for (int d = 0; d < 3; ++d) {
     force_sum_[d] = get("second_half.force_" + std::to_string(d));
     load_sum_[d] = get("second_half.load_" + std::to_string(d));

@@ -18,7 +18,14 @@ class RunTotals {
  public:
   RunTotals(const Model& m, double end_time);
 
+  /// Counts the evaluations of a second set of equations with the run's (the right-hand sides at
+  /// output times on the output thread, solver/run/output_thread.hpp): set before restore().
+  void count_also(const Equations& eq, const scheduler::Executor& executor) { also_eq_ = &eq, also_executor_ = &executor; }
+
+  /// The driven ring's turns up to output time t (called for every output time, in order).
+  void turn_to(double t);
   /// One output sample: rhs at (t, z) has just filled the equations' records; `energy` at (t, z).
+  /// It touches none of what turn_to() does: the two may run on different threads.
   void record(double t, const std::vector<double>& z, const Equations& eq, double energy);
   /// The statistics of an integrator that ends here (CVODE restarts with a new one).
   void add_finished_integrator(const IntegratorStatistics& s);
@@ -41,8 +48,11 @@ class RunTotals {
   double end_;
   const io::RingSpec* drive_;
   // Over all samples.
-  double energy_initial_ = 0, energy_final_ = 0, energy_max_drift_ = 0, revolutions_ = 0, last_t_ = 0;
+  double energy_initial_ = 0, energy_final_ = 0, energy_max_drift_ = 0;
   long samples_ = 0;
+  // Of turn_to().
+  double revolutions_ = 0, last_t_ = 0;
+  bool turned_ = false;
   // Over the second half.
   contact::Vec3 force_sum_ = contact::Vec3::Zero(), load_sum_ = contact::Vec3::Zero();
   double cage_sum_ = 0, epicyclic_sum_ = 0, max_element_load_ = 0;
@@ -50,6 +60,9 @@ class RunTotals {
   // Counters of the integrators that have ended, and what this process's counters start from.
   IntegratorStatistics finished_;
   double base_[6] = {0, 0, 0, 0, 0, 0};  // model rhs, model jacobian, segment evaluations, rhs s, jacobian s, wall s
+  const Equations* also_eq_ = nullptr;
+  const scheduler::Executor* also_executor_ = nullptr;
+  void process_counts(const Equations& eq, const scheduler::Executor& executor, double wall, double out[6]) const;
 };
 
 }  // namespace raceway::solver

@@ -5,7 +5,7 @@ Every dataset outside /scheduler must have the same shape, dtype and bytes (the 
 stored chunk: offset, filter mask, compressed bytes); every attribute
 must be equal, except the ones that legitimately differ between runs: the root's summary_json
 is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s, time_split_s, output_time_s,
-output_write_time_s), and
+output_write_time_s, output_thread_time_s), and
 /scheduler (plans, imbalance, rank count) is skipped. Exit 0 when all files match, 1 otherwise.
 
     compare_outputs.py REFERENCE.h5 OTHER.h5 [OTHER.h5 ...]
@@ -17,7 +17,7 @@ import h5py
 import numpy as np
 
 TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s", "time_split_s", "output_time_s",
-               "output_write_time_s"}
+               "output_write_time_s", "output_thread_time_s"}
 SKIPPED_GROUPS = ("/scheduler",)
 
 

@@ -94,6 +94,43 @@ TEST(ClearanceStartup, RollerBearingUnderALightObliqueLoad) {
   for (double clearance : {0.0, 2 * um, 10 * um, 25 * um, 50 * um}) check_roller_start(clearance, 30, -pi / 3);
 }
 
+// A preload (negative clearance): the rollers are pressed in before any load is applied. Under its
+// load the bearing seats and runs as with clearance; without load the ring stays centred and every
+// roller carries the same load, its two contacts sharing the interference -P_d / 2 (equal line
+// contacts: each takes -P_d / 4; gravity off, at 1 Hz the centrifugal force is 1e-6 of the load).
+TEST(ClearanceStartup, RollerBearingWithPreload) {
+  for (double clearance : {-2 * um, -10 * um}) check_roller_start(clearance, 1000, -pi / 2);
+  for (double clearance : {-2 * um, -10 * um}) {
+    io::Scene scene = roller_scene(clearance, 0.0, 0.0, 1.0);
+    scene.gravity = false;  // the rollers' weights would load the lower ones more
+    const Model m = build_model(scene);
+    const StartupReport start = initial_state(m, 0.0);
+    scheduler::SerialExecutor executor;
+    Equations eq(m, executor);
+    std::vector<double> zdot(start.state.size());
+    ASSERT_EQ(eq.rhs(0.0, start.state.data(), zdot.data()), 0);
+    const Body& inner = m.bodies[static_cast<std::size_t>(m.inner_ring)];
+    EXPECT_LT(std::hypot(start.state[static_cast<std::size_t>(inner.slot[sx])],
+                         start.state[static_cast<std::size_t>(inner.slot[sy])]), 1e-3 * um);
+    std::vector<double> approach(2 * static_cast<std::size_t>(m.element_count)), load(approach.size());
+    for (std::size_t s = 0; s < m.segments.size(); ++s) {
+      const Segment& seg = m.segments[s];
+      if (seg.kind != SegmentKind::roller_inner_race && seg.kind != SegmentKind::roller_outer_race) continue;
+      const std::size_t at = 2 * static_cast<std::size_t>(seg.element) + (seg.kind == SegmentKind::roller_outer_race);
+      approach[at] = eq.diagnostic(s, approach_field);
+      load[at] = eq.diagnostic(s, normal_force_field);
+    }
+    for (int k = 0; k < m.element_count; ++k) {
+      const std::size_t i = 2 * static_cast<std::size_t>(k);
+      EXPECT_NEAR(approach[i] + approach[i + 1], -0.5 * clearance, 1e-4 * -clearance) << "roller " << k;
+      EXPECT_NEAR(approach[i], -0.25 * clearance, 1e-3 * -clearance) << "roller " << k;
+      EXPECT_NEAR(load[i], load[0], 1e-6 * load[0]) << "roller " << k;
+    }
+    std::printf("[ clearance ] preload %.0f um, no load: every roller %.1f N, approaches %.4f + %.4f um\n",
+                -clearance / um, load[0], approach[0] / um, approach[1] / um);
+  }
+}
+
 // At high speed the rollers' centrifugal force presses them into the outer race and opens a play
 // of its own even at zero clearance (seed 002's bearing at 160 and 400 Hz once could not start).
 TEST(ClearanceStartup, RollerBearingAtHighSpeed) {
