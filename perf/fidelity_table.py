@@ -119,41 +119,6 @@ def measure(binary, text, workdir, tag, repeats):
     return data, ""
 
 
-def replay_speedups(name):
-    """{P: speed-up} of scene NAME on this machine from perf/results/replay_model.txt (the first table
-    of its section, "## short_NAME.h5"); {} without one."""
-    path = os.path.join(ROOT, "perf", "results", "replay_model.txt")
-    out, in_section, in_table = {}, False, False
-    for line in open(path):
-        if line.startswith("## "):
-            in_section = line.strip() == f"## short_{name}.h5"
-            continue
-        if in_section and line.strip().startswith("P  predicted_wall_s"):
-            in_table = True
-            continue
-        m = re.match(r"\s+(\d+)\s+[\d.]+\s+([\d.]+)\s+[\d.]+$", line)
-        if in_table and m:
-            out[int(m.group(1))] = float(m.group(2))
-        elif in_table and out:
-            break
-    return out
-
-
-def rank_rows(name, duration, ref):
-    """The scene's rows of predicted rank counts (2, 4, 8) from the replay model: ref is the reference
-    row's {"cpu", "steps"}."""
-    rows = []
-    for p, speedup in replay_speedups(name).items():
-        if p in (2, 4, 8):
-            rows.append({"scene": name, "duration_s": duration, "choice": "ranks", "option": str(p), "overrides": "",
-                         "cpu_s": f"{ref['cpu'] / speedup:.4f}", "steps": ref["steps"],
-                         "cost_ratio": f"{1 / speedup:.4f}", "cage_speed_change": "0", "max_load_change": "0",
-                         "pocket_force_change": "0",
-                         "note": f"mpirun -np {p}: wall time predicted by perf/replay_model.py (the CPU time grows); "
-                                 "bitwise the same results"})
-    return rows
-
-
 def scene_rows(binary, name, workdir, repeats):
     base = shortened(name)
     duration = SCENES[name]["end_time"]
@@ -187,7 +152,8 @@ def scene_rows(binary, name, workdir, repeats):
             data, err = measure(binary, apply(base, overrides), workdir, f"{name}_{choice}_{len(rows)}", repeats)
             rows.append(row(choice, option, overrides, data, f"failed: {err}" if data is None else ""))
             print(f"  {name} {choice} {option}: {rows[-1]['cost_ratio']} {rows[-1]['cage_speed_change']}", flush=True)
-    rows += rank_rows(name, duration, ref)
+    # Rank counts are not a row here: their predicted speed-up is perf/results/rank_table.csv
+    # (perf/replay_model.py --table), the one table `raceway plan` and `raceway campaign` read.
     return rows
 
 

@@ -7,7 +7,7 @@ time) and a latency/bandwidth model of the network:
 
   T(P)       = T_serial + sum over phases of N_phase * T_eval(phase, P)
   T_serial   = measured one-rank wall time - measured task seconds (CVODE, linear algebra,
-               output, start-up on rank 0: does not shrink with P)
+               output, the start-up outside its contact tasks, on rank 0: does not shrink with P)
   T_eval     = t_bcast + makespan + t_gather
   t_bcast    = ceil(log2 P) * (L + m_cmd / B)          binomial-tree broadcast of the command
                                                         (header + context, or task count)
@@ -162,12 +162,14 @@ def main():
               f"; Amdahl bound from the serial part alone: {run['wall'] / serial:.1f}")
         sp = run["split"]
         if sp:
+            # The run's time split is wall time by activity; the start-up's contact evaluations (the
+            # seating) run as tasks and are in the task seconds, so "the rest" is what is left of
+            # rank 0's own work: model, start-up outside its contacts, file, executor, combining.
+            linear = sp.get("linear_setup", 0) + sp.get("linear_solve", 0)
             print("rank 0's serial part, from the run's time split: integrator %.3f s, Newton linear algebra %.3f s, "
-                  "output writing %.3f s, other (model, start-up, file) %.3f s, the rest (executor and combining "
-                  "cut segments' parts) %.3f s" % (sp.get("integrator", 0), sp.get("linear_setup", 0) + sp.get("linear_solve", 0),
-                  run["output_write"], sp.get("other", 0),
-                  serial - sp.get("integrator", 0) - sp.get("linear_setup", 0) - sp.get("linear_solve", 0)
-                  - run["output_write"] - sp.get("other", 0)))
+                  "output writing %.3f s, the rest (model, start-up outside its contact tasks, file, executor, "
+                  "completing cut segments) %.3f s" % (sp.get("integrator", 0), linear, run["output_write"],
+                  serial - sp.get("integrator", 0) - linear - run["output_write"]))
         for name, lat, bw in networks:
             print(f"network {name}: latency {lat * 1e6:.2f} us, bandwidth {bw / 1e9:.2f} GB/s")
             print("   P  predicted_wall_s  speedup  efficiency")
@@ -183,9 +185,10 @@ def main():
                 effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
                 print(f"  what if output writing ({cut:.3f} s) left rank 0 (T(1) kept): " +
                       ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
-                cut += run["split"].get("other", 0)
+                cut = serial - run["split"].get("integrator", 0) - run["split"].get("linear_setup", 0) \
+                    - run["split"].get("linear_solve", 0)
                 effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
-                print(f"  what if output writing and start-up ({cut:.3f} s) left rank 0: " +
+                print(f"  what if all but the integrator and the Newton linear algebra ({cut:.3f} s) left rank 0: " +
                       ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
             if name == "here" and i < len(args.measured_np2) and args.measured_np2[i] > 0:
                 s2 = t1 / predict(run, 2, lat, bw)[0]

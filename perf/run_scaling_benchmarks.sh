@@ -8,7 +8,8 @@
 #   replay_scaling.txt: the replay model (perf/replay_model.py) from the one-rank runs, P = 1..64,
 #     checked against the measured np=2 speed-up; np=3 and 4 are run oversubscribed (2 cores) and
 #     compared bitwise with np=1 (correctness only: their wall time is no timing);
-#   rank_table.csv: the model's predicted efficiency per scene and P, read by `raceway plan`.
+#   rank_table.csv: the model's predicted speed-up and efficiency per scene and P, read by `raceway
+#     plan` (rank advice) and `raceway campaign` (group sizes): the one table of predicted speed-ups.
 # END_TIME: length of the timed high-fidelity runs (default 20 ms: one revolution; under the load
 # of a shared machine the scene's full 0.1 s took 160 s at np=1 and 500 s at np=2). The replay's
 # predictions for P = 1..64 come from a one-rank run of the whole scene (0.1 s; FULL_RUN=FILE.h5:
@@ -22,8 +23,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
 export OMPI_MCA_mpi_yield_when_idle=${MPI_YIELD:-1}  # as perf/run_parallel_benchmarks.sh
 py=/usr/bin/python3
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
+tmp="${KEEP_RUNS:-$(mktemp -d)}"  # KEEP_RUNS=DIR: keep the runs there (to replay them again)
+mkdir -p "$tmp"
+[[ -n "${KEEP_RUNS:-}" ]] || trap 'rm -rf "$tmp"' EXIT
 load() { uptime | sed 's/.*load average: /load /'; }
 wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
 median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
@@ -72,9 +74,16 @@ else
 fi
 cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction_timed.h5"
 cp "$tmp/shipped1.h5" "$tmp/6309_R3.h5"
+# The other shipped scenes campaigns size their groups by (the rank table is the one source of a
+# scene's predicted speed-up for `raceway plan` and `raceway campaign`): short one-rank runs.
+for s in seed002_40hz:20 qj215_validation:40; do
+  sed -e "s/^end_time = .*/end_time = \"${s#*:} ms\"/" "$root/jobs/scenes/${s%%:*}.toml" >"$tmp/${s%%:*}.toml"
+  "$raceway" run "$tmp/${s%%:*}.toml" -o "$tmp/${s%%:*}.h5" --scheduler-log >/dev/null 2>&1
+done
 {
   echo "# $(date -u +%FT%TZ); $(load); one-rank runs from scaling_speedup.txt"
   "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --measured-np2 0 --measured-np2 "$measured" \
     --measured-np2 "$(sed -n 's/^shipped: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")" \
-    --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3_fine_traction_timed.h5" "$tmp/6309_R3.h5"
+    --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3_fine_traction_timed.h5" "$tmp/6309_R3.h5" \
+    "$tmp/seed002_40hz.h5" "$tmp/qj215_validation.h5"
 } 2>&1 | sed "s|$tmp/||g" | tee "$out/replay_scaling.txt"

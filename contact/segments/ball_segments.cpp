@@ -192,18 +192,31 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
   return g;
 }
 
-/// The rest of the contact once its traction is known: rolling resistance, the wrench, diagnostics.
-SpatialSegmentResult finish_groove_contact(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                                           const SpatialKinematics& ball, GrooveContact& g,
-                                           const TractionResult& traction) {
+/// The contact up to its traction: the geometry and laws of groove_contact and the EHL rolling
+/// resistance, which does not depend on the traction.
+PreparedGrooveContact prepare(const BallGrooveSegment& s, const GrooveContact& g, const SpatialKinematics& ring,
+                              const SpatialKinematics& ball) {
+  PreparedGrooveContact p;
+  p.in_contact = !g.done;
+  p.valid = g.r.valid;
+  p.approach = g.r.diagnostics.approach;
+  p.contact_angle = g.r.diagnostics.contact_angle;
+  if (g.done) return p;
   const double q = g.q;
-  Vec3 couple = traction.spin_moment * g.n;
+  p.n = g.n, p.ex = g.ex, p.ey = g.ey, p.point = g.point;
+  p.ring_position = ring.position, p.ball_position = ball.position;
+  p.normal_force = q;
+  p.max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * g.a * g.b) : 0.0;
+  p.film_thickness = g.film.central;
+  p.slip_velocity = length(g.sliding.slide_x, g.sliding.slide_y);
+  p.spin_velocity = g.sliding.spin;
+  p.elastic_energy = g.normal.elastic_energy;
+  p.damping_power = g.normal.damping_power;
   // EHL rolling resistance as a pair of couples about y opposing the relative rolling rotation
   // (equivalent to shifting the pressure centre towards the inlet by F_R Rx / Q): it conserves force
   // and angular momentum and dissipates F_R Rx |Omega| (= F_R u_e in pure rolling). F_R is bounded
   // by Q (1/F = 1/F_R + 1/Q, a change of order F_R/Q ~ 1e-4 under load): Houpert's F_R ~ Q^0.47
   // alone would have an unbounded slope at contact onset.
-  double rolling_loss = 0;
   if (s.rolling_resistance && g.film.central > 0) {
     const double houpert =
         ehl_rolling_resistance(g.entrainment, q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
@@ -212,52 +225,88 @@ SpatialSegmentResult finish_groove_contact(const BallGrooveSegment& s, const Spa
     const double f_r = houpert > 0 ? film_weight(g.film.central, s.lubricant) * houpert * q / (houpert + q) : 0.0;
     const double rolling_rate = g.w_rel.dot(g.ey);
     const double scale = s.traction.slip_velocity_scale > 0 ? s.traction.slip_velocity_scale : 1.0;
-    const double m = -f_r * g.rx * std::tanh(rolling_rate * g.rx / scale);
-    couple += m * g.ey;
-    rolling_loss = -m * rolling_rate;
+    p.rolling = true;
+    p.rolling_moment = -f_r * g.rx * std::tanh(rolling_rate * g.rx / scale);
+    p.rolling_loss = -p.rolling_moment * rolling_rate;
   }
-  const Vec3 tangential = traction.force_x * g.ex + traction.force_y * g.ey;
-  const Vec3 f_ball = -q * g.n + tangential;
-  finish_ball_contact(ring, ball,
-                      {.point = g.point, .force_on_ball = f_ball, .couple_on_ball = couple,
-                       .normal_force = q,
-                       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * g.a * g.b) : 0.0,
-                       .film_thickness = g.film.central,
-                       .slip_velocity = length(g.sliding.slide_x, g.sliding.slide_y),
-                       .spin_velocity = g.sliding.spin,
-                       .traction_force = length(traction.force_x, traction.force_y),
-                       .elastic_energy = g.normal.elastic_energy,
-                       .power_loss = traction.power_loss + g.normal.damping_power + rolling_loss},
-                      g.r);
-  return g.r;
+  return p;
+}
+
+/// The fields of a prepared contact in their fixed order, for write() and read().
+template <class Prepared, class Visit>
+void visit_prepared(Prepared& p, Visit&& visit) {
+  for (auto* v : {&p.n, &p.ex, &p.ey, &p.point, &p.ring_position, &p.ball_position})
+    for (int i = 0; i < 3; ++i) visit((*v)[i]);
+  for (auto* x : {&p.approach, &p.contact_angle, &p.normal_force, &p.max_pressure, &p.film_thickness, &p.slip_velocity,
+                  &p.spin_velocity, &p.elastic_energy, &p.damping_power, &p.rolling_moment, &p.rolling_loss})
+    visit(*x);
 }
 
 }  // namespace
 
+void PreparedGrooveContact::write(double* out) const {
+  int i = 0;
+  visit_prepared(*this, [&](double x) { out[i++] = x; });
+  out[i++] = in_contact ? 1.0 : 0.0;
+  out[i++] = valid ? 1.0 : 0.0;
+  out[i++] = rolling ? 1.0 : 0.0;
+}
+
+PreparedGrooveContact PreparedGrooveContact::read(const double* in) {
+  PreparedGrooveContact p;
+  int i = 0;
+  visit_prepared(p, [&](double& x) { x = in[i++]; });
+  p.in_contact = in[i++] != 0.0;
+  p.valid = in[i++] != 0.0;
+  p.rolling = in[i++] != 0.0;
+  return p;
+}
+
+SpatialSegmentResult finish_groove_contact(const PreparedGrooveContact& p, const TractionResult& traction_sum) {
+  SpatialSegmentResult r;
+  r.diagnostics.approach = p.approach;
+  r.diagnostics.contact_angle = p.contact_angle;
+  r.valid = p.valid;
+  if (!p.in_contact) return r;
+  const TractionResult traction = p.normal_force > 0 ? traction_sum : TractionResult{};
+  Vec3 couple = traction.spin_moment * p.n;
+  if (p.rolling) couple += p.rolling_moment * p.ey;
+  const Vec3 tangential = traction.force_x * p.ex + traction.force_y * p.ey;
+  const Vec3 f_ball = -p.normal_force * p.n + tangential;
+  // finish_ball_contact reads the bodies' positions only.
+  SpatialKinematics ring, ball;
+  ring.position = p.ring_position;
+  ball.position = p.ball_position;
+  finish_ball_contact(ring, ball,
+                      {.point = p.point, .force_on_ball = f_ball, .couple_on_ball = couple,
+                       .normal_force = p.normal_force, .max_pressure = p.max_pressure,
+                       .film_thickness = p.film_thickness, .slip_velocity = p.slip_velocity,
+                       .spin_velocity = p.spin_velocity,
+                       .traction_force = length(traction.force_x, traction.force_y),
+                       .elastic_energy = p.elastic_energy,
+                       .power_loss = traction.power_loss + p.damping_power + p.rolling_loss},
+                      r);
+  return r;
+}
+
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball) {
-  GrooveContact g = groove_contact(s, ring, ball);
+  const GrooveContact g = groove_contact(s, ring, ball);
   if (g.done) return g.r;
   const TractionResult traction =
       g.q > 0 ? integrate_traction(s.traction, s.lubricant, g.q, g.ax, g.ay, g.film.central, g.sliding)
               : TractionResult{};
-  return finish_groove_contact(s, ring, ball, g, traction);
+  return finish_groove_contact(prepare(s, g, ring, ball), traction);
 }
 
 int traction_block_count(const BallGrooveSegment& s) { return traction_block_count(s.traction); }
 
 TractionResult evaluate_traction_block(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                                       const SpatialKinematics& ball, int block) {
+                                       const SpatialKinematics& ball, int block, PreparedGrooveContact* prepared) {
   const GrooveContact g = groove_contact(s, ring, ball);
+  if (prepared) *prepared = prepare(s, g, ring, ball);
   if (g.done || !(g.q > 0)) return {};
   return integrate_traction_block(s.traction, s.lubricant, g.q, g.ax, g.ay, g.film.central, g.sliding, block);
-}
-
-SpatialSegmentResult evaluate_with_traction(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                                            const SpatialKinematics& ball, const TractionResult& traction) {
-  GrooveContact g = groove_contact(s, ring, ball);
-  if (g.done) return g.r;
-  return finish_groove_contact(s, ring, ball, g, g.q > 0 ? traction : TractionResult{});
 }
 
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,

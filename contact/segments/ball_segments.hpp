@@ -125,16 +125,33 @@ struct BallGrooveSegment {
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball);
 
-/// evaluate(BallGrooveSegment) in parts, for a contact whose traction grid is shared out: block k
-/// of the traction (integrate_traction_block at this contact's load, ellipse, film and sliding;
-/// zero when apart), and the whole result given the traction summed over the blocks in block order
-/// (sum_traction_blocks). With the blocks' sum, evaluate_with_traction gives the same bits as
-/// evaluate: evaluate sums the same blocks in the same order.
+/// evaluate(BallGrooveSegment) in parts, for a contact whose traction grid is shared out between
+/// processes: block k of the traction (integrate_traction_block at this contact's load, ellipse,
+/// film and sliding; zero when apart); the contact prepared up to its traction (geometry, normal
+/// force, film, sliding, the rolling-resistance couple: the laws' work besides the traction, as a
+/// fixed number of doubles that a process can send on); and the whole result from the prepared
+/// contact and the traction summed over the blocks in block order (sum_traction_blocks), a few
+/// dozen flops. finish_groove_contact(prepare_groove_contact(...), sum of the blocks) gives the same
+/// bits as evaluate: evaluate runs the same arithmetic on the same blocks in the same order.
+struct PreparedGrooveContact {
+  static constexpr int size = 32;  ///< doubles in write() / read()
+  bool in_contact = false;         ///< false: apart or invalid input, the result has no force
+  bool valid = true;
+  bool rolling = false;            ///< the rolling-resistance couple applies (there is a film)
+  double approach = 0, contact_angle = 0;
+  Vec3 n = Vec3::Zero(), ex = Vec3::Zero(), ey = Vec3::Zero(), point = Vec3::Zero();
+  Vec3 ring_position = Vec3::Zero(), ball_position = Vec3::Zero();
+  double normal_force = 0, max_pressure = 0, film_thickness = 0, slip_velocity = 0, spin_velocity = 0;
+  double elastic_energy = 0, damping_power = 0, rolling_moment = 0, rolling_loss = 0;
+  void write(double* out) const;
+  static PreparedGrooveContact read(const double* in);
+};
 int traction_block_count(const BallGrooveSegment& s);
+/// Block `block` of the traction; with `prepared`, also the contact up to its traction.
 TractionResult evaluate_traction_block(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                                       const SpatialKinematics& ball, int block);
-SpatialSegmentResult evaluate_with_traction(const BallGrooveSegment& s, const SpatialKinematics& ring,
-                                            const SpatialKinematics& ball, const TractionResult& traction);
+                                       const SpatialKinematics& ball, int block,
+                                       PreparedGrooveContact* prepared = nullptr);
+SpatialSegmentResult finish_groove_contact(const PreparedGrooveContact& prepared, const TractionResult& traction);
 
 /// A ball in its cage pocket. A = cage, B = ball. Pocket centre in the cage frame at
 /// (pitch_radius cos(pocket_angle), pitch_radius sin(pocket_angle), 0). Spherical pocket: contact

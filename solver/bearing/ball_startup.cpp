@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/bearing/equations.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <limits>
@@ -19,6 +21,19 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
+/// The seating's contact loads evaluated here, one contact after the other (no executor).
+void add_groove_loads_at_rest(const Model& m, double t0, const double* z, std::vector<contact::SpatialWrench>& w) {
+  for (const auto& seg : m.segments) {
+    if (!is_ball_groove(seg)) continue;
+    const auto [ring, ball] = groove_kinematics_at_rest(m, seg, t0, z);
+    const auto r = contact::evaluate(m.law<contact::BallGrooveSegment>(seg), ring, ball);
+    auto& wa = w[static_cast<std::size_t>(seg.body_a)];
+    auto& wb = w[static_cast<std::size_t>(seg.body_b)];
+    wa.force += r.on_a.force, wa.moment += r.on_a.moment;
+    wb.force += r.on_b.force, wb.moment += r.on_b.moment;
+  }
+}
+
 /// The force balance of the seating problem. Unknowns: the rings' position-type states (x, y, z,
 /// tilts) and each ball's radial and axial position in its azimuthal plane.
 struct Seating {
@@ -31,6 +46,7 @@ struct Seating {
   // stiffness: it shifts the equilibrium by about 1e-3 N per um of displacement.
   double regularization = 1e3;
   double azimuth_offset = 0;  ///< rad, of ball 0 and the cage
+  Equations* equations = nullptr;  ///< given: the contacts are evaluated through its executor
 
   struct Unknown {
     int body = -1;       ///< ring body, or ball body
@@ -91,18 +107,10 @@ struct Seating {
   Eigen::VectorXd residual(const Eigen::VectorXd& u) const {
     const std::vector<double> z = state(u);
     std::vector<contact::SpatialWrench> w(m.bodies.size());
-    for (const auto& seg : m.segments) {
-      if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
-      SpatialKinematics ring = m.kinematics(seg.body_a, t0, z.data());
-      ring.velocity.setZero();
-      ring.angular_velocity.setZero();
-      SpatialKinematics ball = m.kinematics(seg.body_b, t0, z.data());
-      const auto r = contact::evaluate(m.law<contact::BallGrooveSegment>(seg), ring, ball);
-      auto& wa = w[static_cast<std::size_t>(seg.body_a)];
-      auto& wb = w[static_cast<std::size_t>(seg.body_b)];
-      wa.force += r.on_a.force, wa.moment += r.on_a.moment;
-      wb.force += r.on_b.force, wb.moment += r.on_b.moment;
-    }
+    if (equations)  // the same contacts, the same arithmetic and order, spread over the ranks
+      equations->add_groove_loads_at_rest(t0, z.data(), w);
+    else
+      add_groove_loads_at_rest(m, t0, z.data(), w);
     Eigen::VectorXd res(static_cast<Eigen::Index>(unknowns.size()));
     for (std::size_t i = 0; i < unknowns.size(); ++i) {
       const auto& q = unknowns[i];
@@ -353,9 +361,13 @@ double place_cage(const Model& m, std::vector<double>& z) {
 
 }  // namespace
 
-StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset) {
+StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset, Equations* equations) {
   Seating seat(m, t0);
   seat.azimuth_offset = azimuth_offset;
+  // Through the executor only where contacts are heavy (cut into traction blocks): a light contact
+  // (one block, a few us) costs less on rank 0 than a round of messages per residual, and on shared
+  // cores each round waits for a descheduled rank.
+  seat.equations = equations && equations->has_cut_segments() ? equations : nullptr;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(seat.unknowns.size()));
   Eigen::VectorXd r;
   int iterations = 0;

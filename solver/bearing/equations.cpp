@@ -114,7 +114,7 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
       step_(model),
       contact_(model.bodies.size()),
       net_(model.bodies.size()),
-      context_(1 + static_cast<std::size_t>(model.state_size)),
+      context_(2 + static_cast<std::size_t>(model.state_size), 0.0),
       rhs_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { rhs_task(ctx, s, rec); }),
       jacobian_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); }) {
   // Counted here, not in the tasks, which may run on other ranks.
@@ -139,6 +139,7 @@ void Equations::rhs_task(std::span<const double> context, int task, std::span<do
     return rhs_part(context.data(), s, task - first_task_[static_cast<std::size_t>(s)], rec);
   const double t = context[0];
   const double* z = context.data() + 1;
+  if (context.back() != 0.0) return rest_task(s, t, z, rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   if (on_rim(model_, seg))
     return write_result(evaluate_on_rim(model_.law<contact::RollerRaceSegment>(seg), model_, seg, t, z), rec);
@@ -150,6 +151,48 @@ void Equations::rhs_task(std::span<const double> context, int task, std::span<do
                      rec);
       },
       model_.laws[static_cast<std::size_t>(seg.law)]);
+}
+
+std::pair<contact::SpatialKinematics, contact::SpatialKinematics> groove_kinematics_at_rest(const Model& m,
+                                                                                           const Segment& seg,
+                                                                                           double t, const double* z) {
+  contact::SpatialKinematics ring = m.kinematics(seg.body_a, t, z);
+  ring.velocity.setZero();
+  ring.angular_velocity.setZero();
+  return {ring, m.kinematics(seg.body_b, t, z)};
+}
+
+void Equations::rest_task(int s, double t, const double* z, std::span<double> rec) const {
+  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+  if (!is_ball_groove(seg)) {  // not part of the seating's balance
+    std::fill(rec.begin(), rec.end(), 0.0);
+    rec[SegmentRecord::valid] = 1.0;
+    return;
+  }
+  const auto [ring, ball] = groove_kinematics_at_rest(model_, seg, t, z);
+  write_result(contact::evaluate(model_.law<contact::BallGrooveSegment>(seg), ring, ball), rec);
+}
+
+void Equations::add_groove_loads_at_rest(double t, const double* z, std::vector<contact::SpatialWrench>& sums) {
+  context_[0] = t;
+  std::copy(z, z + model_.state_size, context_.begin() + 1);
+  context_.back() = 1.0;
+  const int ntask = static_cast<int>(task_segment_.size());
+  executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_,
+                cut_ ? task_records_ : rest_records_);
+  context_.back() = 0.0;
+  if (cut_) combine_rhs_parts(rest_records_);
+  for (std::size_t s = 0; s < model_.segments.size(); ++s) {
+    const Segment& seg = model_.segments[s];
+    if (!is_ball_groove(seg)) continue;
+    const double* rec = rest_records_.data() + s * SegmentRecord::size;
+    auto& wa = sums[static_cast<std::size_t>(seg.body_a)];
+    auto& wb = sums[static_cast<std::size_t>(seg.body_b)];
+    wa.force += contact::Vec3(rec[SegmentRecord::on_a], rec[SegmentRecord::on_a + 1], rec[SegmentRecord::on_a + 2]);
+    wa.moment += contact::Vec3(rec[SegmentRecord::on_a + 3], rec[SegmentRecord::on_a + 4], rec[SegmentRecord::on_a + 5]);
+    wb.force += contact::Vec3(rec[SegmentRecord::on_b], rec[SegmentRecord::on_b + 1], rec[SegmentRecord::on_b + 2]);
+    wb.moment += contact::Vec3(rec[SegmentRecord::on_b + 3], rec[SegmentRecord::on_b + 4], rec[SegmentRecord::on_b + 5]);
+  }
 }
 
 void Equations::jacobian_task(std::span<const double> context, int task, std::span<double> rec) const {
@@ -167,7 +210,7 @@ void Equations::jacobian_task(std::span<const double> context, int task, std::sp
 scheduler::TaskCatalogue Equations::task_catalogue() const {
   scheduler::TaskCatalogue c;
   c.task_count = static_cast<int>(task_segment_.size());
-  c.context_size = 1 + model_.state_size;
+  c.context_size = 2 + model_.state_size;
   for (int s : task_segment_) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     c.group.push_back(seg.element >= 0 ? seg.element : scheduler::border_group);
@@ -190,7 +233,7 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
   executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
-  if (cut_) combine_rhs_parts(t, z);
+  if (cut_) combine_rhs_parts(records_);
   // Sum in the canonical (segment) order: bitwise identical for any schedule.
   for (auto& w : contact_) w = {};
   int status = 0;

@@ -18,6 +18,15 @@
 
 namespace raceway::solver {
 
+/// The seating's contacts (solver/bearing/ball_startup.cpp): a ball-groove segment, evaluated with
+/// its ring (A) held at rest.
+inline bool is_ball_groove(const Segment& seg) {
+  return seg.kind == SegmentKind::ball_inner_groove || seg.kind == SegmentKind::ball_outer_groove;
+}
+std::pair<contact::SpatialKinematics, contact::SpatialKinematics> groove_kinematics_at_rest(const Model& m,
+                                                                                           const Segment& seg,
+                                                                                           double t, const double* z);
+
 class Equations final : public DynamicSystem {
  public:
   Equations(const Model& model, scheduler::Executor& executor);
@@ -49,6 +58,13 @@ class Equations final : public DynamicSystem {
   const std::vector<Wrench>& body_loads() const { return net_; }
   /// Contact force and moment on each body from the last rhs() (segments only).
   const std::vector<Wrench>& contact_loads() const { return contact_; }
+  /// Adds the wrenches of the ball-groove segments with their rings at rest (the seating's force
+  /// balance) to `sums` (per body), in segment order: evaluated as tasks through the executor like
+  /// a right-hand side (spread over the ranks; a cut contact's parts combined as in rhs()), the
+  /// same bits as contact::evaluate on rank 0. Leaves the last rhs() records as they were.
+  void add_groove_loads_at_rest(double t, const double* z, std::vector<contact::SpatialWrench>& sums);
+  /// Some segment is cut into parts (a heavy contact: several traction blocks).
+  bool has_cut_segments() const { return cut_; }
   /// Index of the segment that most recently reported leaving its valid range, or -1.
   int last_invalid_segment() const { return last_invalid_; }
 
@@ -75,7 +91,9 @@ class Equations final : public DynamicSystem {
   void jacobian_part(const double* context, int s, int part, std::span<double> rec) const;
   /// Master: the segment records from the tasks' records, combining each cut segment's parts in
   /// part order (the same bits for any rank count and plan).
-  void combine_rhs_parts(double t, const double* z);
+  void combine_rhs_parts(std::vector<double>& records);
+  /// A whole segment's rhs record in the seating's mode (context's last entry 1).
+  void rest_task(int s, double t, const double* z, std::span<double> rec) const;
   void combine_jacobian_parts(const double* z);
   /// A contact on a flexible rim (ring_modes.hpp): its force's share on the ring's modes, and its
   /// Jacobian terms through the rim's displacement and the modes' generalized forces.
@@ -88,7 +106,7 @@ class Equations final : public DynamicSystem {
   scheduler::Executor& executor_;
   std::unique_ptr<BodyDynamics> dynamics_;
   FiniteDifferenceSteps step_;
-  std::vector<double> records_, jac_records_;
+  std::vector<double> records_, jac_records_, rest_records_;
   // Segments cut into sub-tasks (a ball-groove contact whose traction grid has several blocks):
   std::vector<int> parts_;       ///< per segment: its tasks (1: one task, as a whole)
   std::vector<int> first_task_;  ///< per segment: its first task; its tasks are consecutive
@@ -97,7 +115,8 @@ class Equations final : public DynamicSystem {
   std::vector<double> task_records_, jac_task_records_;
   std::vector<Wrench> contact_, net_;
   std::vector<int> elastic_energy_field_;  ///< per segment, in its family's field table
-  std::vector<double> context_;            ///< [t, z...] sent with every evaluation
+  /// [t, z..., mode] sent with every evaluation; mode 1: the seating's (add_groove_loads_at_rest)
+  std::vector<double> context_;
   scheduler::TaskFunction rhs_task_, jacobian_task_;
   int last_invalid_ = -1;
   long rhs_count_ = 0, jac_count_ = 0;

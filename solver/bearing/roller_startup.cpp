@@ -325,8 +325,8 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   return rep;
 }
 
-StartupReport initial_state(const Model& model, double t0, double azimuth_offset) {
-  if (model.kind == io::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset);
+StartupReport initial_state(const Model& model, double t0, double azimuth_offset, Equations* equations) {
+  if (model.kind == io::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);
   return seat_roller_bearing(model, t0);
 }
 

@@ -7,15 +7,18 @@
 // same whether the parts run on one rank or on many; the plan (scheduler/plan.hpp) only decides
 // where they run.
 //
-//   right-hand side: part k computes traction block k at the segment's kinematics (4 doubles);
-//     the master adds the blocks in block order (contact::sum_traction_blocks, as evaluate does
-//     inside) and completes the contact (contact::evaluate_with_traction): bitwise the result of
-//     contact::evaluate;
+//   right-hand side: part k computes traction block k at the segment's kinematics; parts 0 and 1
+//     also hand on the contact prepared up to its traction (contact::prepare: geometry, normal
+//     force, film, rolling resistance; its doubles split between their two records). The master
+//     only adds the blocks in block order (contact::sum_traction_blocks, as evaluate does inside)
+//     and completes the contact from the prepared doubles (contact::finish_groove_contact, a few
+//     dozen flops, no law): bitwise the result of contact::evaluate;
 //   Jacobian: the segment's evaluations (the base point, then one per state of its two bodies) go
 //     round the parts (evaluation e to part e mod parts); a part returns its evaluations' wrenches;
 //     the master forms the columns (r - base) / h exactly as an uncut segment's task does.
 //
-// A part's record: rhs [force_x, force_y, spin_moment, power_loss of its block, 0 ...]; Jacobian:
+// A part's rhs record: [force_x, force_y, spin_moment, power_loss of its block, then (parts 0 and
+// 1) prepared_share doubles of the prepared contact, part 0 the first ones, 0 ...]. Jacobian:
 // the Jacobian record layout (segment_record.hpp) with the base result where the part has it and,
 // in each column it evaluates, the perturbed wrench itself (not yet the difference); valid is the
 // AND over the part's evaluations.
@@ -44,6 +47,12 @@ void gather_segments(const std::vector<int>& first_task, const std::vector<int>&
   }
 }
 
+// Where a part's record holds its share of the prepared contact, and how much it holds: a cut
+// segment has at least two parts, and two records hold it whole.
+constexpr int traction_size = 4;
+constexpr int prepared_share = SegmentRecord::size - traction_size;
+static_assert(2 * prepared_share >= contact::PreparedGrooveContact::size);
+
 const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg) {
   return std::get<contact::BallGrooveSegment>(m.laws[static_cast<std::size_t>(seg.law)]);
 }
@@ -59,27 +68,39 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
   const double t = context[0];
   const double* z = context + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  const contact::TractionResult block = contact::evaluate_traction_block(
-      groove_law(model_, seg), model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z), part);
+  contact::PreparedGrooveContact prepared;
+  // Mode 1 (the seating): the ring at rest.
+  const auto [ring, ball] = context[1 + model_.state_size] != 0.0
+                                ? groove_kinematics_at_rest(model_, seg, t, z)
+                                : std::pair{model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)};
+  const contact::TractionResult block = contact::evaluate_traction_block(groove_law(model_, seg), ring, ball, part,
+                                                                         part < 2 ? &prepared : nullptr);
   std::fill(rec.begin(), rec.end(), 0.0);
   rec[0] = block.force_x;
   rec[1] = block.force_y;
   rec[2] = block.spin_moment;
   rec[3] = block.power_loss;
+  if (part < 2) {
+    std::array<double, 2 * prepared_share> all{};
+    prepared.write(all.data());
+    std::copy_n(all.begin() + part * prepared_share, prepared_share, rec.begin() + traction_size);
+  }
 }
 
-void Equations::combine_rhs_parts(double t, const double* z) {
+void Equations::combine_rhs_parts(std::vector<double>& records) {
   const std::size_t size = SegmentRecord::size;
   std::array<contact::TractionResult, contact::max_traction_blocks> blocks{};
-  gather_segments(first_task_, parts_, task_records_, size, records_, [&](std::size_t s, const double* first, double* out) {
+  std::array<double, 2 * prepared_share> prepared{};
+  gather_segments(first_task_, parts_, task_records_, size, records, [&](std::size_t s, const double* first, double* out) {
     const auto parts = static_cast<std::size_t>(parts_[s]);
     for (std::size_t k = 0; k < parts; ++k) {
       const double* rec = first + k * size;
       blocks[k] = {rec[0], rec[1], rec[2], rec[3]};
     }
-    const Segment& seg = model_.segments[s];
-    const auto result = contact::evaluate_with_traction(
-        groove_law(model_, seg), model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z),
+    std::copy_n(first + traction_size, prepared_share, prepared.begin());
+    std::copy_n(first + size + traction_size, prepared_share, prepared.begin() + prepared_share);
+    const auto result = contact::finish_groove_contact(
+        contact::PreparedGrooveContact::read(prepared.data()),
         contact::sum_traction_blocks(std::span<const contact::TractionResult>(blocks.data(), parts)));
     write_result(result, std::span<double>(out, size));
   });

@@ -10,6 +10,8 @@
 
 namespace raceway::solver {
 
+class Equations;
+
 struct StartupReport {
   std::vector<double> state;
   int iterations = 0;        ///< Newton (planar) or Levenberg-Marquardt (spatial) iterations
@@ -23,7 +25,10 @@ struct StartupReport {
 /// The consistent initial state of the model at t0. `azimuth_offset` (spatial) turns the whole
 /// ball set and the cage about z (ball k starts at offset + 2 pi k / Z): with the loads turned by
 /// the same angle, the same physical state. Throws std::runtime_error when no equilibrium is found.
-StartupReport initial_state(const Model& model, double t0, double azimuth_offset = 0.0);
+/// `equations` (spatial): where it has heavy contacts (cut into parts), the seating's contact
+/// evaluations go through its executor, spread over the ranks like a right-hand side's
+/// (Equations::add_groove_loads_at_rest: the same bits); otherwise, or nullptr: evaluated here.
+StartupReport initial_state(const Model& model, double t0, double azimuth_offset = 0.0, Equations* equations = nullptr);
 
 /// Planar roller bearing: ring centres moved until the roller contact forces balance the loads
 /// (each roller's radial position balancing its inner and outer contact and its centrifugal force
@@ -35,6 +40,6 @@ StartupReport seat_roller_bearing(const Model& model, double t0);
 /// position in its azimuthal plane; Levenberg-Marquardt on the force balance (robust from open
 /// contacts). The cage is centred with its pockets on the balls (axially and in tilt as far as the
 /// pockets' play requires), turning at the load-weighted mean of the balls' orbits. Ball spin: least-squares rolling without sliding at its loaded contacts.
-StartupReport seat_ball_bearing(const Model& model, double t0, double azimuth_offset);
+StartupReport seat_ball_bearing(const Model& model, double t0, double azimuth_offset, Equations* equations = nullptr);
 
 }  // namespace raceway::solver

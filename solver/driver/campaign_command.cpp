@@ -218,12 +218,12 @@ std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
 }
 
 /// The predicted speed-up of the campaign's base scene: raceway plan's (plan::predicted_speedup over
-/// the fidelity table's rows of the scene file's name).
+/// the rank table's rows of the scene file's name).
 SpeedupPrediction planned_speedup(const Campaign& c) {
   const std::string scene = fs::path(c.scene_path).stem().string();
-  std::vector<plan::FidelityRow> rows;
+  std::vector<plan::RankRow> rows;
   try {
-    for (auto& r : plan::read_fidelity_table(plan::fidelity_table_path()))
+    for (auto& r : plan::read_rank_table(plan::rank_table_path()))
       if (r.scene == scene) rows.push_back(std::move(r));
   } catch (const std::exception& e) {
     spdlog::warn("campaign: no predicted speed-up ({}): 1 rank per scene", e.what());
@@ -240,7 +240,7 @@ int group_size(const Campaign& c, const CampaignRequest& req, const std::vector<
   for (const int j : left) costs.push_back(c.scenes[static_cast<std::size_t>(j)].predicted_cost);
   const GroupSizeChoice choice = choose_group_size(world, costs, planned_speedup(c));
   spdlog::info("campaign: ranks per scene not fixed by {}; from the predicted speed-up of {} ({}):", c.file,
-               fs::path(c.scene_path).stem().string(), plan::fidelity_table_path());
+               fs::path(c.scene_path).stem().string(), plan::rank_table_path());
   for (const std::string& line : choice.reasons) spdlog::info("campaign:   {}", line);
   return choice.ranks_per_group;
 }
@@ -325,7 +325,7 @@ int check_campaign(const Campaign& c, int ranks) {
     std::vector<double> costs;
     for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
     std::printf("on %d ranks, from the predicted speed-up of %s (%s):\n", ranks,
-                fs::path(c.scene_path).stem().string().c_str(), plan::fidelity_table_path().c_str());
+                fs::path(c.scene_path).stem().string().c_str(), plan::rank_table_path().c_str());
     for (const std::string& line : choose_group_size(ranks, costs, planned_speedup(c)).reasons)
       std::printf("  %s\n", line.c_str());
   }

@@ -328,10 +328,12 @@ void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path
 
 std::string fidelity_table_path() { return RACEWAY_FIDELITY_TABLE; }
 
-double predicted_speedup(const std::vector<FidelityRow>& rows, int ranks) {
+std::string rank_table_path() { return RACEWAY_RANK_TABLE; }
+
+double predicted_speedup(const std::vector<RankRow>& rows, int ranks) {
   if (ranks == 1) return 1;
   for (const auto& r : rows)
-    if (r.choice == "ranks" && r.option == std::to_string(ranks) && r.cost_ratio > 0) return 1 / r.cost_ratio;
+    if (r.network == "here" && r.ranks == ranks) return r.speedup;
   return NAN;
 }
 
@@ -345,7 +347,7 @@ CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
                    "repeatable");
   options.table_path = fidelity_table_path();
   plan->add_option("--table", options.table_path, "the fidelity table")->capture_default_str();
-  options.rank_table_path = RACEWAY_RANK_TABLE;
+  options.rank_table_path = rank_table_path();
   plan->add_option("--rank-table", options.rank_table_path,
                    "predicted parallel efficiency per scene and rank count (perf/replay_model.py --table)")
       ->capture_default_str();

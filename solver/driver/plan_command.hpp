@@ -57,12 +57,6 @@ Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector
 /// The fidelity table of the source tree (perf/results/fidelity_table.csv), unless --table names another.
 std::string fidelity_table_path();
 
-/// The predicted speed-up of the scene whose rows are ROWS on RANKS ranks against one rank: the
-/// `ranks` rows of the fidelity table (perf/replay_model.py's prediction; 1 / their cost ratio),
-/// which `raceway plan` offers as options and `raceway campaign` sizes its groups by. The one
-/// function that says it: NaN when the table has no prediction for RANKS, 1 for one rank.
-double predicted_speedup(const std::vector<FidelityRow>& rows, int ranks);
-
 struct PlanOptions {
   std::string scene_path;
   std::vector<std::string> targets;
@@ -77,6 +71,15 @@ struct RankRow {
   int ranks = 1;
   double speedup = 1, efficiency = 1;
 };
+
+/// The predicted speed-up of the scene whose rank-table rows are ROWS on RANKS ranks against one
+/// rank, on this machine's network ("here"): perf/replay_model.py's prediction, which `raceway plan`
+/// advises ranks by and `raceway campaign` sizes its groups by. The one function and the one table
+/// that say it: NaN when the table has no prediction for RANKS, 1 for one rank.
+double predicted_speedup(const std::vector<RankRow>& rows, int ranks);
+
+/// The rank table of the source tree (perf/results/rank_table.csv), unless --rank-table names another.
+std::string rank_table_path();
 
 /// The rows of the rank table at PATH; throws solver::OptionsError naming the file and line.
 std::vector<RankRow> read_rank_table(const std::string& path);

@@ -161,7 +161,8 @@ struct CheckpointPlan {
   }
 };
 
-StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset);
+StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset,
+                                  Equations& eq);
 
 /// One run from its first sample (0, or the one after a checkpoint) to the end: integration, output
 /// samples, checkpoints and the summary.
@@ -298,7 +299,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
     if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
   } else {
-    const StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset);
+    const StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset, eq_);
     if (options_.on_info) options_.on_info(start.summary);
     z_ = start.state;
   }
@@ -361,9 +362,10 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
 }
 
 /// The start-up state; a start-up that fails names the scene keys that set it (file, lines).
-StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset) {
+StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset,
+                                  Equations& eq) {
   try {
-    return initial_state(model, t0, azimuth_offset);
+    return initial_state(model, t0, azimuth_offset, &eq);  // its contacts through the executor
   } catch (const std::runtime_error& e) {
     static constexpr std::string_view keys[] = {
         "bearing.radial_clearance", "inner_ring.motion", "outer_ring.motion", "inner_ring.translation",

@@ -5,6 +5,7 @@
 // moments and guidance. The checks every segment kind shares are in test_segment_conformance.cpp.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "ball_cases.hpp"
+#include "contact/segments/diagnostic_fields.hpp"
 
 namespace raceway::contact::test::ball {
 namespace {
@@ -206,8 +208,8 @@ TEST(BallGroove, SpinMomentOpposesSpin) {
 
 // A fine traction grid is computed in fixed blocks so that one contact can be shared between
 // processes: block k at the contact's kinematics, the blocks summed in block order, and the contact
-// completed with that sum give exactly evaluate's bits (no tolerance), for limiting shear with
-// spin and slide, loaded and apart. The grid decides the blocks: 5 x 5 is one, 40 x 40 several.
+// prepared up to its traction, sent as doubles (write, read) and completed with that sum give
+// exactly evaluate's bits (no tolerance), for limiting shear with spin and slide, loaded and apart. The grid decides the blocks: 5 x 5 is one, 40 x 40 several.
 TEST(BallGroove, TractionBlocksGiveEvaluatesBits) {
   PointTraction coarse;
   EXPECT_EQ(traction_block_count(coarse), 1);
@@ -228,8 +230,12 @@ TEST(BallGroove, TractionBlocksGiveEvaluatesBits) {
       p.b.velocity += Vec3(1e-3, -2e-3, 5e-4);       // and some sliding
       const SpatialSegmentResult whole = evaluate(seg, p.a, p.b);
       std::vector<TractionResult> parts;
-      for (int k = 0; k < blocks; ++k) parts.push_back(evaluate_traction_block(seg, p.a, p.b, k));
-      const SpatialSegmentResult cut = evaluate_with_traction(seg, p.a, p.b, sum_traction_blocks(parts));
+      PreparedGrooveContact prepared;
+      for (int k = 0; k < blocks; ++k) parts.push_back(evaluate_traction_block(seg, p.a, p.b, k, k == 1 ? &prepared : nullptr));
+      EXPECT_EQ(prepared.in_contact, approach > 0);
+      std::array<double, PreparedGrooveContact::size> sent{};
+      prepared.write(sent.data());
+      const SpatialSegmentResult cut = finish_groove_contact(PreparedGrooveContact::read(sent.data()), sum_traction_blocks(parts));
       EXPECT_EQ(whole.valid, cut.valid);
       for (int i = 0; i < 3; ++i) {
         EXPECT_EQ(whole.on_a.force[i], cut.on_a.force[i]);
@@ -239,7 +245,9 @@ TEST(BallGroove, TractionBlocksGiveEvaluatesBits) {
       }
       EXPECT_EQ(whole.diagnostics.traction_force, cut.diagnostics.traction_force);
       EXPECT_EQ(whole.diagnostics.power_loss, cut.diagnostics.power_loss);
-      EXPECT_EQ(whole.diagnostics.normal_force, cut.diagnostics.normal_force);
+      for (std::size_t f = 0; f < point_diagnostic_fields.size(); ++f)
+        EXPECT_EQ(whole.diagnostics.*(point_diagnostic_fields[f].member), cut.diagnostics.*(point_diagnostic_fields[f].member))
+            << point_diagnostic_fields[f].name;
       if (approach > 0) {
         EXPECT_GT(whole.diagnostics.traction_force, 0.0);
         EXPECT_THROW(evaluate_traction_block(seg, p.a, p.b, blocks), std::invalid_argument);
