@@ -82,7 +82,7 @@ void write_manifest(const Campaign& c, const std::string& dir) {
 
 /// One scene on the ranks of the group; the leader's exit code and diagnosis.
 scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Campaign& c, const std::string& dir,
-                                  scheduler::JobAssignment job, bool resume) {
+                                  scheduler::JobAssignment job, bool resume, bool output_thread) {
   const CampaignScene& entry = c.scenes[static_cast<std::size_t>(job.job)];
   scheduler::JobResult result{job.job, 0, job.attempt, 0, {}};
   const double start = seconds_now();
@@ -101,6 +101,7 @@ scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Camp
       run.resume = resume && job.attempt == 0;  // a retry starts afresh
       run.stop_signal = &g_stop_signal;
       run.mpi_library = mpi_library_version();
+      run.output_thread = output_thread;
       run.on_info = [&](const std::string& s) { spdlog::debug("{}: {}", entry.id, s); };
       const auto summary = solver::run_scene(scene, run);
       io::write_json_file((fs::path(dir) / (entry.id + ".json")).string(), summary.to_json());
@@ -262,6 +263,9 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   if (decided[0] != 0) return decided[0];
   int code = 0;
   install_stop_signals();
+  std::string thread_why;  // the groups fill the node's cores: then the output thread would take a rank's
+  const bool output_thread = output_thread_wanted("auto", MPI_COMM_WORLD, thread_why);
+  if (rank == 0) spdlog::info("campaign: {}", thread_why);
   scheduler::CampaignGroups g = scheduler::split_campaign_groups(MPI_COMM_WORLD, decided[1]);
   CampaignProgress progress{c, 0, 0, 0, 0, seconds_now(), 0, 0, {}};
   std::unique_ptr<scheduler::CampaignDispatcher> dispatcher;
@@ -285,7 +289,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
       scheduler::JobAssignment job = g.leader() ? scheduler::request_job(g, last) : scheduler::JobAssignment{};
       job = scheduler::share_job(g, job);
       if (job.job < 0) break;
-      last = run_in_group(g, c, req.output_dir, job, req.resume);
+      last = run_in_group(g, c, req.output_dir, job, req.resume, output_thread);
     }
   }
   if (rank == 0) {

@@ -142,6 +142,7 @@ struct RunRequest {
   std::string output, summary_json, result_options;
   bool scheduler_log = false, resume = false;
   solver::SharedOutput* shared_output = nullptr;  ///< the parallel output; nullptr: rank 0 writes all
+  bool output_thread = true;                      ///< driver::output_thread_wanted
 };
 
 int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
@@ -156,6 +157,7 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.scheduler_log = request.scheduler_log;
   options.resume = request.resume;
   options.shared_output = request.shared_output;
+  options.output_thread = request.output_thread;
   options.result_options = request.result_options;
   options.stop_signal = &driver::g_stop_signal;
   options.mpi_library = driver::mpi_library_version();
@@ -258,6 +260,7 @@ struct CommandLine {
   std::string method;  ///< --method: the scene's [solver] method, replaced
   std::vector<std::string> overrides;  ///< --set section.key=VALUE
   bool replan_every_evaluation = false, scheduler_log = false, resume = false, parallel_output = false;
+  std::string output_thread = "auto";
   io::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false, animate = false, xdmf = false, vtk = false;
@@ -310,6 +313,11 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
   run->add_flag("--parallel-output", cl.parallel_output,
                 "with several ranks each writes the segment diagnostics it evaluated (HDF5 MPI-IO, collective "
                 "writes); default: rank 0 writes the whole file (perf/results/output_notes.md: faster here)");
+  run->add_option("--output-thread", cl.output_thread,
+                  "the output's work at output times on a thread of rank 0's own: auto (when it gets a core no "
+                  "rank uses), on, off; the same results either way")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   run->add_flag("--scheduler-log", cl.scheduler_log,
                 "write the task scheduler's log (/scheduler) also for a serial run (always with several ranks)");
   // Test-only options (hidden: empty group).
@@ -396,6 +404,8 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
   driver::install_stop_signals();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
+  std::string thread_why;
+  const bool output_thread = driver::output_thread_wanted(cl.output_thread, comm, thread_why);
   if (rank != 0) {
     driver::serve_scene_tasks(source, executor, comm, cl.parallel_output);
   } else {
@@ -408,7 +418,8 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
       // (MPI-IO); by default rank 0 writes everything (measured cheaper, output_notes.md).
       driver::MpiSharedOutput shared(comm, executor);
       const RunRequest request{cl.output, cl.summary_json, cl.petsc_options, cl.scheduler_log, cl.resume,
-                               size > 1 && cl.parallel_output ? &shared : nullptr};
+                               size > 1 && cl.parallel_output ? &shared : nullptr, output_thread};
+      if (!request.shared_output) spdlog::info("{}", thread_why);
       return run_command(scene, request, executor);
     });
     executor.stop();  // releases the workers (also after a failure)

@@ -4,6 +4,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+#include <sched.h>
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "io/h5/output_lock.hpp"
@@ -67,6 +71,24 @@ std::string mpi_library_version() {
   MPI_Get_library_version(text, &length);
   std::string s(text, static_cast<std::size_t>(length));
   return s.substr(0, s.find_first_of(",\n"));
+}
+
+bool output_thread_wanted(const std::string& mode, MPI_Comm world, std::string& why) {
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks_on_node = 1;
+  MPI_Comm_size(node, &ranks_on_node);
+  MPI_Comm_free(&node);
+  cpu_set_t mine;
+  CPU_ZERO(&mine);
+  const int my_cores = sched_getaffinity(0, sizeof mine, &mine) == 0 ? CPU_COUNT(&mine) : 1;
+  const long node_cores = sysconf(_SC_NPROCESSORS_ONLN);
+  const bool spare = my_cores > 1 && node_cores > ranks_on_node;
+  const bool on = mode == "on" || (mode == "auto" && spare);
+  why = fmt::format("output thread {} ({}: {} core(s) on this node, {} rank(s) on it, this rank may use {})",
+                    on ? "on" : "off", mode == "auto" ? "auto" : "--output-thread " + mode, node_cores,
+                    ranks_on_node, my_cores);
+  return on;
 }
 
 bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {

@@ -85,7 +85,7 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   io::H5WriterOptions storage;
   // Written by the output thread (not the parallel output): flushed every 4 MiB of rows there, so
   // that the commit at the end, on the run's thread, has little left to store and to sync.
-  if (!options.shared_output) storage.max_buffered_bytes = std::size_t{4} << 20;
+  if (!options.shared_output && options.output_thread) storage.max_buffered_bytes = std::size_t{4} << 20;
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
                                                    resumed->unwritten_rows, storage)
                       : io::H5SeriesWriter::create(options.output_path, storage);
@@ -288,7 +288,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
 RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   const double t0 = 0.0;
   long first = 1;  // the first sample integrated to
-  if (!options_.shared_output) {
+  if (!options_.shared_output && options_.output_thread) {
     sample_eq_ = std::make_unique<Equations>(model_, sample_executor_);
     sample_executor_.attach(sample_eq_->task_catalogue());
     sample_zdot_.resize(static_cast<std::size_t>(model_.state_size));

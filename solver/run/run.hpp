@@ -63,6 +63,10 @@ struct RunOptions {
   const volatile std::sig_atomic_t* stop_signal = nullptr;
   /// Parallel output (not owned); nullptr: rank 0 writes the whole file (serial output).
   SharedOutput* shared_output = nullptr;
+  /// The output's work at output times on a thread of its own (serial output only): worth it only
+  /// when that thread has a core to itself (the driver decides: output_thread_wanted). Off: on the
+  /// run's thread, the diagnostics through the run's executor. The same bits either way.
+  bool output_thread = true;
 };
 
 /// A run stopped by a signal after writing a checkpoint (continue it with --resume).
