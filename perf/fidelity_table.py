@@ -108,7 +108,7 @@ def measure(binary, text, workdir, tag, repeats):
     cpu_times, summary = [], os.path.join(workdir, tag + ".json")
     for _ in range(repeats):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        p = subprocess.run([binary, "run", scene, "-o", out, "--summary-json", summary], capture_output=True, text=True)
+        p = subprocess.run([binary, "run", scene, "--output-thread", "off", "-o", out, "--summary-json", summary], capture_output=True, text=True)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu_times.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
         if p.returncode != 0:

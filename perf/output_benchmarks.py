@@ -39,7 +39,7 @@ def run(binary, scene_text, work, name, repeats=3):
     best = None
     for _ in range(repeats):
         out, summary = os.path.join(work, name + ".h5"), os.path.join(work, name + ".json")
-        subprocess.run([binary, "run", scene, "-o", out, "--summary-json", summary], check=True,
+        subprocess.run([binary, "run", scene, "--output-thread", "off", "-o", out, "--summary-json", summary], check=True,
                        capture_output=True)
         s = json.load(open(summary))
         s["file_bytes"] = os.path.getsize(out)

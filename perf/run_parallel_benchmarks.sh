@@ -61,7 +61,7 @@ if [[ " $parts " == *" a "* ]]; then
     w1=() w2=()
     for i in $(seq "$runs"); do
       state=$(quiet)
-      "$raceway" run "$tmp/heavy_6309_R3.toml" -o "$tmp/h1.h5" --summary-json "$tmp/h1.json" 2>/dev/null
+      "$raceway" run "$tmp/heavy_6309_R3.toml" -o "$tmp/h1.h5" --summary-json "$tmp/h1.json" --output-thread off 2>/dev/null
       w1+=("$(wall "$tmp/h1.json")")
       echo "run $i np=1 wall ${w1[-1]} s  (${state}$(load))"
       state=$(quiet)
@@ -121,7 +121,7 @@ if [[ " $parts " == *" c "* ]]; then
   bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
   files=()
   for s in short_6309_R3 short_qj215_validation short_seed002_40hz heavy_qj215_validation heavy_6309_R3; do
-    [[ -f "$tmp/$s.h5" ]] || "$raceway" run "$tmp/$s.toml" -o "$tmp/$s.h5" 2>/dev/null
+    [[ -f "$tmp/$s.h5" ]] || "$raceway" run "$tmp/$s.toml" -o "$tmp/$s.h5" --output-thread off 2>/dev/null
     files+=("$tmp/$s.h5")
   done
   measured=()

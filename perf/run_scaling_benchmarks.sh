@@ -38,7 +38,9 @@ speedup() {  # speedup NAME SCENE
   local name=$1 scene=$2 w1=() w2=()
   echo "# $name: $(basename "$scene"), wall = run summary's wall_time_s"
   for i in $(seq "$runs"); do
-    "$raceway" run "$scene" -o "$tmp/${name}1.h5" --summary-json "$tmp/${name}1.json" --scheduler-log >/dev/null 2>&1
+    # One core: the output on the run's thread (the output thread would take the second core).
+    "$raceway" run "$scene" -o "$tmp/${name}1.h5" --summary-json "$tmp/${name}1.json" --scheduler-log \
+      --output-thread off >/dev/null 2>&1
     w1+=("$(wall "$tmp/${name}1.json")")
     echo "run $i np=1 wall ${w1[-1]} s  ($(load))"
     mpirun -np 2 "$raceway" run "$scene" -o "$tmp/${name}2.h5" --summary-json "$tmp/${name}2.json" >/dev/null 2>&1
@@ -70,7 +72,8 @@ measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.
 if [[ -n "${FULL_RUN:-}" ]]; then
   cp "$FULL_RUN" "$tmp/6309_R3_fine_traction.h5"
 else
-  "$raceway" run "$root/jobs/scenes/6309_R3_fine_traction.toml" -o "$tmp/6309_R3_fine_traction.h5" --scheduler-log >/dev/null 2>&1
+  "$raceway" run "$root/jobs/scenes/6309_R3_fine_traction.toml" -o "$tmp/6309_R3_fine_traction.h5" --scheduler-log \
+    --output-thread off >/dev/null 2>&1
 fi
 cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction_timed.h5"
 cp "$tmp/shipped1.h5" "$tmp/6309_R3.h5"

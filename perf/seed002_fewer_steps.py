@@ -89,7 +89,7 @@ def run(binary, settings, workdir, tag):
     with open(scene, "w") as f:
         f.write(scene_text(settings))
     start = time.monotonic()
-    p = subprocess.run([binary, "run", scene, "-o", out, "--summary-json", summary], capture_output=True, text=True)
+    p = subprocess.run([binary, "run", scene, "--output-thread", "off", "-o", out, "--summary-json", summary], capture_output=True, text=True)
     wall = time.monotonic() - start
     if p.returncode != 0:
         return {"failed": (p.stderr.strip().splitlines() or ["?"])[-1][:160]}

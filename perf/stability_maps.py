@@ -68,7 +68,7 @@ def one_run(binary, name, variant, damping, factor, workdir, timeout):
         f.write(text)
     row = {"scene": name, "variant": variant, "damping": damping, "speed": speed}
     try:
-        p = subprocess.run([binary, "run", scene, "--method", method, "-o", os.path.join(workdir, "s.h5"),
+        p = subprocess.run([binary, "run", scene, "--output-thread", "off", "--method", method, "-o", os.path.join(workdir, "s.h5"),
                             "--summary-json", os.path.join(workdir, "s.json")], capture_output=True, text=True,
                            timeout=timeout)
     except subprocess.TimeoutExpired:

@@ -102,7 +102,7 @@ def run(binary, name, method, rtol, workdir, timeout, shorten=True):
     out, summary = os.path.join(workdir, tag + ".h5"), os.path.join(workdir, tag + ".json")
     start = time.monotonic()
     try:
-        p = subprocess.run([binary, "run", scene, "--method", cli_method, "-o", out, "--summary-json", summary],
+        p = subprocess.run([binary, "run", scene, "--output-thread", "off", "--method", cli_method, "-o", out, "--summary-json", summary],
                            capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return {"failed": f"longer than {timeout:.0f} s"}
