@@ -58,6 +58,30 @@ keep_existing_output)
   [[ -e "$work/OUT.h5.partial" ]] || fail "no OUT.h5.partial after an integration failure"
   ;;
 
+output_thread)
+  # (k) --output-thread: the log names the decision; on and off give the same file; auto is off
+  # when every core of the node runs a rank (np 2 here, or a rank bound to one core).
+  sed 's/^end_time = .*/end_time = "20 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/s.toml"
+  for mode in on off; do
+    run run "$work/s.toml" -o "$work/$mode.h5" --output-thread "$mode"
+    [[ $rc -eq 0 ]] || fail "--output-thread $mode: exit code $rc"
+    cat "$work/out" "$work/err" | grep -q "output thread $mode (--output-thread $mode" ||
+      fail "--output-thread $mode: the log does not say 'output thread $mode'"
+  done
+  /usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py" "$work/on.h5" "$work/off.h5" >"$work/cmp" 2>&1 ||
+    fail "files with and without the output thread differ: $(tail -3 "$work/cmp")"
+  mpirun -np 2 "$raceway" run "$work/s.toml" -o "$work/np2.h5" >"$work/out" 2>"$work/err"
+  # auto: on only if this rank may use more than one core and the node has more cores than ranks.
+  line=$(cat "$work/out" "$work/err" | grep -o "output thread [a-z]* (auto: [0-9]* core(s) on this node, 2 rank(s) on it, this rank may use [0-9]*)")
+  [[ -n "$line" ]] || fail "np 2: the log does not state the auto decision"
+  read -r decided cores mine < <(sed -E 's/output thread ([a-z]+) \(auto: ([0-9]+) core.* may use ([0-9]+)\)/\1 \2 \3/' <<<"$line")
+  expected=off
+  [[ $mine -gt 1 && $cores -gt 2 ]] && expected=on
+  [[ $decided == "$expected" ]] || fail "np 2: '$line' (expected $expected)"
+  run run "$work/s.toml" -o "$work/bad.h5" --output-thread sometimes
+  [[ $rc -ne 0 && ! -e "$work/bad.h5" && ! -e "$work/bad.h5.partial" ]] || fail "--output-thread sometimes: exit $rc"
+  ;;
+
 run_default)
   # (c) the built-in default scene: exit 0, an HDF5 file with /time, and the JSON summary.
   (cd "$work" && "$raceway" run -o x.h5 --summary-json s.json >"$work/out" 2>"$work/err")
