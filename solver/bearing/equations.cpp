@@ -186,12 +186,8 @@ void Equations::add_groove_loads_at_rest(double t, const double* z, std::vector<
     const Segment& seg = model_.segments[s];
     if (!is_ball_groove(seg)) continue;
     const double* rec = rest_records_.data() + s * SegmentRecord::size;
-    auto& wa = sums[static_cast<std::size_t>(seg.body_a)];
-    auto& wb = sums[static_cast<std::size_t>(seg.body_b)];
-    wa.force += contact::Vec3(rec[SegmentRecord::on_a], rec[SegmentRecord::on_a + 1], rec[SegmentRecord::on_a + 2]);
-    wa.moment += contact::Vec3(rec[SegmentRecord::on_a + 3], rec[SegmentRecord::on_a + 4], rec[SegmentRecord::on_a + 5]);
-    wb.force += contact::Vec3(rec[SegmentRecord::on_b], rec[SegmentRecord::on_b + 1], rec[SegmentRecord::on_b + 2]);
-    wb.moment += contact::Vec3(rec[SegmentRecord::on_b + 3], rec[SegmentRecord::on_b + 4], rec[SegmentRecord::on_b + 5]);
+    add_wrench(sums[static_cast<std::size_t>(seg.body_a)], rec + SegmentRecord::on_a);
+    add_wrench(sums[static_cast<std::size_t>(seg.body_b)], rec + SegmentRecord::on_b);
   }
 }
 
