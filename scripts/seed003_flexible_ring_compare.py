@@ -60,7 +60,7 @@ def analyse(path, window_start):
     time = f["time"][:]
     w = rm.select_window(time, window_start)
     xy = f["rollers/position"][:] - f["outer_ring/position"][:][:, None, :]
-    az = np.mod(np.arctan2(xy[..., 1], xy[..., 0]), 2 * math.pi)
+    az = rm.azimuth(xy[..., 0], xy[..., 1])
     inner = f["segments/roller_inner_race/normal_force"][:]
     outer = f["segments/roller_outer_race/normal_force"][:]
     bins = rm.bin_by_azimuth(az[w.slice], inner[w.slice], 5.0 / DEG)
