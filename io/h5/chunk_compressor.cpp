@@ -1,5 +1,7 @@
 #include "io/h5/chunk_compressor.hpp"
 
+#include "io/h5/thread_core.hpp"
+
 #include <zlib.h>
 
 #include <cstring>
@@ -30,8 +32,10 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
   return {std::move(out), 0};
 }
 
-ChunkCompressor::ChunkCompressor(bool shuffle, int gzip_level)
-    : shuffle_(shuffle), gzip_level_(gzip_level), thread_([this] { work(); }) {}
+ChunkCompressor::ChunkCompressor(bool shuffle, int gzip_level, int core)
+    : shuffle_(shuffle), gzip_level_(gzip_level), thread_([this] { work(); }) {
+  if (core >= 0) bind_thread_to_core(thread_, core);
+}
 
 ChunkCompressor::~ChunkCompressor() {
   {

@@ -35,7 +35,8 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
 /// Destroying it finishes the queued chunks (their futures stay valid) and joins the thread.
 class ChunkCompressor {
  public:
-  ChunkCompressor(bool shuffle, int gzip_level);
+  /// `core` >= 0: the thread is bound to that logical CPU alone (io/h5/thread_core.hpp).
+  ChunkCompressor(bool shuffle, int gzip_level, int core = -1);
   ~ChunkCompressor();
   ChunkCompressor(const ChunkCompressor&) = delete;
   ChunkCompressor& operator=(const ChunkCompressor&) = delete;

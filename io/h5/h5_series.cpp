@@ -124,7 +124,7 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
   }
   w.dxpl_ = H5Pcreate(H5P_DATASET_XFER);  // collective transfer mode goes here later
   if (w.dxpl_ < 0) w.fail("making the data transfer property list", "/");
-  if (options.background_compression) w.compressor_ = std::make_unique<ChunkCompressor>(options.shuffle, options.gzip_level);
+  if (options.background_compression) w.compressor_ = std::make_unique<ChunkCompressor>(options.shuffle, options.gzip_level, options.compressor_core);
   return w;
 }
 

@@ -85,6 +85,9 @@ struct H5WriterOptions {
   /// the same stored bytes as HDF5's pipeline, off the caller's thread. false: HDF5 filters them
   /// inside the flush.
   bool background_compression = true;
+  /// The logical CPU the background compressor's thread is bound to (io/h5/thread_core.hpp); -1:
+  /// wherever the process may run.
+  int compressor_core = -1;
 };
 
 class H5SeriesWriter {

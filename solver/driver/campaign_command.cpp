@@ -263,9 +263,11 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   if (decided[0] != 0) return decided[0];
   int code = 0;
   install_stop_signals();
-  std::string thread_why;  // the groups fill the node's cores: then the output thread would take a rank's
-  const bool output_thread = output_thread_wanted("auto", MPI_COMM_WORLD, thread_why);
-  if (rank == 0) spdlog::info("campaign: {}", thread_why);
+  // The groups fill the node's cores: then the output thread would take a rank's (no binding to a
+  // free core here: every group leader would want one).
+  const OutputThreadPlace thread_place = place_output_thread("auto", MPI_COMM_WORLD, false);
+  const bool output_thread = thread_place.on;
+  if (rank == 0) spdlog::info("campaign: {}", thread_place.why);
   scheduler::CampaignGroups g = scheduler::split_campaign_groups(MPI_COMM_WORLD, decided[1]);
   CampaignProgress progress{c, 0, 0, 0, 0, seconds_now(), 0, 0, {}};
   std::unique_ptr<scheduler::CampaignDispatcher> dispatcher;

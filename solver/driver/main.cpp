@@ -142,7 +142,7 @@ struct RunRequest {
   std::string output, summary_json, result_options;
   bool scheduler_log = false, resume = false;
   solver::SharedOutput* shared_output = nullptr;  ///< the parallel output; nullptr: rank 0 writes all
-  bool output_thread = true;                      ///< driver::output_thread_wanted
+  driver::OutputThreadPlace output_thread{true, -1, ""};  ///< driver::place_output_thread
 };
 
 int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
@@ -157,7 +157,8 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.scheduler_log = request.scheduler_log;
   options.resume = request.resume;
   options.shared_output = request.shared_output;
-  options.output_thread = request.output_thread;
+  options.output_thread = request.output_thread.on;
+  options.output_thread_core = request.output_thread.core;
   options.result_options = request.result_options;
   options.stop_signal = &driver::g_stop_signal;
   options.mpi_library = driver::mpi_library_version();
@@ -315,7 +316,7 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                 "writes); default: rank 0 writes the whole file (perf/results/output_notes.md: faster here)");
   run->add_option("--output-thread", cl.output_thread,
                   "the output's work at output times on a thread of rank 0's own: auto (when it gets a core no "
-                  "rank uses), on, off; the same results either way")
+                  "rank uses; under mpirun's binding it is bound to such a core), on, off; the same results either way")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   run->add_flag("--scheduler-log", cl.scheduler_log,
@@ -404,8 +405,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
   driver::install_stop_signals();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
-  std::string thread_why;
-  const bool output_thread = driver::output_thread_wanted(cl.output_thread, comm, thread_why);
+  const driver::OutputThreadPlace output_thread = driver::place_output_thread(cl.output_thread, comm);
   if (rank != 0) {
     driver::serve_scene_tasks(source, executor, comm, cl.parallel_output);
   } else {
@@ -419,7 +419,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
       driver::MpiSharedOutput shared(comm, executor);
       const RunRequest request{cl.output, cl.summary_json, cl.petsc_options, cl.scheduler_log, cl.resume,
                                size > 1 && cl.parallel_output ? &shared : nullptr, output_thread};
-      if (!request.shared_output) spdlog::info("{}", thread_why);
+      if (!request.shared_output) spdlog::info("{}", output_thread.why);
       return run_command(scene, request, executor);
     });
     executor.stop();  // releases the workers (also after a failure)

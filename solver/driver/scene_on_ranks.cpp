@@ -5,9 +5,12 @@
 #include <spdlog/spdlog.h>
 
 #include <fmt/format.h>
+#include <hwloc.h>
+#include <hwloc/glibc-sched.h>
 #include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "io/h5/output_lock.hpp"
@@ -73,22 +76,71 @@ std::string mpi_library_version() {
   return s.substr(0, s.find_first_of(",\n"));
 }
 
-bool output_thread_wanted(const std::string& mode, MPI_Comm world, std::string& why) {
+namespace {
+
+/// The logical CPUs the job may use on this node: its cgroup's cpuset and the online CPUs, as hwloc
+/// reads them (cgroup v1 or v2), not this process's affinity, which mpirun's binding narrows.
+/// Empty if hwloc cannot tell.
+cpu_set_t cpus_the_job_may_use() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  hwloc_topology_t topology = nullptr;
+  if (hwloc_topology_init(&topology) != 0) return set;
+  if (hwloc_topology_load(topology) == 0)
+    hwloc_cpuset_to_glibc_sched_affinity(topology, hwloc_topology_get_allowed_cpuset(topology), &set, sizeof set);
+  hwloc_topology_destroy(topology);
+  return set;
+}
+
+/// The first CPU of `allowed` that no mask of `ranks` holds; -1 if none.
+int first_cpu_free_of(const cpu_set_t& allowed, const std::vector<cpu_set_t>& ranks) {
+  for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+    if (CPU_ISSET(cpu, &allowed) &&
+        std::none_of(ranks.begin(), ranks.end(), [&](const cpu_set_t& r) { return CPU_ISSET(cpu, &r) != 0; }))
+      return cpu;
+  return -1;
+}
+
+}  // namespace
+
+// Finding a core that no rank of the job is bound to is written here by hand: MPI says nothing
+// about its ranks' bindings, and hwloc knows the machine and this process but not the other ranks;
+// each rank's affinity is gathered over the node (the ranks of other jobs on a shared node are not
+// seen: their cores are outside this job's cgroup when the batch system confines jobs).
+OutputThreadPlace place_output_thread(const std::string& mode, MPI_Comm world, bool may_bind) {
   MPI_Comm node = MPI_COMM_NULL;
   MPI_Comm_split_type(world, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int ranks_on_node = 1;
+  int ranks_on_node = 1, world_rank = 0;
   MPI_Comm_size(node, &ranks_on_node);
-  MPI_Comm_free(&node);
+  MPI_Comm_rank(world, &world_rank);
   cpu_set_t mine;
   CPU_ZERO(&mine);
-  const int my_cores = sched_getaffinity(0, sizeof mine, &mine) == 0 ? CPU_COUNT(&mine) : 1;
-  const long node_cores = sysconf(_SC_NPROCESSORS_ONLN);
-  const bool spare = my_cores > 1 && node_cores > ranks_on_node;
-  const bool on = mode == "on" || (mode == "auto" && spare);
-  why = fmt::format("output thread {} ({}: {} core(s) on this node, {} rank(s) on it, this rank may use {})",
-                    on ? "on" : "off", mode == "auto" ? "auto" : "--output-thread " + mode, node_cores,
-                    ranks_on_node, my_cores);
-  return on;
+  const bool known = sched_getaffinity(0, sizeof mine, &mine) == 0;
+  const int my_cores = known ? CPU_COUNT(&mine) : 1;
+  std::vector<cpu_set_t> masks(static_cast<std::size_t>(ranks_on_node));
+  if (may_bind)
+    MPI_Allgather(&mine, sizeof mine, MPI_BYTE, masks.data(), sizeof mine, MPI_BYTE, node);
+  MPI_Comm_free(&node);
+  // Only world rank 0 runs an output thread in `raceway run`; the others keep the plain rule.
+  const cpu_set_t allowed = may_bind && world_rank == 0 && mode != "off" ? cpus_the_job_may_use() : cpu_set_t{};
+  const int allowed_cores = CPU_COUNT(&allowed);
+  const long node_cores = allowed_cores > 0 ? allowed_cores : sysconf(_SC_NPROCESSORS_ONLN);
+  const bool bound = known && allowed_cores > 0 && my_cores < allowed_cores;
+  OutputThreadPlace place;
+  std::string where;
+  if (bound) {
+    place.core = first_cpu_free_of(allowed, masks);
+    place.on = mode == "on" || (mode == "auto" && place.core >= 0);
+    where = place.core >= 0 ? fmt::format("; core {} is free of ranks{}", place.core, place.on ? ": the thread is bound there" : "")
+                            : std::string("; every core the job may use here has a rank bound to it");
+    if (!place.on) place.core = -1;
+  } else {
+    place.on = mode == "on" || (mode == "auto" && my_cores > 1 && node_cores > ranks_on_node);
+  }
+  place.why = fmt::format("output thread {} ({}: {} core(s) on this node, {} rank(s) on it, this rank may use {}{})",
+                          place.on ? "on" : "off", mode == "auto" ? "auto" : "--output-thread " + mode, node_cores,
+                          ranks_on_node, my_cores, where);
+  return place;
 }
 
 bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {

@@ -34,12 +34,24 @@ int exit_code_of(const std::function<int()>& command);
 /// The MPI library's own version line (e.g. "Open MPI v4.1.4"), for the build attributes.
 std::string mpi_library_version();
 
-/// Whether rank 0 runs the output's work (diagnostics at output times, rows, summary sums) on a
-/// thread of its own. `mode` "on" or "off" decide; "auto" turns it on only when that thread gets a
-/// core no rank uses: this process may run on more than one core and the node has more cores than
-/// ranks of `world` on it. Otherwise the thread would take its time from a rank (measured: np = 2 on
-/// 2 cores 18 % slower with it). Collective on `world`; `why` says what was decided and why.
-bool output_thread_wanted(const std::string& mode, MPI_Comm world, std::string& why);
+/// Where rank 0 runs the output's work (diagnostics at output times, rows, summary sums).
+struct OutputThreadPlace {
+  bool on = false;  ///< on a thread of its own
+  int core = -1;    ///< the logical CPU that thread (and the chunk compressor) is bound to; -1: not bound
+  std::string why;  ///< what was decided and why, for the log
+};
+
+/// Decides whether rank 0 runs the output's work on a thread of its own and where. `mode` "off"
+/// decides off; "on" and "auto" look for a core no rank uses:
+/// - rank 0 bound to fewer cores than the node lets the job use (mpirun binds a rank to a core):
+///   the node's cores that no rank of `world` on it is bound to; the first of them, if any, takes
+///   the output thread (bound there; auto turns it on). `may_bind` false (a campaign, whose group
+///   leaders would all want it) skips this: no binding, and auto stays off.
+/// - not bound: auto turns it on when this process may run on more than one core and the node has
+///   more cores than ranks of `world` on it; the thread runs where the process may.
+/// Otherwise the thread would take its time from a rank (measured: np = 2 on 2 cores 18 % slower
+/// with it). Collective on `world`.
+OutputThreadPlace place_output_thread(const std::string& mode, MPI_Comm world, bool may_bind = true);
 
 /// What every rank of a run parses: the scene text, its source name and the --set overrides.
 struct SceneSource {

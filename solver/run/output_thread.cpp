@@ -1,5 +1,7 @@
 #include "solver/run/output_thread.hpp"
 
+#include "io/h5/thread_core.hpp"
+
 #include <algorithm>
 #include <chrono>
 
@@ -18,6 +20,8 @@ OutputThread::~OutputThread() {
   wake();
   thread_.join();
 }
+
+std::string OutputThread::bind_to_core(int core) { return io::bind_thread_to_core(thread_, core); }
 
 void OutputThread::wake() {
   signal_.fetch_add(1);

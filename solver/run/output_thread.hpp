@@ -13,8 +13,9 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
-#include <functional>
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -35,6 +36,9 @@ class OutputThread {
   void submit(double t, long sample, const std::vector<double>& z);
   /// Waits until every queued sample has been worked; rethrows a failure if `rethrow`.
   void drain(bool rethrow = true);
+  /// Binds this object's thread alone to the logical CPU `core`; returns its affinity read back
+  /// ("" when the system refused: io::bind_thread_to_core).
+  std::string bind_to_core(int core);
   /// Wall seconds spent in work() so far (read after drain()).
   double busy_seconds() const { return busy_; }
 

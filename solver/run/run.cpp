@@ -85,7 +85,10 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   io::H5WriterOptions storage;
   // Written by the output thread (not the parallel output): flushed every 4 MiB of rows there, so
   // that the commit at the end, on the run's thread, has little left to store and to sync.
-  if (!options.shared_output && options.output_thread) storage.max_buffered_bytes = std::size_t{4} << 20;
+  if (!options.shared_output && options.output_thread) {
+    storage.max_buffered_bytes = std::size_t{4} << 20;
+    storage.compressor_core = options.output_thread_core;  // beside the output thread, off the rank's core
+  }
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
                                                    resumed->unwritten_rows, storage)
                       : io::H5SeriesWriter::create(options.output_path, storage);
@@ -188,6 +191,7 @@ class RunLoop {
   double write_sample(Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot);
   /// Waits for the output thread's samples (before anything reads the file, the sums or the counts).
   void drain_output(bool rethrow = true);
+  void start_output_thread();  // and binds it to options_.output_thread_core
   void checkpoint(CheckpointKind kind, long sample, double t);
   /// The summary into the file (after the output thread's samples; their failure is rethrown if
   /// `rethrow`, else left to the failure being reported).
@@ -285,6 +289,23 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   return sum;
 }
 
+void RunLoop::start_output_thread() {
+  output_thread_ = std::make_unique<OutputThread>(
+      z_.size(), [this](double t, long sample, const std::vector<double>& z) {
+        write_sample(*sample_eq_, t, sample, z, sample_zdot_);
+      },
+      // Up to 1024 samples queued (the run's thread waits only when the output thread is that far
+      // behind: on a loaded machine it is descheduled for tens of ms), at most 64 MiB of states.
+      std::clamp<std::size_t>((std::size_t{64} << 20) / (sizeof(double) * z_.size()), 16, 1024));
+  const int core = options_.output_thread_core;
+  if (core < 0) return;
+  const std::string bound = output_thread_->bind_to_core(core);
+  if (!options_.on_info) return;
+  options_.on_info(bound.empty()
+                       ? fmt::format("output thread: binding it to core {} was refused; it runs where the process may", core)
+                       : fmt::format("output thread bound to core {} (its affinity read back: {})", core, bound));
+}
+
 RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   const double t0 = 0.0;
   long first = 1;  // the first sample integrated to
@@ -315,14 +336,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   if (options_.on_info)
     options_.on_info(fmt::format("output {} {}: readable from here on, also after a kill", file_->partial_path(),
                                  resumed ? "reopened" : "laid out"));
-  if (sample_eq_)
-    output_thread_ = std::make_unique<OutputThread>(
-        z_.size(), [this](double t, long sample, const std::vector<double>& z) {
-          write_sample(*sample_eq_, t, sample, z, sample_zdot_);
-        },
-        // Up to 1024 samples queued (the run's thread waits only when the output thread is that far
-        // behind: on a loaded machine it is descheduled for tens of ms), at most 64 MiB of states.
-        std::clamp<std::size_t>((std::size_t{64} << 20) / (sizeof(double) * z_.size()), 16, 1024));
+  if (sample_eq_) start_output_thread();
   integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
   last_checkpoint_wall_ = wall();
   if (!resumed) record(t0, 0);

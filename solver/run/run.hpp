@@ -67,6 +67,9 @@ struct RunOptions {
   /// when that thread has a core to itself (the driver decides: output_thread_wanted). Off: on the
   /// run's thread, the diagnostics through the run's executor. The same bits either way.
   bool output_thread = true;
+  /// The logical CPU the output thread and the chunk compressor are bound to (a core no rank of the
+  /// job is bound to: the driver finds it); -1: they run wherever the process may.
+  int output_thread_core = -1;
 };
 
 /// A run stopped by a signal after writing a checkpoint (continue it with --resume).

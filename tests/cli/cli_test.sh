@@ -59,8 +59,8 @@ keep_existing_output)
   ;;
 
 output_thread)
-  # (k) --output-thread: the log names the decision; on and off give the same file; auto is off
-  # when every core of the node runs a rank (np 2 here, or a rank bound to one core).
+  # (k) --output-thread: the log names the decision; on and off give the same file; a bad value is
+  # refused. Under mpirun: the case output_thread_bound.
   sed 's/^end_time = .*/end_time = "20 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/s.toml"
   for mode in on off; do
     run run "$work/s.toml" -o "$work/$mode.h5" --output-thread "$mode"
@@ -70,16 +70,48 @@ output_thread)
   done
   /usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py" "$work/on.h5" "$work/off.h5" >"$work/cmp" 2>&1 ||
     fail "files with and without the output thread differ: $(tail -3 "$work/cmp")"
-  mpirun -np 2 "$raceway" run "$work/s.toml" -o "$work/np2.h5" >"$work/out" 2>"$work/err"
-  # auto: on only if this rank may use more than one core and the node has more cores than ranks.
-  line=$(cat "$work/out" "$work/err" | grep -o "output thread [a-z]* (auto: [0-9]* core(s) on this node, 2 rank(s) on it, this rank may use [0-9]*)")
-  [[ -n "$line" ]] || fail "np 2: the log does not state the auto decision"
-  read -r decided cores mine < <(sed -E 's/output thread ([a-z]+) \(auto: ([0-9]+) core.* may use ([0-9]+)\)/\1 \2 \3/' <<<"$line")
-  expected=off
-  [[ $mine -gt 1 && $cores -gt 2 ]] && expected=on
-  [[ $decided == "$expected" ]] || fail "np 2: '$line' (expected $expected)"
   run run "$work/s.toml" -o "$work/bad.h5" --output-thread sometimes
   [[ $rc -ne 0 && ! -e "$work/bad.h5" && ! -e "$work/bad.h5.partial" ]] || fail "--output-thread sometimes: exit $rc"
+  ;;
+
+output_thread_bound)
+  # (k2) auto under mpirun, which binds each rank to a core: rank 0's output thread goes to a core
+  # of the node that no rank is bound to, if there is one, bound there alone (its affinity read back
+  # in the log), with the same file as without the thread; with no such core it stays off.
+  sed 's/^end_time = .*/end_time = "20 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/s.toml"
+  run run "$work/s.toml" -o "$work/off.h5" --output-thread off
+  [[ $rc -eq 0 ]] || fail "--output-thread off: exit code $rc"
+  for np in 1 2; do
+    mpirun -np $np "$raceway" run "$work/s.toml" -o "$work/np$np.h5" >"$work/out" 2>"$work/err"
+    [[ $? -eq 0 ]] || fail "np $np: exit code not 0: $(tail -3 "$work/err")"
+    cat "$work/out" "$work/err" >"$work/log$np"
+    line=$(grep -o "output thread [a-z]* (auto: [0-9]* core(s) on this node, $np rank(s) on it, this rank may use [0-9]*[^)]*)" "$work/log$np")
+    [[ -n "$line" ]] || fail "np $np: the log does not state the auto decision: $(grep 'output thread' "$work/log$np")"
+    read -r decided cores mine < <(sed -E 's/output thread ([a-z]+) \(auto: ([0-9]+) core.* may use ([0-9]+).*/\1 \2 \3/' <<<"$line")
+    if [[ $mine -ge $cores ]]; then  # mpirun did not bind (a site setting): the rule without binding
+      expected=off
+      [[ $mine -gt 1 && $cores -gt $np ]] && expected=on
+      [[ $decided == "$expected" ]] || fail "np $np, not bound: '$line' (expected $expected)"
+      continue
+    fi
+    if [[ $cores -gt $((np * mine)) ]]; then  # a core no rank is bound to: the thread is bound there
+      core=$(sed -nE 's/.*; core ([0-9]+) is free of ranks: the thread is bound there\)$/\1/p' <<<"$line")
+      [[ $decided == on && -n "$core" ]] || fail "np $np: a core is free, but: '$line'"
+      grep -q "output thread bound to core $core (its affinity read back: $core)$" "$work/log$np" ||
+        fail "np $np: no 'output thread bound to core $core (its affinity read back: $core)' in the log"
+    else
+      [[ $decided == off && $line == *"every core the job may use here has a rank bound to it"* ]] ||
+        fail "np $np: no core is free, but: '$line'"
+      grep -q "output thread bound" "$work/log$np" && fail "np $np: a thread was bound with no free core"
+    fi
+    /usr/bin/python3 "$source_dir/tests/parallel/compare_outputs.py" "$work/np$np.h5" "$work/off.h5" >"$work/cmp" 2>&1 ||
+      fail "np $np: the file differs from --output-thread off: $(tail -3 "$work/cmp")"
+  done
+  # On this test's 2-core machine: np 1 binds the thread to the other core, np 2 leaves it off.
+  if [[ $(nproc) -eq 2 ]]; then
+    grep -q "output thread bound to core" "$work/log1" || fail "np 1 on 2 cores: the output thread was not bound"
+    grep -q "output thread off (auto" "$work/log2" || fail "np 2 on 2 cores: the output thread is not off"
+  fi
   ;;
 
 run_default)
