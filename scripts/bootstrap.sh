@@ -5,7 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev
+packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev libhwloc-dev
   libpetsc-real-dev libsundials-dev libeigen3-dev libhdf5-openmpi-dev hdf5-tools libmetis-dev
   libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
   python3-matplotlib python3-h5py python3-numpy
