@@ -9,6 +9,47 @@
 
 namespace raceway::io {
 
+namespace {
+
+/// compress2's work with the deflate state kept per thread: compress2 allocates and fills about
+/// 270 KB of state per call (deflateInit), measured about 7 % of the compressor's time on 16 KiB
+/// chunks; deflateReset only resets it. zlib documents deflateReset as equivalent to deflateEnd
+/// followed by deflateInit, and compress2 is deflateInit, one deflate(Z_FINISH) (for inputs below
+/// 4 GiB) and deflateEnd: the same bytes (the unit test compares them with HDF5's own).
+class Deflater {
+ public:
+  Deflater() = default;
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+  ~Deflater() {
+    if (level_ >= 0) deflateEnd(&stream_);
+  }
+  /// Deflates `in` into `out` (at least compressBound(in) bytes); returns the compressed size.
+  std::size_t deflate_all(const std::vector<unsigned char>& in, std::vector<unsigned char>& out, int level) {
+    if (level_ != level) {
+      if (level_ >= 0) deflateEnd(&stream_);
+      level_ = -1;
+      stream_ = z_stream{};
+      if (deflateInit(&stream_, level) != Z_OK) throw std::runtime_error("zlib deflateInit failed on an output chunk");
+      level_ = level;
+    } else if (deflateReset(&stream_) != Z_OK) {
+      throw std::runtime_error("zlib deflateReset failed on an output chunk");
+    }
+    stream_.next_in = const_cast<Bytef*>(in.data());  // zlib's API is not const-correct; it only reads
+    stream_.avail_in = static_cast<uInt>(in.size());
+    stream_.next_out = out.data();
+    stream_.avail_out = static_cast<uInt>(out.size());
+    if (deflate(&stream_, Z_FINISH) != Z_STREAM_END) throw std::runtime_error("zlib deflate failed on an output chunk");
+    return out.size() - stream_.avail_out;
+  }
+
+ private:
+  z_stream stream_{};
+  int level_ = -1;  // the level stream_ was initialised with; -1: none
+};
+
+}  // namespace
+
 FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzip_level) {
   const std::size_t n = values.size(), bytes = values.size_bytes();
   std::vector<unsigned char> raw(bytes);
@@ -24,11 +65,10 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
   }
   if (gzip_level <= 0) return {std::move(raw), 0};
   // HDF5's deflate filter (H5Z_FILTER_DEFLATE): compress2 into a compressBound() buffer.
-  uLongf size = compressBound(static_cast<uLong>(bytes));
-  std::vector<unsigned char> out(size);
-  if (compress2(out.data(), &size, raw.data(), static_cast<uLong>(bytes), gzip_level) != Z_OK)
-    throw std::runtime_error("zlib compress2 failed on an output chunk");
-  out.resize(size);
+  if (bytes >= (std::size_t{1} << 31)) throw std::runtime_error("an output chunk of 2 GiB or more");
+  thread_local Deflater deflater;
+  std::vector<unsigned char> out(compressBound(static_cast<uLong>(bytes)));
+  out.resize(deflater.deflate_all(raw, out, gzip_level));
   return {std::move(out), 0};
 }
 

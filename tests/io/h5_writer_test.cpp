@@ -205,13 +205,15 @@ std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> stored_chunks
 
 // Chunks filtered on the background thread and stored with H5Dwrite_chunk are the chunks HDF5's own
 // filter pipeline stores (shuffle + deflate, and deflate alone), whole and partial, across flushes;
-// a series whose row does not fit a chunk (/wide: 2100 values, 16 KiB chunks) takes HDF5's path.
+// a series whose row does not fit a chunk (/wide: 2100 values, 16 KiB chunks) takes HDF5's path;
+// at two gzip levels one after the other (each thread keeps its deflate state between chunks).
 TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
-  for (const bool shuffle : {true, false}) {
+  for (const auto& [shuffle, level] : {std::pair{true, 1}, std::pair{false, 1}, std::pair{true, 6}}) {
     std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> chunks[2];
     for (const bool background : {false, true}) {
       raceway::io::H5WriterOptions options;
       options.shuffle = shuffle;
+      options.gzip_level = level;
       options.background_compression = background;
       const std::string out = path(std::string("c") + (background ? "1" : "0") + ".h5");
       auto w = H5SeriesWriter::create(out, options);
@@ -231,6 +233,6 @@ TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
       EXPECT_EQ(H5Reader(out).doubles("/xy"), H5Reader(path("c0.h5")).doubles("/xy"));
     }
     EXPECT_EQ(chunks[0].size(), 3u + 5u + 100u) << "chunks of /time, /xy, /wide (2 per row)";
-    EXPECT_TRUE(chunks[0] == chunks[1]) << "shuffle " << shuffle;
+    EXPECT_TRUE(chunks[0] == chunks[1]) << "shuffle " << shuffle << ", level " << level;
   }
 }
