@@ -191,6 +191,7 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
     io::write_json_file(summary_json, json);
     spdlog::info("summary written to {}", summary_json);
   }
+  if (const std::string note = solver::output_share_note(sum); !note.empty()) spdlog::info("{}", note);
   return 0;
 }
 

@@ -71,6 +71,16 @@ io::JsonObject RunSummary::to_json() const {
 }
 
 
+std::string output_share_note(const RunSummary& sum) {
+  if (!(sum.wall_time_s > 0) || sum.output_seconds <= kOutputShareToMention * sum.wall_time_s) return "";
+  return fmt::format("the output took {:.1f} % of the run ({:.3f} s of {:.3f} s wall for {} samples: at each a "
+                     "right-hand side for the diagnostics, the rows, their compression); sample less often "
+                     "([scene] output_interval) or leave out the segment diagnostics ([output] segments = false) "
+                     "to make it smaller",
+                     100 * sum.output_seconds / sum.wall_time_s, sum.output_seconds, sum.wall_time_s,
+                     sum.output_samples);
+}
+
 namespace {
 
 /// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates the

@@ -111,6 +111,14 @@ struct RunSummary {
   io::JsonObject to_json() const;
 };
 
+/// The output's share of the run on the run's thread above which output_share_note() speaks.
+inline constexpr double kOutputShareToMention = 0.05;
+
+/// A line for the end of a run whose output took more than kOutputShareToMention of its wall time
+/// on the run's thread (output_seconds of wall_time_s), naming what makes it smaller: fewer samples
+/// ([scene] output_interval) or no segment diagnostics ([output] segments = false); "" otherwise.
+std::string output_share_note(const RunSummary& sum);
+
 /// Runs the scene and writes `options.output_path` (via a .partial file: an existing output is
 /// replaced only when the run ends), with checkpoints (solver/run/checkpoint.hpp) as the scene's
 /// [output] section asks. On an integration failure the partial output is kept as OUT.h5.partial

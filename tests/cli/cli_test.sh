@@ -114,6 +114,39 @@ output_thread_bound)
   fi
   ;;
 
+output_share_note)
+  # (k3) a run whose output takes more than 5 % of its wall time (6309 R3 samples every 20 us; the
+  # output on the run's thread) ends with one info line giving the share, as in its summary, and
+  # naming the two levers; with few samples and no segment diagnostics it does not; under mpirun
+  # only rank 0 says it.
+  sed 's/^end_time = .*/end_time = "20 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/r3.toml"
+  run run "$work/r3.toml" -o "$work/r3.h5" --output-thread off --summary-json "$work/r3.json"
+  [[ $rc -eq 0 ]] || fail "6309 R3, 20 ms: exit code $rc"
+  cat "$work/out" "$work/err" >"$work/all"
+  last=$(grep '^\[raceway\]' "$work/all" | tail -1)
+  share=$(sed -nE 's/^\[raceway\] the output took ([0-9.]+) % of the run .*/\1/p' <<<"$last")
+  [[ -n "$share" ]] || fail "the run does not end with the output's share: '$last'"
+  [[ $last == *"[scene] output_interval"* && $last == *"[output] segments = false"* ]] ||
+    fail "the line does not name output_interval and segments = false: '$last'"
+  expected=$(/usr/bin/python3 -c "import json; j = json.load(open('$work/r3.json')); print(f\"{100 * j['output_time_s'] / j['wall_time_s']:.1f}\")")
+  [[ $share == "$expected" ]] || fail "the line says $share %, the summary $expected %"
+  [[ $(grep -c "the output took" "$work/all") -eq 1 ]] || fail "the share is said more than once"
+  run run "$work/r3.toml" -o "$work/few.h5" --output-thread off --set scene.output_interval="2 ms" --set output.segments=false \
+    --summary-json "$work/few.json"
+  [[ $rc -eq 0 ]] || fail "11 samples without segments: exit code $rc"
+  small=$(/usr/bin/python3 -c "import json; j = json.load(open('$work/few.json')); print(int(j['output_time_s'] <= 0.05 * j['wall_time_s']))")
+  if [[ $small -eq 1 ]]; then
+    grep -q "the output took" "$work/out" "$work/err" && fail "a share of 5 % or less is mentioned"
+  else
+    grep -q "the output took" "$work/out" "$work/err" || fail "11 samples: above 5 % but not mentioned"
+  fi
+  mpirun -np 2 "$raceway" run "$work/r3.toml" -o "$work/np2.h5" --summary-json "$work/np2.json" >"$work/out" 2>"$work/err"
+  [[ $? -eq 0 ]] || fail "np 2: exit code not 0"
+  said=$(cat "$work/out" "$work/err" | grep -c "the output took")
+  big=$(/usr/bin/python3 -c "import json; j = json.load(open('$work/np2.json')); print(int(j['output_time_s'] > 0.05 * j['wall_time_s']))")
+  [[ $said -eq $big ]] || fail "np 2: the share said $said time(s), expected $big (rank 0 only)"
+  ;;
+
 run_default)
   # (c) the built-in default scene: exit 0, an HDF5 file with /time, and the JSON summary.
   (cd "$work" && "$raceway" run -o x.h5 --summary-json s.json >"$work/out" 2>"$work/err")
