@@ -26,9 +26,9 @@ def stacks(path):
             if frames is not None:
                 yield frames
             frames = None
-        elif not line[0].isspace():
+        elif not line.startswith("\t"):  # a sample's header (the thread id, maybe padded)
             frames = []
-        elif frames is not None:
+        elif frames is not None:  # a frame: tab, address, symbol
             parts = line.split(None, 1)
             frames.append(parts[1] if len(parts) > 1 else parts[0])
     if frames is not None:

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -307,7 +308,6 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   s.direct = !shared && compressor_ && std::equal(s.row_shape.begin(), s.row_shape.end(),
                                        chunk_shape(s.row_shape, options_.chunk_bytes).begin() + 1) &&
              s.rows_written % s.chunk_rows == 0;
-  s.next_chunk = s.rows_written / s.chunk_rows;
   auto [it, inserted] = series_.emplace(key, std::move(s));  // the map owns the open dataset now
   (void)inserted;
   by_id_.push_back(&it->second);
@@ -358,13 +358,28 @@ void H5SeriesWriter::append(SeriesId id, std::span<const double> row, std::span<
 }
 
 void H5SeriesWriter::submit_whole_chunks(Series& s) {
+  // The buffer of a direct series starts at a chunk boundary (rows_written and handed_rows are whole
+  // chunks), so it holds whole chunks first. They leave it for the compressor: a buffer that is
+  // exactly one chunk (rows appended one at a time) is moved there whole, without a copy, and the
+  // buffer stays one chunk long instead of growing until the next flush (measured: copies and page
+  // faults were about half of the appends' time, perf/results/output_notes.md).
   if (!s.direct) return;
-  const std::size_t rows = s.rows_written + s.buffer.size() / s.row_size;
-  for (; (s.next_chunk + 1) * s.chunk_rows <= rows; ++s.next_chunk) {
-    const auto first = static_cast<std::ptrdiff_t>((s.next_chunk * s.chunk_rows - s.rows_written) * s.row_size);
-    const auto count = static_cast<std::ptrdiff_t>(s.chunk_rows * s.row_size);
-    s.filtered.emplace(s.next_chunk, compressor_->submit({s.buffer.begin() + first, s.buffer.begin() + first + count}));
+  const std::size_t chunk_values = s.chunk_rows * s.row_size;
+  if (s.buffer.size() == chunk_values) {
+    std::vector<double> whole;
+    whole.reserve(chunk_values);
+    std::swap(whole, s.buffer);
+    s.filtered.emplace((s.rows_written + s.handed_rows) / s.chunk_rows, compressor_->submit(std::move(whole)));
+    s.handed_rows += s.chunk_rows;
+    return;
   }
+  std::size_t first = 0;  // several chunks at once (a resumed series' rows): copied out
+  for (; s.buffer.size() - first >= chunk_values; first += chunk_values, s.handed_rows += s.chunk_rows) {
+    const auto begin = s.buffer.begin() + static_cast<std::ptrdiff_t>(first);
+    s.filtered.emplace((s.rows_written + s.handed_rows) / s.chunk_rows,
+                       compressor_->submit({begin, begin + static_cast<std::ptrdiff_t>(chunk_values)}));
+  }
+  if (first > 0) s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
 std::size_t H5SeriesWriter::rows(const std::string& path) const {
@@ -372,11 +387,11 @@ std::size_t H5SeriesWriter::rows(const std::string& path) const {
   if (it == series_.end()) {
     throw std::invalid_argument(fmt::format("H5SeriesWriter::rows: series '{}' is not defined", path));
   }
-  return it->second.rows_written + it->second.buffer.size() / it->second.row_size;
+  return it->second.rows_written + it->second.handed_rows + it->second.buffer.size() / it->second.row_size;
 }
 
 std::size_t H5SeriesWriter::rows_to_write(const Series& s, bool whole_chunks_only) {
-  const std::size_t n = s.buffer.size() / s.row_size;
+  const std::size_t n = s.handed_rows + s.buffer.size() / s.row_size;
   if (!whole_chunks_only) return n;
   const std::size_t end = (s.rows_written + n) / s.chunk_rows * s.chunk_rows;  // the last whole chunk's end
   return end > s.rows_written ? end - s.rows_written : 0;
@@ -408,10 +423,10 @@ void H5SeriesWriter::write_buffer(const std::string& path, Series& s, bool whole
     }
   }
   s.rows_written += n;
-  s.next_chunk = std::max(s.next_chunk, (s.rows_written + s.chunk_rows - 1) / s.chunk_rows);
-  const std::size_t written = n * s.row_size;
-  buffered_bytes_ -= std::min(buffered_bytes_, written * sizeof(double));
-  s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(written));
+  buffered_bytes_ -= std::min(buffered_bytes_, n * s.row_size * sizeof(double));
+  const std::size_t handed = std::min(n, s.handed_rows);  // written from the compressor's chunks
+  s.handed_rows -= handed;
+  s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>((n - handed) * s.row_size));
 }
 
 std::vector<double> H5SeriesWriter::padded_chunk(const Series& s, std::size_t first_row, std::size_t rows) {
@@ -429,8 +444,8 @@ void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_
     if (auto f = s.filtered.find(chunk); f != s.filtered.end()) {
       stored = f->second.get();
       s.filtered.erase(f);
-    } else {  // the last, partial chunk, not handed to the compressor
-      stored = filter_chunk(padded_chunk(s, done, std::min(s.chunk_rows, rows - done)), options_.shuffle,
+    } else {  // the last, partial chunk, not handed to the compressor: the buffer's rows after the handed ones
+      stored = filter_chunk(padded_chunk(s, done - s.handed_rows, std::min(s.chunk_rows, rows - done)), options_.shuffle,
                             options_.gzip_level);
     }
     offset[0] = static_cast<hsize_t>(chunk * s.chunk_rows);
@@ -448,7 +463,7 @@ void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
       Series& s = it->second;
       const std::size_t rows = s.buffer.size() / s.row_size, tail = rows % s.chunk_rows;
       if (!s.direct || s.rows_written % s.chunk_rows != 0 || tail == 0) continue;
-      const std::size_t chunk = (s.rows_written + rows) / s.chunk_rows;
+      const std::size_t chunk = (s.rows_written + s.handed_rows + rows) / s.chunk_rows;
       if (!s.filtered.contains(chunk))
         s.filtered.emplace(chunk, compressor_->submit(padded_chunk(s, rows - tail, tail)));
     }
@@ -460,8 +475,12 @@ void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
 
 std::map<std::string, std::vector<double>> H5SeriesWriter::unwritten_rows() const {
   std::map<std::string, std::vector<double>> rows;
-  for (const auto& [path, s] : series_)
+  for (const auto& [path, s] : series_) {
+    if (s.handed_rows > 0)  // whole chunks with the compressor: only a flush() leaves none
+      throw std::logic_error(fmt::format("H5SeriesWriter::unwritten_rows: '{}' has whole chunks not yet written; "
+                                         "call flush() first", path));
     if (!s.buffer.empty()) rows.emplace(path, s.buffer);
+  }
   return rows;
 }
 
@@ -501,7 +520,7 @@ void H5SeriesWriter::abandon() noexcept {
   if (null_fd >= 0 && H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) >= 0 && handle != nullptr)
     (void)::dup2(null_fd, *static_cast<int*>(handle));
   if (null_fd >= 0) (void)::close(null_fd);
-  for (auto& [path, s] : series_) s.buffer.clear(), s.filtered.clear();
+  for (auto& [path, s] : series_) s.buffer.clear(), s.handed_rows = 0, s.filtered.clear();
   buffered_bytes_ = 0;
   close_all();
 }

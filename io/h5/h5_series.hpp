@@ -185,8 +185,9 @@ class H5SeriesWriter {
 
   /// Bytes of appended rows not yet in the file.
   std::size_t buffered_bytes() const noexcept { return buffered_bytes_; }
-  /// The appended rows not yet in the file (after a flush: each series' last, partly filled
-  /// chunk), by normalized series path, row-major; series with none are left out.
+  /// After a flush: the appended rows not yet in the file (each series' last, partly filled
+  /// chunk), by normalized series path, row-major; series with none are left out. Throws
+  /// std::logic_error when whole chunks appended since the last flush are not yet written.
   std::map<std::string, std::vector<double>> unwritten_rows() const;
 
   /// Writes buffered rows, closes the file and renames the .partial file over the final path.
@@ -208,10 +209,11 @@ class H5SeriesWriter {
     std::size_t row_size = 1;              // product of row_shape
     std::size_t chunk_rows = 1;            // rows per chunk
     std::size_t rows_written = 0;          // rows in the file
-    std::vector<double> buffer;            // rows not yet written, row-major
+    std::vector<double> buffer;            // rows not yet written nor handed on, row-major
+    std::size_t handed_rows = 0;           // direct: rows after rows_written, in whole chunks handed to the
+                                           // compressor (out of buffer), not yet written
     std::string path;                      // normalized
     bool direct = false;                   // chunks of whole rows, written with H5Dwrite_chunk
-    std::size_t next_chunk = 0;            // first chunk not yet handed to the compressor
     std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
     bool shared = false;                   // written by all ranks together (share_series_with)
     std::vector<unsigned char> mine;       // shared: per buffered value, whether this process writes it

@@ -52,6 +52,8 @@ TEST_F(H5Writer, RowsStayInMemoryUntilFlushSoTheFileOnDiskIsTheLastFlushed) {
   append_rows(w, 0, 5000);
   EXPECT_EQ(w.buffered_bytes(), 5000u * 3 * sizeof(double));
   EXPECT_EQ(bytes_of(path("a.h5.partial")), after_flush) << "the file changed between flushes";
+  // Whole chunks are with the compressor until the flush: the unwritten rows are asked after it.
+  EXPECT_THROW(w.unwritten_rows(), std::logic_error);
   w.flush();
   EXPECT_NE(bytes_of(path("a.h5.partial")), after_flush);
   // A flush writes whole chunks (16 KiB: 2048 rows of /time, 1024 of /xy); the rest stays buffered.
