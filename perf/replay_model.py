@@ -10,13 +10,21 @@ time) and a latency/bandwidth model of the network:
                output, the start-up outside its contact tasks, on rank 0: does not shrink with P)
   T_eval     = t_bcast + makespan + t_gather
   t_bcast    = ceil(log2 P) * (L + m_cmd / B)          binomial-tree broadcast of the command
-                                                        (header + context, or task count)
+                                                        (header + context; runs recorded before
+                                                        per-task record sizes: header + max(context,
+                                                        task count))
   makespan   = largest rank load of the two-level plan (scheduler/plan.cpp, ported below:
                LPT over rolling elements and border tasks, then level-2 task moves) on the
                per-task costs (smoothed costs at the end of the run, scaled to the run's
                total task seconds)
-  t_gather   = sum over workers of (L + m_r / B)       records arrive at rank 0 one by one
-                                                        (conservative: no overlap)
+  t_gather   = sum over workers w of (L + m_w / B)     point-to-point replies (MPI_Send to rank 0's
+                                                        pre-posted MPI_Irecv, one per worker: a linear
+                                                        gather), received one after the other once
+                                                        rank 0's own tasks are done (conservative: no
+                                                        overlap); m_w = 8 bytes x (the doubles each of
+                                                        w's tasks fills, /scheduler/task_record_size_*,
+                                                        + 1 seconds per task); older runs: every task
+                                                        the phase's whole record_size
 
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
@@ -110,28 +118,49 @@ def read_run(path):
             total = float(g.attrs[f"mean_rank_task_seconds_{ph}"])  # one rank: all task seconds
             cost = np.asarray(g[f"task_cost_{ph}"][()], dtype=float)
             cost = cost * (total / n / cost.sum()) if cost.sum() > 0 else np.full(len(cost), total / n / len(cost))
-            run["phases"][ph] = {"n": n, "total": total, "cost": list(cost),
-                                 "record": int(g.attrs[f"record_size_{ph}"])}
+            record = int(g.attrs[f"record_size_{ph}"])
+            sizes = f"task_record_size_{ph}"
+            run["phases"][ph] = {"n": n, "total": total, "cost": list(cost), "record": record,
+                                 "sizes": [int(x) for x in g[sizes][()]] if sizes in g else [record] * len(cost),
+                                 "per_task_sizes": sizes in g}
     return run
+
+
+def evaluation_parts(run, ph, ranks, latency, bandwidth):
+    """One evaluation of phase ph at `ranks` ranks: broadcast, makespan, ideal makespan (sum / P),
+    gather latency part, gather bandwidth part (seconds)."""
+    cost, group = ph["cost"], run["group"]
+    owner, load = lpt_level2(cost, group, ranks, run["parent"])
+    cmd_doubles = 6 + (run["context"] if ph["per_task_sizes"] else max(run["context"], len(cost)))
+    t_bcast = math.ceil(math.log2(ranks)) * (latency + 8 * cmd_doubles / bandwidth)
+    reply = [0] * ranks  # doubles per worker's reply: its tasks' used doubles and one seconds each
+    for t, o in enumerate(owner):
+        reply[o] += ph["sizes"][t] + 1
+    return t_bcast, max(load), sum(cost) / ranks, (ranks - 1) * latency, sum(8 * reply[r] / bandwidth for r in range(1, ranks))
 
 
 def predict(run, ranks, latency, bandwidth, serial_cut=0.0):
     serial = run["wall"] - sum(p["total"] for p in run["phases"].values()) - serial_cut
     t = serial
     for ph in run["phases"].values():
-        cost, group = ph["cost"], run["group"]
         if ranks == 1:
-            t += ph["n"] * sum(cost)
+            t += ph["n"] * sum(ph["cost"])
             continue
-        owner, load = lpt_level2(cost, group, ranks, run["parent"])
-        cmd_bytes = 8 * (6 + max(run["context"], len(cost)))
-        t_bcast = math.ceil(math.log2(ranks)) * (latency + cmd_bytes / bandwidth)
-        counts = [0] * ranks
-        for o in owner:
-            counts[o] += 1
-        t_gather = sum(latency + 8 * counts[r] * (ph["record"] + 1) / bandwidth for r in range(1, ranks))
-        t += ph["n"] * (t_bcast + max(load) + t_gather)
+        t_bcast, makespan, _, gather_latency, gather_bytes = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        t += ph["n"] * (t_bcast + makespan + gather_latency + gather_bytes)
     return t, serial
+
+
+def print_breakdown(run, ranks, latency, bandwidth):
+    """Where the time of the task part goes at `ranks` ranks, per evaluation and over the run."""
+    for name, ph in run["phases"].items():
+        b, m, ideal, gl, gb = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        n = ph["n"]
+        print(f"  {name} at P={ranks}, per evaluation (over the run): broadcast {1e6 * b:.2f} us ({n * b:.3f} s), "
+              f"makespan {1e6 * m:.2f} us ({n * m:.3f} s; ideal sum/P {1e6 * ideal:.2f} us, imbalance {m / ideal:.3f}, "
+              f"{n * (m - ideal):.3f} s), gather latency {1e6 * gl:.2f} us ({n * gl:.3f} s), gather bytes "
+              f"{1e6 * gb:.2f} us ({n * gb:.3f} s); record doubles per evaluation {sum(ph['sizes'])} "
+              f"(whole records: {ph['record'] * len(ph['sizes'])})")
 
 
 def main():
@@ -180,6 +209,7 @@ def main():
                 table.append(f"{scene},{name},{p},{tp:.4f},{t1 / tp:.3f},{t1 / tp / p:.3f}")
             effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
             print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
+            print_breakdown(run, 16, lat, bw)
             if run["output_write"] > 0:
                 cut = run["output_write"]
                 effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
