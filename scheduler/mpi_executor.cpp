@@ -136,7 +136,11 @@ void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::ve
     if (completed < n && clock_type::now() > deadline) {
       std::string silent;
       for (std::size_t i = 0; i < requests.size(); ++i)
-        if (!done[i] && ranks[i] >= 0) silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+        if (!done[i] && ranks[i] >= 0) {
+          silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+          if (const int end = subtree_end(ranks[i]); end > ranks[i] + 1)  // it passes on the replies of ranks below it
+            silent += " (or one of ranks " + std::to_string(ranks[i] + 1) + "-" + std::to_string(end - 1) + " below it)";
+        }
       char timeout[32];
       std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
       fail((silent.empty() ? std::string("the workers") : "rank " + silent) + " did not answer " + what + " within " +
@@ -201,12 +205,6 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
   for (std::size_t t = 0; t < owner.size(); ++t) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
-}
-
-std::size_t MpiExecutor::packed_size(int phase, const std::vector<int>& tasks) const {
-  std::size_t n = 0;
-  for (const int t : tasks) n += static_cast<std::size_t>(catalogue_.used(phase, t));
-  return n;
 }
 
 void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
@@ -377,13 +375,15 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     request_rank.push_back(-1);
     MPI_Ibcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_, &requests.back());
   }
-  for (int w = 1; w < size_; ++w) {
-    const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
-    auto& buf = receive_[static_cast<std::size_t>(w)];
-    buf.resize(packed_size(phase, list) + list.size());
+  // The replies come up a binomial tree: rank 0 hears from its children only (ranks 1, 2, 4, ...),
+  // each passing on its subtree's replies with its own.
+  const std::vector<int> children = tree_children(0);
+  for (const int c : children) {
+    auto& buf = receive_[static_cast<std::size_t>(c)];
+    buf.resize(subtree_reply_size(phase, c));
     requests.emplace_back();
-    request_rank.push_back(w);
-    MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, w, phase, comm_, &requests.back());
+    request_rank.push_back(c);
+    MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, c, phase, comm_, &requests.back());
   }
   records.resize(static_cast<std::size_t>(task_count) * rs);
   auto& seconds = seconds_[phase];
@@ -403,21 +403,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   }
   if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
-  for (int w = 1; w < size_; ++w) {
-    const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
-    const auto& buf = receive_[static_cast<std::size_t>(w)];
-    const double* packed = buf.data();
-    const double* secs = buf.data() + (buf.size() - list.size());
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const auto t = static_cast<std::size_t>(list[i]);
-      const auto used = static_cast<std::size_t>(catalogue_.used(phase, list[i]));
-      std::copy_n(packed, used, records.data() + t * rs);
-      std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
-      packed += used;
-      seconds[t] = secs[i];
-      busy[static_cast<std::size_t>(w)] += secs[i];
-    }
-  }
+  for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
   const double wall = now_seconds() - wall_start;
   // Cost model and balance statistics.
   auto& cost = cost_[phase];
@@ -553,16 +539,26 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
     const auto n = mine.size();
     const auto rs = static_cast<std::size_t>(record_size);
+    // The reply: each task's used doubles (catalogue), then the tasks' seconds, then the replies of
+    // this rank's subtree (tree_children), received while it computes; all to its parent.
+    reply.resize(subtree_reply_size(phase, rank_));
+    const std::vector<int> children = tree_children(rank_);
+    std::vector<MPI_Request> from(children.size());
+    std::size_t at = packed_size(phase, mine) + n;
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      const auto count = subtree_reply_size(phase, children[i]);
+      MPI_Irecv(reply.data() + at, static_cast<int>(count), MPI_DOUBLE, children[i], phase, comm_, &from[i]);
+      at += count;
+    }
     full.resize(n * rs);
     seconds.resize(n);
     evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
                  record_size, function, full.data(), seconds.data());
-    // The reply: each task's used doubles (catalogue), then the tasks' seconds.
-    reply.resize(packed_size(phase, mine) + n);
     double* out = reply.data();
     for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
     std::copy(seconds.begin(), seconds.end(), out);
-    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, 0, phase, comm_);
+    MPI_Waitall(static_cast<int>(from.size()), from.data(), MPI_STATUSES_IGNORE);  // as long as it takes, like serve()
+    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_);
     if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
       // Only whole pieces: a cut piece's tasks hold parts, which the master combines and writes.
       last_rhs_tasks_.clear();

@@ -4,7 +4,8 @@
 // Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
 // other ranks (workers) loop in serve() on commands broadcast by the master:
 //   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, send back
-//                                 their records and measured seconds (one message; of each record
+//                                 their records and measured seconds (one message up a binomial tree
+//                                 to rank 0, with the replies of the ranks below; of each record
 //                                 only the doubles the task fills, TaskCatalogue::used_size, a size
 //                                 both sides know, so nothing about sizes is exchanged per evaluation);
 //   plan (phase), then owner per task in a second broadcast -> adopt a new plan for that phase;
@@ -123,6 +124,13 @@ class MpiExecutor final : public Executor {
   void broadcast_owners(std::vector<int>& owner);
   /// Doubles of the records of `tasks` that cross ranks in `phase` (TaskCatalogue::used_size).
   std::size_t packed_size(int phase, const std::vector<int>& tasks) const;
+  /// The replies' binomial tree rooted at rank 0 (mpi_executor.cpp): rank r's children, the end of
+  /// the ranks r.. whose replies r passes on, and the doubles of their combined reply in `phase`.
+  std::vector<int> tree_children(int r) const;
+  int subtree_end(int r) const;
+  std::size_t subtree_reply_size(int phase, int r) const;
+  /// Master: the replies of ranks r .. subtree_end(r) - 1 from `packed` into records, seconds, busy.
+  void unpack_replies(int phase, int r, const double* packed, std::vector<double>& records, std::vector<double>& busy);
   void set_owner(int phase, const std::vector<int>& owner);
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds);
