@@ -17,14 +17,18 @@ time) and a latency/bandwidth model of the network:
                LPT over rolling elements and border tasks, then level-2 task moves) on the
                per-task costs (smoothed costs at the end of the run, scaled to the run's
                total task seconds)
-  t_gather   = sum over workers w of (L + m_w / B)     point-to-point replies (MPI_Send to rank 0's
-                                                        pre-posted MPI_Irecv, one per worker: a linear
-                                                        gather), received one after the other once
-                                                        rank 0's own tasks are done (conservative: no
-                                                        overlap); m_w = 8 bytes x (the doubles each of
-                                                        w's tasks fills, /scheduler/task_record_size_*,
-                                                        + 1 seconds per task); older runs: every task
-                                                        the phase's whole record_size
+  makespan + t_gather = when rank 0 has every reply: the replies travel a binomial tree to rank 0
+               (scheduler/mpi_replies.cpp; Open MPI's tuned MPI_Gather uses the same tree for
+               small blocks): rank r, done with its own tasks at load_r, receives its children's
+               messages one after the other in the order they are ready, each taking L + m / B
+               (m: the bytes of the child's subtree), then sends its own with its subtree's. m_w =
+               8 bytes x (the doubles each of w's tasks fills, /scheduler/task_record_size_*, + 1
+               seconds per task). Runs recorded before per-task sizes used the linear protocol
+               (every worker to rank 0 directly, whole records): the same recursion with rank 0
+               the parent of every worker. With equal loads the linear gather costs (P - 1)(L +
+               m / B) after the makespan, the tree ceil(log2 P) L + about (P - 1) m / B.
+               The breakdown splits it as: gather latency = (messages on the longest path) x L,
+               gather bytes = the rest of (that time - makespan).
 
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
@@ -126,6 +130,33 @@ def read_run(path):
     return run
 
 
+def gather_tree(ranks, binomial):
+    """Per rank: its children in the replies' tree (binomial rooted at 0, or all workers under 0)."""
+    if not binomial:
+        return [list(range(1, ranks))] + [[] for _ in range(1, ranks)]
+    children = [[] for _ in range(ranks)]
+    for r in range(1, ranks):
+        children[r & (r - 1)].append(r)
+    return children
+
+
+def gather_finish(load, reply, children, latency, bandwidth):
+    """When rank 0 holds every reply (seconds after the broadcast), and the messages on the way
+    to it: rank r receives its children's subtree messages one after the other as they are ready."""
+    ranks = len(load)
+    done, size, hops = [0.0] * ranks, list(reply), [0] * ranks
+    for r in reversed(range(ranks)):  # children have higher ranks than their parent
+        t, h = load[r], 0  # h: messages on the path that sets t
+        for c in sorted(children[r], key=lambda c: done[c]):
+            if done[c] > t:
+                t, h = done[c], hops[c]
+            t += latency + 8 * size[c] / bandwidth
+            h += 1
+            size[r] += size[c]
+        done[r], hops[r] = t, h
+    return done[0], hops[0]
+
+
 def evaluation_parts(run, ph, ranks, latency, bandwidth):
     """One evaluation of phase ph at `ranks` ranks: broadcast, makespan, ideal makespan (sum / P),
     gather latency part, gather bandwidth part (seconds)."""
@@ -133,10 +164,12 @@ def evaluation_parts(run, ph, ranks, latency, bandwidth):
     owner, load = lpt_level2(cost, group, ranks, run["parent"])
     cmd_doubles = 6 + (run["context"] if ph["per_task_sizes"] else max(run["context"], len(cost)))
     t_bcast = math.ceil(math.log2(ranks)) * (latency + 8 * cmd_doubles / bandwidth)
-    reply = [0] * ranks  # doubles per worker's reply: its tasks' used doubles and one seconds each
+    reply = [0] * ranks  # doubles per rank's reply: its tasks' used doubles and one seconds each
     for t, o in enumerate(owner):
         reply[o] += ph["sizes"][t] + 1
-    return t_bcast, max(load), sum(cost) / ranks, (ranks - 1) * latency, sum(8 * reply[r] / bandwidth for r in range(1, ranks))
+    finish, hops = gather_finish(load, reply, gather_tree(ranks, ph["per_task_sizes"]), latency, bandwidth)
+    gather = finish - max(load)
+    return t_bcast, max(load), sum(cost) / ranks, min(gather, hops * latency), max(0.0, gather - hops * latency)
 
 
 def predict(run, ranks, latency, bandwidth, serial_cut=0.0):

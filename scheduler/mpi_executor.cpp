@@ -276,7 +276,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
 }
 
 void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                               double* records, double* seconds) {
+                               double* records, double* seconds, bool in_task_order) {
   // Everything a task can throw ends the job here, on whichever rank: the other ranks are inside
   // a command and would otherwise wait for this rank's records for ever.
   try {
@@ -286,10 +286,11 @@ void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int r
     const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
     auto last = clock_type::now();
     for (std::size_t i = 0; i < mine.size(); ++i) {
-      task(context, mine[i], std::span<double>(records + i * static_cast<std::size_t>(record_size),
+      const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
+      task(context, mine[i], std::span<double>(records + at * static_cast<std::size_t>(record_size),
                                                 static_cast<std::size_t>(record_size)));
       const auto now = clock_type::now();
-      seconds[i] = std::chrono::duration<double>(now - last).count();
+      seconds[at] = std::chrono::duration<double>(now - last).count();
       last = now;
     }
   } catch (const std::exception& e) {
@@ -388,19 +389,11 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   records.resize(static_cast<std::size_t>(task_count) * rs);
   auto& seconds = seconds_[phase];
   seconds.resize(static_cast<std::size_t>(task_count));
-  const auto& mine = tasks_of_[phase][0];
-  std::vector<double> own(mine.size() * rs), own_seconds(mine.size());
-  evaluate_own(phase, context, record_size, task, own.data(), own_seconds.data());
+  // The master's own tasks write their records in place (whole: zero beyond what they use, as a
+  // worker's unpacked ones are); the workers' are unpacked into theirs.
+  evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
   std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
-  for (std::size_t i = 0; i < mine.size(); ++i) {
-    const auto t = static_cast<std::size_t>(mine[i]);
-    // Only the doubles a task fills, the rest zero: the same record whichever rank computed it.
-    const auto used = static_cast<std::size_t>(catalogue_.used(phase, mine[i]));
-    std::copy_n(own.data() + i * rs, used, records.data() + t * rs);
-    std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
-    seconds[t] = own_seconds[i];
-    busy[0] += own_seconds[i];
-  }
+  for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
@@ -553,7 +546,7 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     full.resize(n * rs);
     seconds.resize(n);
     evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
-                 record_size, function, full.data(), seconds.data());
+                 record_size, function, full.data(), seconds.data(), false);
     double* out = reply.data();
     for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
     std::copy(seconds.begin(), seconds.end(), out);

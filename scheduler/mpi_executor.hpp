@@ -132,8 +132,10 @@ class MpiExecutor final : public Executor {
   /// Master: the replies of ranks r .. subtree_end(r) - 1 from `packed` into records, seconds, busy.
   void unpack_replies(int phase, int r, const double* packed, std::vector<double>& records, std::vector<double>& busy);
   void set_owner(int phase, const std::vector<int>& owner);
+  /// This rank's tasks of the phase's plan: records and seconds in task order (at task t) or packed
+  /// in the order of the rank's task list.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                    double* records, double* seconds);
+                    double* records, double* seconds, bool in_task_order);
   void maybe_replan(int phase);
   /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
   /// cost times the measured per-task ratio (once measured), so they follow the moving work.

@@ -92,6 +92,9 @@ void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, 
     ok = ok && r.valid;
     write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
   }
+  // The columns of states it does not depend on: zero (a task writes its whole record).
+  std::fill(rec.begin() + SegmentRecord::size + SegmentRecord::wrench_rows * static_cast<std::ptrdiff_t>(columns.size()),
+            rec.end(), 0.0);
   write_result(base, rec);
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
 }
