@@ -49,10 +49,50 @@ import numpy as np
 BORDER = -1
 
 
+def rank_moves(cost, group, parent, owner, rank, heavy):
+    """What level 2 can move off `rank` (plan.cpp's moves_of_rank): per group and piece its tasks
+    there, one by one for a piece heavier than `heavy`; (group, tasks, cost) each."""
+    pieces = {}
+    for t in range(len(cost)):
+        if owner[t] == rank:
+            pieces.setdefault((group[t], parent[t]), []).append(t)
+    moves = []
+    for (g, _), ts in sorted(pieces.items()):
+        c = sum(cost[t] for t in ts)
+        moves += [(g, [t], cost[t]) for t in ts] if c > heavy and len(ts) > 1 else [(g, ts, c)]
+    return moves
+
+
+def exchange_off(cost, group, parent, owner, load, hi, heavy):
+    """plan.cpp's exchange_off: the exchange of a move off `hi` with a cheaper one of another rank
+    that lowers the larger of the two loads the most; False when none lowers it."""
+    mine = rank_moves(cost, group, parent, owner, hi, heavy)
+    best = (load[hi], None)
+    for r in range(len(load)):
+        if r == hi:
+            continue
+        theirs = rank_moves(cost, group, parent, owner, r, heavy)
+        for a in mine:
+            for b in theirs:
+                d = a[2] - b[2]
+                if d > 0 and max(load[hi] - d, load[r] + d) < best[0]:
+                    best = (max(load[hi] - d, load[r] + d), (a, b, r))
+    if best[1] is None:
+        return False
+    a, b, r = best[1]
+    for t in a[1]:
+        owner[t] = r
+    for t in b[1]:
+        owner[t] = hi
+    load[hi] -= a[2] - b[2]
+    load[r] += a[2] - b[2]
+    return True
+
+
 def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1):
-    """Port of scheduler/plan.cpp's greedy LPT + level-2 moves (equal capacities). parent: per
-    task, its contact segment (sub-tasks of a cut segment); level 2 moves a segment's tasks on a
-    rank together unless they cost more than split_share of a rank's mean share."""
+    """Port of scheduler/plan.cpp's greedy LPT + level-2 moves and exchanges (equal capacities).
+    parent: per task, its contact segment (sub-tasks of a cut segment); level 2 moves a segment's
+    tasks on a rank together unless they cost more than split_share of a rank's mean share."""
     if parent is None:
         parent = list(range(len(cost)))
     units = {}
@@ -79,24 +119,16 @@ def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1)
         for t in range(len(cost)):
             if owner[t] == hi:
                 gcost[group[t]] = gcost.get(group[t], 0.0) + cost[t]
+        moves = rank_moves(cost, group, parent, owner, hi, split_share * mean)
         best = None
         for g in sorted(gcost, key=lambda k: -gcost[k]):
-            pieces = {}
-            for t in range(len(cost)):
-                if owner[t] == hi and group[t] == g:
-                    pieces.setdefault(parent[t], []).append(t)
-            moves = []
-            for ts in pieces.values():
-                c = sum(cost[t] for t in ts)
-                if c > split_share * mean and len(ts) > 1:
-                    moves += [([t], cost[t]) for t in ts]
-                else:
-                    moves.append((ts, c))
-            cands = [m for m in moves if m[1] > 0 and max(load[hi] - m[1], load[lo] + m[1]) < load[hi]]
+            cands = [m[1:] for m in moves if m[0] == g and m[2] > 0 and max(load[hi] - m[2], load[lo] + m[2]) < load[hi]]
             if cands:
                 best = min(cands, key=lambda m: abs(m[1] - x))
                 break
         if best is None:
+            if exchange_off(cost, group, parent, owner, load, hi, split_share * mean):
+                continue
             break
         for t in best[0]:
             owner[t] = lo
