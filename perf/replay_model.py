@@ -14,7 +14,7 @@ time) and a latency/bandwidth model of the network:
                                                         per-task record sizes: header + max(context,
                                                         task count))
   makespan   = largest rank load of the two-level plan (scheduler/plan.cpp, ported below:
-               LPT over rolling elements and border tasks, then level-2 task moves) on the
+               LPT over rolling elements and border tasks, then level-2 moves and exchanges) on the
                per-task costs (smoothed costs at the end of the run, scaled to the run's
                total task seconds)
   makespan + t_gather = when rank 0 has every reply: the replies travel a binomial tree to rank 0
@@ -33,8 +33,9 @@ time) and a latency/bandwidth model of the network:
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
 rank and the plan's balance for the time-averaged costs (the adaptive scheduler's job); what it
-leaves out (timer noise, other processes, cache effects) shows up in the check against measured
-np = 2.
+leaves out (the scatter of task times from one evaluation to the next, which the slowest rank
+sets; polling, waking a waiting rank and unpacking the replies, about 5 us per evaluation at np=2
+here; other processes, cache effects) shows up in the check against measured np = 2.
 
     replay_model.py [--latency-us L --bandwidth-gbs B] [--measured-np2 S] RUN_NP1.h5 [...]
 """
