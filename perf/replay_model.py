@@ -10,19 +10,32 @@ time) and a latency/bandwidth model of the network:
                output, the start-up outside its contact tasks, on rank 0: does not shrink with P)
   T_eval     = t_bcast + makespan + t_gather
   t_bcast    = ceil(log2 P) * (L + m_cmd / B)          binomial-tree broadcast of the command
-                                                        (header + context, or task count)
+                                                        (header + context; runs recorded before
+                                                        per-task record sizes: header + max(context,
+                                                        task count))
   makespan   = largest rank load of the two-level plan (scheduler/plan.cpp, ported below:
-               LPT over rolling elements and border tasks, then level-2 task moves) on the
+               LPT over rolling elements and border tasks, then level-2 moves and exchanges) on the
                per-task costs (smoothed costs at the end of the run, scaled to the run's
                total task seconds)
-  t_gather   = sum over workers of (L + m_r / B)       records arrive at rank 0 one by one
-                                                        (conservative: no overlap)
+  makespan + t_gather = when rank 0 has every reply: the replies travel a binomial tree to rank 0
+               (scheduler/mpi_replies.cpp; Open MPI's tuned MPI_Gather uses the same tree for
+               small blocks): rank r, done with its own tasks at load_r, receives its children's
+               messages one after the other in the order they are ready, each taking L + m / B
+               (m: the bytes of the child's subtree), then sends its own with its subtree's. m_w =
+               8 bytes x (the doubles each of w's tasks fills, /scheduler/task_record_size_*, + 1
+               seconds per task). Runs recorded before per-task sizes used the linear protocol
+               (every worker to rank 0 directly, whole records): the same recursion with rank 0
+               the parent of every worker. With equal loads the linear gather costs (P - 1)(L +
+               m / B) after the makespan, the tree ceil(log2 P) L + about (P - 1) m / B.
+               The breakdown splits it as: gather latency = (messages on the longest path) x L,
+               gather bytes = the rest of (that time - makespan).
 
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
 rank and the plan's balance for the time-averaged costs (the adaptive scheduler's job); what it
-leaves out (timer noise, other processes, cache effects) shows up in the check against measured
-np = 2.
+leaves out (the scatter of task times from one evaluation to the next, which the slowest rank
+sets; polling, waking a waiting rank and unpacking the replies, about 5 us per evaluation at np=2
+here; other processes, cache effects) shows up in the check against measured np = 2.
 
     replay_model.py [--latency-us L --bandwidth-gbs B] [--measured-np2 S] RUN_NP1.h5 [...]
 """
@@ -37,10 +50,50 @@ import numpy as np
 BORDER = -1
 
 
+def rank_moves(cost, group, parent, owner, rank, heavy):
+    """What level 2 can move off `rank` (plan.cpp's moves_of_rank): per group and piece its tasks
+    there, one by one for a piece heavier than `heavy`; (group, tasks, cost) each."""
+    pieces = {}
+    for t in range(len(cost)):
+        if owner[t] == rank:
+            pieces.setdefault((group[t], parent[t]), []).append(t)
+    moves = []
+    for (g, _), ts in sorted(pieces.items()):
+        c = sum(cost[t] for t in ts)
+        moves += [(g, [t], cost[t]) for t in ts] if c > heavy and len(ts) > 1 else [(g, ts, c)]
+    return moves
+
+
+def exchange_off(cost, group, parent, owner, load, hi, heavy):
+    """plan.cpp's exchange_off: the exchange of a move off `hi` with a cheaper one of another rank
+    that lowers the larger of the two loads the most; False when none lowers it."""
+    mine = rank_moves(cost, group, parent, owner, hi, heavy)
+    best = (load[hi], None)
+    for r in range(len(load)):
+        if r == hi:
+            continue
+        theirs = rank_moves(cost, group, parent, owner, r, heavy)
+        for a in mine:
+            for b in theirs:
+                d = a[2] - b[2]
+                if d > 0 and max(load[hi] - d, load[r] + d) < best[0]:
+                    best = (max(load[hi] - d, load[r] + d), (a, b, r))
+    if best[1] is None:
+        return False
+    a, b, r = best[1]
+    for t in a[1]:
+        owner[t] = r
+    for t in b[1]:
+        owner[t] = hi
+    load[hi] -= a[2] - b[2]
+    load[r] += a[2] - b[2]
+    return True
+
+
 def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1):
-    """Port of scheduler/plan.cpp's greedy LPT + level-2 moves (equal capacities). parent: per
-    task, its contact segment (sub-tasks of a cut segment); level 2 moves a segment's tasks on a
-    rank together unless they cost more than split_share of a rank's mean share."""
+    """Port of scheduler/plan.cpp's greedy LPT + level-2 moves and exchanges (equal capacities).
+    parent: per task, its contact segment (sub-tasks of a cut segment); level 2 moves a segment's
+    tasks on a rank together unless they cost more than split_share of a rank's mean share."""
     if parent is None:
         parent = list(range(len(cost)))
     units = {}
@@ -67,24 +120,16 @@ def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1)
         for t in range(len(cost)):
             if owner[t] == hi:
                 gcost[group[t]] = gcost.get(group[t], 0.0) + cost[t]
+        moves = rank_moves(cost, group, parent, owner, hi, split_share * mean)
         best = None
         for g in sorted(gcost, key=lambda k: -gcost[k]):
-            pieces = {}
-            for t in range(len(cost)):
-                if owner[t] == hi and group[t] == g:
-                    pieces.setdefault(parent[t], []).append(t)
-            moves = []
-            for ts in pieces.values():
-                c = sum(cost[t] for t in ts)
-                if c > split_share * mean and len(ts) > 1:
-                    moves += [([t], cost[t]) for t in ts]
-                else:
-                    moves.append((ts, c))
-            cands = [m for m in moves if m[1] > 0 and max(load[hi] - m[1], load[lo] + m[1]) < load[hi]]
+            cands = [m[1:] for m in moves if m[0] == g and m[2] > 0 and max(load[hi] - m[2], load[lo] + m[2]) < load[hi]]
             if cands:
                 best = min(cands, key=lambda m: abs(m[1] - x))
                 break
         if best is None:
+            if exchange_off(cost, group, parent, owner, load, hi, split_share * mean):
+                continue
             break
         for t in best[0]:
             owner[t] = lo
@@ -110,28 +155,78 @@ def read_run(path):
             total = float(g.attrs[f"mean_rank_task_seconds_{ph}"])  # one rank: all task seconds
             cost = np.asarray(g[f"task_cost_{ph}"][()], dtype=float)
             cost = cost * (total / n / cost.sum()) if cost.sum() > 0 else np.full(len(cost), total / n / len(cost))
-            run["phases"][ph] = {"n": n, "total": total, "cost": list(cost),
-                                 "record": int(g.attrs[f"record_size_{ph}"])}
+            record = int(g.attrs[f"record_size_{ph}"])
+            sizes = f"task_record_size_{ph}"
+            run["phases"][ph] = {"n": n, "total": total, "cost": list(cost), "record": record,
+                                 "sizes": [int(x) for x in g[sizes][()]] if sizes in g else [record] * len(cost),
+                                 "per_task_sizes": sizes in g}
     return run
+
+
+def gather_tree(ranks, binomial):
+    """Per rank: its children in the replies' tree (binomial rooted at 0, or all workers under 0)."""
+    if not binomial:
+        return [list(range(1, ranks))] + [[] for _ in range(1, ranks)]
+    children = [[] for _ in range(ranks)]
+    for r in range(1, ranks):
+        children[r & (r - 1)].append(r)
+    return children
+
+
+def gather_finish(load, reply, children, latency, bandwidth):
+    """When rank 0 holds every reply (seconds after the broadcast), and the messages on the way
+    to it: rank r receives its children's subtree messages one after the other as they are ready."""
+    ranks = len(load)
+    done, size, hops = [0.0] * ranks, list(reply), [0] * ranks
+    for r in reversed(range(ranks)):  # children have higher ranks than their parent
+        t, h = load[r], 0  # h: messages on the path that sets t
+        for c in sorted(children[r], key=lambda c: done[c]):
+            if done[c] > t:
+                t, h = done[c], hops[c]
+            t += latency + 8 * size[c] / bandwidth
+            h += 1
+            size[r] += size[c]
+        done[r], hops[r] = t, h
+    return done[0], hops[0]
+
+
+def evaluation_parts(run, ph, ranks, latency, bandwidth):
+    """One evaluation of phase ph at `ranks` ranks: broadcast, makespan, ideal makespan (sum / P),
+    gather latency part, gather bandwidth part (seconds)."""
+    cost, group = ph["cost"], run["group"]
+    owner, load = lpt_level2(cost, group, ranks, run["parent"])
+    cmd_doubles = 6 + (run["context"] if ph["per_task_sizes"] else max(run["context"], len(cost)))
+    t_bcast = math.ceil(math.log2(ranks)) * (latency + 8 * cmd_doubles / bandwidth)
+    reply = [0] * ranks  # doubles per rank's reply: its tasks' used doubles and one seconds each
+    for t, o in enumerate(owner):
+        reply[o] += ph["sizes"][t] + 1
+    finish, hops = gather_finish(load, reply, gather_tree(ranks, ph["per_task_sizes"]), latency, bandwidth)
+    gather = finish - max(load)
+    return t_bcast, max(load), sum(cost) / ranks, min(gather, hops * latency), max(0.0, gather - hops * latency)
 
 
 def predict(run, ranks, latency, bandwidth, serial_cut=0.0):
     serial = run["wall"] - sum(p["total"] for p in run["phases"].values()) - serial_cut
     t = serial
     for ph in run["phases"].values():
-        cost, group = ph["cost"], run["group"]
         if ranks == 1:
-            t += ph["n"] * sum(cost)
+            t += ph["n"] * sum(ph["cost"])
             continue
-        owner, load = lpt_level2(cost, group, ranks, run["parent"])
-        cmd_bytes = 8 * (6 + max(run["context"], len(cost)))
-        t_bcast = math.ceil(math.log2(ranks)) * (latency + cmd_bytes / bandwidth)
-        counts = [0] * ranks
-        for o in owner:
-            counts[o] += 1
-        t_gather = sum(latency + 8 * counts[r] * (ph["record"] + 1) / bandwidth for r in range(1, ranks))
-        t += ph["n"] * (t_bcast + max(load) + t_gather)
+        t_bcast, makespan, _, gather_latency, gather_bytes = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        t += ph["n"] * (t_bcast + makespan + gather_latency + gather_bytes)
     return t, serial
+
+
+def print_breakdown(run, ranks, latency, bandwidth):
+    """Where the time of the task part goes at `ranks` ranks, per evaluation and over the run."""
+    for name, ph in run["phases"].items():
+        b, m, ideal, gl, gb = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        n = ph["n"]
+        print(f"  {name} at P={ranks}, per evaluation (over the run): broadcast {1e6 * b:.2f} us ({n * b:.3f} s), "
+              f"makespan {1e6 * m:.2f} us ({n * m:.3f} s; ideal sum/P {1e6 * ideal:.2f} us, imbalance {m / ideal:.3f}, "
+              f"{n * (m - ideal):.3f} s), gather latency {1e6 * gl:.2f} us ({n * gl:.3f} s), gather bytes "
+              f"{1e6 * gb:.2f} us ({n * gb:.3f} s); record doubles per evaluation {sum(ph['sizes'])} "
+              f"(whole records: {ph['record'] * len(ph['sizes'])})")
 
 
 def main():
@@ -180,6 +275,7 @@ def main():
                 table.append(f"{scene},{name},{p},{tp:.4f},{t1 / tp:.3f},{t1 / tp / p:.3f}")
             effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
             print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
+            print_breakdown(run, 16, lat, bw)
             if run["output_write"] > 0:
                 cut = run["output_write"]
                 effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}

@@ -48,6 +48,16 @@ struct TaskCatalogue {
   std::vector<int> parent;
   std::array<TaskFunction, phase_count> function;  ///< empty where a phase has no tasks
   std::array<int, phase_count> record_size{};
+  /// Per phase and task: how many leading doubles of its record the task fills (a cut segment's
+  /// later parts only their traction sums); it writes zeros over the rest of its record. What
+  /// crosses ranks is these doubles only, a size both sides know from the catalogue; the master
+  /// zeroes the rest, so a record is the same whichever rank computed it. Empty: the whole record.
+  std::array<std::vector<int>, phase_count> used_size;
+  /// Doubles task `task` fills in `phase` (record_size when used_size is empty).
+  int used(int phase, int task) const {
+    const auto& u = used_size[static_cast<std::size_t>(phase)];
+    return u.empty() ? record_size[static_cast<std::size_t>(phase)] : u[static_cast<std::size_t>(task)];
+  }
 };
 
 class Executor {

@@ -136,7 +136,11 @@ void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::ve
     if (completed < n && clock_type::now() > deadline) {
       std::string silent;
       for (std::size_t i = 0; i < requests.size(); ++i)
-        if (!done[i] && ranks[i] >= 0) silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+        if (!done[i] && ranks[i] >= 0) {
+          silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+          if (const int end = subtree_end(ranks[i]); end > ranks[i] + 1)  // it passes on the replies of ranks below it
+            silent += " (or one of ranks " + std::to_string(ranks[i] + 1) + "-" + std::to_string(end - 1) + " below it)";
+        }
       char timeout[32];
       std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
       fail((silent.empty() ? std::string("the workers") : "rank " + silent) + " did not answer " + what + " within " +
@@ -146,8 +150,12 @@ void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::ve
 }
 
 void MpiExecutor::broadcast(double* buffer, int count, const std::string& what) {
+  broadcast(buffer, count, MPI_DOUBLE, what);
+}
+
+void MpiExecutor::broadcast(void* buffer, int count, MPI_Datatype type, const std::string& what) {
   std::vector<MPI_Request> request(1);
-  MPI_Ibcast(buffer, count, MPI_DOUBLE, 0, comm_, request.data());
+  MPI_Ibcast(buffer, count, type, 0, comm_, request.data());
   if (is_master())
     wait_bounded(request, {-1}, what);
   else
@@ -163,13 +171,18 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
                                static_cast<double>(catalogue.context_size), 0, 0};
   broadcast(start, header_size, "the start of the run");
   attached_ = true;
-  message_size_ = header_size + static_cast<std::size_t>(std::max(catalogue.context_size, catalogue.task_count));
+  message_size_ = header_size + static_cast<std::size_t>(catalogue.context_size);
   message_.assign(message_size_, 0.0);
   receive_.resize(static_cast<std::size_t>(size_));
   log_.task_group = catalogue.group;
   log_.task_parent = catalogue.parent;
   log_.context_size = catalogue.context_size;
-  for (std::size_t p = 0; p < schedule_phase_count; ++p) log_.record_size[p] = catalogue.record_size[p];
+  for (std::size_t p = 0; p < schedule_phase_count; ++p) {
+    log_.record_size[p] = catalogue.record_size[p];
+    if (catalogue.record_size[p] <= 0) continue;
+    auto& used = log_.task_record_size[p];
+    for (int t = 0; t < catalogue.task_count; ++t) used.push_back(catalogue.used(static_cast<int>(p), t));
+  }
   // Start plans: uniform costs (nothing measured yet).
   for (int p = 0; p < phase_count; ++p) {
     if (catalogue.record_size[static_cast<std::size_t>(p)] <= 0) continue;
@@ -192,6 +205,10 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
   for (std::size_t t = 0; t < owner.size(); ++t) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+}
+
+void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
+  broadcast(owner.data(), static_cast<int>(owner.size()), MPI_INT, "a new plan's owners");
 }
 
 void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double started) {
@@ -222,8 +239,11 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     message_[1] = phase;
     message_[2] = catalogue_.task_count;
     message_[4] = version_[phase];
-    for (std::size_t t = 0; t < plan.owner.size(); ++t) message_[header_size + t] = plan.owner[t];
     broadcast(message_.data(), static_cast<int>(message_size_), "a new plan");
+    // The owners follow in a broadcast of their own: the command buffer holds a context, not a
+    // task list, so every evaluation's broadcast is no longer than it needs to be.
+    std::vector<int> owner = plan.owner;
+    broadcast_owners(owner);
   }
   PlanEvent e;
   e.evaluation = evaluation_ + 1;
@@ -256,7 +276,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
 }
 
 void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                               double* records, double* seconds) {
+                               double* records, double* seconds, bool in_task_order) {
   // Everything a task can throw ends the job here, on whichever rank: the other ranks are inside
   // a command and would otherwise wait for this rank's records for ever.
   try {
@@ -266,10 +286,11 @@ void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int r
     const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
     auto last = clock_type::now();
     for (std::size_t i = 0; i < mine.size(); ++i) {
-      task(context, mine[i], std::span<double>(records + i * static_cast<std::size_t>(record_size),
+      const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
+      task(context, mine[i], std::span<double>(records + at * static_cast<std::size_t>(record_size),
                                                 static_cast<std::size_t>(record_size)));
       const auto now = clock_type::now();
-      seconds[i] = std::chrono::duration<double>(now - last).count();
+      seconds[at] = std::chrono::duration<double>(now - last).count();
       last = now;
     }
   } catch (const std::exception& e) {
@@ -355,40 +376,27 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     request_rank.push_back(-1);
     MPI_Ibcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_, &requests.back());
   }
-  for (int w = 1; w < size_; ++w) {
-    const auto n = tasks_of_[phase][static_cast<std::size_t>(w)].size();
-    auto& buf = receive_[static_cast<std::size_t>(w)];
-    buf.resize(n * (rs + 1));
+  // The replies come up a binomial tree: rank 0 hears from its children only (ranks 1, 2, 4, ...),
+  // each passing on its subtree's replies with its own.
+  const std::vector<int> children = tree_children(0);
+  for (const int c : children) {
+    auto& buf = receive_[static_cast<std::size_t>(c)];
+    buf.resize(subtree_reply_size(phase, c));
     requests.emplace_back();
-    request_rank.push_back(w);
-    MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, w, phase, comm_, &requests.back());
+    request_rank.push_back(c);
+    MPI_Irecv(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, c, phase, comm_, &requests.back());
   }
   records.resize(static_cast<std::size_t>(task_count) * rs);
   auto& seconds = seconds_[phase];
   seconds.resize(static_cast<std::size_t>(task_count));
-  const auto& mine = tasks_of_[phase][0];
-  std::vector<double> own(mine.size() * rs), own_seconds(mine.size());
-  evaluate_own(phase, context, record_size, task, own.data(), own_seconds.data());
+  // The master's own tasks write their records in place (whole: zero beyond what they use, as a
+  // worker's unpacked ones are); the workers' are unpacked into theirs.
+  evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
   std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
-  for (std::size_t i = 0; i < mine.size(); ++i) {
-    const auto t = static_cast<std::size_t>(mine[i]);
-    std::copy_n(own.data() + i * rs, rs, records.data() + t * rs);
-    seconds[t] = own_seconds[i];
-    busy[0] += own_seconds[i];
-  }
+  for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
-  for (int w = 1; w < size_; ++w) {
-    const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
-    const auto& buf = receive_[static_cast<std::size_t>(w)];
-    const double* secs = buf.data() + list.size() * rs;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const auto t = static_cast<std::size_t>(list[i]);
-      std::copy_n(buf.data() + i * rs, rs, records.data() + t * rs);
-      seconds[t] = secs[i];
-      busy[static_cast<std::size_t>(w)] += secs[i];
-    }
-  }
+  for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
   const double wall = now_seconds() - wall_start;
   // Cost model and balance statistics.
   auto& cost = cost_[phase];
@@ -475,7 +483,7 @@ bool MpiExecutor::await_start() {
   if (start[0] != command_start) fail("protocol error: expected start or stop from rank 0");
   catalogue_.task_count = static_cast<int>(start[2]);
   catalogue_.context_size = static_cast<int>(start[3]);
-  message_size_ = header_size + static_cast<std::size_t>(std::max(catalogue_.context_size, catalogue_.task_count));
+  message_size_ = header_size + static_cast<std::size_t>(catalogue_.context_size);
   message_.assign(message_size_, 0.0);
   attached_ = true;
   return true;
@@ -487,12 +495,14 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     fail("this rank's model has " + std::to_string(catalogue.task_count) + " tasks and context " +
          std::to_string(catalogue.context_size) + ", rank 0's has " + std::to_string(catalogue_.task_count) + " and " +
          std::to_string(catalogue_.context_size) + " (different scene or build?)");
+  catalogue_.record_size = catalogue.record_size;
+  catalogue_.used_size = catalogue.used_size;
   std::vector<int> piece_tasks;  // per piece (catalogue.parent): its task count
   for (const int p : catalogue.parent) {
     if (static_cast<std::size_t>(p) >= piece_tasks.size()) piece_tasks.resize(static_cast<std::size_t>(p) + 1, 0);
     ++piece_tasks[static_cast<std::size_t>(p)];
   }
-  std::vector<double> reply;
+  std::vector<double> reply, full, seconds;
   for (;;) {
     broadcast(message_.data(), static_cast<int>(message_size_), "a command");
     const double command = message_[0];
@@ -507,7 +517,7 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     if (phase < 0 || phase >= phase_count) fail("protocol error: bad phase from rank 0");
     if (command == command_plan) {
       std::vector<int> owner(static_cast<std::size_t>(catalogue_.task_count));
-      for (std::size_t t = 0; t < owner.size(); ++t) owner[t] = static_cast<int>(message_[header_size + t]);
+      broadcast_owners(owner);
       version_[phase] = static_cast<int>(message_[4]);
       set_owner(phase, owner);
       continue;
@@ -519,24 +529,40 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
         static_cast<int>(message_[2]) != catalogue.task_count)
       fail(std::string("rank 0 asks for ") + phase_name(phase) + " tasks this rank's catalogue does not have");
     evaluation_ = static_cast<long>(message_[4]);
-    const auto n = tasks_of_[phase][static_cast<std::size_t>(rank_)].size();
+    const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+    const auto n = mine.size();
     const auto rs = static_cast<std::size_t>(record_size);
-    reply.resize(n * (rs + 1));
+    // The reply: each task's used doubles (catalogue), then the tasks' seconds, then the replies of
+    // this rank's subtree (tree_children), received while it computes; all to its parent.
+    reply.resize(subtree_reply_size(phase, rank_));
+    const std::vector<int> children = tree_children(rank_);
+    std::vector<MPI_Request> from(children.size());
+    std::size_t at = packed_size(phase, mine) + n;
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      const auto count = subtree_reply_size(phase, children[i]);
+      MPI_Irecv(reply.data() + at, static_cast<int>(count), MPI_DOUBLE, children[i], phase, comm_, &from[i]);
+      at += count;
+    }
+    full.resize(n * rs);
+    seconds.resize(n);
     evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
-                 record_size, function, reply.data(), reply.data() + n * rs);
-    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, 0, phase, comm_);
+                 record_size, function, full.data(), seconds.data(), false);
+    double* out = reply.data();
+    for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
+    std::copy(seconds.begin(), seconds.end(), out);
+    MPI_Waitall(static_cast<int>(from.size()), from.data(), MPI_STATUSES_IGNORE);  // as long as it takes, like serve()
+    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_);
     if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
       // Only whole pieces: a cut piece's tasks hold parts, which the master combines and writes.
       last_rhs_tasks_.clear();
       last_rhs_records_.clear();
-      const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
       for (std::size_t i = 0; i < n; ++i) {
         const int task = mine[i];
         const int piece = catalogue.parent.empty() ? task : catalogue.parent[static_cast<std::size_t>(task)];
         if (!catalogue.parent.empty() && piece_tasks[static_cast<std::size_t>(piece)] != 1) continue;
         last_rhs_tasks_.push_back(piece);
-        last_rhs_records_.insert(last_rhs_records_.end(), reply.begin() + static_cast<std::ptrdiff_t>(i * rs),
-                                 reply.begin() + static_cast<std::ptrdiff_t>((i + 1) * rs));
+        last_rhs_records_.insert(last_rhs_records_.end(), full.begin() + static_cast<std::ptrdiff_t>(i * rs),
+                                 full.begin() + static_cast<std::ptrdiff_t>((i + 1) * rs));
       }
     }
   }

@@ -4,14 +4,17 @@
 // Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
 // other ranks (workers) loop in serve() on commands broadcast by the master:
 //   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, send back
-//                                 their records and measured seconds (one message);
-//   plan (phase, owner per task) -> adopt a new plan for that phase;
+//                                 their records and measured seconds (one message up a binomial tree
+//                                 to rank 0, with the replies of the ranks below; of each record
+//                                 only the doubles the task fills, TaskCatalogue::used_size, a size
+//                                 both sides know, so nothing about sizes is exchanged per evaluation);
+//   plan (phase), then owner per task in a second broadcast -> adopt a new plan for that phase;
 //   output (payload)           -> call serve()'s output handler with the payload and the records of
 //                                 this rank's last rhs evaluation (the parallel output's samples
 //                                 and collective writes, solver/driver/parallel_output.hpp);
 //   stop                       -> leave serve().
-// Every command is one broadcast of a fixed-size buffer (header + max(context, task count)), so a
-// worker never needs to know in advance which command comes. Broadcasts are non-blocking
+// Every command is one broadcast of a fixed-size buffer (header + context), so a worker never needs
+// to know in advance which command comes. Broadcasts are non-blocking
 // (MPI_Ibcast) on every rank, so the master can bound its waits. The master places the records in
 // task order; the equations sum them in that order, so results are bitwise identical for any rank
 // count and any plan.
@@ -91,7 +94,7 @@ class MpiExecutor final : public Executor {
   /// before it had a model, and has reported why).
   bool await_start();
   /// Master: brings the workers into an output operation: each calls serve()'s output handler with
-  /// `payload` (at most max(context size, task count) doubles) and the pieces it evaluated whole in
+  /// `payload` (at most context size doubles) and the pieces it evaluated whole in
   /// its last rhs evaluation, with their records. Returns, per piece (TaskCatalogue::parent; per
   /// task without one), the rank holding its record in that evaluation (piece_holders).
   const std::vector<int>& output(std::span<const double> payload);
@@ -116,9 +119,23 @@ class MpiExecutor final : public Executor {
   void wait_bounded(std::vector<MPI_Request>& requests, const std::vector<int>& ranks, const std::string& what);
   /// A command from the master to every rank (MPI_Ibcast); the master's send is bounded.
   void broadcast(double* buffer, int count, const std::string& what);
+  void broadcast(void* buffer, int count, MPI_Datatype type, const std::string& what);
+  /// A plan's owner per task, after its command (both sides: the master's is sent, a worker's filled).
+  void broadcast_owners(std::vector<int>& owner);
+  /// Doubles of the records of `tasks` that cross ranks in `phase` (TaskCatalogue::used_size).
+  std::size_t packed_size(int phase, const std::vector<int>& tasks) const;
+  /// The replies' binomial tree rooted at rank 0 (mpi_executor.cpp): rank r's children, the end of
+  /// the ranks r.. whose replies r passes on, and the doubles of their combined reply in `phase`.
+  std::vector<int> tree_children(int r) const;
+  int subtree_end(int r) const;
+  std::size_t subtree_reply_size(int phase, int r) const;
+  /// Master: the replies of ranks r .. subtree_end(r) - 1 from `packed` into records, seconds, busy.
+  void unpack_replies(int phase, int r, const double* packed, std::vector<double>& records, std::vector<double>& busy);
   void set_owner(int phase, const std::vector<int>& owner);
+  /// This rank's tasks of the phase's plan: records and seconds in task order (at task t) or packed
+  /// in the order of the rank's task list.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                    double* records, double* seconds);
+                    double* records, double* seconds, bool in_task_order);
   void maybe_replan(int phase);
   /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
   /// cost times the measured per-task ratio (once measured), so they follow the moving work.

@@ -151,8 +151,51 @@ std::vector<Move> moves_of_group(const std::vector<int>& owner, std::span<const 
   return out;
 }
 
+/// Everything level 2 can move off rank `from` (moves_of_group over its groups, in group order).
+std::vector<Move> moves_of_rank(const std::vector<int>& owner, std::span<const double> cost, const TaskCatalogue& cat,
+                                int from, double heavy) {
+  std::set<int> groups;
+  for (int t = 0; t < cat.task_count; ++t)
+    if (owner[static_cast<std::size_t>(t)] == from) groups.insert(cat.group[static_cast<std::size_t>(t)]);
+  std::vector<Move> out;
+  for (const int g : groups)
+    for (Move& m : moves_of_group(owner, cost, cat, from, g, heavy)) out.push_back(std::move(m));
+  return out;
+}
+
+/// When no single move off the most loaded rank `hi` lowers it (every piece it could give is
+/// larger than the gap to the least loaded rank): the exchange of one of its moves with a cheaper
+/// one of another rank that lowers the larger of the two ranks' weighted times the most. False
+/// when no exchange lowers it.
+bool exchange_off(std::vector<int>& owner, std::vector<double>& load, std::span<const double> cost,
+                  const TaskCatalogue& cat, std::span<const double> capacity, std::size_t hi, double heavy_share) {
+  const double hi_norm = load[hi] / capacity[hi];
+  const std::vector<Move> mine = moves_of_rank(owner, cost, cat, static_cast<int>(hi), heavy_share * capacity[hi]);
+  double best_norm = hi_norm;
+  const Move *give = nullptr, *take = nullptr;
+  std::size_t with = hi;
+  std::vector<std::vector<Move>> theirs(capacity.size());
+  for (std::size_t r = 0; r < capacity.size(); ++r) {
+    if (r == hi || capacity[r] <= 0) continue;
+    theirs[r] = moves_of_rank(owner, cost, cat, static_cast<int>(r), heavy_share * capacity[r]);
+    for (const Move& a : mine)
+      for (const Move& b : theirs[r]) {
+        const double d = a.cost - b.cost;
+        if (!(d > 0)) continue;
+        const double worst = std::max((load[hi] - d) / capacity[hi], (load[r] + d) / capacity[r]);
+        if (worst < best_norm) best_norm = worst, give = &a, take = &b, with = r;
+      }
+  }
+  if (give == nullptr) return false;
+  for (int t : give->tasks) owner[static_cast<std::size_t>(t)] = static_cast<int>(with);
+  for (int t : take->tasks) owner[static_cast<std::size_t>(t)] = static_cast<int>(hi);
+  load[hi] -= give->cost - take->cost;
+  load[with] += give->cost - take->cost;
+  return true;
+}
+
 /// Level 2: moves pieces (or tasks of heavy pieces) off the most loaded rank, heaviest rolling
-/// element first.
+/// element first; when no move helps, exchanges one for a cheaper one of another rank.
 void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const TaskCatalogue& cat,
                     std::span<const double> capacity, const PlanOptions& options) {
   const std::size_t ranks = capacity.size();
@@ -192,7 +235,10 @@ void split_heaviest(std::vector<int>& owner, std::span<const double> cost, const
       }
       if (!best.tasks.empty()) break;
     }
-    if (best.tasks.empty()) return;
+    if (best.tasks.empty()) {
+      if (exchange_off(owner, load, cost, cat, capacity, hi, options.split_share * mean)) continue;
+      return;
+    }
     for (int t : best.tasks) owner[static_cast<std::size_t>(t)] = static_cast<int>(lo);
     load[hi] -= best.cost;
     load[lo] += best.cost;

@@ -18,7 +18,9 @@
 // Level 2 then splits the heaviest rolling elements when level 1 cannot balance (more ranks than
 // rolling elements, or a narrow loaded zone): while the most loaded rank is above the mean by more
 // than level2_tolerance, it moves single tasks, from its heaviest rolling element first, to the
-// least loaded rank, choosing the task closest to the amount that would equalise the two.
+// least loaded rank, choosing the task closest to the amount that would equalise the two; when
+// every piece it could give is larger than the gap, it exchanges one for a cheaper piece of another
+// rank (the exchange that lowers the larger of the two ranks' loads the most).
 // What it moves is a piece (TaskCatalogue::parent: a contact segment), all of the piece's tasks on
 // that rank together; a heavy piece (more than split_share of a rank's share of the work) is cut,
 // its sub-tasks (traction-grid blocks, Jacobian columns) moved one by one. Cutting costs no

@@ -57,6 +57,8 @@ struct ScheduleLog {
   std::array<std::vector<double>, schedule_phase_count> task_cost;
   /// Doubles per task record (per phase) and per context: the message sizes of the replay model.
   std::array<int, schedule_phase_count> record_size{};
+  /// Per phase and task: the doubles of its record that cross ranks (TaskCatalogue::used_size).
+  std::array<std::vector<int>, schedule_phase_count> task_record_size;
   int context_size = 0;
   /// Per task: rolling element or -1 (border), as in the TaskCatalogue.
   std::vector<int> task_group;

@@ -92,6 +92,9 @@ void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, 
     ok = ok && r.valid;
     write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
   }
+  // The columns of states it does not depend on: zero (a task writes its whole record).
+  std::fill(rec.begin() + SegmentRecord::size + SegmentRecord::wrench_rows * static_cast<std::ptrdiff_t>(columns.size()),
+            rec.end(), 0.0);
   write_result(base, rec);
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
 }
@@ -218,6 +221,21 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   c.function[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_task_;
   c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
   c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
+  // What each task's record carries between ranks: a cut segment's parts their share, an uncut
+  // segment its whole record (in the Jacobian: its result and one column per state it depends on).
+  for (std::size_t t = 0; t < task_segment_.size(); ++t) {
+    const int s = task_segment_[t];
+    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+    for (const auto phase : {scheduler::Phase::rhs, scheduler::Phase::jacobian}) {
+      int used = SegmentRecord::size;
+      if (parts_[static_cast<std::size_t>(s)] > 1)
+        used = segment_part_record_size(phase, s, static_cast<int>(t) - first_task_[static_cast<std::size_t>(s)]);
+      else if (phase == scheduler::Phase::jacobian)
+        used += SegmentRecord::wrench_rows * (static_cast<int>(segment_columns(model_, seg).size()) +
+                                              (on_rim(model_, seg) ? rim_shift_columns : 0));
+      c.used_size[static_cast<std::size_t>(phase)].push_back(used);
+    }
+  }
   return c;
 }
 

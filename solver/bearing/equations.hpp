@@ -89,6 +89,8 @@ class Equations final : public DynamicSystem {
   /// parts_[s]-th of its evaluations: the base point, then the columns).
   void rhs_part(const double* context, int s, int part, std::span<double> rec) const;
   void jacobian_part(const double* context, int s, int part, std::span<double> rec) const;
+  /// Doubles at the front of part `part`'s record of cut segment s that it fills (the rest zero).
+  int segment_part_record_size(scheduler::Phase phase, int s, int part) const;
   /// Master: the segment records from the tasks' records, combining each cut segment's parts in
   /// part order (the same bits for any rank count and plan).
   void combine_rhs_parts(std::vector<double>& records);

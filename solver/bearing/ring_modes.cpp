@@ -155,6 +155,7 @@ void rim_jacobian_record(const contact::RollerRaceSegment& law, const Model& m, 
     write_difference(r, base, 1.0 / h, out);
     out += SegmentRecord::wrench_rows;
   }
+  std::fill(out, rec.data() + rec.size(), 0.0);  // the rest of the record (a task writes its whole record)
   write_result(base, rec);
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
 }

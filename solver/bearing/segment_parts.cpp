@@ -17,11 +17,12 @@
 //     round the parts (evaluation e to part e mod parts); a part returns its evaluations' wrenches;
 //     the master forms the columns (r - base) / h exactly as an uncut segment's task does.
 //
-// A part's rhs record: [force_x, force_y, spin_moment, power_loss of its block, then (parts 0 and
-// 1) prepared_share doubles of the prepared contact, part 0 the first ones, 0 ...]. Jacobian:
-// the Jacobian record layout (segment_record.hpp) with the base result where the part has it and,
-// in each column it evaluates, the perturbed wrench itself (not yet the difference); valid is the
-// AND over the part's evaluations.
+// A part's rhs record: [force_x, force_y, spin_moment, power_loss of its block, then (part 0) the
+// first prepared_share doubles of the prepared contact, (part 1) the rest, 0 ...]. Jacobian:
+// [valid: the AND over the part's evaluations, then per evaluation in order: the base result's
+// whole record (evaluation 0, part 0) or the perturbed wrench itself (not yet the difference), 0
+// ...]. Each part fills only the front of its record (segment_part_record_size): the executor sends
+// no more between ranks.
 #include <algorithm>
 #include <array>
 
@@ -59,6 +60,29 @@ const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg)
 
 }  // namespace
 
+namespace {
+
+/// Evaluations of a cut segment's Jacobian (the base point and one per column) that part `part`
+/// of `parts` makes: e = part, part + parts, ...
+int part_evaluations(int evaluations, int part, int parts) { return (evaluations - part + parts - 1) / parts; }
+
+/// Where evaluation i (0-based among the part's own) starts in a part's Jacobian record.
+std::size_t jacobian_part_offset(int part, int i) {
+  if (part != 0) return 1 + static_cast<std::size_t>(SegmentRecord::wrench_rows * i);
+  return i == 0 ? 1 : 1 + SegmentRecord::size + static_cast<std::size_t>(SegmentRecord::wrench_rows * (i - 1));
+}
+
+}  // namespace
+
+int Equations::segment_part_record_size(scheduler::Phase phase, int s, int part) const {
+  const int parts = parts_[static_cast<std::size_t>(s)];
+  if (phase == scheduler::Phase::rhs)
+    return traction_size + (part == 0 ? prepared_share : part == 1 ? contact::PreparedGrooveContact::size - prepared_share : 0);
+  const int evaluations = 1 + static_cast<int>(segment_columns(model_, model_.segments[static_cast<std::size_t>(s)]).size());
+  const int n = part_evaluations(evaluations, part, parts);
+  return static_cast<int>(jacobian_part_offset(part, n));
+}
+
 int segment_part_count(const SegmentLaw& law) {
   if (const auto* groove = std::get_if<contact::BallGrooveSegment>(&law)) return contact::traction_block_count(*groove);
   return 1;
@@ -83,7 +107,8 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
   if (part < 2) {
     std::array<double, 2 * prepared_share> all{};
     prepared.write(all.data());
-    std::copy_n(all.begin() + part * prepared_share, prepared_share, rec.begin() + traction_size);
+    const int share = segment_part_record_size(scheduler::Phase::rhs, s, part) - traction_size;
+    std::copy_n(all.begin() + part * prepared_share, share, rec.begin() + traction_size);
   }
 }
 
@@ -118,10 +143,12 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
   std::vector<double> zp(z, z + model_.state_size);
   std::array<double, SegmentRecord::size> perturbed{};
   const int evaluations = 1 + static_cast<int>(columns.size());
-  for (int e = part; e < evaluations; e += parts_[static_cast<std::size_t>(s)]) {
+  const int parts = parts_[static_cast<std::size_t>(s)];
+  for (int e = part; e < evaluations; e += parts) {
+    double* out = rec.data() + jacobian_part_offset(part, e / parts);
     if (e == 0) {
       const auto base = contact::evaluate(law, ka, kb);
-      write_result(base, rec);
+      write_result(base, std::span<double>(out, SegmentRecord::size));
       ok = ok && base.valid;
       continue;
     }
@@ -133,23 +160,24 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
     zp[j] = z[j];
     ok = ok && r.valid;
     write_result(r, perturbed);
-    std::copy_n(perturbed.begin(), SegmentRecord::wrench_rows,
-                rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * (e - 1));
+    std::copy_n(perturbed.begin(), SegmentRecord::wrench_rows, out);
   }
-  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
+  rec[0] = ok ? 1.0 : 0.0;
 }
 
 void Equations::combine_jacobian_parts(const double* z) {
   const std::size_t size = jacobian_record;
   gather_segments(first_task_, parts_, jac_task_records_, size, jac_records_, [&](std::size_t s, const double* first, double* out) {
-    const auto parts = static_cast<std::size_t>(parts_[s]);
-    std::copy_n(first, SegmentRecord::size, out);  // the base point is part 0's first evaluation
+    const int parts = parts_[s];
+    // The base point is part 0's first evaluation.
+    std::copy_n(first + jacobian_part_offset(0, 0), SegmentRecord::size, out);
     bool ok = true;
-    for (std::size_t k = 0; k < parts; ++k) ok = ok && first[k * size + SegmentRecord::valid] != 0.0;
+    for (int k = 0; k < parts; ++k) ok = ok && first[static_cast<std::size_t>(k) * size] != 0.0;
     const std::vector<SegmentColumn> columns = segment_columns(model_, model_.segments[s]);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const std::size_t offset = SegmentRecord::size + SegmentRecord::wrench_rows * c;
-      const double* r = first + ((c + 1) % parts) * size + offset;
+      const int e = static_cast<int>(c) + 1;
+      const double* r = first + static_cast<std::size_t>(e % parts) * size + jacobian_part_offset(e % parts, e / parts);
       // (r - base) / h as write_difference forms it for an uncut segment: the same bits.
       const double inv = 1.0 / step_(columns[c].state, z);
       for (int i = 0; i < SegmentRecord::wrench_rows; ++i) out[offset + static_cast<std::size_t>(i)] = (r[i] - out[i]) * inv;

@@ -22,6 +22,9 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
     file.set_attribute(g, "wall_seconds_" + ph, log.wall_seconds[p]);
     file.set_attribute(g, "max_rank_task_seconds_" + ph, log.sum_max_seconds[p]);
     file.set_attribute(g, "mean_rank_task_seconds_" + ph, log.sum_mean_seconds[p]);
+    if (const auto& used = log.task_record_size[p]; !used.empty())
+      file.write_array(g + "/task_record_size_" + ph, {used.size()}, std::vector<double>(used.begin(), used.end()), "-",
+                       "doubles of each task's record that cross ranks (its reply carries these and its seconds)");
     const auto& cost = log.task_cost[p];
     if (!cost.empty())
       file.write_array(g + "/task_cost_" + ph, {cost.size()}, cost, "s",

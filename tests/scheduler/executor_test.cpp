@@ -57,6 +57,38 @@ TEST(MpiExecutor, SameRecordsAsSerialInTaskOrder) {
   }
 }
 
+TEST(MpiExecutor, RecordsCarryOnlyTheDoublesEachTaskUses) {
+  // Each task declares how many leading doubles of its record it fills and writes zeros beyond
+  // them; the records are those of the serial executor, and the schedule log has the sizes (what
+  // crosses ranks: tests/parallel compares the results of several ranks bit for bit).
+  auto cat = catalogue(6);
+  cat.used_size[0] = {4, 1, 2, 4, 3, 0};
+  cat.used_size[1] = {7, 7, 2, 5, 1, 3};
+  for (int p = 0; p < 2; ++p)
+    cat.function[static_cast<std::size_t>(p)] = [full = cat.function[static_cast<std::size_t>(p)], used = cat.used_size[static_cast<std::size_t>(p)]](
+                                                   std::span<const double> ctx, int task, std::span<double> rec) {
+      full(ctx, task, rec);
+      std::fill(rec.begin() + used[static_cast<std::size_t>(task)], rec.end(), 0.0);
+    };
+  MpiExecutor mpi(MPI_COMM_SELF, {});
+  SerialExecutor serial;
+  mpi.attach(cat);
+  std::vector<double> a, b;
+  for (int p = 0; p < 2; ++p) {
+    const std::vector<double> ctx{0.7, 0.2, 0.5};
+    mpi.run(static_cast<Phase>(p), ctx, 6, cat.record_size[p], cat.function[p], a);
+    serial.run(static_cast<Phase>(p), ctx, 6, cat.record_size[p], cat.function[p], b);
+    const auto rs = static_cast<std::size_t>(cat.record_size[p]);
+    for (std::size_t t = 0; t < 6; ++t)
+      for (std::size_t i = 0; i < rs; ++i) {
+        const bool used = i < static_cast<std::size_t>(cat.used_size[p][t]);
+        ASSERT_EQ(a[t * rs + i], b[t * rs + i]) << "phase " << p << " task " << t << " slot " << i;
+        ASSERT_EQ(used, a[t * rs + i] != 0.0) << "phase " << p << " task " << t << " slot " << i;
+      }
+    EXPECT_EQ(mpi.schedule_log()->task_record_size[static_cast<std::size_t>(p)], cat.used_size[p]);
+  }
+}
+
 TEST(MpiExecutor, RejectsCallsThatDoNotMatchTheCatalogue) {
   const auto cat = catalogue(5);
   MpiExecutor mpi(MPI_COMM_SELF, {});

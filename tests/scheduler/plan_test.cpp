@@ -152,3 +152,18 @@ TEST(Plan, HeavySegmentsAreCutLightOnesMoveWhole) {
   cat.parent.pop_back();
   EXPECT_THROW(make_plan(cost, cat, cap), std::invalid_argument);
 }
+
+TEST(Plan, ExchangesWhenEveryMoveIsTooLarge) {
+  // Five border pieces 5, 9, 4, 4, 12 on two ranks: LPT gives 16 and 18 (12 + 4 | 9 + 5 + 4); every
+  // piece rank 1 could give is larger than the gap of 2, so no move helps. Exchanging the 5 for a 4
+  // gives 17 and 17, and the plan must find that.
+  const auto cat = bearing(0, 0, 5);
+  const std::vector<double> cost{5, 9, 4, 4, 12};
+  PlanOptions o;
+  o.try_metis = false;
+  const Plan p = make_plan(cost, cat, std::vector<double>{1.0, 1.0}, o);
+  EXPECT_EQ(loads(p, cost, 2), (std::vector<double>{17, 17}));
+  EXPECT_DOUBLE_EQ(p.predicted_imbalance, 1.0);
+  // Moves alone stop at 18 / 17 = 1.059: without the exchange the tolerance of 2 % is not met.
+  EXPECT_GT(18.0 / 17.0, 1 + o.level2_tolerance);
+}
