@@ -121,8 +121,12 @@ OutputThreadPlace place_output_thread(const std::string& mode, MPI_Comm world, b
   if (may_bind)
     MPI_Allgather(&mine, sizeof mine, MPI_BYTE, masks.data(), sizeof mine, MPI_BYTE, node);
   MPI_Comm_free(&node);
-  // Only world rank 0 runs an output thread in `raceway run`; the others keep the plain rule.
-  const cpu_set_t allowed = may_bind && world_rank == 0 && mode != "off" ? cpus_the_job_may_use() : cpu_set_t{};
+  // Only world rank 0 runs an output thread in `raceway run`; the others keep the plain rule. A
+  // process that may run on every online CPU is not bound: then the cgroup cannot allow more, and
+  // hwloc's topology (3-12 ms at every start here) is not read.
+  const bool narrowed = known && my_cores < sysconf(_SC_NPROCESSORS_ONLN);
+  const cpu_set_t allowed =
+      may_bind && narrowed && world_rank == 0 && mode != "off" ? cpus_the_job_may_use() : cpu_set_t{};
   const int allowed_cores = CPU_COUNT(&allowed);
   const long node_cores = allowed_cores > 0 ? allowed_cores : sysconf(_SC_NPROCESSORS_ONLN);
   const bool bound = known && allowed_cores > 0 && my_cores < allowed_cores;
