@@ -47,6 +47,8 @@ class Equations final : public DynamicSystem {
 
   /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
   const std::vector<double>& segment_records() const { return records_; }
+  /// Time of the last rhs() evaluation (the records' time).
+  double last_rhs_time() const { return rhs_time_; }
   /// A diagnostic of segment s from the last rhs(), by its position in the segment family's field table.
   double diagnostic(std::size_t s, int field) const {
     return records_[s * SegmentRecord::size + SegmentRecord::diagnostics + static_cast<std::size_t>(field)];
@@ -121,6 +123,7 @@ class Equations final : public DynamicSystem {
   std::vector<double> context_;
   scheduler::TaskFunction rhs_task_, jacobian_task_;
   int last_invalid_ = -1;
+  double rhs_time_ = 0;
   long rhs_count_ = 0, jac_count_ = 0;
   long segment_count_ = 0;
   long jacobian_segment_evaluations_ = 0;  ///< per Jacobian: base point and one per state of each segment's bodies

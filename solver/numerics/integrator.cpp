@@ -46,6 +46,7 @@ struct Integrator::Impl {
   std::unique_ptr<stepping::TimeStepper> stepper;
   BorderedMatrix scratch;  // the Jacobian is formed here, then loaded into the backend's matrix
   std::exception_ptr callback_error;
+  std::function<void()> step_observer;
   std::string last_message;
   long steps_budget = 0;
   StepLimitingStates limiting;
@@ -165,6 +166,7 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
     if (s.callback_error) std::rethrow_exception(s.callback_error);
     if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
     s.record_step_error();
+    if (s.step_observer) s.step_observer();
   }
   const int flag = s.stepper->interpolate(t_out, s.y);
   if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
@@ -222,6 +224,8 @@ std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
     if (const std::string e = linear->last_error(); !e.empty()) out += "; linear solver: " + e;
   return out;
 }
+
+void Integrator::set_step_observer(std::function<void()> observer) { impl_->step_observer = std::move(observer); }
 
 IntegratorStatistics Integrator::statistics() const { return impl_->stepper->statistics(); }
 const StepLimitingStates& Integrator::step_limiting_states() const { return impl_->limiting; }

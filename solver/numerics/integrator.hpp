@@ -11,6 +11,7 @@
 // carry the error estimate that limits the step (StepLimitingStates).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -74,6 +75,11 @@ class Integrator {
   /// Integrates to t_out and returns the state there, interpolated (not at a solver step).
   /// Throws IntegrationFailure with a diagnosis.
   void advance_to(double t_out, std::vector<double>& z);
+  /// Called after every accepted step, on the integrating thread, before the next one: the
+  /// system's last right-hand side is then the step's own (a BDF step's last Newton iterate at the
+  /// step's time, a Runge-Kutta step's last stage). Jacobians do not touch a system's rhs records;
+  /// nothing is evaluated for the observer.
+  void set_step_observer(std::function<void()> observer);
   IntegratorStatistics statistics() const;
   const StepLimitingStates& step_limiting_states() const;
   const IntegratorTiming& timing() const;

@@ -28,7 +28,7 @@ void OutputThread::wake() {
   signal_.notify_one();
 }
 
-void OutputThread::submit(double t, long sample, const std::vector<double>& z) {
+void OutputThread::submit(double t, long sample, const std::vector<double>& z, const std::vector<double>& rows) {
   if (failed_.load(std::memory_order_acquire)) std::rethrow_exception(error_);
   const std::uint64_t q = queued_.load(std::memory_order_relaxed);
   for (std::uint64_t w = worked_.load(); q - w >= ring_.size(); w = worked_.load()) {
@@ -38,6 +38,7 @@ void OutputThread::submit(double t, long sample, const std::vector<double>& z) {
   Slot& slot = ring_[q % ring_.size()];
   slot.t = t, slot.sample = sample;
   std::copy(z.begin(), z.end(), slot.z.begin());
+  slot.rows.assign(rows.begin(), rows.end());  // allocates only the first time round the ring
   queued_.store(q + 1, std::memory_order_release);
   if ((q + 1) % batch_ == 0) wake();
 }
@@ -64,7 +65,7 @@ void OutputThread::loop() {
       if (!failed_.load(std::memory_order_relaxed)) {
         const auto start = std::chrono::steady_clock::now();
         try {
-          work_(slot.t, slot.sample, slot.z);
+          work_(slot.t, slot.sample, slot.z, slot.rows);
         } catch (...) {
           error_ = std::current_exception();
           failed_.store(true, std::memory_order_release);

@@ -23,17 +23,18 @@ namespace raceway::solver {
 
 class OutputThread {
  public:
-  /// work(t, sample, z): the output of one sample, called on this object's thread, in order.
-  using Work = std::function<void(double t, long sample, const std::vector<double>& z)>;
+  /// work(t, sample, z, rows): the output of one sample, called on this object's thread, in order;
+  /// `rows` the values the run's thread computed for it (the step-resolved pocket statistics).
+  using Work = std::function<void(double t, long sample, const std::vector<double>& z, const std::vector<double>& rows)>;
   OutputThread(std::size_t state_size, Work work, std::size_t capacity = 256, std::size_t batch = 16);
   /// Works the queued samples (unless one failed), then ends the thread; errors are dropped.
   ~OutputThread();
   OutputThread(const OutputThread&) = delete;
   OutputThread& operator=(const OutputThread&) = delete;
 
-  /// Queues a copy of (t, sample, z); waits only while the queue is full. Rethrows the failure of an
+  /// Queues a copy of (t, sample, z, rows); waits only while the queue is full. Rethrows the failure of an
   /// earlier sample's work (the samples after a failed one are not worked).
-  void submit(double t, long sample, const std::vector<double>& z);
+  void submit(double t, long sample, const std::vector<double>& z, const std::vector<double>& rows);
   /// Waits until every queued sample has been worked; rethrows a failure if `rethrow`.
   void drain(bool rethrow = true);
   /// Binds this object's thread alone to the logical CPU `core`; returns its affinity read back
@@ -46,7 +47,7 @@ class OutputThread {
   struct Slot {
     double t = 0;
     long sample = 0;
-    std::vector<double> z;
+    std::vector<double> z, rows;
   };
   void loop();
   void wake();

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "io/scene/scene_parser.hpp"
+#include "solver/run/pocket_steps.hpp"
 
 namespace raceway::solver {
 
@@ -94,6 +95,19 @@ std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids(const io::H5SeriesWrite
   return ids;
 }
 
+/// The step-resolved pocket statistics (solver/run/pocket_steps.hpp), in the order of a row's quantities.
+struct PocketStepSeries {
+  const char* path;
+  const char* unit;
+  const char* meaning;
+};
+constexpr PocketStepSeries pocket_step_series[PocketSteps::quantities] = {
+    {"/cage/pocket_step_onsets", "-",
+     "contact onsets (force 0 at one evaluation, > 0 at the next) per pocket and side in the interval ending here"},
+    {"/cage/pocket_step_peak_force", "N", "largest pocket normal force per pocket and side at the steps of the interval"},
+    {"/cage/pocket_step_impulse", "N s", "pocket normal-force impulse per pocket and side over the interval (trapezoid over the steps)"},
+    {"/cage/pocket_step_contact_time", "s", "time in contact per pocket and side over the interval (trapezoid over the steps)"}};
+
 long columns(const std::vector<BodySeries>& series) {
   long n = 0;
   for (const BodySeries& s : series) n += static_cast<long>(s.components.size());
@@ -123,6 +137,7 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   const double samples = std::floor(end / dt + 1e-9) + 1;
   long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m.kind));
   if (m.kind == io::ModelKind::spatial) values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
+  values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   if (scene.output.segments)
     for (const Segment& s : m.segments)
       values += static_cast<long>(is_line_family(m.laws[static_cast<std::size_t>(s.law)])
@@ -207,6 +222,7 @@ OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segmen
   const auto n = static_cast<std::size_t>(m.element_count);
   for (const BodySeries& s : element_series(m.kind))
     file_.define_series(std::string("/") + m.element_group + "/" + s.name, row_shape(s, {n}), s.unit, s.meaning);
+  define_pocket_steps();
   if (segments_) define_segment_groups();
   time_ = file_.series_id("/time"), energy_ = file_.series_id("/energy");
   for (int b = 0; b < m.first_element; ++b)
@@ -218,6 +234,15 @@ OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segmen
     element_ids_.push_back(file_.series_id(std::string("/") + m.element_group + "/" + s.name));
   file_.set_time_scale("/time", "time");
   file_.set_attribute("/", "state_names", m.state_name);
+}
+
+void OutputWriter::define_pocket_steps() {
+  const int pockets = PocketSteps(m_).pockets();
+  if (pockets == 0) return;
+  for (const PocketStepSeries& s : pocket_step_series) {
+    file_.define_series(s.path, {static_cast<std::size_t>(pockets), PocketSteps::sides}, s.unit, s.meaning);
+    pocket_step_ids_.push_back(file_.series_id(s.path));
+  }
 }
 
 void OutputWriter::define_segment_groups() {
@@ -291,10 +316,16 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
 }
 
 void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
-                          double energy, const std::vector<int>* segment_rank) {
+                          double energy, const std::vector<double>& pocket_steps,
+                          const std::vector<int>* segment_rank) {
   file_.append(time_, std::span<const double>(&t, 1));
   file_.append(energy_, std::span<const double>(&energy, 1));
   append_bodies(t, z, zdot, eq);
+  if (!pocket_step_ids_.empty()) {
+    const std::size_t cells = pocket_steps.size() / pocket_step_ids_.size();
+    for (std::size_t q = 0; q < pocket_step_ids_.size(); ++q)
+      file_.append(pocket_step_ids_[q], std::span<const double>(pocket_steps.data() + q * cells, cells));
+  }
   if (!segments_) return;
   for (int k = 0; k < segment_kind_count; ++k) {
     const std::vector<int>& index = index_[k];

@@ -55,10 +55,12 @@ class OutputWriter {
   /// ranks together if `shared_segments`: the file has a shared writer, see H5SeriesWriter).
   OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments, bool shared_segments = false);
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
+  /// `pocket_steps`: the step-resolved pocket statistics of the interval ending at t
+  /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets).
   /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
   /// process writes the diagnostics of rank 0's).
   void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
-              double energy, const std::vector<int>* segment_rank = nullptr);
+              double energy, const std::vector<double>& pocket_steps, const std::vector<int>* segment_rank = nullptr);
 
   /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
   /// balls roll at); the nominal angle when none is loaded.
@@ -66,6 +68,7 @@ class OutputWriter {
 
  private:
   void define_segment_groups();
+  void define_pocket_steps();
   void append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq);
 
   io::H5SeriesWriter& file_;
@@ -74,7 +77,7 @@ class OutputWriter {
   std::vector<unsigned char> mine_;  ///< reused: which cells of a shared row this process writes
   // The series' handles in the order append() writes them (looked up once, not per sample).
   io::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
-  std::vector<io::H5SeriesWriter::SeriesId> border_ids_, element_ids_;
+  std::vector<io::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_;
   std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids_[segment_kind_count];
   std::vector<double> row_;  ///< reused row buffer
   std::vector<int> index_[segment_kind_count];  ///< segments of each kind, in column order

@@ -25,6 +25,7 @@
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/output_thread.hpp"
 #include "solver/run/output_writer.hpp"
+#include "solver/run/pocket_steps.hpp"
 #include "solver/run/run_profile.hpp"
 #include "solver/run/run_totals.hpp"
 #include "solver/run/scene_summary.hpp"
@@ -65,6 +66,7 @@ io::JsonObject RunSummary::to_json() const {
   j.add("output_time_s", output_seconds);
   j.add("output_write_time_s", output_write_seconds);
   j.add("output_thread_time_s", output_thread_seconds);
+  if (!pocket_step_totals.empty()) j.add("pocket_step_totals", pocket_step_totals);
   j.add("scene_overrides", scene_overrides);
   j.add("scene_parameters", scene_parameters);
   return j;
@@ -188,7 +190,7 @@ class RunLoop {
         plan_{scene.output.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.output.checkpoint_interval / dt_))
                                                    : 0,
               scene.output.checkpoint_wall_interval, options.stop_signal},
-        totals_(model, scene.scene.end_time) {}
+        totals_(model, scene.scene.end_time), pockets_(model) {}
 
   RunSummary run(const std::optional<Checkpoint>& resumed);
 
@@ -198,7 +200,10 @@ class RunLoop {
   /// The output of one sample: the right-hand side at (t, z) for the diagnostics on `eq`, the rows,
   /// the summary's sums (on the output thread, or on this one with the parallel output). Returns the
   /// right-hand side's wall seconds.
-  double write_sample(Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot);
+  double write_sample(Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot,
+                      const std::vector<double>& pocket_row);
+  /// A new integrator from (t, z), its accepted steps observed by the pocket statistics.
+  void start_integrator(double t);
   /// Waits for the output thread's samples (before anything reads the file, the sums or the counts).
   void drain_output(bool rethrow = true);
   void start_output_thread();  // and binds it to options_.output_thread_core
@@ -218,6 +223,10 @@ class RunLoop {
   const CheckpointPlan plan_;
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   RunTotals totals_;
+  // The step-resolved pocket statistics (solver/run/pocket_steps.hpp), on the run's thread; the row
+  // of each sample goes to the output with it.
+  PocketSteps pockets_;
+  std::vector<double> pocket_row_;
   std::optional<io::H5SeriesWriter> file_;
   std::optional<OutputWriter> out_;
   std::unique_ptr<Integrator> integrator_;
@@ -234,13 +243,13 @@ class RunLoop {
 };
 
 double RunLoop::write_sample(Equations& eq, double t, long sample, const std::vector<double>& z,
-                             std::vector<double>& zdot) {
+                             std::vector<double>& zdot, const std::vector<double>& pocket_row) {
   const double before = wall();
   eq.rhs(t, z.data(), zdot.data());
   const double rhs_seconds = wall() - before;
   const double e = eq.energy(t, z.data());
   const std::vector<int>* segment_rank = options_.shared_output ? &options_.shared_output->sample(sample) : nullptr;
-  out_->append(t, z, zdot, eq, e, segment_rank);
+  out_->append(t, z, zdot, eq, e, pocket_row, segment_rank);
   totals_.record(t, z, eq, e);
   return rhs_seconds;
 }
@@ -248,10 +257,11 @@ double RunLoop::write_sample(Equations& eq, double t, long sample, const std::ve
 void RunLoop::record(double t, long sample) {
   const double before = wall();
   totals_.turn_to(t);
+  pockets_.take_row(t, pocket_row_);
   if (output_thread_) {
-    output_thread_->submit(t, sample, z_);
+    output_thread_->submit(t, sample, z_, pocket_row_);
   } else {
-    diagnostics_seconds_ += write_sample(eq_, t, sample, z_, zdot_);
+    diagnostics_seconds_ += write_sample(eq_, t, sample, z_, zdot_, pocket_row_);
   }
   output_seconds_ += wall() - before;
 }
@@ -269,10 +279,12 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
   file_->flush();  // first the rows, then the checkpoint that names them
   Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_};
   totals_.save(cp, integrator_->statistics(), eq_, executor_, wall());
+  pockets_.save(cp);
   write_checkpoint(checkpoint_path(options_.output_path), cp);
   if (kind == CheckpointKind::periodic) {  // every run restarts CVODE here: a resume repeats it bitwise
     totals_.add_finished_integrator(integrator_->statistics());
-    integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t, z_);
+    pockets_.restart();  // the steps past t are integrated again
+    start_integrator(t);
   }
   last_checkpoint_wall_ = wall();
   output_seconds_ += last_checkpoint_wall_ - before;
@@ -291,6 +303,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   sum.output_seconds = output_seconds_;
   sum.output_write_seconds = output_seconds_ - diagnostics_seconds_;
   sum.output_thread_seconds = output_thread_ ? output_thread_->busy_seconds() : 0.0;
+  sum.pocket_step_totals = pockets_.totals_json();
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
   file_->set_attribute("/", "summary_json", sum.to_json().dump());
@@ -299,10 +312,19 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   return sum;
 }
 
+void RunLoop::start_integrator(double t) {
+  integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t, z_);
+  // The last right-hand side of an accepted step is the integrator's own: a sample's (write_sample
+  // on eq_) comes after advance_to() returns, and every step evaluates the right-hand side again.
+  if (pockets_.active())
+    integrator_->set_step_observer([this] { pockets_.observe(eq_.last_rhs_time(), eq_.segment_records()); });
+}
+
 void RunLoop::start_output_thread() {
   output_thread_ = std::make_unique<OutputThread>(
-      z_.size(), [this](double t, long sample, const std::vector<double>& z) {
-        write_sample(*sample_eq_, t, sample, z, sample_zdot_);
+      z_.size(),
+      [this](double t, long sample, const std::vector<double>& z, const std::vector<double>& pocket_row) {
+        write_sample(*sample_eq_, t, sample, z, sample_zdot_, pocket_row);
       },
       // Up to 1024 samples queued (the run's thread waits only when the output thread is that far
       // behind: on a loaded machine it is descheduled for tens of ms), at most 64 MiB of states.
@@ -327,6 +349,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   }
   if (resumed) {
     totals_.restore(*resumed, eq_, executor_);
+    pockets_.restore(*resumed);
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
     if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
   } else {
@@ -347,7 +370,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     options_.on_info(fmt::format("output {} {}: readable from here on, also after a kill", file_->partial_path(),
                                  resumed ? "reopened" : "laid out"));
   if (sample_eq_) start_output_thread();
-  integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t_last, z_);
+  start_integrator(t_last);
   last_checkpoint_wall_ = wall();
   if (!resumed) record(t0, 0);
   for (long i = first; i <= samples_; ++i) {

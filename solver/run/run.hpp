@@ -108,6 +108,8 @@ struct RunSummary {
   /// The scene's keys set on the command line ("key": "value as given") and its resolved
   /// parameters ("key": {"value": SI value or word, "unit": SI unit}): scene_summary.hpp.
   io::JsonObject scene_overrides, scene_parameters;
+  /// The step-resolved pocket statistics' run totals (solver/run/pocket_steps.hpp); empty without pockets.
+  io::JsonObject pocket_step_totals;
   io::JsonObject to_json() const;
 };
 
