@@ -41,6 +41,10 @@ class BearingRun:
     bar_front: np.ndarray = None   # [T x n] N
     bar_rear: np.ndarray = None    # [T x n] N
     pocket_circumferential: np.ndarray = None  # [T x n] N (spatial)
+    # The step-resolved pocket statistics (/cage/pocket_step_*, docs/output_layout.md), per output
+    # interval ending at each sample, by bar: {"front"|"rear": {"onsets"|"peak_force"|"impulse"|
+    # "contact_time": [T x n]}}; None when the file has none (written before them).
+    pocket_steps: dict = None
     land_force: np.ndarray = None  # [T] N
     bridge_force: np.ndarray = None  # [T x n] N, signed (report_bridges.py)
     bridges_flexible: bool = False   # /segments/cage_bridge present
@@ -67,6 +71,20 @@ def _need(out, path):
         raise ReportInputError(f"{out.path}: dataset '/{path.strip('/')}' is missing")
     values = out[path]
     return np.asarray(values, dtype=float)
+
+
+POCKET_STEP_QUANTITIES = ("onsets", "peak_force", "impulse", "contact_time")
+
+
+def _pocket_steps(out, run):
+    """/cage/pocket_step_* [T x n x 2] (side 0: the bar ahead in +z) onto the report's front and rear
+    bars (front: ahead in the cage's sense of rotation)."""
+    if not all(f"cage/pocket_step_{q}" in out for q in POCKET_STEP_QUANTITIES):
+        return
+    front, rear = (0, 1) if run.direction > 0 else (1, 0)
+    data = {q: _need(out, f"cage/pocket_step_{q}") for q in POCKET_STEP_QUANTITIES}
+    run.pocket_steps = {bar: {q: v[:, :, side] for q, v in data.items()} for bar, side in (("front", front),
+                                                                                         ("rear", rear))}
 
 
 def _scene_name(out):
@@ -132,6 +150,7 @@ def read_planar(out):
     if "segments/cage_land/normal_force" in out:
         run.land_force = np.sum(_need(out, "segments/cage_land/normal_force"), axis=1)
     run.bridge_force, run.bridges_flexible = bridge_forces(out)
+    _pocket_steps(out, run)
     _driven(out, run, 2)
     _sum_power(out, run)
     return run
@@ -176,6 +195,7 @@ def read_spatial(out):
         run.pocket_circumferential = element_loads(pocket["circumferential_force"], pocket["element"], n)
     if "cage_land" in run.contact:
         run.land_force = np.sum(run.contact["cage_land"]["normal_force"], axis=1)
+    _pocket_steps(out, run)
     _driven(out, run, 5)
     _sum_power(out, run)
     return run

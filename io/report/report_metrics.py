@@ -192,6 +192,22 @@ def contact_stats(time, force, window, threshold):
             "duty_cycle": contact_time / window.length}
 
 
+def step_contact_stats(steps, k, window):
+    """Peak, impulse, events (contact onsets), contact time, mean duration and duty cycle of one bar of
+    pocket k over the window from the step-resolved statistics (/cage/pocket_step_*: each row the
+    steps of the output interval ending at its sample), so from every integrator step rather than
+    from the samples: the rows of the intervals inside the window, (t_begin, t_end]. An onset is the
+    force going from 0 to > 0 between two steps (no threshold); a contact going on at the window's
+    start is not one. `steps`: {"onsets", "peak_force", "impulse", "contact_time": [T x pockets]}."""
+    rows = slice(window.begin + 1, window.end)
+    events = int(round(float(np.sum(steps["onsets"][rows, k]))))
+    contact_time = float(np.sum(steps["contact_time"][rows, k]))
+    return {"peak_n": float(np.max(steps["peak_force"][rows, k], initial=0.0)),
+            "impulse_n_s": float(np.sum(steps["impulse"][rows, k])), "events": events, "contact_time_s": contact_time,
+            "mean_duration_s": contact_time / events if events else math.nan,
+            "duty_cycle": contact_time / window.length}
+
+
 def total_stats(per_pocket, window):
     """Totals over pockets: events, impulse, contact time summed; peak the max; RMS the root of the
     mean of the mean squares; duty cycle the mean; mean duration contact time / events."""

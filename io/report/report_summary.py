@@ -81,6 +81,24 @@ def centroid(run, w, cage_mean):
     return m
 
 
+STEP_KEYS = ("peak_n", "impulse_n_s", "events", "contact_time_s", "mean_duration_s", "duty_cycle")
+
+
+def _use_step_statistics(run, w, front, rear):
+    """Replaces the sampled events, peaks, impulses and contact times of each pocket's bars by the
+    step-resolved ones where the file has them (the RMS stays sampled); says which were used."""
+    if run.pocket_steps is None:
+        return {"events_peaks_impulses_contact_time": "samples", "rms": "samples",
+                "note": "from the output samples, runs above the threshold (the file has no /cage/pocket_step_*)"}
+    for bar, stats in (("front", front), ("rear", rear)):
+        for k, s in enumerate(stats):
+            s.update({key: v for key, v in rm.step_contact_stats(run.pocket_steps[bar], k, w).items() if key in STEP_KEYS})
+    return {"events_peaks_impulses_contact_time": "steps", "rms": "samples",
+            "note": "events, peaks, impulses and contact times from every integrator step (/cage/pocket_step_*: "
+                    "events are onsets from zero force, no threshold, over the intervals in the window); the RMS, "
+                    "the azimuth bins and the impacts from the output samples"}
+
+
 def pocket_forces(run, w, direction, threshold):
     if run.bar_front is None:
         return None
@@ -88,8 +106,9 @@ def pocket_forces(run, w, direction, threshold):
         threshold = rm.default_contact_threshold(run.bar_front, run.bar_rear, w)
     front = [rm.contact_stats(run.time, run.bar_front[:, k], w, threshold) for k in range(run.elements)]
     rear = [rm.contact_stats(run.time, run.bar_rear[:, k], w, threshold) for k in range(run.elements)]
+    source = _use_step_statistics(run, w, front, rear)
     ft, rt = rm.total_stats(front, w), rm.total_stats(rear, w)
-    p = {"threshold_n": threshold, "direction": direction,
+    p = {"threshold_n": threshold, "direction": direction, "statistics": source,
          "rear_impulse_fraction": rm.ratio_or_nan(rt["impulse_n_s"], ft["impulse_n_s"] + rt["impulse_n_s"])}
     if run.pocket_circumferential is not None:
         fc = run.pocket_circumferential
