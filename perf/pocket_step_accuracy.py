@@ -6,6 +6,10 @@ summed (peak: the largest) over the pockets. Samples: events are runs of samples
 threshold (the report's default, 1 % of the peak, and 0); steps: onsets from zero force.
 
     /usr/bin/python3 perf/pocket_step_accuracy.py RUN.h5 [RUN.h5 ...] > TABLE.tsv
+
+perf/results/pocket_step_accuracy.tsv holds its output for 6309 R3 and QJ215 (runs of
+perf/output_sampling_accuracy.sh's kind: one rank, --output-thread off, [solver] initial_step = "1 us";
+the file column renamed to the scene).
 """
 import os
 import sys
@@ -29,8 +33,8 @@ for path in sys.argv[1:]:
     rows = []
     default = rm.default_contact_threshold(run.bar_front, run.bar_rear, w)
     for threshold in (default, 0.0):
-        rows.append(("samples", threshold, [[rm.contact_stats(run.time, f[:, k], w, threshold) for k in range(run.elements)]
-                                            for f in (run.bar_front, run.bar_rear)]))
+        rows.append(("samples", threshold, [[rm.contact_stats(run.time, f[:, k], w, threshold)
+                                             for k in range(run.elements)] for f in (run.bar_front, run.bar_rear)]))
     if run.pocket_steps is not None:
         rows.append(("steps", 0.0, [[rm.step_contact_stats(run.pocket_steps[bar], k, w) for k in range(run.elements)]
                                     for bar in ("front", "rear")]))

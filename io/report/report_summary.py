@@ -92,7 +92,8 @@ def _use_step_statistics(run, w, front, rear):
                 "note": "from the output samples, runs above the threshold (the file has no /cage/pocket_step_*)"}
     for bar, stats in (("front", front), ("rear", rear)):
         for k, s in enumerate(stats):
-            s.update({key: v for key, v in rm.step_contact_stats(run.pocket_steps[bar], k, w).items() if key in STEP_KEYS})
+            steps = rm.step_contact_stats(run.pocket_steps[bar], k, w)
+            s.update({key: steps[key] for key in STEP_KEYS})
     return {"events_peaks_impulses_contact_time": "steps", "rms": "samples",
             "note": "events, peaks, impulses and contact times from every integrator step (/cage/pocket_step_*: "
                     "events are onsets from zero force, no threshold, over the intervals in the window); the RMS, "

@@ -25,7 +25,8 @@ class OutputThread {
  public:
   /// work(t, sample, z, rows): the output of one sample, called on this object's thread, in order;
   /// `rows` the values the run's thread computed for it (the step-resolved pocket statistics).
-  using Work = std::function<void(double t, long sample, const std::vector<double>& z, const std::vector<double>& rows)>;
+  using Work =
+      std::function<void(double t, long sample, const std::vector<double>& z, const std::vector<double>& rows)>;
   OutputThread(std::size_t state_size, Work work, std::size_t capacity = 256, std::size_t batch = 16);
   /// Works the queued samples (unless one failed), then ends the thread; errors are dropped.
   ~OutputThread();

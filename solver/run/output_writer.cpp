@@ -104,9 +104,12 @@ struct PocketStepSeries {
 constexpr PocketStepSeries pocket_step_series[PocketSteps::quantities] = {
     {"/cage/pocket_step_onsets", "-",
      "contact onsets (force 0 at one evaluation, > 0 at the next) per pocket and side in the interval ending here"},
-    {"/cage/pocket_step_peak_force", "N", "largest pocket normal force per pocket and side at the steps of the interval"},
-    {"/cage/pocket_step_impulse", "N s", "pocket normal-force impulse per pocket and side over the interval (trapezoid over the steps)"},
-    {"/cage/pocket_step_contact_time", "s", "time in contact per pocket and side over the interval (trapezoid over the steps)"}};
+    {"/cage/pocket_step_peak_force", "N",
+     "largest pocket normal force per pocket and side at the steps of the interval"},
+    {"/cage/pocket_step_impulse", "N s",
+     "pocket normal-force impulse per pocket and side over the interval (trapezoid over the steps)"},
+    {"/cage/pocket_step_contact_time", "s",
+     "time in contact per pocket and side over the interval (trapezoid over the steps)"}};
 
 long columns(const std::vector<BodySeries>& series) {
   long n = 0;

@@ -1,6 +1,7 @@
 // The output thread (solver/run/output_thread.hpp): samples are worked in the order given with the
 // states they were given, across the ring's wrap-around and while the run's thread waits on a full
-// queue, with the rows handed with each; a failure reaches the run's thread; queued samples are worked before the thread ends.
+// queue, with the rows handed with each; a failure reaches the run's thread; queued samples are
+// worked before the thread ends.
 #include "solver/run/output_thread.hpp"
 
 #include <gtest/gtest.h>
@@ -20,6 +21,10 @@ struct Seen {
 };
 
 std::vector<double> state_of(long i) { return {static_cast<double>(i), -0.5 * static_cast<double>(i), 1e-3}; }
+/// Rows of varying length (the ring's slots are reused with other lengths).
+std::vector<double> rows_of(long i) {
+  return std::vector<double>(static_cast<std::size_t>(i % 3), 2.0 * static_cast<double>(i));
+}
 
 TEST(OutputThread, WorksEverySampleInOrderWithItsState) {
   std::vector<Seen> seen;  // written by the output thread only, read after drain()
@@ -30,15 +35,14 @@ TEST(OutputThread, WorksEverySampleInOrderWithItsState) {
       /*capacity=*/4, /*batch=*/3);
   // The rows handed with a sample vary in length (the ring's slots are reused).
   for (long i = 0; i < 101; ++i)
-    thread.submit(0.25 * static_cast<double>(i), i, state_of(i), std::vector<double>(static_cast<std::size_t>(i % 3), 2.0 * static_cast<double>(i)));
+    thread.submit(0.25 * static_cast<double>(i), i, state_of(i), rows_of(i));
   thread.drain();
   ASSERT_EQ(seen.size(), 101U);
   for (long i = 0; i < 101; ++i) {
     EXPECT_EQ(seen[static_cast<std::size_t>(i)].sample, i);
     EXPECT_EQ(seen[static_cast<std::size_t>(i)].t, 0.25 * static_cast<double>(i));
     EXPECT_EQ(seen[static_cast<std::size_t>(i)].z, state_of(i));
-    EXPECT_EQ(seen[static_cast<std::size_t>(i)].rows,
-              std::vector<double>(static_cast<std::size_t>(i % 3), 2.0 * static_cast<double>(i)));
+    EXPECT_EQ(seen[static_cast<std::size_t>(i)].rows, rows_of(i));
   }
   EXPECT_GE(thread.busy_seconds(), 0.0);
 }
@@ -84,7 +88,9 @@ TEST(OutputThread, AFailureReachesTheRunThreadAndStopsTheWork) {
 TEST(OutputThread, QueuedSamplesAreWorkedBeforeTheThreadEnds) {
   std::vector<long> seen;
   {
-    OutputThread thread(1, [&](double, long sample, const std::vector<double>&, const std::vector<double>&) { seen.push_back(sample); }, 64, 16);
+    OutputThread thread(
+        1, [&](double, long sample, const std::vector<double>&, const std::vector<double>&) { seen.push_back(sample); },
+        64, 16);
     for (long i = 0; i < 5; ++i) thread.submit(0, i, {0.0}, {});  // fewer than a batch: never woken by submit
   }
   EXPECT_EQ(seen, (std::vector<long>{0, 1, 2, 3, 4}));
