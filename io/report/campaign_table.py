@@ -89,8 +89,9 @@ def _number(value):
 
 
 def _pocket_columns(summary, window_revolutions):
-    """Impacts per revolution (the report's contact events: runs of samples above its threshold on one
-    bar of one pocket, the same runs its impact markers mark), RMS and peaks of the bar forces."""
+    """Impacts per revolution (the report's contact events: the onsets of the step-resolved pocket
+    statistics where the file has them, else runs of samples above its threshold on one bar of one
+    pocket, the runs its impact markers mark), RMS and peaks of the bar forces (peaks: the steps' too)."""
     p = summary.get("pocket_forces")
     if not p:
         return {}

@@ -60,12 +60,11 @@ for sid, scene in manifest["scenes"].items():
         p = summary["scene_parameters"]
         ratio = p["bearing.roller_diameter"]["value"] / p["bearing.pitch_diameter"]["value"]
         loads = f[f"segments/{inner}/normal_force"][:][keep]
-        # Impacts: runs of samples above the threshold (1 % of the window's largest bar force, at
-        # least 1 mN) on one bar of one pocket; the cages turn in +z, so the front bar is cage_bar_front.
-        bars = {b: f[f"segments/cage_bar_{b}/normal_force"][:][keep] for b in ("front", "rear")}
-        threshold = max(0.01 * max(abs(v).max() for v in bars.values()), 1e-3)
-        runs = {b: sum(int(np.sum(np.diff(np.concatenate([[0], (abs(v[:, k]) > threshold).astype(int), [0]])) == 1))
-                       for k in range(v.shape[1])) for b, v in bars.items()}
+        # Impacts: the contact onsets at the integrator's steps (/cage/pocket_step_onsets) in the
+        # output intervals after the window's first sample; the cages turn in +z, so the front bar
+        # is side 0 (cage_bar_front).
+        onsets = f["cage/pocket_step_onsets"][:][np.flatnonzero(keep)[0] + 1:]
+        runs = {"front": int(onsets[:, :, 0].sum()), "rear": int(onsets[:, :, 1].sum())}
         epicyclic = 0.5 * (f["inner_ring/angular_velocity"][:][keep] * (1 - ratio)
                            + f["outer_ring/angular_velocity"][:][keep] * (1 + ratio))
     assert pocket.max() > 0, f"{sid}: no pocket force, the pocket metrics are not checked"

@@ -248,12 +248,12 @@ PY
     "$source_dir/jobs/scenes/default.toml" >"$work/huge.toml"
   for command in check run; do
     if [[ $command == run ]]; then run run "$work/huge.toml" -o "$work/huge.h5"; else run check "$work/huge.toml"; fi
-    [[ $rc -eq 2 ]] || fail "$command of a 48 GB output: exit code $rc, expected 2"
-    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 48 GB \(2e\+07 samples.*x 300 values x 8 bytes\), more than \[output\] max_size = 4 GB" "$work/err" ||
+    [[ $rc -eq 2 ]] || fail "$command of a 58 GB output: exit code $rc, expected 2"
+    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 58.2 GB \(2e\+07 samples.*x 364 values x 8 bytes\), more than \[output\] max_size = 4 GB" "$work/err" ||
       fail "$command: no size, key and limit in: $(cat "$work/err")"
   done
   [[ -e "$work/huge.h5" || -e "$work/huge.h5.partial" ]] && fail "a refused run created an output file"
-  # The limit is the scene's: 100 kB refuses the default scene's 482 kB, 1 MB lets it run.
+  # The limit is the scene's: 100 kB refuses the default scene's 585 kB, 1 MB lets it run.
   sed 's/^segments = true.*/segments = true\nmax_size = "100 kB"/' "$source_dir/jobs/scenes/default.toml" >"$work/small.toml"
   run check "$work/small.toml"
   [[ $rc -eq 2 ]] && grep -q "more than \[output\] max_size = 100 kB" "$work/err" || fail "max_size = 100 kB: exit $rc"
