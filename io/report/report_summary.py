@@ -232,9 +232,11 @@ def headlines(s, run):
                  f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
     if "pocket_forces" in s:
         p = s["pocket_forces"]
-        lines.append(f"pocket forces (threshold {p['threshold_n']:.3g} N): front {p['front']['events']} contacts, peak "
+        source = ("at every step" if p["statistics"]["events_peaks_impulses_contact_time"] == "steps"
+                  else f"in the samples, threshold {p['threshold_n']:.3g} N")
+        lines.append(f"pocket forces ({source}): front {p['front']['events']} contacts, peak "
                      f"{p['front']['peak_n']:.3g} N; rear {p['rear']['events']} contacts, peak {p['rear']['peak_n']:.3g} "
-                     f"N; {p['impacts']['count']} impacts in the whole run")
+                     f"N; {p['impacts']['count']} impacts in the whole run's samples")
     ld = s[f"{run.element}_load"]
     zone = ("loaded all round" if ld["loaded_all_round"] else
             f"load zone {ld['load_zone_width_deg']:.0f} deg wide centred at {ld['load_zone_centre_deg']:.0f} deg")
