@@ -136,17 +136,20 @@ void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::ve
     if (completed < n && clock_type::now() > deadline) {
       std::string silent;
       for (std::size_t i = 0; i < requests.size(); ++i)
-        if (!done[i] && ranks[i] >= 0) {
-          silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
-          if (const int end = subtree_end(ranks[i]); end > ranks[i] + 1)  // it passes on the replies of ranks below it
-            silent += " (or one of ranks " + std::to_string(ranks[i] + 1) + "-" + std::to_string(end - 1) + " below it)";
-        }
+        if (!done[i] && ranks[i] >= 0) silent += (silent.empty() ? "" : ", ") + silent_rank(ranks[i]);
       char timeout[32];
       std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
-      fail((silent.empty() ? std::string("the workers") : "rank " + silent) + " did not answer " + what + " within " +
-           timeout + " s (--rank-timeout): stopped, hung or lost; ending the job");
+      fail((silent.empty() ? std::string("the workers") : silent) + " did not answer " + what + " within " + timeout +
+           " s (--rank-timeout): stopped, hung or lost; ending the job");
     }
   }
+}
+
+std::string MpiExecutor::silent_rank(int r) const {
+  std::string s = "rank " + std::to_string(r);
+  if (const int end = subtree_end(r); end > r + 1)  // it passes on the replies of the ranks below it
+    s += " (or one of ranks " + std::to_string(r + 1) + "-" + std::to_string(end - 1) + " below it)";
+  return s;
 }
 
 void MpiExecutor::broadcast(double* buffer, int count, const std::string& what) {
@@ -204,7 +207,9 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   owner_[phase] = owner;
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
-  for (std::size_t t = 0; t < owner.size(); ++t) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+  tail_[phase].clear();  // a worker's: the tasks marked shared_task (the master sets its order after)
+  for (std::size_t t = 0; t < owner.size(); ++t)
+    (owner[t] == shared_task ? tail_[phase] : lists[static_cast<std::size_t>(owner[t])]).push_back(static_cast<int>(t));
 }
 
 void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
@@ -232,7 +237,17 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
   const bool first = owner_[phase].empty();
   if (!first) ++version_[phase];
-  set_owner(phase, plan.owner);
+  // The tail (tail_share of each rank's planned work, its cheapest tasks) is handed out on demand;
+  // owner_ keeps the whole plan (its predicted balance is what the re-planning policy judges).
+  std::vector<int> owner = plan.owner;
+  std::vector<int> tail;
+  if (size_ > 1 && options_.tail_share > 0) {
+    tail_cost_[phase] = model.empty() ? std::vector<double>(owner.size(), 1.0) : model;
+    tail = mark_tail(owner, tail_cost_[phase], options_.tail_share);
+  }
+  set_owner(phase, owner);
+  owner_[phase] = plan.owner;
+  tail_[phase] = std::move(tail);
   if (size_ > 1) {
     std::fill(message_.begin(), message_.end(), 0.0);
     message_[0] = command_plan;
@@ -242,7 +257,6 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     broadcast(message_.data(), static_cast<int>(message_size_), "a new plan");
     // The owners follow in a broadcast of their own: the command buffer holds a context, not a
     // task list, so every evaluation's broadcast is no longer than it needs to be.
-    std::vector<int> owner = plan.owner;
     broadcast_owners(owner);
   }
   PlanEvent e;
@@ -275,28 +289,33 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
 }
 
-void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                               double* records, double* seconds, bool in_task_order) {
+double MpiExecutor::run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
+                             std::span<double> record) const {
   // Everything a task can throw ends the job here, on whichever rank: the other ranks are inside
   // a command and would otherwise wait for this rank's records for ever.
+  const auto start = clock_type::now();
   try {
     if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
       throw std::runtime_error("injected failure at evaluation " + std::to_string(evaluation_) +
                                " (test-only option --inject-failure)");
-    const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
-    auto last = clock_type::now();
-    for (std::size_t i = 0; i < mine.size(); ++i) {
-      const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
-      task(context, mine[i], std::span<double>(records + at * static_cast<std::size_t>(record_size),
-                                                static_cast<std::size_t>(record_size)));
-      const auto now = clock_type::now();
-      seconds[at] = std::chrono::duration<double>(now - last).count();
-      last = now;
-    }
+    function(context, task, record);
   } catch (const std::exception& e) {
     fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) + ": " + e.what());
   } catch (...) {
     fail(std::string("unknown exception in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_));
+  }
+  return std::chrono::duration<double>(clock_type::now() - start).count();
+}
+
+void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
+                               double* records, double* seconds, bool in_task_order,
+                               const std::function<void(std::size_t)>& after_task) {
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+  const auto rs = static_cast<std::size_t>(record_size);
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
+    seconds[at] = run_task(phase, context, task, mine[i], std::span<double>(records + at * rs, rs));
+    if (after_task) after_task(mine.size() - i - 1);
   }
 }
 
@@ -389,16 +408,23 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   records.resize(static_cast<std::size_t>(task_count) * rs);
   auto& seconds = seconds_[phase];
   seconds.resize(static_cast<std::size_t>(task_count));
-  // The master's own tasks write their records in place (whole: zero beyond what they use, as a
-  // worker's unpacked ones are); the workers' are unpacked into theirs.
-  evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
   std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
-  for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
-  if (!requests.empty())
-    wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
+  if (!tail_[phase].empty()) {
+    evaluate_with_tail(phase, context, task, records, busy, requests, request_rank);
+  } else {
+    // The master's own tasks write their records in place (whole: zero beyond what they use, as a
+    // worker's unpacked ones are); the workers' are unpacked into theirs.
+    evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
+    for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
+    if (!requests.empty())
+      wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
+  }
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
-  const double wall = now_seconds() - wall_start;
-  // Cost model and balance statistics.
+  account(phase, context, busy, now_seconds() - wall_start);
+}
+
+void MpiExecutor::account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall) {
+  const auto& seconds = seconds_[phase];
   auto& cost = cost_[phase];
   if (cost.empty()) cost = seconds;
   else
@@ -457,7 +483,10 @@ const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
     std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
     broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
   }
-  holder_ = piece_holders(owner_[static_cast<int>(Phase::rhs)], catalogue_.parent);
+  // A tail task's record is on rank 0 whoever evaluated it (it came with a claim).
+  std::vector<int> owner = owner_[static_cast<int>(Phase::rhs)];
+  for (const int t : tail_[static_cast<int>(Phase::rhs)]) owner[static_cast<std::size_t>(t)] = 0;
+  holder_ = piece_holders(owner, catalogue_.parent);
   return holder_;
 }
 
@@ -545,8 +574,17 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     }
     full.resize(n * rs);
     seconds.resize(n);
-    evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
-                 record_size, function, full.data(), seconds.data(), false);
+    const std::span<const double> context(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size));
+    // With a tail: the first claim goes out claim_ahead tasks before the fixed list's end, so that
+    // rank 0's answer (given between its own tasks) is there when the list is done.
+    const bool tail = !tail_[phase].empty();
+    if (tail && n <= claim_ahead) send_claim(1, {});
+    const std::function<void(std::size_t)> claim_first = [&](std::size_t left) {
+      if (left == claim_ahead) send_claim(1, {});
+    };
+    evaluate_own(phase, context, record_size, function, full.data(), seconds.data(), false,
+                 tail && n > claim_ahead ? claim_first : std::function<void(std::size_t)>());
+    if (tail) claim_tail(phase, context, function);
     double* out = reply.data();
     for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
     std::copy(seconds.begin(), seconds.end(), out);
