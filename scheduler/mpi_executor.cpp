@@ -110,6 +110,7 @@ MpiExecutor::MpiExecutor(MPI_Comm comm, MpiExecutorOptions options) : comm_(comm
 
 MpiExecutor::~MpiExecutor() {
   if (is_master() && !stopped_) stop();
+  close_tail_window();  // collective: every rank gets here after stop
 }
 
 void MpiExecutor::fail(const std::string& what) const {
@@ -136,20 +137,17 @@ void MpiExecutor::wait_bounded(std::vector<MPI_Request>& requests, const std::ve
     if (completed < n && clock_type::now() > deadline) {
       std::string silent;
       for (std::size_t i = 0; i < requests.size(); ++i)
-        if (!done[i] && ranks[i] >= 0) silent += (silent.empty() ? "" : ", ") + silent_rank(ranks[i]);
+        if (!done[i] && ranks[i] >= 0) {
+          silent += (silent.empty() ? "" : ", ") + std::to_string(ranks[i]);
+          if (const int end = subtree_end(ranks[i]); end > ranks[i] + 1)  // it passes on the replies of ranks below it
+            silent += " (or one of ranks " + std::to_string(ranks[i] + 1) + "-" + std::to_string(end - 1) + " below it)";
+        }
       char timeout[32];
       std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
-      fail((silent.empty() ? std::string("the workers") : silent) + " did not answer " + what + " within " + timeout +
-           " s (--rank-timeout): stopped, hung or lost; ending the job");
+      fail((silent.empty() ? std::string("the workers") : "rank " + silent) + " did not answer " + what + " within " +
+           timeout + " s (--rank-timeout): stopped, hung or lost; ending the job");
     }
   }
-}
-
-std::string MpiExecutor::silent_rank(int r) const {
-  std::string s = "rank " + std::to_string(r);
-  if (const int end = subtree_end(r); end > r + 1)  // it passes on the replies of the ranks below it
-    s += " (or one of ranks " + std::to_string(r + 1) + "-" + std::to_string(end - 1) + " below it)";
-  return s;
 }
 
 void MpiExecutor::broadcast(double* buffer, int count, const std::string& what) {
@@ -170,9 +168,14 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   if (attached_) throw std::logic_error("MpiExecutor::attach called twice");
   catalogue_ = catalogue;
   catalogue_.function = {};  // the master runs the function run() is given; keep no references
+  const int max_record = *std::max_element(catalogue.record_size.begin(), catalogue.record_size.end());
+  const bool tail = size_ > 1 && options_.tail_share > 0;
   double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
-                               static_cast<double>(catalogue.context_size), 0, 0};
+                               static_cast<double>(catalogue.context_size), static_cast<double>(max_record), tail ? 1.0 : 0.0};
   broadcast(start, header_size, "the start of the run");
+  open_tail_window(tail, max_record);
+  if (tail && tail_window_ == MPI_WIN_NULL && options_.on_event)
+    options_.on_event("scheduler: no tail shared on demand (--tail-share): it needs every rank on rank 0's node");
   attached_ = true;
   message_size_ = header_size + static_cast<std::size_t>(catalogue.context_size);
   message_.assign(message_size_, 0.0);
@@ -207,9 +210,18 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   owner_[phase] = owner;
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
-  tail_[phase].clear();  // a worker's: the tasks marked shared_task (the master sets its order after)
-  for (std::size_t t = 0; t < owner.size(); ++t)
-    (owner[t] == shared_task ? tail_[phase] : lists[static_cast<std::size_t>(owner[t])]).push_back(static_cast<int>(t));
+  auto& tail = tail_[phase];
+  tail.clear();
+  for (std::size_t t = 0; t < owner.size(); ++t) {
+    if (owner[t] >= 0) {
+      lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+      continue;
+    }
+    // A tail task: shared_task - its position in the hand-out order (adopt_plan).
+    const auto at = static_cast<std::size_t>(shared_task - owner[t]);
+    if (tail.size() <= at) tail.resize(at + 1, -1);
+    tail[at] = static_cast<int>(t);
+  }
 }
 
 void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
@@ -237,17 +249,17 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
   const bool first = owner_[phase].empty();
   if (!first) ++version_[phase];
-  // The tail (tail_share of each rank's planned work, its cheapest tasks) is handed out on demand;
-  // owner_ keeps the whole plan (its predicted balance is what the re-planning policy judges).
+  // The tail (tail_share of each rank's planned work, its cheapest tasks) is claimed on demand; in
+  // the owners it is shared_task - its position in the hand-out order. owner_ keeps the whole plan
+  // (its predicted balance is what the re-planning policy judges).
   std::vector<int> owner = plan.owner;
-  std::vector<int> tail;
-  if (size_ > 1 && options_.tail_share > 0) {
-    tail_cost_[phase] = model.empty() ? std::vector<double>(owner.size(), 1.0) : model;
-    tail = mark_tail(owner, tail_cost_[phase], options_.tail_share);
+  if (tail_window_ != MPI_WIN_NULL) {
+    const std::vector<int> tail =
+        mark_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model, options_.tail_share);
+    for (std::size_t i = 0; i < tail.size(); ++i) owner[static_cast<std::size_t>(tail[i])] = shared_task - static_cast<int>(i);
   }
   set_owner(phase, owner);
   owner_[phase] = plan.owner;
-  tail_[phase] = std::move(tail);
   if (size_ > 1) {
     std::fill(message_.begin(), message_.end(), 0.0);
     message_[0] = command_plan;
@@ -295,9 +307,6 @@ double MpiExecutor::run_task(int phase, std::span<const double> context, const T
   // a command and would otherwise wait for this rank's records for ever.
   const auto start = clock_type::now();
   try {
-    if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
-      throw std::runtime_error("injected failure at evaluation " + std::to_string(evaluation_) +
-                               " (test-only option --inject-failure)");
     function(context, task, record);
   } catch (const std::exception& e) {
     fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) + ": " + e.what());
@@ -308,14 +317,15 @@ double MpiExecutor::run_task(int phase, std::span<const double> context, const T
 }
 
 void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                               double* records, double* seconds, bool in_task_order,
-                               const std::function<void(std::size_t)>& after_task) {
+                               double* records, double* seconds, bool in_task_order) {
+  if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
+    fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) +
+         ": injected failure at evaluation " + std::to_string(evaluation_) + " (test-only option --inject-failure)");
   const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
   const auto rs = static_cast<std::size_t>(record_size);
   for (std::size_t i = 0; i < mine.size(); ++i) {
     const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
     seconds[at] = run_task(phase, context, task, mine[i], std::span<double>(records + at * rs, rs));
-    if (after_task) after_task(mine.size() - i - 1);
   }
 }
 
@@ -378,6 +388,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   ++evaluation_;
   const double wall_start = now_seconds();
   const auto rs = static_cast<std::size_t>(record_size);
+  if (!tail_[phase].empty()) reset_tail_claims();  // before the command releases the workers
   if (size_ > 1) {
     message_[0] = command_evaluate;
     message_[1] = phase;
@@ -408,18 +419,17 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   records.resize(static_cast<std::size_t>(task_count) * rs);
   auto& seconds = seconds_[phase];
   seconds.resize(static_cast<std::size_t>(task_count));
+  // The master's own tasks write their records in place (whole: zero beyond what they use, as a
+  // worker's unpacked ones are); the workers' are unpacked into theirs.
+  evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
   std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
-  if (!tail_[phase].empty()) {
-    evaluate_with_tail(phase, context, task, records, busy, requests, request_rank);
-  } else {
-    // The master's own tasks write their records in place (whole: zero beyond what they use, as a
-    // worker's unpacked ones are); the workers' are unpacked into theirs.
-    evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
-    for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
-    if (!requests.empty())
-      wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
-  }
+  for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
+  if (!tail_[phase].empty() && capacity_[0] > 0)  // not with --master-share 0
+    busy[0] += evaluate_tail(phase, context, task, records.data(), seconds.data());
+  if (!requests.empty())
+    wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
+  if (!tail_[phase].empty()) collect_tail(phase, records, busy);
   account(phase, context, busy, now_seconds() - wall_start);
 }
 
@@ -483,7 +493,7 @@ const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
     std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
     broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
   }
-  // A tail task's record is on rank 0 whoever evaluated it (it came with a claim).
+  // A tail task's record is on rank 0 whoever evaluated it (collect_tail).
   std::vector<int> owner = owner_[static_cast<int>(Phase::rhs)];
   for (const int t : tail_[static_cast<int>(Phase::rhs)]) owner[static_cast<std::size_t>(t)] = 0;
   holder_ = piece_holders(owner, catalogue_.parent);
@@ -514,6 +524,7 @@ bool MpiExecutor::await_start() {
   catalogue_.context_size = static_cast<int>(start[3]);
   message_size_ = header_size + static_cast<std::size_t>(catalogue_.context_size);
   message_.assign(message_size_, 0.0);
+  open_tail_window(start[5] != 0, static_cast<int>(start[4]));
   attached_ = true;
   return true;
 }
@@ -575,16 +586,8 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     full.resize(n * rs);
     seconds.resize(n);
     const std::span<const double> context(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size));
-    // With a tail: the first claim goes out claim_ahead tasks before the fixed list's end, so that
-    // rank 0's answer (given between its own tasks) is there when the list is done.
-    const bool tail = !tail_[phase].empty();
-    if (tail && n <= claim_ahead) send_claim(1, {});
-    const std::function<void(std::size_t)> claim_first = [&](std::size_t left) {
-      if (left == claim_ahead) send_claim(1, {});
-    };
-    evaluate_own(phase, context, record_size, function, full.data(), seconds.data(), false,
-                 tail && n > claim_ahead ? claim_first : std::function<void(std::size_t)>());
-    if (tail) claim_tail(phase, context, function);
+    evaluate_own(phase, context, record_size, function, full.data(), seconds.data(), false);
+    if (!tail_[phase].empty()) evaluate_tail(phase, context, function, nullptr, nullptr);
     double* out = reply.data();
     for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
     std::copy(seconds.begin(), seconds.end(), out);

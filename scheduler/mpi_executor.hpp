@@ -14,9 +14,8 @@
 //                                 and collective writes, solver/driver/parallel_output.hpp);
 //   stop                       -> leave serve().
 // With a tail (MpiExecutorOptions::tail_share; scheduler/mpi_tail.cpp) part of each evaluation's
-// tasks are no rank's: a worker done with its fixed list claims them from rank 0 a few at a time
-// (claim and answer messages, the claimed tasks' records riding on the next claim), rank 0
-// answers between its own tasks and takes tail tasks itself when its list is done.
+// tasks are no rank's: every rank done with its fixed list claims them one by one (an atomic
+// counter in a shared-memory window) and writes their records there, where rank 0 picks them up.
 // Every command is one broadcast of a fixed-size buffer (header + context), so a worker never needs
 // to know in advance which command comes. Broadcasts are non-blocking
 // (MPI_Ibcast) on every rank, so the master can bound its waits. The master places the records in
@@ -120,14 +119,8 @@ class MpiExecutor final : public Executor {
   static constexpr double command_start = 1, command_evaluate = 2, command_plan = 3, command_stop = 4,
                           command_output = 5;
   static constexpr int header_size = 6;
-  /// A worker with a tail sends its first claim when this many tasks of its fixed list are left.
-  static constexpr std::size_t claim_ahead = 2;
-
-  class TailServer;  ///< rank 0's side of an evaluation with a tail (mpi_tail.cpp)
 
   [[noreturn]] void fail(const std::string& what) const;
-  /// "rank R" or "rank R (or one of ranks R+1-S below it)": a rank whose answer is missing.
-  std::string silent_rank(int r) const;
   /// A task of this rank's: evaluates `task` into record (whole), returns its seconds. Everything
   /// it throws ends the job (the other ranks would wait for its record for ever).
   double run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
@@ -152,19 +145,21 @@ class MpiExecutor final : public Executor {
   void set_owner(int phase, const std::vector<int>& owner);
   /// This rank's tasks of the phase's plan: records and seconds in task order (at task t) or packed
   /// in the order of the rank's task list.
-  /// after_task (optional) is called after each task with the number of tasks left.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                    double* records, double* seconds, bool in_task_order,
-                    const std::function<void(std::size_t)>& after_task = {});
-  /// Master: rank 0's own tasks, serving the workers' claims, then tail tasks, then the bounded
-  /// wait for `requests` (the command and the tree replies) and every worker's last claim.
-  void evaluate_with_tail(int phase, std::span<const double> context, const TaskFunction& task, std::vector<double>& records,
-                          std::vector<double>& busy, std::vector<MPI_Request>& requests, const std::vector<int>& request_rank);
-  /// Worker: claims and evaluates tail tasks until rank 0 has none left (after its fixed list; the
-  /// first claim went out from evaluate_own's after_task, claim_ahead tasks before the list's end).
-  void claim_tail(int phase, std::span<const double> context, const TaskFunction& function);
-  /// Worker: a claim (flag 1) or its last message (flag 0) to rank 0, with `packed` records.
-  void send_claim(double flag, const std::vector<double>& packed);
+                    double* records, double* seconds, bool in_task_order);
+  /// Both sides, right after the start command: the shared-memory window of the tail (its claim
+  /// counter and one slot per tail position), when `wanted` and every rank is on rank 0's node.
+  /// Collective. Sets tail_window_ (MPI_WIN_NULL: no tail).
+  void open_tail_window(bool wanted, int record_size);
+  void close_tail_window();
+  /// Master, before the command: the claim counter back to 0.
+  void reset_tail_claims();
+  /// Claims and evaluates tail tasks until none is left: rank 0's into `records` (at their task)
+  /// and `seconds`, a worker's into the window's slots. Returns the seconds this rank spent on them.
+  double evaluate_tail(int phase, std::span<const double> context, const TaskFunction& function, double* records,
+                       double* seconds);
+  /// Master, after every reply: the workers' tail records from the window into place.
+  void collect_tail(int phase, std::vector<double>& records, std::vector<double>& busy);
   /// Cost model bookkeeping after an evaluation: smoothed costs, imbalance, the log.
   void account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall);
   void maybe_replan(int phase);
@@ -185,8 +180,12 @@ class MpiExecutor final : public Executor {
   // Per phase:
   std::vector<int> owner_[phase_count];
   std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending (its fixed list)
-  std::vector<int> tail_[phase_count];  ///< the plan's tail in hand-out order (mark_tail); workers: any order
-  std::vector<double> tail_cost_[phase_count];  ///< master: per task, the cost the tail was chosen by
+  std::vector<int> tail_[phase_count];  ///< the plan's tail in hand-out order (mark_tail)
+  // The tail's window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
+  MPI_Comm node_comm_ = MPI_COMM_NULL;
+  MPI_Win tail_window_ = MPI_WIN_NULL;
+  double* tail_slots_ = nullptr;   ///< per tail position: rank, seconds, record
+  std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
   std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)
   int version_[phase_count] = {};
