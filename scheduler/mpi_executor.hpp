@@ -37,6 +37,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -184,7 +185,8 @@ class MpiExecutor final : public Executor {
   // The tail's window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
   MPI_Comm node_comm_ = MPI_COMM_NULL;
   MPI_Win tail_window_ = MPI_WIN_NULL;
-  double* tail_slots_ = nullptr;   ///< per tail position: rank, seconds, record
+  std::int64_t* tail_counter_ = nullptr;  ///< the claim counter, at the window's start
+  double* tail_slots_ = nullptr;        ///< per tail position: rank, seconds, record
   std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
   std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)

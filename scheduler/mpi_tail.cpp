@@ -9,8 +9,8 @@
 // How: the plan marks its tail (mark_tail: of each rank's tasks its cheapest, tail_share of its
 // load) and orders it, largest first; every rank knows the order from the plan's owners. In an
 // evaluation each rank evaluates its fixed list, then claims tail positions one by one from a
-// counter in rank 0's memory (MPI_Fetch_and_op on a shared-memory window: an atomic add, no
-// message, and nothing rank 0 has to serve) until the counter passes the tail's end. Rank 0
+// counter in rank 0's memory (an atomic add on a shared-memory window: no message, and nothing
+// rank 0 has to serve) until the counter passes the tail's end. Rank 0
 // writes its tail records in place; a worker writes each record, with its rank and seconds, to the
 // position's slot in the window, then (after MPI_Win_sync) sends its usual reply with its fixed
 // list. Once rank 0 has every reply, it copies the workers' slots into place. Every record lands at
@@ -23,11 +23,22 @@
 // each here, and about a hundred looks per evaluation cost more than the imbalance they remove
 // (measured, parallel_notes.md (j)). A window needs every rank on one node (shared memory): on
 // several nodes the tail is off (said at the start) and the fixed plan runs as before.
+#include <atomic>
 #include <cstdint>
 
 #include "scheduler/mpi_executor.hpp"
 
 namespace raceway::scheduler {
+
+namespace {
+
+// The claim counter is a lock-free std::atomic_ref, written by hand instead of MPI_Fetch_and_op:
+// Open MPI's shared-memory windows (osc sm) do a fetch-and-op under a spin lock, and a rank stopped
+// (SIGSTOP) while holding it would hold rank 0 in its next claim for ever, beyond --rank-timeout;
+// a single atomic instruction cannot be left half done.
+static_assert(std::atomic_ref<std::int64_t>::is_always_lock_free, "the claim counter must be lock-free");
+
+}  // namespace
 
 void MpiExecutor::open_tail_window(bool wanted, int record_size) {
   if (!wanted) return;
@@ -49,7 +60,8 @@ void MpiExecutor::open_tail_window(bool wanted, int record_size) {
   int unit = 0;
   void* base = nullptr;
   MPI_Win_shared_query(tail_window_, 0, &bytes, &unit, &base);
-  tail_slots_ = static_cast<double*>(base) + 1;
+  tail_counter_ = static_cast<std::int64_t*>(base);  // the window's memory is untyped: an int64, then doubles
+  tail_slots_ = reinterpret_cast<double*>(static_cast<char*>(base) + sizeof(std::int64_t));
   MPI_Win_lock_all(MPI_MODE_NOCHECK, tail_window_);  // one passive epoch for the whole run
   if (is_master()) reset_tail_claims();
 }
@@ -62,23 +74,16 @@ void MpiExecutor::close_tail_window() {
   if (node_comm_ != MPI_COMM_NULL) MPI_Comm_free(&node_comm_);
 }
 
-void MpiExecutor::reset_tail_claims() {
-  const std::int64_t zero = 0;
-  std::int64_t before = 0;
-  MPI_Fetch_and_op(&zero, &before, MPI_INT64_T, 0, 0, MPI_REPLACE, tail_window_);
-  MPI_Win_flush(0, tail_window_);
-}
+void MpiExecutor::reset_tail_claims() { std::atomic_ref<std::int64_t>(*tail_counter_).store(0, std::memory_order_release); }
 
 double MpiExecutor::evaluate_tail(int phase, std::span<const double> context, const TaskFunction& function,
                                   double* records, double* seconds) {
   const auto& tail = tail_[phase];
   const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
-  const std::int64_t one = 1;
+  std::atomic_ref<std::int64_t> counter(*tail_counter_);
   double spent = 0;
   for (;;) {
-    std::int64_t position = 0;
-    MPI_Fetch_and_op(&one, &position, MPI_INT64_T, 0, 0, MPI_SUM, tail_window_);
-    MPI_Win_flush(0, tail_window_);
+    const std::int64_t position = counter.fetch_add(1, std::memory_order_acq_rel);
     if (position >= static_cast<std::int64_t>(tail.size())) break;
     const auto t = static_cast<std::size_t>(tail[static_cast<std::size_t>(position)]);
     double* slot = tail_slots_ + static_cast<std::size_t>(position) * tail_slot_size_;
