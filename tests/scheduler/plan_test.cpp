@@ -174,7 +174,7 @@ TEST(Plan, TailTakesEachRanksCheapestShareLargestFirst) {
   const std::vector<double> cost{1, 2, 3, 4, 5, 0.5, 0.5, 4};
   const std::vector<int> plan{0, 0, 0, 0, 1, 1, 1, 1};
   std::vector<int> owner = plan;
-  const std::vector<int> tail = mark_tail(owner, cost, 0.3);  // at most 3 of each rank's 10
+  const std::vector<int> tail = mark_tail(owner, cost, 0.3, 0.0);  // at most 3 of each rank's 10
   // Rank 0: 1 + 2 = 3 (adding 3 would pass 3); rank 1: 0.5 + 0.5 (adding 4 would pass 3).
   EXPECT_EQ(tail, (std::vector<int>{1, 0, 5, 6}));  // by decreasing cost, ties by task
   EXPECT_EQ(owner, (std::vector<int>{shared_task, shared_task, 0, 0, 1, shared_task, shared_task, 1}));
@@ -184,6 +184,11 @@ TEST(Plan, TailTakesEachRanksCheapestShareLargestFirst) {
     if (owner[t] >= 0) fixed[owner[t]] += cost[t];
   EXPECT_GE(fixed[0], 7.0);
   EXPECT_GE(fixed[1], 7.0);
+
+  // Tasks below tail_floor of the largest (5) stay fixed: with floor 0.2, the 0.5s (below 1).
+  std::vector<int> floored = plan;
+  EXPECT_EQ(mark_tail(floored, cost, 0.3, 0.2), (std::vector<int>{1, 0}));
+  EXPECT_EQ(floored, (std::vector<int>{shared_task, shared_task, 0, 0, 1, 1, 1, 1}));
 
   std::vector<int> all = plan;
   EXPECT_EQ(mark_tail(all, cost, 1.0).size(), cost.size());  // share 1: every task, largest first
