@@ -122,9 +122,9 @@ class MpiExecutor final : public Executor {
   static constexpr int header_size = 6;
 
   [[noreturn]] void fail(const std::string& what) const;
-  /// A task of this rank's: evaluates `task` into record (whole), returns its seconds. Everything
-  /// it throws ends the job (the other ranks would wait for its record for ever).
-  double run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
+  /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
+  /// (the other ranks would wait for its record for ever).
+  void run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
                   std::span<double> record) const;
   /// Master: waits for the requests, at most rank_timeout seconds; ranks[i] is the rank that
   /// completes requests[i] (-1: a broadcast). Past the timeout, fails naming the silent ranks.

@@ -24,6 +24,7 @@
 // (measured, parallel_notes.md (j)). A window needs every rank on one node (shared memory): on
 // several nodes the tail is off (said at the start) and the fixed plan runs as before.
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 
 #include "scheduler/mpi_executor.hpp"
@@ -82,22 +83,20 @@ double MpiExecutor::evaluate_tail(int phase, std::span<const double> context, co
   const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
   std::atomic_ref<std::int64_t> counter(*tail_counter_);
   double spent = 0;
+  auto last = std::chrono::steady_clock::now();  // a task's seconds include its claim
   for (;;) {
     const std::int64_t position = counter.fetch_add(1, std::memory_order_acq_rel);
     if (position >= static_cast<std::int64_t>(tail.size())) break;
     const auto t = static_cast<std::size_t>(tail[static_cast<std::size_t>(position)]);
     double* slot = tail_slots_ + static_cast<std::size_t>(position) * tail_slot_size_;
-    if (records) {  // rank 0: in place
-      const double s = run_task(phase, context, function, static_cast<int>(t), std::span<double>(records + t * rs, rs));
-      seconds[t] = s;
-      slot[0] = 0;
-      spent += s;
-    } else {
-      const double s = run_task(phase, context, function, static_cast<int>(t), std::span<double>(slot + 2, rs));
-      slot[0] = rank_;
-      slot[1] = s;
-      spent += s;
-    }
+    // Rank 0 writes in place; a worker to the slot, with its rank and the seconds.
+    run_task(phase, context, function, static_cast<int>(t), std::span<double>(records ? records + t * rs : slot + 2, rs));
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    spent += s;
+    slot[0] = rank_;
+    (records ? seconds[t] : slot[1]) = s;
   }
   if (!records) MPI_Win_sync(tail_window_);  // the slots are written before this rank's reply leaves
   return spent;
