@@ -210,18 +210,9 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   owner_[phase] = owner;
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
-  auto& tail = tail_[phase];
-  tail.clear();
-  for (std::size_t t = 0; t < owner.size(); ++t) {
-    if (owner[t] >= 0) {
-      lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
-      continue;
-    }
-    // A tail task: shared_task - its position in the hand-out order (adopt_plan).
-    const auto at = static_cast<std::size_t>(shared_task - owner[t]);
-    if (tail.size() <= at) tail.resize(at + 1, -1);
-    tail[at] = static_cast<int>(t);
-  }
+  for (std::size_t t = 0; t < owner.size(); ++t)
+    if (owner[t] >= 0) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+  decode_tail(phase, owner);  // the tail tasks (negative owners)
 }
 
 void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
@@ -249,15 +240,10 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
   const bool first = owner_[phase].empty();
   if (!first) ++version_[phase];
-  // The tail (tail_share of each rank's planned work, its cheapest tasks) is claimed on demand; in
-  // the owners it is shared_task - its position in the hand-out order. owner_ keeps the whole plan
-  // (its predicted balance is what the re-planning policy judges).
+  // The tail (tail_share of each rank's planned work, its cheapest tasks) is claimed on demand
+  // (encode_tail). owner_ keeps the whole plan (its predicted balance is what re-planning judges).
   std::vector<int> owner = plan.owner;
-  if (tail_window_ != MPI_WIN_NULL) {
-    const std::vector<int> tail =
-        mark_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model, options_.tail_share);
-    for (std::size_t i = 0; i < tail.size(); ++i) owner[static_cast<std::size_t>(tail[i])] = shared_task - static_cast<int>(i);
-  }
+  if (tail_window_ != MPI_WIN_NULL) encode_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model);
   set_owner(phase, owner);
   owner_[phase] = plan.owner;
   if (size_ > 1) {
@@ -390,7 +376,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   ++evaluation_;
   const double wall_start = now_seconds();
   const auto rs = static_cast<std::size_t>(record_size);
-  if (!tail_[phase].empty()) reset_tail_claims();  // before the command releases the workers
+  if (!tail_[phase].empty()) reset_tail_claims(phase);  // before the command releases the workers
   if (size_ > 1) {
     message_[0] = command_evaluate;
     message_[1] = phase;

@@ -153,8 +153,16 @@ class MpiExecutor final : public Executor {
   /// Collective. Sets tail_window_ (MPI_WIN_NULL: no tail).
   void open_tail_window(bool wanted, int record_size);
   void close_tail_window();
-  /// Master, before the command: the claim counter back to 0.
-  void reset_tail_claims();
+  /// Master: marks the plan's tail in `owner` (mark_tail), each task as a negative code that says
+  /// its rank in the plan and its position in that rank's tail (largest first).
+  void encode_tail(std::vector<int>& owner, const std::vector<double>& cost) const;
+  /// Both sides: tail_ and tail_start_ from the codes (set_owner).
+  void decode_tail(int phase, const std::vector<int>& owner);
+  /// Master, before the command: every rank's tail whole again.
+  void reset_tail_claims(int phase);
+  /// The next tail position this rank evaluates (its own part's front, else the back of the part
+  /// with the most left); -1 when the tail is gone.
+  std::int64_t claim_tail_position(int phase);
   /// Claims and evaluates tail tasks until none is left: rank 0's into `records` (at their task)
   /// and `seconds`, a worker's into the window's slots. Returns the seconds this rank spent on them.
   double evaluate_tail(int phase, std::span<const double> context, const TaskFunction& function, double* records,
@@ -181,11 +189,12 @@ class MpiExecutor final : public Executor {
   // Per phase:
   std::vector<int> owner_[phase_count];
   std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending (its fixed list)
-  std::vector<int> tail_[phase_count];  ///< the plan's tail in hand-out order (mark_tail)
+  std::vector<int> tail_[phase_count];  ///< the plan's tail: rank 0's, rank 1's, ... (each largest first)
+  std::vector<int> tail_start_[phase_count];  ///< rank r's part of tail_ starts at [r], ends at [r + 1]
   // The tail's window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
   MPI_Comm node_comm_ = MPI_COMM_NULL;
   MPI_Win tail_window_ = MPI_WIN_NULL;
-  std::int64_t* tail_counter_ = nullptr;  ///< the claim counter, at the window's start
+  std::int64_t* tail_counter_ = nullptr;  ///< per rank a claim word (front, back), a cache line apart
   double* tail_slots_ = nullptr;        ///< per tail position: rank, seconds, record
   std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
