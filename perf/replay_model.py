@@ -30,11 +30,12 @@ time) and a latency/bandwidth model of the network:
                The breakdown splits it as: gather latency = (messages on the longest path) x L,
                gather bytes = the rest of (that time - makespan).
   tail       = with --tail-share S > 0 (the executor's --tail-share; scheduler/mpi_tail.cpp): the
-               plan's tail (mark_tail, ported below) is taken out of the ranks' loads and claimed
-               task by task, largest first, by the rank that is free first; each claim costs
-               --claim-us (an atomic add on a cache line the ranks share; plus one failing claim per
-               rank); a rank's reply carries its fixed list only (the tail's records go through
-               shared memory; rank 0's copy of them, about 1 us per evaluation, is not modelled).
+               plan's tail (mark_tail, ported below) is taken out of the ranks' loads; the rank free
+               first takes the front of its own part of it (largest first), or when that is gone
+               the back of the part with the most left; each claim costs --claim-us (a compare-and-
+               swap on a cache line the ranks share; plus one failing claim per rank); a rank's
+               reply carries its fixed list only (the tail's records go through shared memory; rank
+               0's copy of them, about 1 us per evaluation, is not modelled).
 
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
@@ -167,13 +168,16 @@ def mark_tail(owner, cost, share, ranks, floor=0.1):
 
 
 def claim_tail(load, owner, cost, tail, claim):
-    """Ranks' finish times: their fixed lists, then the tail's tasks in order to the rank free
-    first, each claim costing `claim` (and one failing claim per rank at the end)."""
+    """Ranks' finish times: their fixed lists, then the tail as mpi_tail.cpp claims it: the rank
+    free first takes its own part's front, else the back of the fullest part; each claim costs
+    `claim` (and one failing claim per rank at the end)."""
     ready = list(load)
+    parts = [[t for t in tail if owner[t] == r] for r in range(len(ready))]  # each largest first
     for t in tail:
         ready[owner[t]] -= cost[t]
-    for t in tail:
+    for _ in tail:
         r = min(range(len(ready)), key=lambda q: ready[q])
+        t = parts[r].pop(0) if parts[r] else parts[max(range(len(parts)), key=lambda q: len(parts[q]))].pop()
         ready[r] += claim + cost[t]
     return [x + claim for x in ready] if tail else ready
 
