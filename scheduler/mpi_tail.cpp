@@ -13,9 +13,8 @@
 // with the most left (the smallest tasks, which fill the gaps best), until every part is gone. A
 // part's claims are a word in rank 0's memory, a shared-memory window: front and back index,
 // changed by compare-and-swap (no message, nothing rank 0 has to serve). When the ranks are
-// balanced each evaluates its own part, the same tasks at every evaluation (their data stay in its
-// caches: handing the whole tail out in one shared order made every task 2-3 % slower); only what
-// the scatter needs moves. Rank 0 writes its tail records in place; a worker writes each record, with
+// balanced each evaluates its own part, the same tasks at every evaluation, and only what the
+// scatter needs moves; at many ranks the claims spread over P cache lines instead of one. Rank 0 writes its tail records in place; a worker writes each record, with
 // its rank and seconds, to the position's slot in the window, then (after MPI_Win_sync) sends its
 // usual reply with its fixed list. Once rank 0 has every reply, it copies the workers' slots into
 // place. Every record lands at its task and the equations sum the records in task order: the bits
