@@ -29,13 +29,23 @@ time) and a latency/bandwidth model of the network:
                m / B) after the makespan, the tree ceil(log2 P) L + about (P - 1) m / B.
                The breakdown splits it as: gather latency = (messages on the longest path) x L,
                gather bytes = the rest of (that time - makespan).
+  tail       = with --tail-share S > 0 (the executor's --tail-share; scheduler/mpi_tail.cpp): the
+               plan's tail (mark_tail, ported below) is taken out of the ranks' loads; the rank free
+               first takes the front of its own part of it (largest first), or when that is gone
+               the back of the part with the most left; each claim costs --claim-us (a compare-and-
+               swap on a cache line the ranks share; plus one failing claim per rank); a rank's
+               reply carries its fixed list only (the tail's records go through shared memory; rank
+               0's copy of them, about 1 us per evaluation, is not modelled).
 
 L, B: one-way latency and bandwidth. Sets: "here" (measured with perf/pingpong on this machine,
 shared memory), "infiniband" (typical cluster: 1.5 us, 10 GB/s). The model assumes one core per
 rank and the plan's balance for the time-averaged costs (the adaptive scheduler's job); what it
 leaves out (the scatter of task times from one evaluation to the next, which the slowest rank
 sets; polling, waking a waiting rank and unpacking the replies, about 5 us per evaluation at np=2
-here; other processes, cache effects) shows up in the check against measured np = 2.
+here; other processes, cache effects) shows up in the check against measured np = 2. So the model
+gives the tail only what it does against the plan's residual imbalance of time-averaged costs (and
+its claims' cost), never its real purpose, the per-evaluation scatter: for the tail its
+predictions are a lower bound on the gain (perf/results/parallel_notes.md (j) has the measured one).
 
     replay_model.py [--latency-us L --bandwidth-gbs B] [--measured-np2 S] RUN_NP1.h5 [...]
 """
@@ -138,6 +148,40 @@ def lpt_level2(cost, group, ranks, parent=None, tolerance=0.02, split_share=0.1)
     return owner, load
 
 
+def mark_tail(owner, cost, share, ranks, floor=0.1):
+    """Port of scheduler/plan.cpp's mark_tail: per rank its cheapest tasks of at least floor x the
+    largest cost, up to share of its load (share 1: every task); the tail largest first."""
+    if share <= 0:
+        return []
+    least = floor * max(cost) if share < 1 else 0.0
+    tail = []
+    for r in range(ranks):
+        mine = [t for t in range(len(cost)) if owner[t] == r]
+        load = sum(cost[t] for t in mine)
+        taken = 0.0
+        for t in sorted((t for t in mine if cost[t] >= least), key=lambda t: (cost[t], -t)):
+            if share < 1 and taken + cost[t] > share * load:
+                break
+            taken += cost[t]
+            tail.append(t)
+    return sorted(tail, key=lambda t: (-cost[t], t))
+
+
+def claim_tail(load, owner, cost, tail, claim):
+    """Ranks' finish times: their fixed lists, then the tail as mpi_tail.cpp claims it: the rank
+    free first takes its own part's front, else the back of the fullest part; each claim costs
+    `claim` (and one failing claim per rank at the end)."""
+    ready = list(load)
+    parts = [[t for t in tail if owner[t] == r] for r in range(len(ready))]  # each largest first
+    for t in tail:
+        ready[owner[t]] -= cost[t]
+    for _ in tail:
+        r = min(range(len(ready)), key=lambda q: ready[q])
+        t = parts[r].pop(0) if parts[r] else parts[max(range(len(parts)), key=lambda q: len(parts[q]))].pop()
+        ready[r] += claim + cost[t]
+    return [x + claim for x in ready] if tail else ready
+
+
 def read_run(path):
     with h5py.File(path, "r") as f:
         g = f["scheduler"]
@@ -190,37 +234,43 @@ def gather_finish(load, reply, children, latency, bandwidth):
     return done[0], hops[0]
 
 
-def evaluation_parts(run, ph, ranks, latency, bandwidth):
+def evaluation_parts(run, ph, ranks, latency, bandwidth, tail_share=0.0, claim=0.0):
     """One evaluation of phase ph at `ranks` ranks: broadcast, makespan, ideal makespan (sum / P),
     gather latency part, gather bandwidth part (seconds)."""
     cost, group = ph["cost"], run["group"]
     owner, load = lpt_level2(cost, group, ranks, run["parent"])
+    tail = mark_tail(owner, cost, tail_share, ranks)
+    load = claim_tail(load, owner, cost, tail, claim)
+    shared = set(tail)
+    owner = [-1 if t in shared else o for t, o in enumerate(owner)]
     cmd_doubles = 6 + (run["context"] if ph["per_task_sizes"] else max(run["context"], len(cost)))
     t_bcast = math.ceil(math.log2(ranks)) * (latency + 8 * cmd_doubles / bandwidth)
     reply = [0] * ranks  # doubles per rank's reply: its tasks' used doubles and one seconds each
     for t, o in enumerate(owner):
-        reply[o] += ph["sizes"][t] + 1
+        if o >= 0:  # a tail task's record goes through shared memory
+            reply[o] += ph["sizes"][t] + 1
     finish, hops = gather_finish(load, reply, gather_tree(ranks, ph["per_task_sizes"]), latency, bandwidth)
     gather = finish - max(load)
     return t_bcast, max(load), sum(cost) / ranks, min(gather, hops * latency), max(0.0, gather - hops * latency)
 
 
-def predict(run, ranks, latency, bandwidth, serial_cut=0.0):
+def predict(run, ranks, latency, bandwidth, serial_cut=0.0, tail_share=0.0, claim=0.0):
     serial = run["wall"] - sum(p["total"] for p in run["phases"].values()) - serial_cut
     t = serial
     for ph in run["phases"].values():
         if ranks == 1:
             t += ph["n"] * sum(ph["cost"])
             continue
-        t_bcast, makespan, _, gather_latency, gather_bytes = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        t_bcast, makespan, _, gather_latency, gather_bytes = evaluation_parts(run, ph, ranks, latency, bandwidth,
+                                                                              tail_share, claim)
         t += ph["n"] * (t_bcast + makespan + gather_latency + gather_bytes)
     return t, serial
 
 
-def print_breakdown(run, ranks, latency, bandwidth):
+def print_breakdown(run, ranks, latency, bandwidth, **tail):
     """Where the time of the task part goes at `ranks` ranks, per evaluation and over the run."""
     for name, ph in run["phases"].items():
-        b, m, ideal, gl, gb = evaluation_parts(run, ph, ranks, latency, bandwidth)
+        b, m, ideal, gl, gb = evaluation_parts(run, ph, ranks, latency, bandwidth, **tail)
         n = ph["n"]
         print(f"  {name} at P={ranks}, per evaluation (over the run): broadcast {1e6 * b:.2f} us ({n * b:.3f} s), "
               f"makespan {1e6 * m:.2f} us ({n * m:.3f} s; ideal sum/P {1e6 * ideal:.2f} us, imbalance {m / ideal:.3f}, "
@@ -236,9 +286,14 @@ def main():
     ap.add_argument("--bandwidth-gbs", type=float, default=None, help="measured bandwidth here (pingpong)")
     ap.add_argument("--measured-np2", type=float, action="append", default=[],
                     help="measured np=2 speed-up of the i-th run (repeat per run; 0 = none)")
+    ap.add_argument("--tail-share", type=float, default=0.1,
+                    help="the executor's --tail-share (its default 0.1): the tail claimed on demand; 0: off")
+    ap.add_argument("--claim-us", type=float, default=0.15,
+                    help="cost of one claim of a tail task (an atomic add on a shared cache line)")
     ap.add_argument("--table", help="write the predictions as CSV (scene, network, ranks, wall, speed-up, "
                     "efficiency) for `raceway plan`; the scene is the run file's name without .h5")
     args = ap.parse_args()
+    tl = {"tail_share": args.tail_share, "claim": args.claim_us * 1e-6}
     table = []
     networks = []
     if args.latency_us is not None:
@@ -269,25 +324,29 @@ def main():
             print(f"network {name}: latency {lat * 1e6:.2f} us, bandwidth {bw / 1e9:.2f} GB/s")
             print("   P  predicted_wall_s  speedup  efficiency")
             for p in [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64]:
-                tp, _ = predict(run, p, lat, bw)
+                tp, _ = predict(run, p, lat, bw, **tl)
                 print(f"{p:4d}  {tp:16.3f}  {t1 / tp:7.2f}  {t1 / tp / p:10.3f}")
                 scene = path.rsplit("/", 1)[-1].removesuffix(".h5")
                 table.append(f"{scene},{name},{p},{tp:.4f},{t1 / tp:.3f},{t1 / tp / p:.3f}")
-            effs = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (8, 16, 32)}
+            effs = {p: t1 / predict(run, p, lat, bw, **tl)[0] / p for p in (8, 16, 32)}
             print("efficiency at 8, 16, 32 ranks: " + ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
-            print_breakdown(run, 16, lat, bw)
+            if args.tail_share > 0:
+                off = {p: t1 / predict(run, p, lat, bw)[0] / p for p in (2, 8, 16, 32)}
+                print(f"  tail share {args.tail_share:g} against none (efficiency at 2, 8, 16, 32 ranks): " +
+                      ", ".join(f"{p}: {t1 / predict(run, p, lat, bw, **tl)[0] / p:.3f} / {e:.3f}" for p, e in off.items()))
+            print_breakdown(run, 16, lat, bw, **tl)
             if run["output_write"] > 0:
                 cut = run["output_write"]
-                effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
+                effs = {p: t1 / predict(run, p, lat, bw, cut, **tl)[0] / p for p in (8, 16, 32)}
                 print(f"  what if output writing ({cut:.3f} s) left rank 0 (T(1) kept): " +
                       ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
                 cut = serial - run["split"].get("integrator", 0) - run["split"].get("linear_setup", 0) \
                     - run["split"].get("linear_solve", 0)
-                effs = {p: t1 / predict(run, p, lat, bw, cut)[0] / p for p in (8, 16, 32)}
+                effs = {p: t1 / predict(run, p, lat, bw, cut, **tl)[0] / p for p in (8, 16, 32)}
                 print(f"  what if all but the integrator and the Newton linear algebra ({cut:.3f} s) left rank 0: " +
                       ", ".join(f"{p}: {e:.2f}" for p, e in effs.items()))
             if name == "here" and i < len(args.measured_np2) and args.measured_np2[i] > 0:
-                s2 = t1 / predict(run, 2, lat, bw)[0]
+                s2 = t1 / predict(run, 2, lat, bw, **tl)[0]
                 m = args.measured_np2[i]
                 print(f"check np=2: predicted speed-up {s2:.3f}, measured {m:.3f}, "
                       f"difference {100 * (s2 - m) / m:+.1f} %")

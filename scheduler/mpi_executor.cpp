@@ -110,6 +110,7 @@ MpiExecutor::MpiExecutor(MPI_Comm comm, MpiExecutorOptions options) : comm_(comm
 
 MpiExecutor::~MpiExecutor() {
   if (is_master() && !stopped_) stop();
+  close_tail_window();  // collective: every rank gets here after stop
 }
 
 void MpiExecutor::fail(const std::string& what) const {
@@ -167,9 +168,14 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   if (attached_) throw std::logic_error("MpiExecutor::attach called twice");
   catalogue_ = catalogue;
   catalogue_.function = {};  // the master runs the function run() is given; keep no references
+  const int max_record = *std::max_element(catalogue.record_size.begin(), catalogue.record_size.end());
+  const bool tail = size_ > 1 && options_.tail_share > 0;
   double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
-                               static_cast<double>(catalogue.context_size), 0, 0};
+                               static_cast<double>(catalogue.context_size), static_cast<double>(max_record), tail ? 1.0 : 0.0};
   broadcast(start, header_size, "the start of the run");
+  open_tail_window(tail, max_record);
+  if (tail && tail_window_ == MPI_WIN_NULL && options_.on_event)
+    options_.on_event("scheduler: no tail shared on demand (--tail-share): it needs every rank on rank 0's node");
   attached_ = true;
   message_size_ = header_size + static_cast<std::size_t>(catalogue.context_size);
   message_.assign(message_size_, 0.0);
@@ -204,7 +210,9 @@ void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
   owner_[phase] = owner;
   auto& lists = tasks_of_[phase];
   lists.assign(static_cast<std::size_t>(size_), {});
-  for (std::size_t t = 0; t < owner.size(); ++t) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+  for (std::size_t t = 0; t < owner.size(); ++t)
+    if (owner[t] >= 0) lists[static_cast<std::size_t>(owner[t])].push_back(static_cast<int>(t));
+  decode_tail(phase, owner);  // the tail tasks (negative owners)
 }
 
 void MpiExecutor::broadcast_owners(std::vector<int>& owner) {
@@ -232,7 +240,12 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
   const bool first = owner_[phase].empty();
   if (!first) ++version_[phase];
-  set_owner(phase, plan.owner);
+  // The tail (tail_share of each rank's planned work, its cheapest tasks) is claimed on demand
+  // (encode_tail). owner_ keeps the whole plan (its predicted balance is what re-planning judges).
+  std::vector<int> owner = plan.owner;
+  if (tail_window_ != MPI_WIN_NULL) encode_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model);
+  set_owner(phase, owner);
+  owner_[phase] = plan.owner;
   if (size_ > 1) {
     std::fill(message_.begin(), message_.end(), 0.0);
     message_[0] = command_plan;
@@ -242,7 +255,6 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     broadcast(message_.data(), static_cast<int>(message_size_), "a new plan");
     // The owners follow in a broadcast of their own: the command buffer holds a context, not a
     // task list, so every evaluation's broadcast is no longer than it needs to be.
-    std::vector<int> owner = plan.owner;
     broadcast_owners(owner);
   }
   PlanEvent e;
@@ -275,28 +287,33 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   }
 }
 
-void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
-                               double* records, double* seconds, bool in_task_order) {
+void MpiExecutor::run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
+                           std::span<double> record) const {
   // Everything a task can throw ends the job here, on whichever rank: the other ranks are inside
   // a command and would otherwise wait for this rank's records for ever.
   try {
-    if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
-      throw std::runtime_error("injected failure at evaluation " + std::to_string(evaluation_) +
-                               " (test-only option --inject-failure)");
-    const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
-    auto last = clock_type::now();
-    for (std::size_t i = 0; i < mine.size(); ++i) {
-      const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
-      task(context, mine[i], std::span<double>(records + at * static_cast<std::size_t>(record_size),
-                                                static_cast<std::size_t>(record_size)));
-      const auto now = clock_type::now();
-      seconds[at] = std::chrono::duration<double>(now - last).count();
-      last = now;
-    }
+    function(context, task, record);
   } catch (const std::exception& e) {
     fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) + ": " + e.what());
   } catch (...) {
     fail(std::string("unknown exception in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_));
+  }
+}
+
+void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
+                               double* records, double* seconds, bool in_task_order) {
+  if (rank_ == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
+    fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) +
+         ": injected failure at evaluation " + std::to_string(evaluation_) + " (test-only option --inject-failure)");
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+  const auto rs = static_cast<std::size_t>(record_size);
+  auto last = clock_type::now();  // one clock reading per task: a task's seconds run to the next's start
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
+    run_task(phase, context, task, mine[i], std::span<double>(records + at * rs, rs));
+    const auto now = clock_type::now();
+    seconds[at] = std::chrono::duration<double>(now - last).count();
+    last = now;
   }
 }
 
@@ -359,6 +376,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   ++evaluation_;
   const double wall_start = now_seconds();
   const auto rs = static_cast<std::size_t>(record_size);
+  if (!tail_[phase].empty()) reset_tail_claims(phase);  // before the command releases the workers
   if (size_ > 1) {
     message_[0] = command_evaluate;
     message_[1] = phase;
@@ -394,11 +412,17 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   evaluate_own(phase, context, record_size, task, records.data(), seconds.data(), true);
   std::vector<double> busy(static_cast<std::size_t>(size_), 0.0);
   for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
+  if (!tail_[phase].empty() && capacity_[0] > 0)  // not with --master-share 0
+    busy[0] += evaluate_tail(phase, context, task, records.data(), seconds.data());
   if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
-  const double wall = now_seconds() - wall_start;
-  // Cost model and balance statistics.
+  if (!tail_[phase].empty()) collect_tail(phase, records, busy);
+  account(phase, context, busy, now_seconds() - wall_start);
+}
+
+void MpiExecutor::account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall) {
+  const auto& seconds = seconds_[phase];
   auto& cost = cost_[phase];
   if (cost.empty()) cost = seconds;
   else
@@ -448,33 +472,6 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   }
 }
 
-const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
-  if (!is_master() || !attached_ || stopped_) throw std::logic_error("MpiExecutor::output is for rank 0, between attach() and stop()");
-  if (payload.size() + header_size > message_size_) throw std::invalid_argument("MpiExecutor::output: payload too long");
-  if (size_ > 1) {
-    std::fill(message_.begin(), message_.end(), 0.0);
-    message_[0] = command_output;
-    std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
-    broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
-  }
-  holder_ = piece_holders(owner_[static_cast<int>(Phase::rhs)], catalogue_.parent);
-  return holder_;
-}
-
-std::vector<int> piece_holders(std::span<const int> owner, std::span<const int> parent) {
-  if (parent.empty()) return {owner.begin(), owner.end()};
-  const int pieces = *std::max_element(parent.begin(), parent.end()) + 1;
-  std::vector<int> tasks(static_cast<std::size_t>(pieces), 0), holder(static_cast<std::size_t>(pieces), 0);
-  for (std::size_t t = 0; t < parent.size(); ++t) {
-    const auto p = static_cast<std::size_t>(parent[t]);
-    ++tasks[p];
-    holder[p] = owner[t];
-  }
-  for (std::size_t p = 0; p < holder.size(); ++p)
-    if (tasks[p] > 1) holder[p] = 0;  // a piece cut into tasks: the master combines its records
-  return holder;
-}
-
 bool MpiExecutor::await_start() {
   if (is_master()) throw std::logic_error("MpiExecutor::await_start is for workers");
   double start[header_size];
@@ -485,6 +482,7 @@ bool MpiExecutor::await_start() {
   catalogue_.context_size = static_cast<int>(start[3]);
   message_size_ = header_size + static_cast<std::size_t>(catalogue_.context_size);
   message_.assign(message_size_, 0.0);
+  open_tail_window(start[5] != 0, static_cast<int>(start[4]));
   attached_ = true;
   return true;
 }
@@ -545,8 +543,9 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     }
     full.resize(n * rs);
     seconds.resize(n);
-    evaluate_own(phase, std::span<const double>(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size)),
-                 record_size, function, full.data(), seconds.data(), false);
+    const std::span<const double> context(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size));
+    evaluate_own(phase, context, record_size, function, full.data(), seconds.data(), false);
+    if (!tail_[phase].empty()) evaluate_tail(phase, context, function, nullptr, nullptr);
     double* out = reply.data();
     for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
     std::copy(seconds.begin(), seconds.end(), out);

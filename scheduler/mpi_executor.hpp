@@ -13,6 +13,9 @@
 //                                 this rank's last rhs evaluation (the parallel output's samples
 //                                 and collective writes, solver/driver/parallel_output.hpp);
 //   stop                       -> leave serve().
+// With a tail (MpiExecutorOptions::tail_share; scheduler/mpi_tail.cpp) part of each evaluation's
+// tasks are no rank's: every rank done with its fixed list claims them one by one (an atomic
+// counter in a shared-memory window) and writes their records there, where rank 0 picks them up.
 // Every command is one broadcast of a fixed-size buffer (header + context), so a worker never needs
 // to know in advance which command comes. Broadcasts are non-blocking
 // (MPI_Ibcast) on every rank, so the master can bound its waits. The master places the records in
@@ -34,6 +37,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -60,6 +64,10 @@ struct MpiExecutorOptions {
   long inject_failure_evaluation = 0;
   /// Every n-th evaluation's balance goes into ScheduleLog::samples.
   int sample_every = 1;
+  /// Fraction of each rank's planned work handed out on demand within an evaluation (the plan's
+  /// tail, mark_tail; scheduler/mpi_tail.cpp): every rank evaluates its fixed list, then claims
+  /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand.
+  double tail_share = 0.1;
   /// Master: seconds to wait for the workers' answer to one command before ending the job.
   double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).
@@ -114,6 +122,10 @@ class MpiExecutor final : public Executor {
   static constexpr int header_size = 6;
 
   [[noreturn]] void fail(const std::string& what) const;
+  /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
+  /// (the other ranks would wait for its record for ever).
+  void run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
+                  std::span<double> record) const;
   /// Master: waits for the requests, at most rank_timeout seconds; ranks[i] is the rank that
   /// completes requests[i] (-1: a broadcast). Past the timeout, fails naming the silent ranks.
   void wait_bounded(std::vector<MPI_Request>& requests, const std::vector<int>& ranks, const std::string& what);
@@ -136,6 +148,29 @@ class MpiExecutor final : public Executor {
   /// in the order of the rank's task list.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds, bool in_task_order);
+  /// Both sides, right after the start command: the shared-memory window of the tail (its claim
+  /// counter and one slot per tail position), when `wanted` and every rank is on rank 0's node.
+  /// Collective. Sets tail_window_ (MPI_WIN_NULL: no tail).
+  void open_tail_window(bool wanted, int record_size);
+  void close_tail_window();
+  /// Master: marks the plan's tail in `owner` (mark_tail), each task as a negative code that says
+  /// its rank in the plan and its position in that rank's tail (largest first).
+  void encode_tail(std::vector<int>& owner, const std::vector<double>& cost) const;
+  /// Both sides: tail_ and tail_start_ from the codes (set_owner).
+  void decode_tail(int phase, const std::vector<int>& owner);
+  /// Master, before the command: every rank's tail whole again.
+  void reset_tail_claims(int phase);
+  /// The next tail position this rank evaluates (its own part's front, else the back of the part
+  /// with the most left); -1 when the tail is gone.
+  std::int64_t claim_tail_position(int phase);
+  /// Claims and evaluates tail tasks until none is left: rank 0's into `records` (at their task)
+  /// and `seconds`, a worker's into the window's slots. Returns the seconds this rank spent on them.
+  double evaluate_tail(int phase, std::span<const double> context, const TaskFunction& function, double* records,
+                       double* seconds);
+  /// Master, after every reply: the workers' tail records from the window into place.
+  void collect_tail(int phase, std::vector<double>& records, std::vector<double>& busy);
+  /// Cost model bookkeeping after an evaluation: smoothed costs, imbalance, the log.
+  void account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall);
   void maybe_replan(int phase);
   /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
   /// cost times the measured per-task ratio (once measured), so they follow the moving work.
@@ -153,7 +188,15 @@ class MpiExecutor final : public Executor {
   long evaluation_ = 0;  ///< evaluate commands so far (all phases)
   // Per phase:
   std::vector<int> owner_[phase_count];
-  std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending
+  std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending (its fixed list)
+  std::vector<int> tail_[phase_count];  ///< the plan's tail: rank 0's, rank 1's, ... (each largest first)
+  std::vector<int> tail_start_[phase_count];  ///< rank r's part of tail_ starts at [r], ends at [r + 1]
+  // The tail's window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
+  MPI_Comm node_comm_ = MPI_COMM_NULL;
+  MPI_Win tail_window_ = MPI_WIN_NULL;
+  std::int64_t* tail_counter_ = nullptr;  ///< per rank a claim word (front, back), a cache line apart
+  double* tail_slots_ = nullptr;        ///< per tail position: rank, seconds, record
+  std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
   std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)
   int version_[phase_count] = {};

@@ -1,6 +1,8 @@
 // The MPI executor's replies: what a worker sends back per evaluation (of each task's record only
-// the doubles it fills, then the tasks' seconds) and the tree they travel to rank 0.
+// the doubles it fills, then the tasks' seconds) and the tree they travel to rank 0; which rank
+// holds which piece's record afterwards (output()).
 #include <algorithm>
+#include <stdexcept>
 
 #include "scheduler/mpi_executor.hpp"
 
@@ -55,6 +57,36 @@ std::size_t MpiExecutor::packed_size(int phase, const std::vector<int>& tasks) c
   std::size_t n = 0;
   for (const int t : tasks) n += static_cast<std::size_t>(catalogue_.used(phase, t));
   return n;
+}
+
+const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
+  if (!is_master() || !attached_ || stopped_) throw std::logic_error("MpiExecutor::output is for rank 0, between attach() and stop()");
+  if (payload.size() + header_size > message_size_) throw std::invalid_argument("MpiExecutor::output: payload too long");
+  if (size_ > 1) {
+    std::fill(message_.begin(), message_.end(), 0.0);
+    message_[0] = command_output;
+    std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
+    broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
+  }
+  // A tail task's record is on rank 0 whoever evaluated it (collect_tail).
+  std::vector<int> owner = owner_[static_cast<int>(Phase::rhs)];
+  for (const int t : tail_[static_cast<int>(Phase::rhs)]) owner[static_cast<std::size_t>(t)] = 0;
+  holder_ = piece_holders(owner, catalogue_.parent);
+  return holder_;
+}
+
+std::vector<int> piece_holders(std::span<const int> owner, std::span<const int> parent) {
+  if (parent.empty()) return {owner.begin(), owner.end()};
+  const int pieces = *std::max_element(parent.begin(), parent.end()) + 1;
+  std::vector<int> tasks(static_cast<std::size_t>(pieces), 0), holder(static_cast<std::size_t>(pieces), 0);
+  for (std::size_t t = 0; t < parent.size(); ++t) {
+    const auto p = static_cast<std::size_t>(parent[t]);
+    ++tasks[p];
+    holder[p] = owner[t];
+  }
+  for (std::size_t p = 0; p < holder.size(); ++p)
+    if (tasks[p] > 1) holder[p] = 0;  // a piece cut into tasks: the master combines its records
+  return holder;
 }
 
 }  // namespace raceway::scheduler

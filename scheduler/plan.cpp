@@ -316,4 +316,40 @@ Plan make_plan(std::span<const double> cost, const TaskCatalogue& cat, std::span
   return plan;
 }
 
+std::vector<int> mark_tail(std::vector<int>& owner, std::span<const double> cost, double share, double tail_floor) {
+  std::vector<int> tail;
+  if (share <= 0 || owner.empty()) return tail;
+  const int ranks = *std::max_element(owner.begin(), owner.end()) + 1;
+  // Claiming a task costs an atomic add on a cache line all ranks share (0.1-0.2 us): a task far
+  // cheaper than the largest moves too little work per claim, and stays in its rank's fixed list.
+  const double floor = share < 1 ? tail_floor * *std::max_element(cost.begin(), cost.end()) : 0.0;
+  for (int r = 0; r < ranks; ++r) {
+    std::vector<int> mine;
+    double load = 0;
+    for (std::size_t t = 0; t < owner.size(); ++t) {
+      if (owner[t] != r) continue;
+      load += cost[t];
+      if (cost[t] >= floor) mine.push_back(static_cast<int>(t));
+    }
+    // Cheapest first; among equal costs the later task first (deterministic).
+    std::stable_sort(mine.begin(), mine.end(), [&](int a, int b) {
+      return cost[static_cast<std::size_t>(a)] < cost[static_cast<std::size_t>(b)] ||
+             (cost[static_cast<std::size_t>(a)] == cost[static_cast<std::size_t>(b)] && a > b);
+    });
+    double taken = 0;
+    for (const int t : mine) {
+      const double c = cost[static_cast<std::size_t>(t)];
+      if (share < 1 && taken + c > share * load) break;
+      taken += c;
+      tail.push_back(t);
+    }
+  }
+  for (const int t : tail) owner[static_cast<std::size_t>(t)] = shared_task;
+  std::stable_sort(tail.begin(), tail.end(), [&](int a, int b) {
+    return cost[static_cast<std::size_t>(a)] > cost[static_cast<std::size_t>(b)] ||
+           (cost[static_cast<std::size_t>(a)] == cost[static_cast<std::size_t>(b)] && a < b);
+  });
+  return tail;
+}
+
 }  // namespace raceway::scheduler

@@ -64,6 +64,18 @@ double predicted_imbalance(std::span<const int> owner, std::span<const double> c
 Plan make_plan(std::span<const double> cost, const TaskCatalogue& catalogue, std::span<const double> capacity,
                const PlanOptions& options = {});
 
+/// Owner of a task handed out on demand during an evaluation (the plan's tail, mark_tail): the
+/// rank that is free first evaluates it (scheduler/mpi_tail.cpp).
+inline constexpr int shared_task = -1;
+
+/// Takes the plan's tail out of `owner`: of each rank's tasks that cost at least tail_floor times
+/// the largest task's cost, its cheapest whose costs add up to at most `share` of its load become
+/// shared_task (share 1: every task, whatever its cost), so every rank keeps about the same
+/// fraction of its planned work as its fixed list. Returns the tail in the order it is handed out:
+/// by decreasing cost (the largest first, the small ones fill the gaps at the end), ties by task
+/// index. Nothing changes for share <= 0.
+std::vector<int> mark_tail(std::vector<int>& owner, std::span<const double> cost, double share, double tail_floor = 0.1);
+
 /// Groups (rolling elements) whose tasks are on more than one rank.
 int count_split_groups(std::span<const int> owner, std::span<const int> group);
 /// Pieces (TaskCatalogue::parent) whose tasks are on more than one rank; 0 when parent is empty.

@@ -302,6 +302,11 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                   "rank 0's share of the contact tasks relative to a worker's (0: none)")
       ->check(number_at_least(0, false))
       ->capture_default_str();
+  run->add_option("--tail-share", cl.exec_options.tail_share,
+                  "under mpirun: fraction of each rank's planned contact work handed out on demand within an "
+                  "evaluation, to whichever rank is free first (0: off; 1: every task)")
+      ->check(number_at_least(0, false) & CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   run->add_option("--rank-timeout", cl.exec_options.rank_timeout,
                   "seconds rank 0 waits for a worker's answer before it ends the job naming the rank")
       ->check(number_at_least(0, true))

@@ -8,6 +8,8 @@
 #     (--replan-every-step), and with rank 0 evaluating no tasks (--master-share 0), on a short
 #     seed 002 run and a short 6309 R3 run; /scheduler and timing
 #     fields of the summary are left out (tests/parallel/compare_outputs.py).
+#     Also with tasks claimed on demand (--tail-share): every task (1) at np 2, 30 % with forced
+#     re-plans at np 3, every task by the workers alone (--master-share 0) at np 3.
 #   bitwise_cut: the same on a short run of the high-fidelity scene (6309_R3_fine_traction: its
 #     ball-race contacts cut into traction-grid blocks, sub-tasks the master combines), where the
 #     plans really cut segments over ranks (checked in the plan log lines).
@@ -73,6 +75,26 @@ PY
   # Rank 0 writing the whole file (the default, no MPI-IO).
   mpi 2 run "$scene" -o "$work/serial2.h5"
   [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "np 2, rank 0 writing: exit code $rc: $(tail -3 "$work/log")"
+  # Tasks claimed on demand (--tail-share, scheduler/mpi_tail.cpp): every task (share 1) at np 2,
+  # with --parallel-output (a tail task's record is written by rank 0); 30 % of each rank's work
+  # with a new plan (and tail) before every evaluation at np 3; every task claimed by the workers
+  # alone (--master-share 0) at np 3.
+  for run in "2 tail1 --tail-share 1 --parallel-output" "3 tailforced --tail-share 0.3 --replan-every-step" \
+    "3 tailshare0 --tail-share 1 --master-share 0"; do
+    set -- $run
+    local np=$1 name=$2
+    shift 2
+    mpi "$np" run "$scene" -o "$work/$name.h5" "$@"
+    [[ $rc -eq 0 ]] || { fail "np $np $*: exit code $rc: $(tail -3 "$work/log")"; continue; }
+    grep -q "no tail shared" "$work/log" && fail "np $np $*: the tail was not shared"
+    files+=("$work/$name.h5")
+    # The workers evaluated tasks (with share 1 they have no fixed list: they claimed them); rank 0
+    # did too, except with --master-share 0. (Which worker claims how many is a race: on a light
+    # scene the first one to wake may take them all.)
+    /usr/bin/python3 -c "import sys, h5py; s = h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][()]; \
+print('rank task seconds', list(s)); sys.exit(0 if sum(s[1:]) > 0 and (s[0] > 0) == (sys.argv[2] != 'tailshare0') else 1)" \
+      "$work/$name.h5" "$name" || fail "np $np $*: no worker claimed tail tasks, or rank 0 did with --master-share 0"
+  done
   # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
   mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0 --parallel-output
   if [[ $rc -eq 0 ]]; then

@@ -2,6 +2,7 @@
 // splits only when needed, capacities (rank 0's share), every task owned exactly once.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 
@@ -166,4 +167,33 @@ TEST(Plan, ExchangesWhenEveryMoveIsTooLarge) {
   EXPECT_DOUBLE_EQ(p.predicted_imbalance, 1.0);
   // Moves alone stop at 18 / 17 = 1.059: without the exchange the tolerance of 2 % is not met.
   EXPECT_GT(18.0 / 17.0, 1 + o.level2_tolerance);
+}
+
+TEST(Plan, TailTakesEachRanksCheapestShareLargestFirst) {
+  // Rank 0: costs 1, 2, 3, 4 (load 10); rank 1: 5, 0.5, 0.5, 4 (load 10).
+  const std::vector<double> cost{1, 2, 3, 4, 5, 0.5, 0.5, 4};
+  const std::vector<int> plan{0, 0, 0, 0, 1, 1, 1, 1};
+  std::vector<int> owner = plan;
+  const std::vector<int> tail = mark_tail(owner, cost, 0.3, 0.0);  // at most 3 of each rank's 10
+  // Rank 0: 1 + 2 = 3 (adding 3 would pass 3); rank 1: 0.5 + 0.5 (adding 4 would pass 3).
+  EXPECT_EQ(tail, (std::vector<int>{1, 0, 5, 6}));  // by decreasing cost, ties by task
+  EXPECT_EQ(owner, (std::vector<int>{shared_task, shared_task, 0, 0, 1, shared_task, shared_task, 1}));
+  // Every rank keeps at least 1 - share of its load as its fixed list.
+  double fixed[2] = {0, 0};
+  for (std::size_t t = 0; t < cost.size(); ++t)
+    if (owner[t] >= 0) fixed[owner[t]] += cost[t];
+  EXPECT_GE(fixed[0], 7.0);
+  EXPECT_GE(fixed[1], 7.0);
+
+  // Tasks below tail_floor of the largest (5) stay fixed: with floor 0.2, the 0.5s (below 1).
+  std::vector<int> floored = plan;
+  EXPECT_EQ(mark_tail(floored, cost, 0.3, 0.2), (std::vector<int>{1, 0}));
+  EXPECT_EQ(floored, (std::vector<int>{shared_task, shared_task, 0, 0, 1, 1, 1, 1}));
+
+  std::vector<int> all = plan;
+  EXPECT_EQ(mark_tail(all, cost, 1.0).size(), cost.size());  // share 1: every task, largest first
+  EXPECT_EQ(std::count(all.begin(), all.end(), shared_task), 8);
+  std::vector<int> none = plan;
+  EXPECT_TRUE(mark_tail(none, cost, 0.0).empty());
+  EXPECT_EQ(none, plan);
 }
