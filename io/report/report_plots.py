@@ -131,6 +131,13 @@ def pocket_force_time(run, s, folder):
     shade_window(ax, s)
     ax.plot(run.time, run.bar_front.max(axis=1), lw=0.6, color=FRONT, label="front bar (largest over pockets)")
     ax.plot(run.time, -run.bar_rear.max(axis=1), lw=0.6, color=REAR, label="rear bar (largest over pockets), drawn negative")
+    if run.pocket_steps is not None:
+        # The peak over every step of each output interval (drawn over the interval it closes):
+        # the contacts the samples fall between still show at their height.
+        for bar, sign, color in (("front", 1.0, FRONT), ("rear", -1.0, REAR)):
+            peak = run.pocket_steps[bar]["peak_force"].max(axis=1)
+            ax.plot(run.time, sign * peak, lw=0.5, alpha=0.45, color=color, drawstyle="steps-pre",
+                    label=f"{bar} bar, peak between samples (every step)")
     t = np.asarray(imp["time_s"], dtype=float)
     f = np.asarray(imp["peak_n"], dtype=float)
     front = np.asarray([b == "front" for b in imp["bar"]], dtype=bool)
