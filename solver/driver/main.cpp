@@ -163,7 +163,12 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.stop_signal = &driver::g_stop_signal;
   options.mpi_library = driver::mpi_library_version();
   ProgressReporter progress;
-  options.on_progress = [&](const solver::Progress& p) { progress(p); };
+  options.on_progress = [&](const solver::Progress& p) {
+    progress(p);
+    // Rank 0 acts on the stop signals: make sure no library took their handlers since the start.
+    if (const std::string replaced = driver::keep_stop_signals(); !replaced.empty())
+      spdlog::warn("the handler of {} had been replaced (by a library); raceway's is back in place", replaced);
+  };
   options.on_info = [&](const std::string& s) {
     progress.finish();  // a message never shares the bar's line
     spdlog::info("{}", s);

@@ -24,6 +24,12 @@ extern volatile std::sig_atomic_t g_stop_signal;
 /// and a stop; a second one of them ends the process at once.
 void install_stop_signals();
 
+/// Whether the handlers of install_stop_signals are still the ones in place; where a library
+/// replaced one (a stop signal then would be lost or end the process), puts ours back and names the
+/// signal in the returned text (empty: nothing was replaced). A signal already handled (its
+/// handler reset to the default by design, so that a second one ends the process) is left alone.
+std::string keep_stop_signals();
+
 /// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
 /// anything else 1.
 int exit_code_for(const std::exception& e);
