@@ -10,8 +10,8 @@
 #     compared bitwise with np=1 (correctness only: their wall time is no timing);
 #   rank_table.csv: the model's predicted speed-up and efficiency per scene and P, read by `raceway
 #     plan` (rank advice) and `raceway campaign` (group sizes): the one table of predicted speed-ups.
-# TAIL_SHARE: the np=2 runs' --tail-share (default: the executor's, 0 = fixed plans only; the
-# recording in perf/results was made with TAIL_SHARE=0.1), also given to the replay model.
+# TAIL_SHARE: the np=2 runs' --tail-share (default: the executor's, 0.1; 0: fixed plans only, for
+# an A/B), also given to the replay model.
 # END_TIME: length of the timed high-fidelity runs (default 20 ms: one revolution; under the load
 # of a shared machine the scene's full 0.1 s took 160 s at np=1 and 500 s at np=2). The replay's
 # predictions for P = 1..64 come from a one-rank run of the whole scene (0.1 s; FULL_RUN=FILE.h5:
@@ -88,7 +88,7 @@ for s in seed002_40hz:20 qj215_validation:40; do
 done
 {
   echo "# $(date -u +%FT%TZ); $(load); one-rank runs from scaling_speedup.txt"
-  "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --tail-share "${TAIL_SHARE:-0}" \
+  "$py" "$root/perf/replay_model.py" --latency-us "$lat" --bandwidth-gbs "$bw" --tail-share "${TAIL_SHARE:-0.1}" \
     --measured-np2 0 --measured-np2 "$measured" \
     --measured-np2 "$(sed -n 's/^shipped: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")" \
     --table "$out/rank_table.csv" "$tmp/6309_R3_fine_traction.h5" "$tmp/6309_R3_fine_traction_timed.h5" "$tmp/6309_R3.h5" \

@@ -66,10 +66,9 @@ struct MpiExecutorOptions {
   int sample_every = 1;
   /// Fraction of each rank's planned work handed out on demand within an evaluation (the plan's
   /// tail, mark_tail; scheduler/mpi_tail.cpp): every rank evaluates its fixed list, then claims
-  /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand. Off by
-  /// default while an intermittent failure of the signal and kill tests at 2 ranks is open (not
-  /// tied to the tail); 0.1 is what perf/results/parallel_notes.md measured.
-  double tail_share = 0.0;
+  /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand; 0.1 is
+  /// what perf/results/parallel_notes.md measured best.
+  double tail_share = 0.1;
   /// Master: seconds to wait for the workers' answer to one command before ending the job.
   double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).

@@ -109,7 +109,10 @@ std::vector<int> metis_kway(const std::vector<Unit>& units, std::span<const doub
   const int status = METIS_PartGraphKway(&nv, &ncon, xadj.data(), adjncy.data(), vwgt.data(), nullptr,
                                          adjncy.empty() ? nullptr : adjwgt.data(), &np, tpwgts.data(), &ubvec, options,
                                          &objval, part.data());
-  if (status != METIS_OK) return {};
+  // METIS signals its own internal errors by raising SIGTERM in the calling thread, where raceway
+  // blocks it (solver/run/stop_signals.hpp), so such an error may come back as METIS_OK: a part
+  // out of range is taken as a failure too (the caller plans without METIS).
+  if (status != METIS_OK || std::any_of(part.begin(), part.end(), [&](idx_t p) { return p < 0 || p >= np; })) return {};
   std::vector<int> unit_rank(units.size());
   for (std::size_t u = 0; u < units.size(); ++u) unit_rank[u] = part_rank[static_cast<std::size_t>(part[u])];
   return unit_rank;

@@ -1,8 +1,6 @@
 // raceway report: the launcher of the Python report (see report.hpp).
 #include "io/report/report.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,36 +11,13 @@
 
 #include <fmt/format.h>
 
-extern char** environ;  // NOLINT: POSIX, for posix_spawn
+#include "io/report/process.hpp"
 
 namespace raceway::io {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs args[0] with args (no shell) and waits; returns the exit status, -1 if it could not start.
-int run_process(const std::vector<std::string>& args, std::string& error) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) {
-    error = std::strerror(rc);
-    return -1;
-  }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      error = std::strerror(errno);
-      return -1;
-    }
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  error = WIFSIGNALED(status) ? fmt::format("killed by signal {}", WTERMSIG(status)) : "ended abnormally";
-  return -1;
-}
 
 std::string number(double v) { return fmt::format("{:.17g}", v); }
 

@@ -6,6 +6,7 @@
 #include "solver/driver/campaign_command.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <mpi.h>
 #include <spdlog/spdlog.h>
 
@@ -20,6 +21,7 @@
 #include "io/h5/output_lock.hpp"
 #include "io/json/summary_json.hpp"
 #include "io/report/report.hpp"
+#include "io/report/process.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "scheduler/campaign_dispatch.hpp"
 #include "solver/driver/campaign_file.hpp"
@@ -28,6 +30,7 @@
 #include "solver/driver/scene_on_ranks.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
 #include "solver/run/run.hpp"
+#include "solver/run/stop_signals.hpp"
 
 namespace raceway::driver {
 
@@ -99,7 +102,7 @@ scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Camp
       run.executor = &executor;
       run.output_path = output_of(dir, entry);
       run.resume = resume && job.attempt == 0;  // a retry starts afresh
-      run.stop_signal = &g_stop_signal;
+      run.stop_signal = &solver::stop_request();
       run.mpi_library = mpi_library_version();
       run.output_thread = output_thread;
       run.on_info = [&](const std::string& s) { spdlog::debug("{}: {}", entry.id, s); };
@@ -182,11 +185,13 @@ int make_table(const std::string& dir) {
     spdlog::error("campaign: no table script (share/raceway/report/campaign_table.py beside the executable)");
     return 1;
   }
-  const std::string command =
-      fmt::format("'{}' '{}' '{}'", py && *py ? py : "/usr/bin/python3",
-                  (fs::path(report).parent_path() / "campaign_table.py").string(), dir);
-  const int status = std::system(command.c_str());
-  if (status != 0) spdlog::error("campaign: the table of {} failed ({})", dir, command);
+  const std::vector<std::string> command{py && *py ? py : "/usr/bin/python3",
+                                         (fs::path(report).parent_path() / "campaign_table.py").string(), dir};
+  std::string error;
+  const int status = io::run_process(command, error);
+  if (status != 0)
+    spdlog::error("campaign: the table of {} failed ({}: {})", dir, fmt::join(command, " "),
+                  status < 0 ? error : fmt::format("exit {}", status));
   return status == 0 ? 0 : 1;
 }
 
@@ -262,7 +267,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   MPI_Bcast(decided, 2, MPI_INT, 0, MPI_COMM_WORLD);
   if (decided[0] != 0) return decided[0];
   int code = 0;
-  install_stop_signals();
+  solver::accept_stop_requests();
   // The groups fill the node's cores: then the output thread would take a rank's (no binding to a
   // free core here: every group leader would want one).
   const OutputThreadPlace thread_place = place_output_thread("auto", MPI_COMM_WORLD, false);
@@ -280,7 +285,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     for (const int j : left) progress.cost_left += costs[static_cast<std::size_t>(j)];
     scheduler::DispatchEvents events{[&](const auto& job, int group) { progress.started(job, group); },
                                      [&](const auto& r, int group, bool retry) { progress.ended(r, group, retry); },
-                                     [] { return g_stop_signal != 0; }};
+                                     [] { return solver::stop_request().load() != 0; }};
     dispatcher = std::make_unique<scheduler::CampaignDispatcher>(g, costs, left, events);
   }
   {
@@ -303,7 +308,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     spdlog::info("campaign: {} of {} scenes done, {} failed, in {} ({} groups; busy {:.1f} s, waiting for the "
                  "dispatcher {:.3f} s, idle at the end {:.1f} s)", finished, progress.total, progress.failed,
                  clock(record.wall), g.group_count, record.group_busy, record.group_waiting, record.group_idle_at_end);
-    code = g_stop_signal != 0 ? 4 : progress.failed > 0 ? 1 : 0;
+    code = solver::stop_request().load() != 0 ? 4 : progress.failed > 0 ? 1 : 0;
     if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
     if (finished < progress.total && code == 0) code = 1;
     // An array task (--only) leaves the table to `raceway campaign report DIR` after the last one.

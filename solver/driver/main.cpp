@@ -49,6 +49,7 @@
 #include "solver/run/output_writer.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
+#include "solver/run/stop_signals.hpp"
 #include "solver/driver/parallel_output.hpp"
 #include "solver/driver/scene_on_ranks.hpp"
 #include "solver/driver/campaign_command.hpp"
@@ -160,19 +161,10 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.output_thread = request.output_thread.on;
   options.output_thread_core = request.output_thread.core;
   options.result_options = request.result_options;
-  options.stop_signal = &driver::g_stop_signal;
+  options.stop_signal = &solver::stop_request();
   options.mpi_library = driver::mpi_library_version();
   ProgressReporter progress;
-  double handlers_checked_at = 0;  // s of wall time
-  options.on_progress = [&](const solver::Progress& p) {
-    progress(p);
-    // Rank 0 acts on the stop signals: make sure no library took their handlers since the start.
-    // Every 0.1 s of wall time, not at every output time (three system calls each).
-    if (p.wall_seconds - handlers_checked_at < 0.1) return;
-    handlers_checked_at = p.wall_seconds;
-    if (const std::string replaced = driver::keep_stop_signals(); !replaced.empty())
-      spdlog::warn("the handler of {} had been replaced (by a library); raceway's is back in place", replaced);
-  };
+  options.on_progress = [&](const solver::Progress& p) { progress(p); };
   options.on_info = [&](const std::string& s) {
     progress.finish();  // a message never shares the bar's line
     spdlog::info("{}", s);
@@ -418,7 +410,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
     return 2;
   }
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
-  driver::install_stop_signals();
+  solver::accept_stop_requests();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
   const driver::OutputThreadPlace output_thread = driver::place_output_thread(cl.output_thread, comm);
   if (rank != 0) {
@@ -465,6 +457,9 @@ int check_or_report(CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First, before MPI or anything else starts a thread: SIGINT, SIGTERM and SIGUSR1 go to one thread
+  // that waits for them, blocked in all others (solver/run/stop_signals.hpp says why).
+  solver::take_stop_signals();
   // A file-size limit (ulimit -f, a quota) is reported by the write that hits it, as an error with
   // the file's name, rather than ending the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -24,11 +24,7 @@
 
 namespace raceway::driver {
 
-volatile std::sig_atomic_t g_stop_signal = 0;
-
 namespace {
-
-extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
 
 void broadcast_string(MPI_Comm comm, int rank, std::string& s) {
   long long size = static_cast<long long>(s.size());
@@ -38,34 +34,6 @@ void broadcast_string(MPI_Comm comm, int rank, std::string& s) {
 }
 
 }  // namespace
-
-namespace {
-
-void install_stop_signal(int signal) {
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  action.sa_flags = SA_RESTART | SA_RESETHAND;
-  sigemptyset(&action.sa_mask);
-  sigaction(signal, &action, nullptr);
-}
-
-}  // namespace
-
-void install_stop_signals() {
-  for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) install_stop_signal(signal);
-}
-
-std::string keep_stop_signals() {
-  std::string replaced;
-  for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) {
-    struct sigaction now {};
-    if (sigaction(signal, nullptr, &now) != 0 || now.sa_handler == on_stop_signal) continue;
-    if (g_stop_signal != 0 && now.sa_handler == SIG_DFL) continue;  // ours ran: reset on purpose
-    install_stop_signal(signal);
-    replaced += fmt::format("{}{}", replaced.empty() ? "" : ", ", strsignal(signal));
-  }
-  return replaced;
-}
 
 int exit_code_for(const std::exception& e) {
   if (dynamic_cast<const io::SceneError*>(&e) ||

@@ -1,12 +1,11 @@
 // One scene run on the ranks of a communicator (the run driver's MPI side, shared by `raceway run`
 // on MPI_COMM_WORLD and by `raceway campaign` on each group's communicator): the scene from the
 // communicator's rank 0 to every rank, rank 0 integrating and the others serving contact tasks;
-// the stop signals; the exit codes of errors.
+// the exit codes of errors (the stop signals: solver/run/stop_signals.hpp).
 #pragma once
 
 #include <mpi.h>
 
-#include <csignal>
 #include <exception>
 #include <functional>
 #include <string>
@@ -15,20 +14,6 @@
 #include "scheduler/mpi_executor.hpp"
 
 namespace raceway::driver {
-
-/// The signal that asked the run to stop (0: none), set on every rank by the handler of
-/// install_stop_signals; rank 0's run loop checkpoints and stops at the next output time.
-extern volatile std::sig_atomic_t g_stop_signal;
-
-/// SIGINT, SIGTERM and SIGUSR1 (what batch schedulers send before a time limit) ask for a checkpoint
-/// and a stop; a second one of them ends the process at once.
-void install_stop_signals();
-
-/// Whether the handlers of install_stop_signals are still the ones in place; where a library
-/// replaced one (a stop signal then would be lost or end the process), puts ours back and names the
-/// signal in the returned text (empty: nothing was replaced). A signal already handled (its
-/// handler reset to the default by design, so that a second one ends the process) is left alone.
-std::string keep_stop_signals();
 
 /// The documented exit code of an error: bad input 2, failed integration 3, stopped by a signal 4,
 /// anything else 1.

@@ -166,11 +166,11 @@ std::optional<Checkpoint> checkpoint_to_resume(const RunOptions& options, const 
 struct CheckpointPlan {
   long every = 0;            // output samples; 0: no periodic checkpoints
   double wall_interval = 0;  // s; 0: none
-  const volatile std::sig_atomic_t* stop_signal = nullptr;
+  const std::atomic<int>* stop_signal = nullptr;
 
   std::optional<CheckpointKind> due(long sample, long samples, double wall_since_last) const {
     if (sample >= samples) return std::nullopt;
-    if (stop_signal && *stop_signal != 0) return CheckpointKind::signal;
+    if (stop_signal && stop_signal->load(std::memory_order_relaxed) != 0) return CheckpointKind::signal;
     if (every > 0 && sample % every == 0) return CheckpointKind::periodic;
     if (wall_interval > 0 && wall_since_last >= wall_interval) return CheckpointKind::wall_clock;
     return std::nullopt;
@@ -396,7 +396,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     file_->flush();
     throw RunInterrupted(fmt::format("stopped by signal {} at t = {:.9g} s (output sample {} of {}): checkpoint written; "
                                      "continue with raceway run ... -o {} --resume",
-                                     static_cast<int>(*options_.stop_signal), t, i, samples_, options_.output_path));
+                                     options_.stop_signal->load(), t, i, samples_, options_.output_path));
   }
   drain_output();
   const double before_commit = wall();

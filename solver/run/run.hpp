@@ -2,7 +2,7 @@
 // CVODE, output at fixed times by interpolation. No MPI here: the run driver (solver/driver) owns it.
 #pragma once
 
-#include <csignal>
+#include <atomic>
 #include <functional>
 #include <map>
 #include <stdexcept>
@@ -58,9 +58,9 @@ struct RunOptions {
   /// Command-line options that change the results (e.g. PETSc options), part of a checkpoint's
   /// fingerprint.
   std::string result_options;
-  /// Set (by a signal handler) to a signal number: the run writes a checkpoint at the next output
-  /// time, flushes and closes the output and throws RunInterrupted.
-  const volatile std::sig_atomic_t* stop_signal = nullptr;
+  /// Set to a signal number (stop_signals.hpp: stop_request): the run writes a checkpoint at the
+  /// next output time, flushes and closes the output and throws RunInterrupted.
+  const std::atomic<int>* stop_signal = nullptr;
   /// Parallel output (not owned); nullptr: rank 0 writes the whole file (serial output).
   SharedOutput* shared_output = nullptr;
   /// The output's work at output times on a thread of its own (serial output only): worth it only

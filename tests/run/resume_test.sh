@@ -47,6 +47,13 @@ launch() {
   pid=$!
 }
 
+# diagnosis: what a failed run said (its raceway errors and warnings, then the log's last lines:
+# under mpirun those are its own banner).
+diagnosis() {
+  grep -E '^\[raceway\] (error|warning)' "$work/log" | tail -5
+  tail -3 "$work/log"
+}
+
 # wait_for FILE: until FILE exists (at most 30 s).
 wait_for() {
   for _ in $(seq 1 600); do [[ -e "$1" ]] && return 0; sleep 0.05; done
@@ -71,7 +78,7 @@ reference() {
   shift
   t0=$(date +%s%N)
   launch "$np" "$work/ref.h5" "$@"
-  wait "$pid" || fail "the uninterrupted run failed: $(tail -3 "$work/log")"
+  wait "$pid" || fail "the uninterrupted run failed: $(diagnosis)"
   reference_ms=$((($(date +%s%N) - t0) / 1000000))
 }
 
@@ -109,7 +116,7 @@ kill_resume() {
     local rc=$?
     grep -q "resuming .* from its periodic checkpoint" "$work/log" && resumed=$((resumed + 1))
     [[ -e "$work/k.h5" ]] && break
-    [[ $round -eq 5 ]] && fail "the last resume failed (exit $rc): $(tail -3 "$work/log")"
+    [[ $round -eq 5 ]] && fail "the last resume failed (exit $rc): $(diagnosis)"
     kills=$((kills + 1))
     local rows
     rows=$(h5 "$work/k.h5.partial" "len(f['time'])")
@@ -139,7 +146,7 @@ stop_by() {
   wait "$pid"
   local rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
   echo "np $np: SIG$signal to $target: exit $rc after $ms ms"
-  [[ $rc -eq 4 ]] || fail "np $np SIG$signal to $target: exit code $rc, expected 4: $(tail -2 "$work/log")"
+  [[ $rc -eq 4 ]] || fail "np $np SIG$signal to $target: exit code $rc, expected 4: $(diagnosis)"
   [[ $ms -lt 5000 ]] || fail "np $np SIG$signal to $target: took $ms ms to stop"
   (( SECONDS - started < 30 )) || true
   pgrep -f "$work/s.h5" >/dev/null && fail "np $np SIG$signal: a raceway process is still running"
@@ -151,7 +158,7 @@ stop_by() {
   [[ "$rows" =~ ^[0-9]+$ && $rows -eq $((sample + 1)) ]] ||
     fail "np $np SIG$signal: the .partial holds '$rows' samples, the checkpoint is at sample $sample"
   launch "$np" "$work/s.h5" --resume
-  wait "$pid" || { fail "np $np SIG$signal: the resume failed: $(tail -3 "$work/log")"; return; }
+  wait "$pid" || { fail "np $np SIG$signal: the resume failed: $(diagnosis)"; return; }
   local check
   check=$("$python" - "$work/ref.h5" "$work/s.h5" <<'PY'
 import sys, h5py, numpy as np

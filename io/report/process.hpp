@@ -1,0 +1,17 @@
+// Child processes (the Python report, the campaign table): started without a shell, with the
+// default signal mask, waited for.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace raceway::io {
+
+/// Runs args[0] with args (no shell; args[0] looked up in PATH unless it has a slash) and waits
+/// for it: its exit status, or -1 with `error` saying why (could not start, killed by a signal).
+/// The child starts with no signal blocked: raceway blocks its stop signals in every thread
+/// (solver/run/stop_signals.hpp) and a mask is inherited across exec, so a child started as it is
+/// would ignore Ctrl-C.
+int run_process(const std::vector<std::string>& args, std::string& error);
+
+}  // namespace raceway::io
