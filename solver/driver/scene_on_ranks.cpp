@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 
 #include "io/h5/output_lock.hpp"
 #include "io/scene/scene_parser.hpp"
