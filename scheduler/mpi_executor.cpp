@@ -67,8 +67,6 @@ const char* reason_name(PlanReason r) {
   }
   return "?";
 }
-const char* phase_name(int p) { return p == 0 ? "rhs" : p == 1 ? "jacobian" : "output"; }
-
 std::string fmt_plan_line(const PlanEvent& e) {
   char line[320];
   std::snprintf(line, sizeof line,
@@ -81,6 +79,8 @@ std::string fmt_plan_line(const PlanEvent& e) {
 }
 
 }  // namespace
+
+const char* phase_name(int p) { return p == 0 ? "rhs" : p == 1 ? "jacobian" : "output"; }
 
 const char* schedule_policy_name(SchedulePolicy p) {
   switch (p) {
@@ -170,10 +170,12 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   catalogue_.function = {};  // the master runs the function run() is given; keep no references
   const int max_record = *std::max_element(catalogue.record_size.begin(), catalogue.record_size.end());
   const bool tail = size_ > 1 && options_.tail_share > 0;
+  const bool shared_replies = size_ > 1 && options_.shared_replies;
   double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
-                               static_cast<double>(catalogue.context_size), static_cast<double>(max_record), tail ? 1.0 : 0.0};
+                               static_cast<double>(catalogue.context_size), static_cast<double>(max_record),
+                               (tail ? 1.0 : 0.0) + (shared_replies ? 2.0 : 0.0)};
   broadcast(start, header_size, "the start of the run");
-  open_tail_window(tail, max_record);
+  open_node_window(tail, shared_replies, max_record);
   if (tail && tail_window_ == MPI_WIN_NULL && options_.on_event)
     options_.on_event("scheduler: no tail shared on demand (--tail-share): it needs every rank on rank 0's node");
   attached_ = true;
@@ -243,7 +245,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
   // The tail (tail_share of each rank's planned work, its cheapest tasks) is claimed on demand
   // (encode_tail). owner_ keeps the whole plan (its predicted balance is what re-planning judges).
   std::vector<int> owner = plan.owner;
-  if (tail_window_ != MPI_WIN_NULL) encode_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model);
+  if (tail_on_) encode_tail(owner, model.empty() ? std::vector<double>(owner.size(), 1.0) : model);
   set_owner(phase, owner);
   owner_[phase] = plan.owner;
   if (size_ > 1) {
@@ -394,9 +396,9 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     request_rank.push_back(-1);
     MPI_Ibcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_, &requests.back());
   }
-  // The replies come up a binomial tree: rank 0 hears from its children only (ranks 1, 2, 4, ...),
-  // each passing on its subtree's replies with its own.
-  const std::vector<int> children = tree_children(0);
+  // The replies come through the node window, or up a binomial tree: rank 0 hears from its
+  // children only (ranks 1, 2, 4, ...), each passing on its subtree's replies with its own.
+  const std::vector<int> children = reply_done_ ? std::vector<int>{} : tree_children(0);
   for (const int c : children) {
     auto& buf = receive_[static_cast<std::size_t>(c)];
     buf.resize(subtree_reply_size(phase, c));
@@ -414,7 +416,9 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   if (!tail_[phase].empty() && capacity_[0] > 0)  // not with --master-share 0
     busy[0] += evaluate_tail(phase, context, task, records.data(), seconds.data());
-  if (!requests.empty())
+  if (reply_done_ && size_ > 1)
+    collect_shared_replies(phase, requests.front(), records, busy);
+  else if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
   if (!tail_[phase].empty()) collect_tail(phase, records, busy);
@@ -482,7 +486,8 @@ bool MpiExecutor::await_start() {
   catalogue_.context_size = static_cast<int>(start[3]);
   message_size_ = header_size + static_cast<std::size_t>(catalogue_.context_size);
   message_.assign(message_size_, 0.0);
-  open_tail_window(start[5] != 0, static_cast<int>(start[4]));
+  const int window_use = static_cast<int>(start[5]);  // 1: tail, 2: shared replies
+  open_node_window((window_use & 1) != 0, (window_use & 2) != 0, static_cast<int>(start[4]));
   attached_ = true;
   return true;
 }
@@ -530,27 +535,19 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
     const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
     const auto n = mine.size();
     const auto rs = static_cast<std::size_t>(record_size);
-    // The reply: each task's used doubles (catalogue), then the tasks' seconds, then the replies of
-    // this rank's subtree (tree_children), received while it computes; all to its parent.
-    reply.resize(subtree_reply_size(phase, rank_));
-    const std::vector<int> children = tree_children(rank_);
-    std::vector<MPI_Request> from(children.size());
-    std::size_t at = packed_size(phase, mine) + n;
-    for (std::size_t i = 0; i < children.size(); ++i) {
-      const auto count = subtree_reply_size(phase, children[i]);
-      MPI_Irecv(reply.data() + at, static_cast<int>(count), MPI_DOUBLE, children[i], phase, comm_, &from[i]);
-      at += count;
-    }
+    // The reply: each task's used doubles (catalogue) and its seconds, through the node window or
+    // by message with the replies of this rank's subtree (tree_children), received while it computes.
+    std::vector<MPI_Request> from;
+    if (!reply_done_) from = receive_subtree(phase, reply);
     full.resize(n * rs);
     seconds.resize(n);
     const std::span<const double> context(message_.data() + header_size, static_cast<std::size_t>(catalogue_.context_size));
     evaluate_own(phase, context, record_size, function, full.data(), seconds.data(), false);
     if (!tail_[phase].empty()) evaluate_tail(phase, context, function, nullptr, nullptr);
-    double* out = reply.data();
-    for (std::size_t i = 0; i < n; ++i) out = std::copy_n(full.data() + i * rs, catalogue_.used(phase, mine[i]), out);
-    std::copy(seconds.begin(), seconds.end(), out);
-    MPI_Waitall(static_cast<int>(from.size()), from.data(), MPI_STATUSES_IGNORE);  // as long as it takes, like serve()
-    MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_);
+    if (reply_done_)
+      post_shared_reply(phase, full.data(), seconds.data());
+    else
+      send_reply(phase, full.data(), seconds.data(), reply, from);
     if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
       // Only whole pieces: a cut piece's tasks hold parts, which the master combines and writes.
       last_rhs_tasks_.clear();

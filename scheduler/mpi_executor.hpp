@@ -3,11 +3,14 @@
 //
 // Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
 // other ranks (workers) loop in serve() on commands broadcast by the master:
-//   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, send back
-//                                 their records and measured seconds (one message up a binomial tree
-//                                 to rank 0, with the replies of the ranks below; of each record
-//                                 only the doubles the task fills, TaskCatalogue::used_size, a size
-//                                 both sides know, so nothing about sizes is exchanged per evaluation);
+//   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, give back
+//                                 their records and measured seconds: with every rank on rank 0's
+//                                 node through a shared-memory window (the records in per-task
+//                                 slots, then a word with the evaluation's number; mpi_replies.cpp),
+//                                 else one message up a binomial tree to rank 0, with the replies of
+//                                 the ranks below; of each record only the doubles the task fills
+//                                 (TaskCatalogue::used_size, a size both sides know, so nothing
+//                                 about sizes is exchanged per evaluation);
 //   plan (phase), then owner per task in a second broadcast -> adopt a new plan for that phase;
 //   output (payload)           -> call serve()'s output handler with the payload and the records of
 //                                 this rank's last rhs evaluation (the parallel output's samples
@@ -54,6 +57,8 @@ enum class SchedulePolicy {
   every_evaluation,  ///< test only: a different plan before every evaluation (bitwise-identity tests)
 };
 const char* schedule_policy_name(SchedulePolicy p);
+/// "rhs", "jacobian", "output" (Phase as int).
+const char* phase_name(int phase);
 
 struct MpiExecutorOptions {
   SchedulePolicy policy = SchedulePolicy::adaptive;
@@ -69,6 +74,10 @@ struct MpiExecutorOptions {
   /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand; 0.1 is
   /// what perf/results/parallel_notes.md measured best.
   double tail_share = 0.1;
+  /// With every rank on rank 0's node: the workers' records go back through a shared-memory window
+  /// (each worker writes its tasks' slots and then its reply word; scheduler/mpi_replies.cpp)
+  /// instead of messages. false: messages, as between nodes (for tests and comparisons).
+  bool shared_replies = true;
   /// Master: seconds to wait for the workers' answer to one command before ending the job.
   double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).
@@ -122,6 +131,12 @@ class MpiExecutor final : public Executor {
                           command_output = 5;
   static constexpr int header_size = 6;
 
+ public:
+  /// int64s between two ranks' words in the node window: a 64-byte cache line each.
+  static constexpr std::size_t window_word_stride = 8;
+
+ private:
+
   [[noreturn]] void fail(const std::string& what) const;
   /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
   /// (the other ranks would wait for its record for ever).
@@ -144,15 +159,27 @@ class MpiExecutor final : public Executor {
   std::size_t subtree_reply_size(int phase, int r) const;
   /// Master: the replies of ranks r .. subtree_end(r) - 1 from `packed` into records, seconds, busy.
   void unpack_replies(int phase, int r, const double* packed, std::vector<double>& records, std::vector<double>& busy);
+  /// Worker, replies by message: posts the receives of its subtree's replies into `reply` (sized
+  /// here) before it computes, and after, packs its own tasks' `full` records and `seconds` in front
+  /// of them and sends the whole to its parent.
+  std::vector<MPI_Request> receive_subtree(int phase, std::vector<double>& reply);
+  void send_reply(int phase, const double* full, const double* seconds, std::vector<double>& reply,
+                  std::vector<MPI_Request>& from);
+  /// Worker, shared replies: its tasks' records and seconds into their slots, then its reply word.
+  void post_shared_reply(int phase, const double* full, const double* seconds);
+  /// Master, shared replies: waits (bounded) for every worker's reply word and the command's
+  /// broadcast request, then copies the workers' records into place.
+  void collect_shared_replies(int phase, MPI_Request& command, std::vector<double>& records, std::vector<double>& busy);
   void set_owner(int phase, const std::vector<int>& owner);
   /// This rank's tasks of the phase's plan: records and seconds in task order (at task t) or packed
   /// in the order of the rank's task list.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds, bool in_task_order);
-  /// Both sides, right after the start command: the shared-memory window of the tail (its claim
-  /// counter and one slot per tail position), when `wanted` and every rank is on rank 0's node.
-  /// Collective. Sets tail_window_ (MPI_WIN_NULL: no tail).
-  void open_tail_window(bool wanted, int record_size);
+  /// Both sides, right after the start command: the node's shared-memory window (per rank a tail
+  /// claim word and a reply word, per task a slot), when the tail or the shared replies want it
+  /// and every rank is on rank 0's node. Collective. Sets tail_window_ (MPI_WIN_NULL: none; then
+  /// no tail and replies by message), tail_on_ and reply_done_.
+  void open_node_window(bool tail, bool shared_replies, int record_size);
   void close_tail_window();
   /// Master: marks the plan's tail in `owner` (mark_tail), each task as a negative code that says
   /// its rank in the plan and its position in that rank's tail (largest first).
@@ -192,11 +219,13 @@ class MpiExecutor final : public Executor {
   std::vector<std::vector<int>> tasks_of_[phase_count];  ///< per rank, ascending (its fixed list)
   std::vector<int> tail_[phase_count];  ///< the plan's tail: rank 0's, rank 1's, ... (each largest first)
   std::vector<int> tail_start_[phase_count];  ///< rank r's part of tail_ starts at [r], ends at [r + 1]
-  // The tail's window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
+  // The node window (mpi_tail.cpp): on rank 0's memory, mapped by every rank.
   MPI_Comm node_comm_ = MPI_COMM_NULL;
   MPI_Win tail_window_ = MPI_WIN_NULL;
+  bool tail_on_ = false;                  ///< the plans have a tail
   std::int64_t* tail_counter_ = nullptr;  ///< per rank a claim word (front, back), a cache line apart
-  double* tail_slots_ = nullptr;        ///< per tail position: rank, seconds, record
+  std::int64_t* reply_done_ = nullptr;    ///< per rank the last evaluation it has replied to (shared replies)
+  double* tail_slots_ = nullptr;        ///< per task: rank, seconds, record
   std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds
   std::vector<double> ratio_[phase_count];               ///< per task: cost / rhs cost (not rhs)

@@ -1,8 +1,12 @@
-// The MPI executor's replies: what a worker sends back per evaluation (of each task's record only
-// the doubles it fills, then the tasks' seconds) and the tree they travel to rank 0; which rank
-// holds which piece's record afterwards (output()).
+// The MPI executor's replies: what a worker gives back per evaluation (of each task's record only
+// the doubles it fills, then the tasks' seconds), by message up a tree to rank 0 or through the
+// node's shared-memory window; which rank holds which piece's record afterwards (output()).
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
 #include <stdexcept>
+#include <thread>
 
 #include "scheduler/mpi_executor.hpp"
 
@@ -73,6 +77,95 @@ const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
   for (const int t : tail_[static_cast<int>(Phase::rhs)]) owner[static_cast<std::size_t>(t)] = 0;
   holder_ = piece_holders(owner, catalogue_.parent);
   return holder_;
+}
+
+std::vector<MPI_Request> MpiExecutor::receive_subtree(int phase, std::vector<double>& reply) {
+  const std::vector<int> children = tree_children(rank_);
+  reply.resize(subtree_reply_size(phase, rank_));
+  std::vector<MPI_Request> from(children.size());
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+  std::size_t at = packed_size(phase, mine) + mine.size();  // the children's replies after its own, in rank order
+  for (std::size_t i = 0; i < children.size(); ++i) {
+    const auto count = subtree_reply_size(phase, children[i]);
+    MPI_Irecv(reply.data() + at, static_cast<int>(count), MPI_DOUBLE, children[i], phase, comm_, &from[i]);
+    at += count;
+  }
+  return from;
+}
+
+void MpiExecutor::send_reply(int phase, const double* full, const double* seconds, std::vector<double>& reply,
+                             std::vector<MPI_Request>& from) {
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
+  double* out = reply.data();
+  for (std::size_t i = 0; i < mine.size(); ++i) out = std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), out);
+  std::copy_n(seconds, mine.size(), out);
+  MPI_Waitall(static_cast<int>(from.size()), from.data(), MPI_STATUSES_IGNORE);  // as long as it takes, like serve()
+  MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_);
+}
+
+// Shared replies. Why not messages on one node: rank 0's wait for a worker's reply of a few kB
+// that finished at the same moment was measured at a median of 4.5-6.6 us by message (a rendezvous
+// past Open MPI's 4 KiB eager limit: three legs, each waiting on the other side's progress loop)
+// against 1.2-2.1 us through the window, on the heavy scene at np=2 (perf/results/parallel_notes.md
+// (n)). Through the window a reply is the records in their slots and one word stored after them.
+void MpiExecutor::post_shared_reply(int phase, const double* full, const double* seconds) {
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];
+  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    double* slot = tail_slots_ + static_cast<std::size_t>(mine[i]) * tail_slot_size_;
+    slot[0] = rank_;
+    slot[1] = seconds[i];
+    std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), slot + 2);
+  }
+  MPI_Win_sync(tail_window_);  // the slots before the word
+  std::atomic_ref<std::int64_t>(reply_done_[static_cast<std::size_t>(rank_) * window_word_stride])
+      .store(evaluation_, std::memory_order_release);
+}
+
+void MpiExecutor::collect_shared_replies(int phase, MPI_Request& command, std::vector<double>& records,
+                                         std::vector<double>& busy) {
+  // Spin on the words while the wait is short (the ranks finish within a task of each other: the
+  // median wait on the heavy scene is 1-2 us), then give the core away between looks:
+  // oversubscribed (more ranks than cores) a spinning rank 0 would hold the core its workers need.
+  constexpr double spin_seconds = 50e-6;
+  const auto started = std::chrono::steady_clock::now();
+  const auto spin_until = started + std::chrono::duration<double>(spin_seconds);
+  const auto deadline = started + std::chrono::duration<double>(options_.rank_timeout);
+  int command_sent = 0;
+  for (int look = 0;; ++look) {
+    if (!command_sent) MPI_Test(&command, &command_sent, MPI_STATUS_IGNORE);
+    int first_silent = 0;
+    for (int r = 1; r < size_ && first_silent == 0; ++r)
+      if (std::atomic_ref<std::int64_t>(reply_done_[static_cast<std::size_t>(r) * window_word_stride])
+              .load(std::memory_order_acquire) != evaluation_)
+        first_silent = r;
+    if (first_silent == 0 && command_sent) break;
+    if (look % 64 != 63) continue;  // a clock reading every 64 looks
+    const auto now = std::chrono::steady_clock::now();
+    if (now < spin_until) continue;
+    if (now > deadline) {
+      char timeout[32];
+      std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
+      fail((first_silent ? "rank " + std::to_string(first_silent) : std::string("the workers")) + " did not answer the " +
+           phase_name(phase) + " evaluation " + std::to_string(evaluation_) + " within " + timeout +
+           " s (--rank-timeout): stopped, hung or lost; ending the job");
+    }
+    std::this_thread::yield();
+  }
+  MPI_Win_sync(tail_window_);  // the words before the slots
+  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
+  auto& seconds = seconds_[phase];
+  for (int w = 1; w < size_; ++w)
+    for (const int task : tasks_of_[phase][static_cast<std::size_t>(w)]) {
+      const auto t = static_cast<std::size_t>(task);
+      const double* slot = tail_slots_ + t * tail_slot_size_;
+      const auto used = static_cast<std::size_t>(catalogue_.used(phase, task));
+      std::copy_n(slot + 2, used, records.data() + t * rs);
+      std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
+      seconds[t] = slot[1];
+      busy[static_cast<std::size_t>(w)] += slot[1];
+    }
 }
 
 std::vector<int> piece_holders(std::span<const int> owner, std::span<const int> parent) {

@@ -14,10 +14,11 @@
 // part's claims are a word in rank 0's memory, a shared-memory window: front and back index,
 // changed by compare-and-swap (no message, nothing rank 0 has to serve). When the ranks are
 // balanced each evaluates its own part, the same tasks at every evaluation, and only what the
-// scatter needs moves; at many ranks the claims spread over P cache lines instead of one. Rank 0 writes its tail records in place; a worker writes each record, with
-// its rank and seconds, to the position's slot in the window, then (after MPI_Win_sync) sends its
-// usual reply with its fixed list. Once rank 0 has every reply, it copies the workers' slots into
-// place. Every record lands at its task and the equations sum the records in task order: the bits
+// scatter needs moves; at many ranks the claims spread over P cache lines instead of one. Rank 0
+// writes its tail records in place; a worker writes each record, with its rank and seconds, to its
+// task's slot in the window, then (after MPI_Win_sync) gives its usual reply for its fixed list (a
+// message, or through the same window: mpi_replies.cpp). Once rank 0 has every reply, it copies the
+// workers' slots into place. Every record lands at its task and the equations sum the records in task order: the bits
 // depend on no rank count, plan or order of the claims.
 //
 // Why not messages: a claim protocol over point-to-point messages needs rank 0 to look for claims
@@ -46,7 +47,7 @@ static_assert(std::atomic_ref<std::int64_t>::is_always_lock_free, "the claim wor
 constexpr std::int64_t word(std::int64_t front, std::int64_t back) { return back << 32 | front; }
 constexpr std::int64_t front_of(std::int64_t w) { return w & 0xffffffff; }
 constexpr std::int64_t back_of(std::int64_t w) { return w >> 32; }
-constexpr std::size_t word_stride = 8;  // int64s: a 64-byte cache line per rank's word
+constexpr std::size_t word_stride = MpiExecutor::window_word_stride;
 
 /// Takes one position of a part, from the front or the back; -1 when the part is empty.
 std::int64_t take(std::int64_t& w_ref, bool from_front) {
@@ -62,8 +63,8 @@ std::int64_t take(std::int64_t& w_ref, bool from_front) {
 
 }  // namespace
 
-void MpiExecutor::open_tail_window(bool wanted, int record_size) {
-  if (!wanted) return;
+void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_size) {
+  if (!tail && !shared_replies) return;
   MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node_comm_);
   int node_size = 0;
   MPI_Comm_size(node_comm_, &node_size);
@@ -71,10 +72,10 @@ void MpiExecutor::open_tail_window(bool wanted, int record_size) {
     MPI_Comm_free(&node_comm_);
     return;
   }
-  // On rank 0: per rank its claim word (a cache line each), then per tail position (at most every
-  // task) a slot of rank, seconds and a record of the largest phase's size.
+  // On rank 0: per rank its claim word and its reply word (a cache line each), then per task a
+  // slot of rank, seconds and a record of the largest phase's size.
   tail_slot_size_ = 2 + static_cast<std::size_t>(record_size);
-  const std::size_t words = static_cast<std::size_t>(size_) * word_stride;
+  const std::size_t words = 2 * static_cast<std::size_t>(size_) * word_stride;
   const auto doubles = is_master() ? words + static_cast<std::size_t>(catalogue_.task_count) * tail_slot_size_ : 0;
   void* mine = nullptr;
   MPI_Win_allocate_shared(static_cast<MPI_Aint>(doubles * sizeof(double)), sizeof(double), MPI_INFO_NULL, node_comm_,
@@ -84,6 +85,8 @@ void MpiExecutor::open_tail_window(bool wanted, int record_size) {
   void* base = nullptr;
   MPI_Win_shared_query(tail_window_, 0, &bytes, &unit, &base);
   tail_counter_ = static_cast<std::int64_t*>(base);  // the window's memory is untyped: int64s, then doubles
+  if (shared_replies) reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * word_stride;
+  tail_on_ = tail;
   tail_slots_ = reinterpret_cast<double*>(static_cast<char*>(base) + words * sizeof(std::int64_t));
   MPI_Win_lock_all(MPI_MODE_NOCHECK, tail_window_);  // one passive epoch for the whole run
 }
@@ -156,7 +159,7 @@ double MpiExecutor::evaluate_tail(int phase, std::span<const double> context, co
   auto last = std::chrono::steady_clock::now();  // a task's seconds include its claim
   for (std::int64_t position; (position = claim_tail_position(phase)) >= 0;) {
     const auto t = static_cast<std::size_t>(tail[static_cast<std::size_t>(position)]);
-    double* slot = tail_slots_ + static_cast<std::size_t>(position) * tail_slot_size_;
+    double* slot = tail_slots_ + t * tail_slot_size_;
     // Rank 0 writes in place; a worker to the slot, with its rank and the seconds.
     run_task(phase, context, function, static_cast<int>(t), std::span<double>(records ? records + t * rs : slot + 2, rs));
     const auto now = std::chrono::steady_clock::now();
@@ -174,11 +177,11 @@ void MpiExecutor::collect_tail(int phase, std::vector<double>& records, std::vec
   MPI_Win_sync(tail_window_);  // every reply is in: the workers' slots are written
   const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
   const auto& tail = tail_[phase];
-  for (std::size_t i = 0; i < tail.size(); ++i) {
-    const double* slot = tail_slots_ + i * tail_slot_size_;
+  for (const int task : tail) {
+    const auto t = static_cast<std::size_t>(task);
+    const double* slot = tail_slots_ + t * tail_slot_size_;
     const auto r = static_cast<std::size_t>(slot[0]);
     if (r == 0) continue;  // rank 0's own, already in place
-    const auto t = static_cast<std::size_t>(tail[i]);
     std::copy_n(slot + 2, rs, records.data() + t * rs);
     seconds_[phase][t] = slot[1];
     busy[r] += slot[1];

@@ -9,7 +9,8 @@
 #     seed 002 run and a short 6309 R3 run; /scheduler and timing
 #     fields of the summary are left out (tests/parallel/compare_outputs.py).
 #     Also with tasks claimed on demand (--tail-share): every task (1) at np 2, 30 % with forced
-#     re-plans at np 3, every task by the workers alone (--master-share 0) at np 3.
+#     re-plans at np 3, every task by the workers alone (--master-share 0) at np 3. And with the
+#     replies by message instead of shared memory (--replies messages) at np 4 and np 3.
 #   bitwise_cut: the same on a short run of the high-fidelity scene (6309_R3_fine_traction: its
 #     ball-race contacts cut into traction-grid blocks, sub-tasks the master combines), where the
 #     plans really cut segments over ranks (checked in the plan log lines).
@@ -19,6 +20,7 @@
 #   integration_failure: rank 0's integration fails (step budget 50): exit 3, the workers leave too.
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
+#   stopped_worker_messages: the same with the replies by message (--replies messages).
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
 #   output_disk_full: the parallel output (--parallel-output: each rank writes the segment diagnostics it evaluated,
 #     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
@@ -94,6 +96,17 @@ PY
     /usr/bin/python3 -c "import sys, h5py; s = h5py.File(sys.argv[1])['scheduler/rank_task_seconds'][()]; \
 print('rank task seconds', list(s)); sys.exit(0 if sum(s[1:]) > 0 and (s[0] > 0) == (sys.argv[2] != 'tailshare0') else 1)" \
       "$work/$name.h5" "$name" || fail "np $np $*: no worker claimed tail tasks, or rank 0 did with --master-share 0"
+  done
+  # The workers' records by message instead of through shared memory (--replies messages, as
+  # between nodes): at np 4 (a reply tree two deep: rank 3 through rank 2), and at np 3 with a tail
+  # and a new plan before every evaluation.
+  for run in "4 messages4 --replies messages --parallel-output" \
+    "3 messagestail --replies messages --tail-share 0.3 --replan-every-step"; do
+    set -- $run
+    local np=$1 name=$2
+    shift 2
+    mpi "$np" run "$scene" -o "$work/$name.h5" "$@"
+    [[ $rc -eq 0 ]] && files+=("$work/$name.h5") || fail "np $np $*: exit code $rc: $(tail -3 "$work/log")"
   done
   # Rank 0 evaluating no tasks at all (--master-share 0), adaptive schedule.
   mpi 3 run "$scene" -o "$work/share0.h5" --master-share 0 --parallel-output
@@ -185,7 +198,7 @@ signal_worker() {
 }
 
 stopped_worker() {
-  signal_worker STOP "$work/s.h5" --rank-timeout 3
+  signal_worker STOP "$work/s.h5" --rank-timeout 3 "$@"
   [[ -n "$victim" ]] || return
   [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
   grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
@@ -228,6 +241,7 @@ integration_failure)
   grep -q "integration failed at t = " "$work/log" || fail "no diagnosis in the output"
   ;;
 stopped_worker) stopped_worker ;;
+stopped_worker_messages) stopped_worker --replies messages ;;
 bad_option)
   mpi 2 run "$work/planar.toml" -o "$work/b.h5" --master-share nan
   [[ $rc -eq 2 ]] || fail "exit code $rc, expected 2: $(tail -5 "$work/log")"
