@@ -13,7 +13,10 @@
 # TAIL_SHARE: the np=2 runs' --tail-share (default: the executor's, 0.1; 0: fixed plans only, for
 # an A/B), also given to the replay model.
 # END_TIME: length of the timed high-fidelity runs (default 20 ms: one revolution; under the load
-# of a shared machine the scene's full 0.1 s took 160 s at np=1 and 500 s at np=2). The replay's
+# of a shared machine the scene's full 0.1 s took 160 s at np=1 and 500 s at np=2; on a quiet one
+# 23 s and 12 s: END_TIME="100 ms" times the scene as shipped).
+# RUNS: pairs of runs (np=1 then np=2, default 3); each pair's speed-up is printed, and their mean
+# with its standard error beside the medians. The replay's
 # predictions for P = 1..64 come from a one-rank run of the whole scene (0.1 s; FULL_RUN=FILE.h5:
 # an existing one, recorded with --scheduler-log), its check at np=2 from the timed runs.
 set -euo pipefail
@@ -37,7 +40,7 @@ sed -e "s/^end_time = .*/end_time = \"${END_TIME:-20 ms}\"/" "$root/jobs/scenes/
 cp "$root/jobs/scenes/6309_R3.toml" "$tmp/shipped.toml"
 
 speedup() {  # speedup NAME SCENE
-  local name=$1 scene=$2 w1=() w2=()
+  local name=$1 scene=$2 w1=() w2=() pairs=()
   echo "# $name: $(basename "$scene"), wall = run summary's wall_time_s"
   for i in $(seq "$runs"); do
     # One core: the output on the run's thread (the output thread would take the second core).
@@ -48,11 +51,22 @@ speedup() {  # speedup NAME SCENE
     mpirun -np 2 "$raceway" run "$scene" -o "$tmp/${name}2.h5" --summary-json "$tmp/${name}2.json" \
       ${TAIL_SHARE:+--tail-share "$TAIL_SHARE"} >/dev/null 2>&1
     w2+=("$(wall "$tmp/${name}2.json")")
-    echo "run $i np=2 wall ${w2[-1]} s  ($(load))"
+    # The pair's speed-up, and the same tasks' summed seconds at np=2 over np=1's (above 1: the
+    # tasks themselves ran slower with both cores busy, the machine's part of the loss).
+    pairs+=("$("$py" - "$tmp/${name}1.h5" "$tmp/${name}2.h5" "${w1[-1]}" "${w2[-1]}" <<'PY'
+import sys, h5py
+task = [h5py.File(f)["scheduler/imbalance"][()][:, 5].sum() * r for f, r in zip(sys.argv[1:3], (1, 2))]
+print(f"{float(sys.argv[3]) / float(sys.argv[4]):.4f} {task[1] / task[0]:.4f}")
+PY
+)")
+    echo "run $i np=2 wall ${w2[-1]} s  ($(load)); pair speed-up and task seconds np=2/np=1: ${pairs[-1]}"
   done
   local m1 m2
   m1=$(median "${w1[@]}")
   m2=$(median "${w2[@]}")
+  printf '%s\n' "${pairs[@]}" | awk -v n="$name" '{s += $1; ss += $1 * $1; t += $2; k++}
+    END {m = s / k; se = k > 1 ? sqrt((ss / k - m * m) * k / (k - 1) / k) : 0;
+         printf "%s: pairs: mean speed-up %.3f, standard error %.3f (%d pairs); tasks np=2/np=1 mean %.3f\n", n, m, se, k, t / k}'
   echo "$name: median np=1 $m1 s, np=2 $m2 s: speed-up $(awk -v a="$m1" -v b="$m2" 'BEGIN {printf "%.3f", a / b}')"
   "$py" -c 'import h5py, sys; a = h5py.File(sys.argv[1])["scheduler"].attrs; print("  np=2 time-averaged imbalance %.3f" % a["time_averaged_imbalance"])' "$tmp/${name}2.h5"
 }
