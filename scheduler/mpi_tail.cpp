@@ -27,6 +27,7 @@
 // each here, and about a hundred looks per evaluation cost more than the imbalance they remove
 // (measured, parallel_notes.md (j)). A window needs every rank on one node (shared memory): on
 // several nodes the tail is off (said at the start) and the fixed plan runs as before.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -85,6 +86,9 @@ void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_si
   void* base = nullptr;
   MPI_Win_shared_query(tail_window_, 0, &bytes, &unit, &base);
   tail_counter_ = static_cast<std::int64_t*>(base);  // the window's memory is untyped: int64s, then doubles
+  // MPI does not promise zeroed memory: no reply word may start out naming an evaluation. Rank 0
+  // clears them before its first command, which every worker receives before it writes its word.
+  if (is_master()) std::fill_n(tail_counter_, words, std::int64_t{0});
   if (shared_replies) reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * word_stride;
   tail_on_ = tail;
   tail_slots_ = reinterpret_cast<double*>(static_cast<char*>(base) + words * sizeof(std::int64_t));
