@@ -416,7 +416,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   if (!tail_[phase].empty() && capacity_[0] > 0)  // not with --master-share 0
     busy[0] += evaluate_tail(phase, context, task, records.data(), seconds.data());
-  if (reply_done_ && size_ > 1)
+  if (reply_done_)
     collect_shared_replies(phase, requests.front(), records, busy);
   else if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));

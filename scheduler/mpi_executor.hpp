@@ -130,12 +130,8 @@ class MpiExecutor final : public Executor {
   static constexpr double command_start = 1, command_evaluate = 2, command_plan = 3, command_stop = 4,
                           command_output = 5;
   static constexpr int header_size = 6;
-
- public:
   /// int64s between two ranks' words in the node window: a 64-byte cache line each.
   static constexpr std::size_t window_word_stride = 8;
-
- private:
 
   [[noreturn]] void fail(const std::string& what) const;
   /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
@@ -157,6 +153,10 @@ class MpiExecutor final : public Executor {
   std::vector<int> tree_children(int r) const;
   int subtree_end(int r) const;
   std::size_t subtree_reply_size(int phase, int r) const;
+  /// Master: a worker's record of `task` (its used doubles at `values`, zeros after them) and its
+  /// seconds into place, counted as rank `w`'s work.
+  void place_record(int phase, int task, int w, const double* values, double task_seconds, std::vector<double>& records,
+                    std::vector<double>& busy);
   /// Master: the replies of ranks r .. subtree_end(r) - 1 from `packed` into records, seconds, busy.
   void unpack_replies(int phase, int r, const double* packed, std::vector<double>& records, std::vector<double>& busy);
   /// Worker, replies by message: posts the receives of its subtree's replies into `reply` (sized

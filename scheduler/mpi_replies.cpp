@@ -37,21 +37,25 @@ std::size_t MpiExecutor::subtree_reply_size(int phase, int r) const {
   return n;
 }
 
+void MpiExecutor::place_record(int phase, int task, int w, const double* values, double task_seconds,
+                               std::vector<double>& records, std::vector<double>& busy) {
+  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
+  const auto t = static_cast<std::size_t>(task);
+  const auto used = static_cast<std::size_t>(catalogue_.used(phase, task));
+  std::copy_n(values, used, records.data() + t * rs);
+  std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
+  seconds_[phase][t] = task_seconds;
+  busy[static_cast<std::size_t>(w)] += task_seconds;
+}
+
 void MpiExecutor::unpack_replies(int phase, int r, const double* packed, std::vector<double>& records,
                                  std::vector<double>& busy) {
-  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
-  auto& seconds = seconds_[phase];
   for (int w = r; w < subtree_end(r); ++w) {  // each rank's reply: its records' used doubles, then its seconds
     const auto& list = tasks_of_[phase][static_cast<std::size_t>(w)];
     const double* secs = packed + packed_size(phase, list);
     for (std::size_t i = 0; i < list.size(); ++i) {
-      const auto t = static_cast<std::size_t>(list[i]);
-      const auto used = static_cast<std::size_t>(catalogue_.used(phase, list[i]));
-      std::copy_n(packed, used, records.data() + t * rs);
-      std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
-      packed += used;
-      seconds[t] = secs[i];
-      busy[static_cast<std::size_t>(w)] += secs[i];
+      place_record(phase, list[i], w, packed, secs[i], records, busy);
+      packed += catalogue_.used(phase, list[i]);
     }
     packed = secs + list.size();
   }
@@ -154,17 +158,10 @@ void MpiExecutor::collect_shared_replies(int phase, MPI_Request& command, std::v
     std::this_thread::yield();
   }
   MPI_Win_sync(tail_window_);  // the words before the slots
-  const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
-  auto& seconds = seconds_[phase];
   for (int w = 1; w < size_; ++w)
     for (const int task : tasks_of_[phase][static_cast<std::size_t>(w)]) {
-      const auto t = static_cast<std::size_t>(task);
-      const double* slot = tail_slots_ + t * tail_slot_size_;
-      const auto used = static_cast<std::size_t>(catalogue_.used(phase, task));
-      std::copy_n(slot + 2, used, records.data() + t * rs);
-      std::fill_n(records.data() + t * rs + used, rs - used, 0.0);
-      seconds[t] = slot[1];
-      busy[static_cast<std::size_t>(w)] += slot[1];
+      const double* slot = tail_slots_ + static_cast<std::size_t>(task) * tail_slot_size_;
+      place_record(phase, task, w, slot + 2, slot[1], records, busy);
     }
 }
 

@@ -18,8 +18,8 @@
 // writes its tail records in place; a worker writes each record, with its rank and seconds, to its
 // task's slot in the window, then (after MPI_Win_sync) gives its usual reply for its fixed list (a
 // message, or through the same window: mpi_replies.cpp). Once rank 0 has every reply, it copies the
-// workers' slots into place. Every record lands at its task and the equations sum the records in task order: the bits
-// depend on no rank count, plan or order of the claims.
+// workers' slots into place. Every record lands at its task and the equations sum the records in
+// task order: the bits depend on no rank count, plan or order of the claims.
 //
 // Why not messages: a claim protocol over point-to-point messages needs rank 0 to look for claims
 // between its own tasks; with Open MPI's yield_when_idle (the default when oversubscribed, and
@@ -48,7 +48,6 @@ static_assert(std::atomic_ref<std::int64_t>::is_always_lock_free, "the claim wor
 constexpr std::int64_t word(std::int64_t front, std::int64_t back) { return back << 32 | front; }
 constexpr std::int64_t front_of(std::int64_t w) { return w & 0xffffffff; }
 constexpr std::int64_t back_of(std::int64_t w) { return w >> 32; }
-constexpr std::size_t word_stride = MpiExecutor::window_word_stride;
 
 /// Takes one position of a part, from the front or the back; -1 when the part is empty.
 std::int64_t take(std::int64_t& w_ref, bool from_front) {
@@ -76,7 +75,7 @@ void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_si
   // On rank 0: per rank its claim word and its reply word (a cache line each), then per task a
   // slot of rank, seconds and a record of the largest phase's size.
   tail_slot_size_ = 2 + static_cast<std::size_t>(record_size);
-  const std::size_t words = 2 * static_cast<std::size_t>(size_) * word_stride;
+  const std::size_t words = 2 * static_cast<std::size_t>(size_) * window_word_stride;
   const auto doubles = is_master() ? words + static_cast<std::size_t>(catalogue_.task_count) * tail_slot_size_ : 0;
   void* mine = nullptr;
   MPI_Win_allocate_shared(static_cast<MPI_Aint>(doubles * sizeof(double)), sizeof(double), MPI_INFO_NULL, node_comm_,
@@ -89,7 +88,7 @@ void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_si
   // MPI does not promise zeroed memory: no reply word may start out naming an evaluation. Rank 0
   // clears them before its first command, which every worker receives before it writes its word.
   if (is_master()) std::fill_n(tail_counter_, words, std::int64_t{0});
-  if (shared_replies) reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * word_stride;
+  if (shared_replies) reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * window_word_stride;
   tail_on_ = tail;
   tail_slots_ = reinterpret_cast<double*>(static_cast<char*>(base) + words * sizeof(std::int64_t));
   MPI_Win_lock_all(MPI_MODE_NOCHECK, tail_window_);  // one passive epoch for the whole run
@@ -136,22 +135,24 @@ void MpiExecutor::close_tail_window() {
 void MpiExecutor::reset_tail_claims(int phase) {
   const auto& start = tail_start_[phase];
   for (std::size_t r = 0; r + 1 < start.size(); ++r)
-    std::atomic_ref<std::int64_t>(tail_counter_[r * word_stride]).store(word(start[r], start[r + 1]), std::memory_order_release);
+    std::atomic_ref<std::int64_t>(tail_counter_[r * window_word_stride])
+        .store(word(start[r], start[r + 1]), std::memory_order_release);
 }
 
 std::int64_t MpiExecutor::claim_tail_position(int phase) {
   // Its own part from the front; then the back of the part with the most left.
-  if (const std::int64_t own = take(tail_counter_[static_cast<std::size_t>(rank_) * word_stride], true); own >= 0)
-    return own;
+  const auto mine = static_cast<std::size_t>(rank_) * window_word_stride;
+  if (const std::int64_t own = take(tail_counter_[mine], true); own >= 0) return own;
   for (;;) {
     std::size_t victim = 0;
     std::int64_t most = 0;
     for (std::size_t r = 0; r + 1 < tail_start_[phase].size(); ++r) {
-      const std::int64_t w = std::atomic_ref<std::int64_t>(tail_counter_[r * word_stride]).load(std::memory_order_acquire);
+      const std::int64_t w =
+          std::atomic_ref<std::int64_t>(tail_counter_[r * window_word_stride]).load(std::memory_order_acquire);
       if (back_of(w) - front_of(w) > most) most = back_of(w) - front_of(w), victim = r;
     }
     if (most == 0) return -1;
-    if (const std::int64_t stolen = take(tail_counter_[victim * word_stride], false); stolen >= 0) return stolen;
+    if (const std::int64_t stolen = take(tail_counter_[victim * window_word_stride], false); stolen >= 0) return stolen;
   }
 }
 
