@@ -170,17 +170,17 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
   catalogue_.function = {};  // the master runs the function run() is given; keep no references
   const int max_record = *std::max_element(catalogue.record_size.begin(), catalogue.record_size.end());
   const bool tail = size_ > 1 && options_.tail_share > 0;
-  const bool shared_replies = size_ > 1 && options_.shared_replies;
+  const bool shared_exchange = size_ > 1 && options_.shared_exchange;
   double start[header_size] = {command_start, 0, static_cast<double>(catalogue.task_count),
                                static_cast<double>(catalogue.context_size), static_cast<double>(max_record),
-                               (tail ? 1.0 : 0.0) + (shared_replies ? 2.0 : 0.0)};
+                               (tail ? 1.0 : 0.0) + (shared_exchange ? 2.0 : 0.0)};
   broadcast(start, header_size, "the start of the run");
-  open_node_window(tail, shared_replies, max_record);
+  message_size_ = header_size + static_cast<std::size_t>(catalogue.context_size);
+  message_.assign(message_size_, 0.0);
+  open_node_window(tail, shared_exchange, max_record);
   if (tail && tail_window_ == MPI_WIN_NULL && options_.on_event)
     options_.on_event("scheduler: no tail shared on demand (--tail-share): it needs every rank on rank 0's node");
   attached_ = true;
-  message_size_ = header_size + static_cast<std::size_t>(catalogue.context_size);
-  message_.assign(message_size_, 0.0);
   receive_.resize(static_cast<std::size_t>(size_));
   log_.task_group = catalogue.group;
   log_.task_parent = catalogue.parent;
@@ -203,9 +203,14 @@ void MpiExecutor::attach(const TaskCatalogue& catalogue) {
 void MpiExecutor::stop() {
   if (!is_master() || stopped_) return;
   stopped_ = true;
-  std::vector<double> msg(attached_ ? message_size_ : header_size, 0.0);
-  msg[0] = command_stop;
-  broadcast(msg.data(), static_cast<int>(msg.size()), "the end of the run");
+  if (!attached_) {  // the workers wait in await_start(): a broadcast of the header
+    double msg[header_size] = {command_stop};
+    broadcast(msg, header_size, "the end of the run");
+    return;
+  }
+  std::fill(message_.begin(), message_.end(), 0.0);
+  message_[0] = command_stop;
+  send_command("the end of the run");
 }
 
 void MpiExecutor::set_owner(int phase, const std::vector<int>& owner) {
@@ -254,7 +259,7 @@ void MpiExecutor::adopt_plan(int phase, Plan plan, PlanReason reason, double sta
     message_[1] = phase;
     message_[2] = catalogue_.task_count;
     message_[4] = version_[phase];
-    broadcast(message_.data(), static_cast<int>(message_size_), "a new plan");
+    send_command("a new plan");
     // The owners follow in a broadcast of their own: the command buffer holds a context, not a
     // task list, so every evaluation's broadcast is no longer than it needs to be.
     broadcast_owners(owner);
@@ -388,10 +393,13 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     std::copy(context.begin(), context.end(), message_.begin() + header_size);
   }
   // The command and the receives are posted before the master's own share, so worker records land
-  // while it computes; all are waited for together (bounded: wait_bounded).
+  // while it computes; all are waited for together (bounded: wait_bounded, or through the window:
+  // collect_shared_replies).
   std::vector<MPI_Request> requests;
   std::vector<int> request_rank;
-  if (size_ > 1) {
+  if (command_word_) {
+    send_command("an evaluation");
+  } else if (size_ > 1) {
     requests.emplace_back();
     request_rank.push_back(-1);
     MPI_Ibcast(message_.data(), static_cast<int>(message_size_), MPI_DOUBLE, 0, comm_, &requests.back());
@@ -417,7 +425,7 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   if (!tail_[phase].empty() && capacity_[0] > 0)  // not with --master-share 0
     busy[0] += evaluate_tail(phase, context, task, records.data(), seconds.data());
   if (reply_done_)
-    collect_shared_replies(phase, requests.front(), records, busy);
+    collect_shared_replies(phase, records, busy);
   else if (!requests.empty())
     wait_bounded(requests, request_rank, std::string("the ") + phase_name(phase) + " evaluation " + std::to_string(evaluation_));
   for (const int c : children) unpack_replies(phase, c, receive_[static_cast<std::size_t>(c)].data(), records, busy);
@@ -507,7 +515,7 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
   }
   std::vector<double> reply, full, seconds;
   for (;;) {
-    broadcast(message_.data(), static_cast<int>(message_size_), "a command");
+    receive_command();
     const double command = message_[0];
     const int phase = static_cast<int>(message_[1]);
     if (command == command_stop) return;

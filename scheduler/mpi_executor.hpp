@@ -19,9 +19,10 @@
 // With a tail (MpiExecutorOptions::tail_share; scheduler/mpi_tail.cpp) part of each evaluation's
 // tasks are no rank's: every rank done with its fixed list claims them one by one (an atomic
 // counter in a shared-memory window) and writes their records there, where rank 0 picks them up.
-// Every command is one broadcast of a fixed-size buffer (header + context), so a worker never needs
-// to know in advance which command comes. Broadcasts are non-blocking
-// (MPI_Ibcast) on every rank, so the master can bound its waits. The master places the records in
+// Every command is one fixed-size buffer (header + context), so a worker never needs to know in
+// advance which command comes: with every rank on rank 0's node and shared replies, written into
+// the node window (scheduler/mpi_commands.cpp), else broadcast (MPI_Ibcast, non-blocking on every
+// rank, so the master can bound its waits). The master places the records in
 // task order; the equations sum them in that order, so results are bitwise identical for any rank
 // count and any plan.
 //
@@ -74,10 +75,12 @@ struct MpiExecutorOptions {
   /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand; 0.1 is
   /// what perf/results/parallel_notes.md measured best.
   double tail_share = 0.1;
-  /// With every rank on rank 0's node: the workers' records go back through a shared-memory window
-  /// (each worker writes its tasks' slots and then its reply word; scheduler/mpi_replies.cpp)
-  /// instead of messages. false: messages, as between nodes (for tests and comparisons).
-  bool shared_replies = true;
+  /// With every rank on rank 0's node: rank 0's commands reach the workers through a shared-memory
+  /// window (the buffer, then a command word; scheduler/mpi_commands.cpp) and the workers' records
+  /// come back through it (each worker writes its tasks' slots and then its reply word;
+  /// scheduler/mpi_replies.cpp) instead of messages. false: broadcasts and messages, as between
+  /// nodes (for tests and comparisons).
+  bool shared_exchange = true;
   /// Master: seconds to wait for the workers' answer to one command before ending the job.
   double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).
@@ -132,6 +135,8 @@ class MpiExecutor final : public Executor {
   static constexpr int header_size = 6;
   /// int64s between two ranks' words in the node window: a 64-byte cache line each.
   static constexpr std::size_t window_word_stride = 8;
+  /// In a worker's reply line: the last evaluation it replied to; the commands it has taken.
+  static constexpr std::size_t reply_word = 0, taken_word = 1;
 
   [[noreturn]] void fail(const std::string& what) const;
   /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
@@ -167,19 +172,29 @@ class MpiExecutor final : public Executor {
                   std::vector<MPI_Request>& from);
   /// Worker, shared replies: its tasks' records and seconds into their slots, then its reply word.
   void post_shared_reply(int phase, const double* full, const double* seconds);
-  /// Master, shared replies: waits (bounded) for every worker's reply word and the command's
-  /// broadcast request, then copies the workers' records into place.
-  void collect_shared_replies(int phase, MPI_Request& command, std::vector<double>& records, std::vector<double>& busy);
+  /// Master, shared replies: waits (bounded) for every worker's reply word, then copies the
+  /// workers' records into place.
+  void collect_shared_replies(int phase, std::vector<double>& records, std::vector<double>& busy);
+  /// Master: message_ to every worker, through the node window (shared replies) or broadcast
+  /// (bounded; `what` names it in the failure). Worker: the next command into message_.
+  /// (mpi_commands.cpp)
+  void send_command(const char* what);
+  void receive_command();
+  /// Master: waits until every worker's `word` (reply_word, taken_word) in its reply line is at
+  /// least `value`; past rank_timeout fails: "rank R did not <what> [the <phase>] evaluation N".
+  void await_worker_words(std::size_t word, std::int64_t value, const char* what, int phase);
   void set_owner(int phase, const std::vector<int>& owner);
   /// This rank's tasks of the phase's plan: records and seconds in task order (at task t) or packed
   /// in the order of the rank's task list.
   void evaluate_own(int phase, std::span<const double> context, int record_size, const TaskFunction& task,
                     double* records, double* seconds, bool in_task_order);
   /// Both sides, right after the start command: the node's shared-memory window (per rank a tail
-  /// claim word and a reply word, per task a slot), when the tail or the shared replies want it
-  /// and every rank is on rank 0's node. Collective. Sets tail_window_ (MPI_WIN_NULL: none; then
-  /// no tail and replies by message), tail_on_ and reply_done_.
-  void open_node_window(bool tail, bool shared_replies, int record_size);
+  /// claim word and a reply line, the command, per task a slot), when the tail or the shared
+  /// replies want it and every rank is on rank 0's node. Collective. Sets tail_window_
+  /// (MPI_WIN_NULL: none; then no tail, commands and replies by message), tail_on_, and with
+  /// shared replies reply_done_, command_word_ and command_buffer_ (commands through the window
+  /// too). Needs message_size_.
+  void open_node_window(bool tail, bool shared_exchange, int record_size);
   void close_tail_window();
   /// Master: marks the plan's tail in `owner` (mark_tail), each task as a negative code that says
   /// its rank in the plan and its position in that rank's tail (largest first).
@@ -224,7 +239,11 @@ class MpiExecutor final : public Executor {
   MPI_Win tail_window_ = MPI_WIN_NULL;
   bool tail_on_ = false;                  ///< the plans have a tail
   std::int64_t* tail_counter_ = nullptr;  ///< per rank a claim word (front, back), a cache line apart
-  std::int64_t* reply_done_ = nullptr;    ///< per rank the last evaluation it has replied to (shared replies)
+  std::int64_t* reply_done_ = nullptr;    ///< per rank its reply line (reply_word, taken_word; shared replies)
+  std::int64_t* command_word_ = nullptr;  ///< the number of commands rank 0 has written (shared replies)
+  double* command_buffer_ = nullptr;      ///< the last command (message_size_ doubles)
+  std::int64_t commands_ = 0;             ///< through the window: written (master), taken (worker)
+  std::int64_t commands_taken_by_all_ = 0;  ///< master: every worker has taken this many
   double* tail_slots_ = nullptr;        ///< per task: rank, seconds, record
   std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds

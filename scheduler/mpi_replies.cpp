@@ -3,10 +3,7 @@
 // node's shared-memory window; which rank holds which piece's record afterwards (output()).
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <cstdio>
 #include <stdexcept>
-#include <thread>
 
 #include "scheduler/mpi_executor.hpp"
 
@@ -74,7 +71,7 @@ const std::vector<int>& MpiExecutor::output(std::span<const double> payload) {
     std::fill(message_.begin(), message_.end(), 0.0);
     message_[0] = command_output;
     std::copy(payload.begin(), payload.end(), message_.begin() + header_size);
-    broadcast(message_.data(), static_cast<int>(message_size_), "an output command");
+    send_command("an output command");
   }
   // A tail task's record is on rank 0 whoever evaluated it (collect_tail).
   std::vector<int> owner = owner_[static_cast<int>(Phase::rhs)];
@@ -123,40 +120,13 @@ void MpiExecutor::post_shared_reply(int phase, const double* full, const double*
     std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), slot + 2);
   }
   MPI_Win_sync(tail_window_);  // the slots before the word
-  std::atomic_ref<std::int64_t>(reply_done_[static_cast<std::size_t>(rank_) * window_word_stride])
+  std::atomic_ref<std::int64_t>(reply_done_[static_cast<std::size_t>(rank_) * window_word_stride + reply_word])
       .store(evaluation_, std::memory_order_release);
 }
 
-void MpiExecutor::collect_shared_replies(int phase, MPI_Request& command, std::vector<double>& records,
-                                         std::vector<double>& busy) {
-  // Spin on the words while the wait is short (the ranks finish within a task of each other: the
-  // median wait on the heavy scene is 1-2 us), then give the core away between looks:
-  // oversubscribed (more ranks than cores) a spinning rank 0 would hold the core its workers need.
-  constexpr double spin_seconds = 50e-6;
-  const auto started = std::chrono::steady_clock::now();
-  const auto spin_until = started + std::chrono::duration<double>(spin_seconds);
-  const auto deadline = started + std::chrono::duration<double>(options_.rank_timeout);
-  int command_sent = 0;
-  for (int look = 0;; ++look) {
-    if (!command_sent) MPI_Test(&command, &command_sent, MPI_STATUS_IGNORE);
-    int first_silent = 0;
-    for (int r = 1; r < size_ && first_silent == 0; ++r)
-      if (std::atomic_ref<std::int64_t>(reply_done_[static_cast<std::size_t>(r) * window_word_stride])
-              .load(std::memory_order_acquire) != evaluation_)
-        first_silent = r;
-    if (first_silent == 0 && command_sent) break;
-    if (look % 64 != 63) continue;  // a clock reading every 64 looks
-    const auto now = std::chrono::steady_clock::now();
-    if (now < spin_until) continue;
-    if (now > deadline) {
-      char timeout[32];
-      std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
-      fail((first_silent ? "rank " + std::to_string(first_silent) : std::string("the workers")) + " did not answer the " +
-           phase_name(phase) + " evaluation " + std::to_string(evaluation_) + " within " + timeout +
-           " s (--rank-timeout): stopped, hung or lost; ending the job");
-    }
-    std::this_thread::yield();
-  }
+void MpiExecutor::collect_shared_replies(int phase, std::vector<double>& records, std::vector<double>& busy) {
+  await_worker_words(reply_word, evaluation_, "answer", phase);
+  commands_taken_by_all_ = commands_;  // a worker takes a command before it replies to it
   MPI_Win_sync(tail_window_);  // the words before the slots
   for (int w = 1; w < size_; ++w)
     for (const int task : tasks_of_[phase][static_cast<std::size_t>(w)]) {

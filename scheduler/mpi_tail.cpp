@@ -63,8 +63,8 @@ std::int64_t take(std::int64_t& w_ref, bool from_front) {
 
 }  // namespace
 
-void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_size) {
-  if (!tail && !shared_replies) return;
+void MpiExecutor::open_node_window(bool tail, bool shared_exchange, int record_size) {
+  if (!tail && !shared_exchange) return;
   MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node_comm_);
   int node_size = 0;
   MPI_Comm_size(node_comm_, &node_size);
@@ -72,10 +72,15 @@ void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_si
     MPI_Comm_free(&node_comm_);
     return;
   }
-  // On rank 0: per rank its claim word and its reply word (a cache line each), then per task a
-  // slot of rank, seconds and a record of the largest phase's size.
+  // On rank 0: per rank its claim word and its reply line (the last evaluation it replied to, the
+  // commands it has taken), a cache line each; with shared replies a command line (commands
+  // written) and the command buffer; then per task a slot of rank, seconds and a record of the
+  // largest phase's size.
   tail_slot_size_ = 2 + static_cast<std::size_t>(record_size);
-  const std::size_t words = 2 * static_cast<std::size_t>(size_) * window_word_stride;
+  const auto whole_lines = [](std::size_t n) { return (n + window_word_stride - 1) / window_word_stride * window_word_stride; };
+  std::size_t words = 2 * static_cast<std::size_t>(size_) * window_word_stride;
+  const std::size_t command_at = words;
+  if (shared_exchange) words += window_word_stride + whole_lines(message_size_);
   const auto doubles = is_master() ? words + static_cast<std::size_t>(catalogue_.task_count) * tail_slot_size_ : 0;
   void* mine = nullptr;
   MPI_Win_allocate_shared(static_cast<MPI_Aint>(doubles * sizeof(double)), sizeof(double), MPI_INFO_NULL, node_comm_,
@@ -85,10 +90,15 @@ void MpiExecutor::open_node_window(bool tail, bool shared_replies, int record_si
   void* base = nullptr;
   MPI_Win_shared_query(tail_window_, 0, &bytes, &unit, &base);
   tail_counter_ = static_cast<std::int64_t*>(base);  // the window's memory is untyped: int64s, then doubles
-  // MPI does not promise zeroed memory: no reply word may start out naming an evaluation. Rank 0
-  // clears them before its first command, which every worker receives before it writes its word.
+  // MPI does not promise zeroed memory: no word may start out naming an evaluation or a command.
+  // Rank 0 clears them, and no rank reads one before the barrier.
   if (is_master()) std::fill_n(tail_counter_, words, std::int64_t{0});
-  if (shared_replies) reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * window_word_stride;
+  MPI_Barrier(node_comm_);
+  if (shared_exchange) {
+    reply_done_ = tail_counter_ + static_cast<std::size_t>(size_) * window_word_stride;
+    command_word_ = tail_counter_ + command_at;
+    command_buffer_ = reinterpret_cast<double*>(command_word_ + window_word_stride);
+  }
   tail_on_ = tail;
   tail_slots_ = reinterpret_cast<double*>(static_cast<char*>(base) + words * sizeof(std::int64_t));
   MPI_Win_lock_all(MPI_MODE_NOCHECK, tail_window_);  // one passive epoch for the whole run

@@ -259,7 +259,7 @@ int command_line_error(const CLI::App& app, const CLI::ParseError& e, int rank, 
 struct CommandLine {
   std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
   scheduler::MpiExecutorOptions exec_options;
-  std::string schedule = "adaptive", replies = "shared", inject;
+  std::string schedule = "adaptive", exchange = "shared", inject;
   std::string method;  ///< --method: the scene's [solver] method, replaced
   std::vector<std::string> overrides;  ///< --set section.key=VALUE
   bool replan_every_evaluation = false, scheduler_log = false, resume = false, parallel_output = false;
@@ -308,9 +308,10 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                   "evaluation, to whichever rank is free first (0: off; 1: every task)")
       ->check(number_at_least(0, false) & CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  run->add_option("--replies", cl.replies,
-                  "under mpirun, how the workers' results reach rank 0: shared (through shared memory when "
-                  "every rank is on rank 0's node; else messages) or messages (always, as between nodes)")
+  run->add_option("--exchange", cl.exchange,
+                  "under mpirun, how rank 0's commands reach the workers and their results come back: shared "
+                  "(through shared memory when every rank is on rank 0's node; else messages) or messages "
+                  "(always, as between nodes)")
       ->check(CLI::IsMember({"shared", "messages"}))
       ->capture_default_str();
   run->add_option("--rank-timeout", cl.exec_options.rank_timeout,
@@ -408,7 +409,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   cl.exec_options.policy = cl.replan_every_evaluation ? scheduler::SchedulePolicy::every_evaluation
                            : cl.schedule == "static"  ? scheduler::SchedulePolicy::static_plan
                                                       : scheduler::SchedulePolicy::adaptive;
-  cl.exec_options.shared_replies = cl.replies == "shared";
+  cl.exec_options.shared_exchange = cl.exchange == "shared";
   try {
     if (!cl.inject.empty()) parse_injection(cl.inject, cl.exec_options);
   } catch (const std::exception& e) {

@@ -10,7 +10,7 @@
 #     fields of the summary are left out (tests/parallel/compare_outputs.py).
 #     Also with tasks claimed on demand (--tail-share): every task (1) at np 2, 30 % with forced
 #     re-plans at np 3, every task by the workers alone (--master-share 0) at np 3. And with the
-#     replies by message instead of shared memory (--replies messages) at np 4 and np 3.
+#     commands and replies by message instead of shared memory (--exchange messages) at np 4 and np 3.
 #   bitwise_cut: the same on a short run of the high-fidelity scene (6309_R3_fine_traction: its
 #     ball-race contacts cut into traction-grid blocks, sub-tasks the master combines), where the
 #     plans really cut segments over ranks (checked in the plan log lines).
@@ -20,7 +20,7 @@
 #   integration_failure: rank 0's integration fails (step budget 50): exit 3, the workers leave too.
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
-#   stopped_worker_messages: the same with the replies by message (--replies messages).
+#   stopped_worker_messages: the same with commands and replies by message (--exchange messages).
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
 #   output_disk_full: the parallel output (--parallel-output: each rank writes the segment diagnostics it evaluated,
 #     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
@@ -97,11 +97,11 @@ PY
 print('rank task seconds', list(s)); sys.exit(0 if sum(s[1:]) > 0 and (s[0] > 0) == (sys.argv[2] != 'tailshare0') else 1)" \
       "$work/$name.h5" "$name" || fail "np $np $*: no worker claimed tail tasks, or rank 0 did with --master-share 0"
   done
-  # The workers' records by message instead of through shared memory (--replies messages, as
+  # The workers' records by message instead of through shared memory (--exchange messages, as
   # between nodes): at np 4 (a reply tree two deep: rank 3 through rank 2), and at np 3 with a tail
   # and a new plan before every evaluation.
-  for run in "4 messages4 --replies messages --parallel-output" \
-    "3 messagestail --replies messages --tail-share 0.3 --replan-every-step"; do
+  for run in "4 messages4 --exchange messages --parallel-output" \
+    "3 messagestail --exchange messages --tail-share 0.3 --replan-every-step"; do
     set -- $run
     local np=$1 name=$2
     shift 2
@@ -241,7 +241,7 @@ integration_failure)
   grep -q "integration failed at t = " "$work/log" || fail "no diagnosis in the output"
   ;;
 stopped_worker) stopped_worker ;;
-stopped_worker_messages) stopped_worker --replies messages ;;
+stopped_worker_messages) stopped_worker --exchange messages ;;
 bad_option)
   mpi 2 run "$work/planar.toml" -o "$work/b.h5" --master-share nan
   [[ $rc -eq 2 ]] || fail "exit code $rc, expected 2: $(tail -5 "$work/log")"
