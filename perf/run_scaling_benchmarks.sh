@@ -18,7 +18,8 @@
 # RUNS: pairs of runs (np=1 then np=2, default 3); each pair's speed-up is printed, and their mean
 # with its standard error beside the medians. The replay's
 # predictions for P = 1..64 come from a one-rank run of the whole scene (0.1 s; FULL_RUN=FILE.h5:
-# an existing one, recorded with --scheduler-log), its check at np=2 from the timed runs.
+# an existing one, recorded with --scheduler-log; with END_TIME="100 ms" the least disturbed of the
+# timed one-rank runs), its check at np=2 from the least disturbed timed one-rank run.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$root/perf/results"
@@ -47,6 +48,12 @@ speedup() {  # speedup NAME SCENE
     "$raceway" run "$scene" -o "$tmp/${name}1.h5" --summary-json "$tmp/${name}1.json" --scheduler-log \
       --output-thread off >/dev/null 2>&1
     w1+=("$(wall "$tmp/${name}1.json")")
+    # The least disturbed one-rank run (the shortest: on a shared machine a run is only ever slowed)
+    # is the recording the replay model predicts from.
+    if [[ ${#w1[@]} -eq 1 ]] || awk -v w="${w1[-1]}" -v b="$(wall "$tmp/${name}1_least.json")" 'BEGIN {exit !(w < b)}'; then
+      cp "$tmp/${name}1.h5" "$tmp/${name}1_least.h5"
+      cp "$tmp/${name}1.json" "$tmp/${name}1_least.json"
+    fi
     echo "run $i np=1 wall ${w1[-1]} s  ($(load))"
     mpirun -np 2 "$raceway" run "$scene" -o "$tmp/${name}2.h5" --summary-json "$tmp/${name}2.json" \
       ${TAIL_SHARE:+--tail-share "$TAIL_SHARE"} >/dev/null 2>&1
@@ -88,12 +95,14 @@ bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
 measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")
 if [[ -n "${FULL_RUN:-}" ]]; then
   cp "$FULL_RUN" "$tmp/6309_R3_fine_traction.h5"
+elif [[ "${END_TIME:-}" == "100 ms" || "${END_TIME:-}" == "0.1 s" ]]; then  # the timed runs were the whole scene
+  cp "$tmp/fine1_least.h5" "$tmp/6309_R3_fine_traction.h5"
 else
   "$raceway" run "$root/jobs/scenes/6309_R3_fine_traction.toml" -o "$tmp/6309_R3_fine_traction.h5" --scheduler-log \
     --output-thread off >/dev/null 2>&1
 fi
-cp "$tmp/fine1.h5" "$tmp/6309_R3_fine_traction_timed.h5"
-cp "$tmp/shipped1.h5" "$tmp/6309_R3.h5"
+cp "$tmp/fine1_least.h5" "$tmp/6309_R3_fine_traction_timed.h5"
+cp "$tmp/shipped1_least.h5" "$tmp/6309_R3.h5"
 # The other shipped scenes campaigns size their groups by (the rank table is the one source of a
 # scene's predicted speed-up for `raceway plan` and `raceway campaign`): short one-rank runs.
 for s in seed002_40hz:20 qj215_validation:40; do
