@@ -76,6 +76,13 @@ inline constexpr int shared_task = -1;
 /// index. Nothing changes for share <= 0.
 std::vector<int> mark_tail(std::vector<int>& owner, std::span<const double> cost, double share, double tail_floor = 0.1);
 
+/// predicted_imbalance of `owner` when its tail (mark_tail with `share`) goes to whichever rank is
+/// free first: the ranks evaluate their fixed lists and the tail fills the gaps, so only a fixed
+/// list longer than the mean load (the tail too small to cover it) leaves ranks waiting:
+/// max(max_r fixed_r / cap_r, mean) / mean. share <= 0: predicted_imbalance.
+double predicted_imbalance_with_tail(std::span<const int> owner, std::span<const double> cost,
+                                     std::span<const double> capacity, double share);
+
 /// Groups (rolling elements) whose tasks are on more than one rank.
 int count_split_groups(std::span<const int> owner, std::span<const int> group);
 /// Pieces (TaskCatalogue::parent) whose tasks are on more than one rank; 0 when parent is empty.

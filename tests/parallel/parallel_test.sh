@@ -200,10 +200,10 @@ signal_worker() {
 stopped_worker() {
   signal_worker STOP "$work/s.h5" --rank-timeout 3 "$@"
   [[ -n "$victim" ]] || return
-  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung)"
+  [[ $rc -eq 1 ]] || fail "exit code $rc, expected 1 (124: the job hung): $(tail -5 "$work/log")"
   grep -q "rank 0 of 2: error: rank 1 did not answer .* within 3 s (--rank-timeout)" "$work/log" ||
-    fail "no message naming rank 1: $(tail -3 "$work/log")"
-  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end"
+    fail "no message naming rank 1: $(tail -5 "$work/log")"
+  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end: $(tail -5 "$work/log")"
   # No rank is left behind (a zombie, reaped with its parent, is gone).
   if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
     fail "the stopped rank $victim is still alive"

@@ -197,3 +197,30 @@ TEST(Plan, TailTakesEachRanksCheapestShareLargestFirst) {
   EXPECT_TRUE(mark_tail(none, cost, 0.0).empty());
   EXPECT_EQ(none, plan);
 }
+
+// The imbalance the ranks see when the tail fills the gaps: analytic cases.
+TEST(Plan, TailCoveringTheSpreadPredictsBalance) {
+  // Rank 0: 10 and four 1s (14), rank 1: 10; mean 12. A 0.3 share takes rank 0's four 1s (4 <=
+  // 0.3 * 14) and nothing of rank 1's (10 > 3): fixed lists 10 and 10, both below the mean.
+  const std::vector<int> owner = {0, 0, 0, 0, 0, 1};
+  const std::vector<double> cost = {10, 1, 1, 1, 1, 10}, capacity = {1, 1};
+  EXPECT_DOUBLE_EQ(predicted_imbalance(owner, cost, capacity), 14.0 / 12.0);
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(owner, cost, capacity, 0.3), 1.0);
+  // No tail: the plain prediction.
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(owner, cost, capacity, 0.0), 14.0 / 12.0);
+  // A 0.1 share takes one 1 (1 <= 1.4): rank 0's fixed list, 13, stays above the mean.
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(owner, cost, capacity, 0.1), 13.0 / 12.0);
+}
+
+TEST(Plan, TailTooSmallLeavesTheFixedListsImbalance) {
+  // Rank 0: 20 and a 1 below the tail's floor (0.1 of the largest); rank 1: 3. Nothing moves.
+  const std::vector<int> owner = {0, 0, 1};
+  const std::vector<double> cost = {20, 1, 3}, capacity = {1, 1};
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(owner, cost, capacity, 0.1), predicted_imbalance(owner, cost, capacity));
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(owner, cost, capacity, 0.1), 21.0 / 12.0);
+  // Capacities weigh the fixed lists: rank 0 at share 0.5 (a master that takes half a worker's
+  // work) with 2 against rank 1's 2: mean 4 / 1.5, rank 0 at 2 / 0.5 = 4: 1.5 either way.
+  const std::vector<int> two = {0, 1};
+  const std::vector<double> even = {2, 2}, master_half = {0.5, 1};
+  EXPECT_DOUBLE_EQ(predicted_imbalance_with_tail(two, even, master_half, 0.1), 1.5);
+}
