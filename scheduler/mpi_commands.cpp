@@ -32,7 +32,7 @@ using clock_type = std::chrono::steady_clock;
 // between looks: oversubscribed (more ranks than cores) a spinning rank would hold the core another
 // rank needs. The clock is read every 64 looks.
 constexpr double spin_seconds = 50e-6;
-constexpr int looks_per_clock_reading = 64;
+constexpr unsigned looks_per_clock_reading = 64;
 
 // Inside a spin: x86's PAUSE, the processor makers' advice for spin-wait loops (the loop's exit
 // when the word changes is not taken for a memory-order violation that flushes the pipeline; less
@@ -75,7 +75,7 @@ void MpiExecutor::receive_command() {
   const std::int64_t next = commands_ + 1;
   const auto spin_until = clock_type::now() + std::chrono::duration<double>(spin_seconds);
   bool spinning = true;
-  for (int look = 1; load(*command_word_) < next; ++look) {
+  for (unsigned look = 1; load(*command_word_) < next; ++look) {  // unsigned: a long wait wraps
     relax();
     if (!spinning)
       std::this_thread::yield();
@@ -92,7 +92,7 @@ void MpiExecutor::await_worker_words(std::size_t word, std::int64_t value, const
   const auto started = clock_type::now();
   const auto spin_until = started + std::chrono::duration<double>(spin_seconds);
   const auto deadline = started + std::chrono::duration<double>(options_.rank_timeout);
-  for (int look = 1;; ++look) {
+  for (unsigned look = 1;; ++look) {
     int first_silent = 0;
     for (int r = 1; r < size_ && first_silent == 0; ++r)
       if (load(reply_done_[static_cast<std::size_t>(r) * window_word_stride + word]) < value) first_silent = r;
