@@ -10,7 +10,7 @@ namespace raceway::scheduler {
 
 namespace {
 
-// ---- Re-planning policy ---------------------------------------------------------------------------
+// ---- Cost model (the re-planning policy that uses it: mpi_replan.cpp) -----------------------------
 // Cost model: per phase and task, an exponential moving average of measured task seconds, weight
 // cost_smoothing on the newest evaluation (the first measurement is taken as it is). 0.2 follows a
 // load that moves over ~5 evaluations (a ball entering the loaded zone takes hundreds of
@@ -25,30 +25,8 @@ constexpr double cost_outlier_factor = 3.0;
 // smoothed with weight imbalance_smoothing: a single slow evaluation (an interrupt, another
 // process on the core) must not trigger a re-plan.
 constexpr double imbalance_smoothing = 0.1;
-// The first plan from measured costs replaces the uniform start plan after this many evaluations
-// of a phase (static and adaptive policies alike).
-constexpr long warmup_evaluations = 3;
-// Trigger: smoothed measured imbalance above replan_threshold (5 % of the evaluation time lost).
-constexpr double replan_threshold = 1.05;
-// Hysteresis: after a plan, no new plan for the same phase within cooldown_evaluations; after a
-// check (a look at the measured and predicted imbalance), the next comes check_interval
-// evaluations later, whatever the look found. Both count
-// evaluations of all phases (Jacobians are ~100 times rarer than right-hand sides, and their
-// costs move with the same loaded zone). A phase's cost model changes only when that phase is
-// measured, so a plan is never rebuilt from the costs it was made from.
-constexpr long cooldown_evaluations = 20;
-constexpr long check_interval = 10;
-// Gain test: the candidate plan must lower the cost model's imbalance by at least
-// min_predicted_gain, and the seconds it saves on the slowest rank over gain_horizon evaluations
-// must exceed replan_cost_factor times the measured cost of making and sending a plan. The
-// horizon is a plan's expected life: work moves with the balls' orbit and the load, over
-// thousands of right-hand sides (6309 R3: a ball crosses the loaded zone in ~10 ms, ~2000 rhs).
-constexpr double min_predicted_gain = 0.02;
-constexpr double replan_cost_factor = 2.0;
-constexpr long gain_horizon = 200;
 
 using clock_type = std::chrono::steady_clock;
-double now_seconds() { return std::chrono::duration<double>(clock_type::now().time_since_epoch()).count(); }
 
 const char* method_name(PlanMethod m) {
   switch (m) {
@@ -80,6 +58,8 @@ std::string fmt_plan_line(const PlanEvent& e) {
 }
 
 }  // namespace
+
+double MpiExecutor::now_seconds() { return std::chrono::duration<double>(clock_type::now().time_since_epoch()).count(); }
 
 const char* phase_name(int p) { return p == 0 ? "rhs" : p == 1 ? "jacobian" : "output"; }
 
@@ -323,64 +303,6 @@ void MpiExecutor::evaluate_own(int phase, std::span<const double> context, int r
     seconds[at] = std::chrono::duration<double>(now - last).count();
     last = now;
   }
-}
-
-std::vector<double> MpiExecutor::model_cost(int phase) const {
-  const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
-  const auto& ratio = ratio_[phase];
-  if (phase == static_cast<int>(Phase::rhs) || ratio.empty() || rhs.size() != ratio.size()) return cost_[phase];
-  std::vector<double> c(rhs.size());
-  for (std::size_t t = 0; t < c.size(); ++t) c[t] = rhs[t] * ratio[t];
-  return c;
-}
-
-void MpiExecutor::maybe_replan(int phase) {
-  const long runs = runs_[phase];
-  const double started = now_seconds();
-  if (options_.policy == SchedulePolicy::every_evaluation) {
-    if (runs > 0) adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::forced, started);
-    return;
-  }
-  if (size_ == 1) return;
-  if (version_[phase] == 0) {
-    const auto& rhs_cost = cost_[static_cast<int>(Phase::rhs)];
-    if (runs >= warmup_evaluations)
-      adopt_plan(phase, make_plan(model_cost(phase), catalogue_, capacity_), PlanReason::measured_costs, started);
-    else if (runs == 0 && phase != static_cast<int>(Phase::rhs) && !rhs_cost.empty())
-      // Before its own first measurement, a phase is planned on the right-hand side's costs: the
-      // same contacts are expensive in both (the Jacobian task evaluates its segment once per
-      // column), and Jacobians are rare, so waiting for their own warm-up costs real time.
-      adopt_plan(phase, make_plan(rhs_cost, catalogue_, capacity_), PlanReason::measured_costs, started);
-    return;
-  }
-  if (options_.policy != SchedulePolicy::adaptive) return;
-  if (evaluation_ - last_plan_run_[phase] < cooldown_evaluations || evaluation_ - last_check_run_[phase] < check_interval)
-    return;
-  // A look at the cost model costs rank 0 about 8 us (the tail marked, the loads summed) while the
-  // workers wait: at most one every check_interval evaluations, whether it finds a reason or not
-  // (a look at every evaluation cost 0.16 s of a 12 s run at np=2).
-  last_check_run_[phase] = evaluation_;
-  const std::vector<double> cost = model_cost(phase);
-  // With a tail the ranks wait only where a fixed list outgrows what the tail can fill: judged
-  // without it, the plans followed every move of the loaded zone (on the heavy scene at np=2 a plan
-  // every 47 evaluations, 0.2 ms of rank 0's time each, while the measured imbalance stayed at 1.01).
-  const auto imbalance_of = [&](std::span<const int> owner) {
-    return tail_on_ ? predicted_imbalance_with_tail(owner, cost, capacity_, options_.tail_share)
-                    : predicted_imbalance(owner, cost, capacity_);
-  };
-  const double now = imbalance_of(owner_[phase]);
-  // Trigger on what was measured, or on what the cost model predicts for the current plan (the
-  // Jacobian's model follows the right-hand side's costs between the rare Jacobians).
-  if (smoothed_imbalance_[phase] <= replan_threshold && now <= replan_threshold) return;
-  Plan candidate = make_plan(cost, catalogue_, capacity_);
-  const double after = imbalance_of(candidate.owner);
-  double total = 0, cap_sum = 0;
-  for (double c : cost) total += c;
-  for (double c : capacity_) cap_sum += c;
-  const double saved_per_evaluation = (now - after) * total / cap_sum;
-  if (now - after >= min_predicted_gain &&
-      saved_per_evaluation * gain_horizon > replan_cost_factor * replan_seconds_[phase])
-    adopt_plan(phase, std::move(candidate), PlanReason::imbalance, started);
 }
 
 void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int task_count, int record_size,

@@ -28,7 +28,7 @@
 //
 // Scheduling: per phase, a smoothed cost per task (exponential moving average of measured task
 // seconds) feeds scheduler/plan.hpp's two-level plan; the re-planning policy is stated in
-// mpi_executor.cpp ("Re-planning policy", at the top).
+// mpi_replan.cpp.
 //
 // Faults: an exception inside a task, on any rank, prints "rank R: ..." with the message on that
 // rank's stderr and calls MPI_Abort (exit code 1): every rank ends within seconds, never a hang. An
@@ -139,6 +139,8 @@ class MpiExecutor final : public Executor {
   static constexpr std::size_t reply_word = 0, taken_word = 1;
 
   [[noreturn]] void fail(const std::string& what) const;
+  /// steady_clock seconds.
+  static double now_seconds();
   /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
   /// (the other ranks would wait for its record for ever).
   void run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
@@ -215,6 +217,9 @@ class MpiExecutor final : public Executor {
   /// Cost model bookkeeping after an evaluation: smoothed costs, imbalance, the log.
   void account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall);
   void maybe_replan(int phase);
+  /// The current plan's imbalance under the cost model (max over mean of the ranks' loads; with a
+  /// tail, of their fixed lists, the tail filling the gaps up to the mean). Cheap: no allocation.
+  double current_imbalance(int phase) const;
   /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
   /// cost times the measured per-task ratio (once measured), so they follow the moving work.
   std::vector<double> model_cost(int phase) const;
