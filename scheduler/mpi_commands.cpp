@@ -50,6 +50,23 @@ void store(std::int64_t& word, std::int64_t value) {
   std::atomic_ref<std::int64_t>(word).store(value, std::memory_order_release);
 }
 
+/// Looks until done() is true: spinning for spin_seconds, then yielding every `looks_per_yield`
+/// looks; past the spin, on_clock(now) at every clock reading (a bounded wait fails from there).
+template <class Done, class OnClock>
+void spin_then_yield(unsigned looks_per_yield, Done done, OnClock on_clock) {
+  const auto spin_until = clock_type::now() + std::chrono::duration<double>(spin_seconds);
+  bool spinning = true;
+  for (unsigned look = 1; !done(); ++look) {  // unsigned: a long wait wraps
+    relax();
+    if (look % looks_per_clock_reading == 0) {
+      const auto now = clock_type::now();
+      spinning = spinning && now < spin_until;
+      if (!spinning) on_clock(now);
+    }
+    if (!spinning && look % looks_per_yield == 0) std::this_thread::yield();
+  }
+}
+
 }  // namespace
 
 void MpiExecutor::send_command(const char* what) {
@@ -73,15 +90,8 @@ void MpiExecutor::receive_command() {
   }
   // A worker waits for its master as long as it takes (the master bounds its own waits).
   const std::int64_t next = commands_ + 1;
-  const auto spin_until = clock_type::now() + std::chrono::duration<double>(spin_seconds);
-  bool spinning = true;
-  for (unsigned look = 1; load(*command_word_) < next; ++look) {  // unsigned: a long wait wraps
-    relax();
-    if (!spinning)
-      std::this_thread::yield();
-    else if (look % looks_per_clock_reading == 0)
-      spinning = clock_type::now() < spin_until;
-  }
+  // Idle between commands, it yields at every look once the spin is over.
+  spin_then_yield(1, [&] { return load(*command_word_) >= next; }, [](clock_type::time_point) {});
   MPI_Win_sync(tail_window_);  // the word before the buffer
   std::copy_n(command_buffer_, message_size_, message_.begin());
   commands_ = next;
@@ -89,28 +99,25 @@ void MpiExecutor::receive_command() {
 }
 
 void MpiExecutor::await_worker_words(std::size_t word, std::int64_t value, const char* what, int phase) {
-  const auto started = clock_type::now();
-  const auto spin_until = started + std::chrono::duration<double>(spin_seconds);
-  const auto deadline = started + std::chrono::duration<double>(options_.rank_timeout);
-  for (unsigned look = 1;; ++look) {
-    int first_silent = 0;
+  const auto deadline = clock_type::now() + std::chrono::duration<double>(options_.rank_timeout);
+  int first_silent = 0;
+  const auto all_there = [&] {
+    first_silent = 0;
     for (int r = 1; r < size_ && first_silent == 0; ++r)
       if (load(reply_done_[static_cast<std::size_t>(r) * window_word_stride + word]) < value) first_silent = r;
-    if (first_silent == 0) return;
-    relax();
-    if (look % looks_per_clock_reading != 0) continue;
-    const auto now = clock_type::now();
-    if (now < spin_until) continue;
-    if (now > deadline) {
-      char timeout[32];
-      std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
-      const std::string evaluation = (phase >= 0 ? std::string("the ") + phase_name(phase) + " " : std::string()) +
-                                     "evaluation " + std::to_string(evaluation_);
-      fail("rank " + std::to_string(first_silent) + " did not " + what + " " + evaluation + " within " + timeout +
-           " s (--rank-timeout): stopped, hung or lost; ending the job");
-    }
-    std::this_thread::yield();
-  }
+    return first_silent == 0;
+  };
+  // Rank 0 yields only at the clock readings: a yield at every look delayed its noticing the
+  // last reply (rank 0 beyond the slowest rank 0.023 -> 0.042 s per 20 ms run, medians of 9).
+  spin_then_yield(looks_per_clock_reading, all_there, [&](clock_type::time_point now) {
+    if (now <= deadline) return;
+    char timeout[32];
+    std::snprintf(timeout, sizeof timeout, "%g", options_.rank_timeout);
+    const std::string evaluation = (phase >= 0 ? std::string("the ") + phase_name(phase) + " " : std::string()) +
+                                   "evaluation " + std::to_string(evaluation_);
+    fail("rank " + std::to_string(first_silent) + " did not " + what + " " + evaluation + " within " + timeout +
+         " s (--rank-timeout): stopped, hung or lost; ending the job");
+  });
 }
 
 }  // namespace raceway::scheduler

@@ -428,7 +428,7 @@ bool MpiExecutor::await_start() {
   catalogue_.context_size = static_cast<int>(start[3]);
   message_size_ = header_size + static_cast<std::size_t>(catalogue_.context_size);
   message_.assign(message_size_, 0.0);
-  const int window_use = static_cast<int>(start[5]);  // 1: tail, 2: shared replies
+  const int window_use = static_cast<int>(start[5]);  // 1: tail, 2: shared exchange
   open_node_window((window_use & 1) != 0, (window_use & 2) != 0, static_cast<int>(start[4]));
   attached_ = true;
   return true;

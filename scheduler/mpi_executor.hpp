@@ -2,7 +2,7 @@
 // docs/references.md).
 //
 // Rank 0 (the master) owns CVODE and calls run(); it also evaluates its share of the tasks. The
-// other ranks (workers) loop in serve() on commands broadcast by the master:
+// other ranks (workers) loop in serve() on the master's commands:
 //   evaluate (phase, context)  -> evaluate the tasks the phase's plan gives this rank, give back
 //                                 their records and measured seconds: with every rank on rank 0's
 //                                 node through a shared-memory window (the records in per-task
@@ -20,7 +20,7 @@
 // tasks are no rank's: every rank done with its fixed list claims them one by one (an atomic
 // counter in a shared-memory window) and writes their records there, where rank 0 picks them up.
 // Every command is one fixed-size buffer (header + context), so a worker never needs to know in
-// advance which command comes: with every rank on rank 0's node and shared replies, written into
+// advance which command comes: with every rank on rank 0's node and the shared exchange, written into
 // the node window (scheduler/mpi_commands.cpp), else broadcast (MPI_Ibcast, non-blocking on every
 // rank, so the master can bound its waits). The master places the records in
 // task order; the equations sum them in that order, so results are bitwise identical for any rank
@@ -172,12 +172,12 @@ class MpiExecutor final : public Executor {
   std::vector<MPI_Request> receive_subtree(int phase, std::vector<double>& reply);
   void send_reply(int phase, const double* full, const double* seconds, std::vector<double>& reply,
                   std::vector<MPI_Request>& from);
-  /// Worker, shared replies: its tasks' records and seconds into their slots, then its reply word.
+  /// Worker, shared exchange: its tasks' records and seconds into their slots, then its reply word.
   void post_shared_reply(int phase, const double* full, const double* seconds);
-  /// Master, shared replies: waits (bounded) for every worker's reply word, then copies the
+  /// Master, shared exchange: waits (bounded) for every worker's reply word, then copies the
   /// workers' records into place.
   void collect_shared_replies(int phase, std::vector<double>& records, std::vector<double>& busy);
-  /// Master: message_ to every worker, through the node window (shared replies) or broadcast
+  /// Master: message_ to every worker, through the node window (shared exchange) or broadcast
   /// (bounded; `what` names it in the failure). Worker: the next command into message_.
   /// (mpi_commands.cpp)
   void send_command(const char* what);
@@ -192,10 +192,9 @@ class MpiExecutor final : public Executor {
                     double* records, double* seconds, bool in_task_order);
   /// Both sides, right after the start command: the node's shared-memory window (per rank a tail
   /// claim word and a reply line, the command, per task a slot), when the tail or the shared
-  /// replies want it and every rank is on rank 0's node. Collective. Sets tail_window_
-  /// (MPI_WIN_NULL: none; then no tail, commands and replies by message), tail_on_, and with
-  /// shared replies reply_done_, command_word_ and command_buffer_ (commands through the window
-  /// too). Needs message_size_.
+  /// exchange wants it and every rank is on rank 0's node. Collective. Sets tail_window_
+  /// (MPI_WIN_NULL: none; then no tail, commands and replies by message), tail_on_, and with the
+  /// shared exchange reply_done_, command_word_ and command_buffer_. Needs message_size_.
   void open_node_window(bool tail, bool shared_exchange, int record_size);
   void close_tail_window();
   /// Master: marks the plan's tail in `owner` (mark_tail), each task as a negative code that says
@@ -218,7 +217,8 @@ class MpiExecutor final : public Executor {
   void account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall);
   void maybe_replan(int phase);
   /// The current plan's imbalance under the cost model (max over mean of the ranks' loads; with a
-  /// tail, of their fixed lists, the tail filling the gaps up to the mean). Cheap: no allocation.
+  /// tail, of their fixed lists, the tail filling the gaps up to the mean). Cheap: the costs are
+  /// read in place, no tail is marked.
   double current_imbalance(int phase) const;
   /// Cost per task the plans use: the smoothed measured cost for rhs; for other phases the rhs
   /// cost times the measured per-task ratio (once measured), so they follow the moving work.
@@ -244,8 +244,8 @@ class MpiExecutor final : public Executor {
   MPI_Win tail_window_ = MPI_WIN_NULL;
   bool tail_on_ = false;                  ///< the plans have a tail
   std::int64_t* tail_counter_ = nullptr;  ///< per rank a claim word (front, back), a cache line apart
-  std::int64_t* reply_done_ = nullptr;    ///< per rank its reply line (reply_word, taken_word; shared replies)
-  std::int64_t* command_word_ = nullptr;  ///< the number of commands rank 0 has written (shared replies)
+  std::int64_t* reply_done_ = nullptr;    ///< per rank its reply line (reply_word, taken_word; shared exchange)
+  std::int64_t* command_word_ = nullptr;  ///< the number of commands rank 0 has written (shared exchange)
   double* command_buffer_ = nullptr;      ///< the last command (message_size_ doubles)
   std::int64_t commands_ = 0;             ///< through the window: written (master), taken (worker)
   std::int64_t commands_taken_by_all_ = 0;  ///< master: every worker has taken this many

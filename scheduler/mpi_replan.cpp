@@ -48,21 +48,14 @@ double MpiExecutor::current_imbalance(int phase) const {
   const auto& cost = scaled ? rhs : cost_[phase];
   if (cost.empty()) return 1.0;
   const auto cost_of = [&](std::size_t t) { return scaled ? rhs[t] * ratio[t] : cost[t]; };
-  // Per rank its fixed list (with a tail) or its whole share of the plan.
-  double total = 0, cap_sum = 0, worst = 0;
+  // Per rank its fixed list (with a tail) or its whole share of the plan: without a tail the
+  // slowest rank is at or above the mean, and this is predicted_imbalance.
+  double total = 0;
   for (std::size_t t = 0; t < cost.size(); ++t) total += cost_of(t);
-  for (std::size_t r = 0; r < capacity_.size(); ++r) {
-    double load = 0;
-    for (const int t : tasks_of_[phase][r]) load += cost_of(static_cast<std::size_t>(t));
-    if (capacity_[r] <= 0) continue;
-    cap_sum += capacity_[r];
-    worst = std::max(worst, load / capacity_[r]);
-  }
-  if (total <= 0 || cap_sum <= 0) return 1.0;
-  const double mean = total / cap_sum;
-  // With a tail, the tail fills the gaps up to the mean (predicted_imbalance_with_tail); without
-  // one, the fixed lists are the whole plan and worst >= mean anyway.
-  return std::max(worst, mean) / mean;
+  std::vector<double> fixed_load(capacity_.size(), 0.0);
+  for (std::size_t r = 0; r < capacity_.size(); ++r)
+    for (const int t : tasks_of_[phase][r]) fixed_load[r] += cost_of(static_cast<std::size_t>(t));
+  return imbalance_with_tail_filling(fixed_load, total, capacity_);
 }
 
 void MpiExecutor::maybe_replan(int phase) {

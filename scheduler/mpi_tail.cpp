@@ -73,7 +73,7 @@ void MpiExecutor::open_node_window(bool tail, bool shared_exchange, int record_s
     return;
   }
   // On rank 0: per rank its claim word and its reply line (the last evaluation it replied to, the
-  // commands it has taken), a cache line each; with shared replies a command line (commands
+  // commands it has taken), a cache line each; with the shared exchange a command line (commands
   // written) and the command buffer; then per task a slot of rank, seconds and a record of the
   // largest phase's size.
   tail_slot_size_ = 2 + static_cast<std::size_t>(record_size);

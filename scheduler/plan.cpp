@@ -262,25 +262,30 @@ double predicted_imbalance(std::span<const int> owner, std::span<const double> c
   return total > 0 ? worst / (total / cap_sum) : 1.0;
 }
 
+double imbalance_with_tail_filling(std::span<const double> fixed_load, double total, std::span<const double> capacity) {
+  double cap_sum = 0, worst = 0;
+  for (std::size_t r = 0; r < capacity.size(); ++r) {
+    if (capacity[r] <= 0) continue;
+    cap_sum += capacity[r];
+    worst = std::max(worst, fixed_load[r] / capacity[r]);
+  }
+  if (total <= 0 || cap_sum <= 0) return 1.0;
+  const double mean = total / cap_sum;  // every rank done at once: the tail filled the gaps
+  return std::max(worst, mean) / mean;
+}
+
 double predicted_imbalance_with_tail(std::span<const int> owner, std::span<const double> cost,
                                      std::span<const double> capacity, double share) {
   if (share <= 0) return predicted_imbalance(owner, cost, capacity);
   std::vector<int> fixed(owner.begin(), owner.end());
   mark_tail(fixed, cost, share);
   std::vector<double> load(capacity.size(), 0.0);
-  double total = 0, cap_sum = 0, worst = 0;
+  double total = 0;
   for (std::size_t t = 0; t < fixed.size(); ++t) {
     total += cost[t];
     if (fixed[t] >= 0) load[static_cast<std::size_t>(fixed[t])] += cost[t];
   }
-  for (std::size_t r = 0; r < capacity.size(); ++r) {
-    if (capacity[r] <= 0) continue;
-    cap_sum += capacity[r];
-    worst = std::max(worst, load[r] / capacity[r]);
-  }
-  if (total <= 0) return 1.0;
-  const double mean = total / cap_sum;  // every rank done at once: the tail filled the gaps
-  return std::max(worst, mean) / mean;
+  return imbalance_with_tail_filling(load, total, capacity);
 }
 
 int count_split_groups(std::span<const int> owner, std::span<const int> group) {

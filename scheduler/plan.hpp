@@ -82,6 +82,9 @@ std::vector<int> mark_tail(std::vector<int>& owner, std::span<const double> cost
 /// max(max_r fixed_r / cap_r, mean) / mean. share <= 0: predicted_imbalance.
 double predicted_imbalance_with_tail(std::span<const int> owner, std::span<const double> cost,
                                      std::span<const double> capacity, double share);
+/// The same from the ranks' fixed loads: each rank r evaluates fixed_load[r] and the rest of
+/// `total` (the tail) fills the gaps; ranks with capacity 0 are left out.
+double imbalance_with_tail_filling(std::span<const double> fixed_load, double total, std::span<const double> capacity);
 
 /// Groups (rolling elements) whose tasks are on more than one rank.
 int count_split_groups(std::span<const int> owner, std::span<const int> group);
