@@ -14,10 +14,12 @@ and spatial alike: one definition of the cage slip, the vortex metrics of seed 0
 pocket impacts and forces, the power loss), plus the cage's orbit about the outer ring's centre;
 UNITS below lists every column. Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/matplotlib missing.
 """
+import concurrent.futures
 import csv
 import glob
 import json
 import math
+import multiprocessing
 import os
 import sys
 
@@ -210,40 +212,59 @@ def write_table(folder, manifest, rows):
                    "meaning": {c: UNITS[c][1] for c in columns if c in UNITS}, "rows": rows}, f, indent=1)
 
 
+def _draw_trend(folder, manifest, done, axis, metric, plt):
+    """One plot: `metric` against `axis`, one line per value of the other axis (if any)."""
+    axes = list(manifest["axes"])
+    others = [a for a in axes if a != axis]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    groups = {}
+    for r in done:
+        groups.setdefault(r[others[0]] if others else "", []).append(r)
+    for label, group in groups.items():
+        group = sorted(group, key=lambda r: r[f"{axis}_si"] if r[f"{axis}_si"] is not None else 0)
+        x = [r[f"{axis}_si"] for r in group]
+        y = [r[metric] if r.get(metric) is not None else np.nan for r in group]
+        ax.plot(x, y, "o-", label=f"{others[0]} = {label}" if others else None)
+    unit = manifest.get("axis_units", {}).get(axis, "")
+    ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}){f' [{unit}]' if unit else ''}")
+    ax.set_ylabel(f"{metric} [{UNITS[metric][0]}]")
+    ax.set_title(f"{manifest['campaign']}: {metric}")
+    if others:
+        ax.legend(fontsize="small")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    path = os.path.join(folder, "plots", f"{metric}_vs_{axis}.png")
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return path
+
+
+def _draw_share(folder, manifest, done, jobs):
+    """The plots of `jobs` ((axis, metric) pairs), in a process of the pool."""
+    import matplotlib.pyplot as plt
+    return [_draw_trend(folder, manifest, done, axis, metric, plt) for axis, metric in jobs]
+
+
 def plot_trends(folder, manifest, rows):
-    """metric against each swept value (one line per value of a second axis, when there is one)."""
+    """metric against each swept value (one line per value of a second axis, when there is one).
+
+    The plots (tens of them, about 50 ms each) are drawn by a pool of processes, one per core this
+    process may use: the campaign's last step, when its ranks are done. matplotlib is not thread-safe,
+    so processes (forked after its import), not threads."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     done = [r for r in rows if r["status"] == "done"]
-    axes = list(manifest["axes"])
     os.makedirs(os.path.join(folder, "plots"), exist_ok=True)
-    written = []
-    for axis in axes:
-        others = [a for a in axes if a != axis]
-        for metric in metric_columns(manifest)[0]:
-            fig, ax = plt.subplots(figsize=(6, 4))
-            groups = {}
-            for r in done:
-                groups.setdefault(r[others[0]] if others else "", []).append(r)
-            for label, group in groups.items():
-                group = sorted(group, key=lambda r: r[f"{axis}_si"] if r[f"{axis}_si"] is not None else 0)
-                x = [r[f"{axis}_si"] for r in group]
-                y = [r[metric] if r.get(metric) is not None else np.nan for r in group]
-                ax.plot(x, y, "o-", label=f"{others[0]} = {label}" if others else None)
-            unit = manifest.get("axis_units", {}).get(axis, "")
-            ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}){f' [{unit}]' if unit else ''}")
-            ax.set_ylabel(f"{metric} [{UNITS[metric][0]}]")
-            ax.set_title(f"{manifest['campaign']}: {metric}")
-            if others:
-                ax.legend(fontsize="small")
-            ax.grid(True, alpha=0.3)
-            fig.tight_layout()
-            path = os.path.join(folder, "plots", f"{metric}_vs_{axis}.png")
-            fig.savefig(path, dpi=90)
-            plt.close(fig)
-            written.append(path)
-    return written
+    jobs = [(axis, metric) for axis in manifest["axes"] for metric in metric_columns(manifest)[0]]
+    workers = min(len(jobs), len(os.sched_getaffinity(0)))
+    if workers <= 1:
+        return _draw_share(folder, manifest, done, jobs)
+    shares = [jobs[k::workers] for k in range(workers)]  # round robin: the shares alike
+    with concurrent.futures.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        drawn = list(pool.map(_draw_share, *zip(*[(folder, manifest, done, share) for share in shares])))
+    by_job = {job: path for share, paths in zip(shares, drawn) for job, path in zip(share, paths)}
+    return [by_job[job] for job in jobs]
 
 
 def main(argv):

@@ -312,7 +312,12 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
     if (finished < progress.total && code == 0) code = 1;
     // An array task (--only) leaves the table to `raceway campaign report DIR` after the last one.
-    if (code == 0 && req.only.empty()) code = make_table(req.output_dir);
+    if (code == 0 && req.only.empty()) {
+      // Every rank is done: the table's plots may use the cores the ranks had (rank 0 is bound to one).
+      const int cores = use_every_core_of_the_job();
+      spdlog::debug("campaign: the table and plots on {} core(s)", cores);
+      code = make_table(req.output_dir);
+    }
   }
   scheduler::free_campaign_groups(g);
   scheduler::broadcast_waiting_idle(code, MPI_COMM_WORLD);

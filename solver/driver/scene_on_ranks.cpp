@@ -135,6 +135,14 @@ OutputThreadPlace place_output_thread(const std::string& mode, MPI_Comm world, b
   return place;
 }
 
+int use_every_core_of_the_job() {
+  cpu_set_t mine;
+  CPU_ZERO(&mine);
+  const cpu_set_t allowed = cpus_the_job_may_use();
+  if (sched_getaffinity(0, sizeof mine, &mine) != 0 || CPU_COUNT(&allowed) <= CPU_COUNT(&mine)) return CPU_COUNT(&mine);
+  return sched_setaffinity(0, sizeof allowed, &allowed) == 0 ? CPU_COUNT(&allowed) : CPU_COUNT(&mine);
+}
+
 bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);

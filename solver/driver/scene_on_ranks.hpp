@@ -44,6 +44,12 @@ struct OutputThreadPlace {
 /// with it). Collective on `world`.
 OutputThreadPlace place_output_thread(const std::string& mode, MPI_Comm world, bool may_bind = true);
 
+/// Lets this process, and the processes it starts from here on, run on every core the job may use
+/// on this node (its cgroup's cpuset, as hwloc reads it), not only the core mpirun bound it to: for
+/// work after the ranks are done (a campaign's table and plots, drawn by a pool of processes).
+/// Returns the number of cores it may now use.
+int use_every_core_of_the_job();
+
 /// What every rank of a run parses: the scene text, its source name and the --set overrides.
 struct SceneSource {
   std::string text, source;

@@ -101,6 +101,16 @@ resume)
   grep -q "2 ranks in 2 groups of 1" "$work/ref.log" || fail "not 2 groups of 1"
   check_table "$work/ref"
   ls "$work/ref/plots/"cage_speed_rpm_vs_speed.png > /dev/null || fail "no trend plot"
+  # The plots drawn by a pool of processes (one per core: the campaign lets its table use the
+  # ranks' cores) are the bytes one process draws, and there is one per metric and axis.
+  drawn=$(sed -n 's/.*campaign table: .*, \([0-9]*\) plots in .*/\1/p' "$work/ref.log")
+  [[ "$drawn" -gt 1 && $(ls "$work/ref/plots/"*.png | wc -l) -eq "$drawn" ]] || fail "plots: $drawn reported, $(ls "$work/ref/plots" | wc -l) there"
+  cp -r "$work/ref" "$work/serial" && rm -r "$work/serial/plots"
+  taskset -c "$(cut -d, -f1 <<< "$(taskset -cp $$ | sed 's/.*: //; s/-.*//')")" \
+    "$python" "$source_dir/io/report/campaign_table.py" "$work/serial" 2> /dev/null || fail "table on one core"
+  for f in "$work/ref/plots/"*.png; do
+    cmp -s "$f" "$work/serial/plots/$(basename "$f")" || fail "$(basename "$f"): the pool's differs from one process's"
+  done
   # The same scenes in 1 group of 2 ranks: bitwise the same files (results do not depend on the
   # rank count).
   sed 's/^ranks_per_scene = 1/ranks_per_scene = 2/; s|"\.\./\.\./jobs|"'"$source_dir"'/jobs|' "$small" > "$work/pairs.toml"
