@@ -128,7 +128,12 @@ resume)
     scene=$(grep -o "s[0-9]* on group 1" "$work/log" | tail -1 | cut -d' ' -f1)
     if [[ -n $scene && -f "$work/c/$scene.h5.checkpoint" && ! -f "$work/c/$scene.h5" ]]; then
       pid=$(rank_pid $mpirun_pid 1)
-      [[ -n $pid ]] && kill -KILL "$pid" && killed=$scene && break
+      # Stopped first, then looked at again: the scene cannot finish between the look and the kill
+      # (finding the pid takes tens of ms; a scene that finished meanwhile is let go on).
+      if [[ -n $pid ]] && kill -STOP "$pid"; then
+        [[ -f "$work/c/$scene.h5" ]] || { kill -KILL "$pid"; killed=$scene; break; }
+        kill -CONT "$pid"
+      fi
     fi
     sleep 0.05
   done
