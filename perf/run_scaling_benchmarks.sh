@@ -5,6 +5,8 @@
 #     ball-race contacts cut into 13 blocks) and on the shipped jobs/scenes/6309_R3.toml (5 x 5: no
 #     contact is cut); every line carries `uptime`'s load (2 shared cores: under load the timings
 #     measure the neighbours too);
+#   pingpong.txt: this machine's MPI latency and bandwidth (build/perf/pingpong), measured again
+#     here for the replay's "here" network;
 #   replay_scaling.txt: the replay model (perf/replay_model.py) from the one-rank runs, P = 1..64,
 #     checked against the measured np=2 speed-up; np=3 and 4 are run oversubscribed (2 cores) and
 #     compared bitwise with np=1 (correctness only: their wall time is no timing);
@@ -90,6 +92,13 @@ for np in 3 4; do
 done
 "$py" "$root/tests/parallel/compare_outputs.py" "$tmp/fine1.h5" "$tmp/fine2.h5" "$tmp/fine3.h5" "$tmp/fine4.h5" |
   sed 's|^|# np=2, 3, 4 against np=1: |' | sed "s|$tmp/||g" >>"$out/scaling_speedup.txt"
+# This machine's network for the replay ("here"), measured now: a recording from another host
+# would model another machine (the VM moved hosts between two sessions: 0.38 -> 0.15 us, 2.9 -> 13
+# GB/s at 8 KB). Without the pingpong (not built), pingpong.txt as it is.
+if [[ -x "$root/build/perf/pingpong" ]]; then
+  { echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores,$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
+    echo "# $(load)"; mpirun -np 2 "$root/build/perf/pingpong"; } >"$out/pingpong.txt" 2>&1
+fi
 lat=$(awk '$1 == 8 {print $2}' "$out/pingpong.txt")
 bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
 measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")
