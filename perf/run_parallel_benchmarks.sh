@@ -32,10 +32,7 @@ py=/usr/bin/python3
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 "$py" "$root/perf/make_parallel_scenes.py" "$root" "$tmp"
-header() { echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores,$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"; }
-load() { uptime | sed 's/.*load average: /load /'; }
-wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
-median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+source "$root/perf/bench_lib.sh"  # header, load, wall, median, measure_network
 
 # WAIT_QUIET=S: before every timed run of (a), wait up to S seconds until nothing else is runnable
 # (/proc/loadavg's running count is 1, the reader itself, for 5 checks 1 s apart). A run that
@@ -114,7 +111,7 @@ PY
 fi
 
 if [[ " $parts " == *" c "* ]]; then
-  { header; echo "# $(load)"; mpirun -np 2 "$root/build/perf/pingpong"; } 2>&1 | tee "$out/pingpong.txt"
+  measure_network "$root" | tee "$out/pingpong.txt"
   # Latency and bandwidth for the replay: the 8 B latency, and the bandwidth at 8 KB (the size of
   # a rank's records in these scenes: tens of tasks x tens of doubles).
   lat=$(awk '$1 == 8 {print $2}' "$out/pingpong.txt")

@@ -34,9 +34,7 @@ py=/usr/bin/python3
 tmp="${KEEP_RUNS:-$(mktemp -d)}"  # KEEP_RUNS=DIR: keep the runs there (to replay them again)
 mkdir -p "$tmp"
 [[ -n "${KEEP_RUNS:-}" ]] || trap 'rm -rf "$tmp"' EXIT
-load() { uptime | sed 's/.*load average: /load /'; }
-wall() { "$py" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
-median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+source "$root/perf/bench_lib.sh"  # load, wall, median, measure_network
 
 fine="$tmp/fine.toml"
 sed -e "s/^end_time = .*/end_time = \"${END_TIME:-20 ms}\"/" "$root/jobs/scenes/6309_R3_fine_traction.toml" >"$fine"
@@ -95,10 +93,7 @@ done
 # This machine's network for the replay ("here"), measured now: a recording from another host
 # would model another machine (the VM moved hosts between two sessions: 0.38 -> 0.15 us, 2.9 -> 13
 # GB/s at 8 KB). Without the pingpong (not built), pingpong.txt as it is.
-if [[ -x "$root/build/perf/pingpong" ]]; then
-  { echo "# $(date -u +%FT%TZ) $(uname -srm), $(nproc) cores,$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2)"
-    echo "# $(load)"; mpirun -np 2 "$root/build/perf/pingpong"; } >"$out/pingpong.txt" 2>&1
-fi
+[[ -x "$root/build/perf/pingpong" ]] && measure_network "$root" >"$out/pingpong.txt"
 lat=$(awk '$1 == 8 {print $2}' "$out/pingpong.txt")
 bw=$(awk '$1 == 8192 {print $3}' "$out/pingpong.txt")
 measured=$(sed -n 's/^fine: .*speed-up \([0-9.]*\)$/\1/p' "$out/scaling_speedup.txt")

@@ -29,32 +29,43 @@ constexpr double min_predicted_gain = 0.02;
 constexpr double replan_cost_factor = 2.0;
 constexpr long gain_horizon = 200;
 
+// The cost model of a phase, task by task: the smoothed right-hand side cost times the phase's
+// measured per-task ratio (once measured, for the phases other than the right-hand side), else the
+// phase's own smoothed cost.
+struct ModelCost {
+  const std::vector<double>& base;
+  const std::vector<double>* ratio;  // nullptr: base as it is
+  double operator()(std::size_t t) const { return ratio ? base[t] * (*ratio)[t] : base[t]; }
+};
+
+ModelCost model_cost_of(const std::vector<double> (&cost)[phase_count], const std::vector<double> (&ratio)[phase_count],
+                        int phase) {
+  const auto& rhs = cost[static_cast<int>(Phase::rhs)];
+  const auto& r = ratio[phase];
+  if (phase == static_cast<int>(Phase::rhs) || r.empty() || rhs.size() != r.size()) return {cost[phase], nullptr};
+  return {rhs, &r};
+}
+
 }  // namespace
 
 std::vector<double> MpiExecutor::model_cost(int phase) const {
-  const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
-  const auto& ratio = ratio_[phase];
-  if (phase == static_cast<int>(Phase::rhs) || ratio.empty() || rhs.size() != ratio.size()) return cost_[phase];
-  std::vector<double> c(rhs.size());
-  for (std::size_t t = 0; t < c.size(); ++t) c[t] = rhs[t] * ratio[t];
+  const ModelCost cost = model_cost_of(cost_, ratio_, phase);
+  std::vector<double> c(cost.base.size());
+  for (std::size_t t = 0; t < c.size(); ++t) c[t] = cost(t);
   return c;
 }
 
 double MpiExecutor::current_imbalance(int phase) const {
-  // model_cost's costs, task by task, without building the vector: this runs at every evaluation.
-  const auto& rhs = cost_[static_cast<int>(Phase::rhs)];
-  const auto& ratio = ratio_[phase];
-  const bool scaled = phase != static_cast<int>(Phase::rhs) && !ratio.empty() && rhs.size() == ratio.size();
-  const auto& cost = scaled ? rhs : cost_[phase];
-  if (cost.empty()) return 1.0;
-  const auto cost_of = [&](std::size_t t) { return scaled ? rhs[t] * ratio[t] : cost[t]; };
+  // model_cost's costs read in place, without building the vector: this runs at every evaluation.
+  const ModelCost cost = model_cost_of(cost_, ratio_, phase);
+  if (cost.base.empty()) return 1.0;
   // Per rank its fixed list (with a tail) or its whole share of the plan: without a tail the
   // slowest rank is at or above the mean, and this is predicted_imbalance.
   double total = 0;
-  for (std::size_t t = 0; t < cost.size(); ++t) total += cost_of(t);
+  for (std::size_t t = 0; t < cost.base.size(); ++t) total += cost(t);
   std::vector<double> fixed_load(capacity_.size(), 0.0);
   for (std::size_t r = 0; r < capacity_.size(); ++r)
-    for (const int t : tasks_of_[phase][r]) fixed_load[r] += cost_of(static_cast<std::size_t>(t));
+    for (const int t : tasks_of_[phase][r]) fixed_load[r] += cost(static_cast<std::size_t>(t));
   return imbalance_with_tail_filling(fixed_load, total, capacity_);
 }
 

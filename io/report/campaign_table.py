@@ -16,6 +16,7 @@ UNITS below lists every column. Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/m
 """
 import concurrent.futures
 import csv
+import functools
 import glob
 import json
 import math
@@ -262,7 +263,7 @@ def plot_trends(folder, manifest, rows):
         return _draw_share(folder, manifest, done, jobs)
     shares = [jobs[k::workers] for k in range(workers)]  # round robin: the shares alike
     with concurrent.futures.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
-        drawn = list(pool.map(_draw_share, *zip(*[(folder, manifest, done, share) for share in shares])))
+        drawn = list(pool.map(functools.partial(_draw_share, folder, manifest, done), shares))
     by_job = {job: path for share, paths in zip(shares, drawn) for job, path in zip(share, paths)}
     return [by_job[job] for job in jobs]
 

@@ -106,7 +106,7 @@ resume)
   drawn=$(sed -n 's/.*campaign table: .*, \([0-9]*\) plots in .*/\1/p' "$work/ref.log")
   [[ "$drawn" -gt 1 && $(ls "$work/ref/plots/"*.png | wc -l) -eq "$drawn" ]] || fail "plots: $drawn reported, $(ls "$work/ref/plots" | wc -l) there"
   cp -r "$work/ref" "$work/serial" && rm -r "$work/serial/plots"
-  taskset -c "$(cut -d, -f1 <<< "$(taskset -cp $$ | sed 's/.*: //; s/-.*//')")" \
+  taskset -c "$(taskset -cp $$ | sed 's/.*: //; s/[-,].*//')" \
     "$python" "$source_dir/io/report/campaign_table.py" "$work/serial" 2> /dev/null || fail "table on one core"
   for f in "$work/ref/plots/"*.png; do
     cmp -s "$f" "$work/serial/plots/$(basename "$f")" || fail "$(basename "$f"): the pool's differs from one process's"
