@@ -100,31 +100,4 @@ struct CageLandSegment {
 SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& ring);
 
-/// A flexible cage bridge (the bar between two pockets) on the cage. A = cage, B = the bridge, a
-/// body that translates with the cage and turns on its own: its angle less the cage's is the
-/// bridge's deflection angle, `radius` times it the tangential deflection u at the pocket force.
-/// The bridge's bending is a linear spring-damper, k u + c u' (on the bridge, against u; on the
-/// cage, the reaction), both as moments about the common centre (a beam model, seed 003 2.2.1).
-/// Diagnostics: approach = u [m] and normal_force = k u [N], both signed (+: deflected in the
-/// positive sense of rotation); elastic_energy k u^2 / 2; power_loss c u'^2.
-struct CageBridgeSegment {
-  double radius = 0;     ///< m, where the pocket force acts on the bridge (the pitch radius)
-  double stiffness = 0;  ///< N/m, tangential
-  double damping = 0;    ///< N s/m, tangential
-};
-SegmentResult evaluate(const CageBridgeSegment& s, const PlanarKinematics& cage, const PlanarKinematics& bridge);
-
-/// One bending mode n of a flexible outer ring (the rim of a planet gear): A = the ring, B = the
-/// mode, a body whose x and y are the amplitudes a, b of the rim's radial displacement
-/// w = a cos(n theta) + b sin(n theta) (solver/bearing/ring_modes.hpp) and vx, vy their rates. The
-/// rim's elasticity in that mode is a linear spring-damper on the amplitudes: -(k a + c a', k b + c b')
-/// on B. It is internal to the ring: a bending mode (n >= 2) has no resultant, so nothing acts on A.
-/// Diagnostics: approach = sqrt(a^2 + b^2) [m], normal_force = k sqrt(a^2 + b^2) [N] (the modal
-/// force), elastic_energy k (a^2 + b^2) / 2; power_loss c (a'^2 + b'^2).
-struct RingModeSegment {
-  double stiffness = 0;  ///< N/m, modal
-  double damping = 0;    ///< N s/m, modal
-};
-SegmentResult evaluate(const RingModeSegment& s, const PlanarKinematics& ring, const PlanarKinematics& mode);
-
 }  // namespace raceway::contact

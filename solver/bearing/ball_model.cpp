@@ -286,9 +286,9 @@ void add_rings(Model& m, const io::Scene& scene) {
   const auto& g = scene.bearing;
   const double D = g.ball.ball_diameter, width = ring_width(scene);
   const double density = scene.material(g.ring_material).density;
-  add_ring(m, BodyKind::inner_ring, "inner_ring", scene.inner_ring, 0.5 * g.inner_bore_diameter,
+  add_ring(m, BodyKind::inner_ring, "inner_ring", m.params().inner_ring, 0.5 * g.inner_bore_diameter,
            0.5 * g.inner_race_diameter() + 0.25 * D, width, density);
-  add_ring(m, BodyKind::outer_ring, "outer_ring", scene.outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
+  add_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
            0.5 * g.outer_outside_diameter, width, density);
 }
 
@@ -319,8 +319,8 @@ const ModelBuilder& ball_model_builder() {
 
 std::string describe_ball_model(const Model& m) {
   std::string out;
-  const auto& sc = *m.scene;
-  out += fmt::format("scene '{}' ({}): spatial model, {} bodies, {} states, {} contact segments\n", sc.scene.name,
+  const auto& sc = m.params();
+  out += fmt::format("scene '{}' ({}): spatial model, {} bodies, {} states, {} contact segments\n", sc.scene_name,
                      sc.source, m.bodies.size(), m.state_size, m.segments.size());
   out += fmt::format("  {} {} balls, D = {:.4g} mm, pitch diameter {:.5g} mm, nominal contact angle {:.3g} deg\n",
                      m.element_count,
@@ -346,8 +346,6 @@ std::string describe_ball_model(const Model& m) {
       case BodyKind::rolling_element:
         why = fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)", m.element_count);
         break;
-      case BodyKind::cage_bridge:  // roller bearings only
-      case BodyKind::ring_mode: break;
     }
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
                        b.name, b.mass, b.axial_inertia, b.transverse_inertia, b.size, why);

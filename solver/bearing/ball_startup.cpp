@@ -386,14 +386,14 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
         "start-up: no quasi-static equilibrium found after {} iterations (largest unbalanced force {:.4g} N); "
         "the keys involved: bearing.radial_clearance ({:.4g} um){}, inner_ring.load, outer_ring.load, the rings' "
         "support, axial and tilt, scene.gravity",
-        iterations, rep.residual, 1e6 * m.scene->bearing.radial_clearance,
-        m.scene->bearing.type == io::BearingType::angular_contact_ball ? " or bearing.contact_angle" : ""));
+        iterations, rep.residual, 1e6 * m.params().bearing.radial_clearance,
+        m.params().bearing.type == io::BearingType::angular_contact_ball ? " or bearing.contact_angle" : ""));
   std::vector<double> z = seat.state(u);
   z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[saz])] = azimuth_offset;
   rep.pocket_force = place_cage(m, z);
   // A disturbed start (cage.initial_offset): the cage centre moved along +x, at rest, clear of its
   // land and pockets (the scene's rules), so the seated balls and their loads are unchanged.
-  z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[sx])] += m.scene->cage.initial_offset;
+  z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[sx])] += m.params().cage.initial_offset;
   rep.inner_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
   rep.outer_contact_force.assign(static_cast<std::size_t>(m.element_count), 0.0);
   const double cage_speed = set_rolling_velocities(m, t0, seat.orbit, z, rep);
@@ -406,8 +406,8 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
       rep.iterations, rep.residual, q_max, cage_speed * 30.0 / pi, seat.orbit * 30.0 / pi);
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const auto cage_at = [&](Coordinate c) { return rep.state[static_cast<std::size_t>(cage.slot[c])]; };
-  if (m.scene->cage.initial_offset != 0.0)
-    rep.summary += fmt::format("; cage started {:.4g} um off-centre along +x", 1e6 * m.scene->cage.initial_offset);
+  if (m.params().cage.initial_offset != 0.0)
+    rep.summary += fmt::format("; cage started {:.4g} um off-centre along +x", 1e6 * m.params().cage.initial_offset);
   if (cage_at(sz) != 0.0 || cage_at(sax) != 0.0 || cage_at(say) != 0.0)
     rep.summary += fmt::format("; cage at the balls: {:.4g} mm off the mid-plane, tilted ({:.3g}, {:.3g}) mrad, "
                                "largest pocket force {:.3g} N",

@@ -1,5 +1,8 @@
 #include "solver/bearing/cage_bridges.hpp"
 
+#include "solver/bearing/carrier_frame.hpp"
+#include "solver/bearing/equations.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -33,6 +36,132 @@ BridgeBeam bridge_beam(const io::Scene& scene, double cage_height) {
   return b;
 }
 
+namespace {
+constexpr double pi = std::numbers::pi;
+}
+
+CageBridge::CageBridge(int index, int count, int cage, int angle_state, const BridgeBeam& beam, double pitch_radius,
+                       double angle_tolerance)
+    : index_(index),
+      count_(count),
+      cage_(cage),
+      angle_(angle_state),
+      rate_(angle_state + 1),
+      mass_(beam.modal_mass),
+      inertia_(beam.modal_mass * pitch_radius * pitch_radius),
+      angle_tolerance_(angle_tolerance),
+      rate_tolerance_(angle_tolerance * std::sqrt(beam.stiffness * pitch_radius * pitch_radius / inertia_)) {}
+
+std::string CageBridge::name() const { return fmt::format("cage_bridge[{}]", index_); }
+
+// The moment on it bends it; the force on it went to the cage, which carries it (its marker). Its
+// states are its angle and rate relative to the cage, so its acceleration is its absolute one,
+// I w' = M (+ the frame's Euler moment), less the cage's, which the cage's rates hold already
+// (rigid bodies' rates come before the nodes').
+void CageBridge::rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const {
+  double mz = forces[0];
+  if (const auto frame = carrier_frame(m.params().carrier, t)) mz += frame->moment(inertia_);
+  const int carrier_rate = m.bodies[static_cast<std::size_t>(cage_)].slot[swz];
+  zdot[angle_] = z[rate_];
+  zdot[rate_] = mz / inertia_ - zdot[carrier_rate];
+}
+
+void CageBridge::add_moment_derivative(int state, double dm, BorderedMatrix& jac) const {
+  const double rate = dm * (1.0 / inertia_);
+  if (rate != 0.0) jac.add(rate_, state, rate);
+}
+
+void CageBridge::add_own_jacobian(const Model&, double, BorderedMatrix& jac) const { jac.add(angle_, rate_, 1.0); }
+
+void CageBridge::add_energy(const Model& m, double, const double* z, double& e) const {
+  const double w = z[rate_] + z[m.bodies[static_cast<std::size_t>(cage_)].slot[swz]];
+  e += 0.5 * inertia_ * w * w;
+}
+
+void CageBridge::set_tolerances(std::vector<double>& atol) const {
+  atol[static_cast<std::size_t>(angle_)] = angle_tolerance_;
+  atol[static_cast<std::size_t>(rate_)] = rate_tolerance_;
+}
+
+void CageBridge::initial_state(std::vector<double>& z) const {  // undeflected
+  z[static_cast<std::size_t>(angle_)] = 0.0;
+  z[static_cast<std::size_t>(rate_)] = 0.0;
+}
+
+std::string CageBridge::describe(const Model&) const {
+  if (index_ > 0 && index_ < count_ - 1) return "";
+  std::string out = fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", name(),
+                                mass_, inertia_, 2, angle_, angle_ + 2,
+                                "bending angle and rate (relative to the cage): border states");
+  if (index_ == 0 && count_ > 2) out += fmt::format("  ... ({} more bridges alike)\n", count_ - 2);
+  return out;
+}
+
+namespace {
+
+/// A pocket bar riding on a bridge: the cage's translation, the cage's angle plus the bridge's.
+class BridgeMarker final : public MarkerKind {
+ public:
+  BridgeMarker(std::shared_ptr<const CageBridge> bridge, int planning_id)
+      : bridge_(std::move(bridge)), planning_id_(planning_id) {}
+  int body() const override { return bridge_->cage(); }
+  int planning_id() const override { return planning_id_; }
+  contact::PlanarKinematics planar(const Model& m, double, const double* z, const contact::PlanarKinematics&,
+                                   const double*, MarkerPoint&) const override {
+    const auto& sl = m.bodies[static_cast<std::size_t>(bridge_->cage())].slot;
+    auto state = [&](Coordinate c) { return sl[c] >= 0 ? z[sl[c]] : 0.0; };
+    double theta = z[bridge_->angle_state()];
+    double omega = z[bridge_->rate_state()];
+    theta += z[sl[saz]];
+    omega += z[sl[swz]];
+    return {state(sx), state(sy), theta, state(svx), state(svy), omega};
+  }
+  /// The cage's translation columns and the bridge's own, each of which stands for the cage's
+  /// angle (rate) too: the bar's angle is the sum.
+  void columns(const Model& m, bool on_a, std::vector<SegmentColumn>& out) const override {
+    const auto& sl = m.bodies[static_cast<std::size_t>(bridge_->cage())].slot;
+    for (const Coordinate c : {sx, sy, saz, svx, svy, swz}) {
+      if (c == saz)
+        out.push_back({bridge_->cage(), c, bridge_->angle_state(), on_a, sl[saz]});
+      else if (c == swz)
+        out.push_back({bridge_->cage(), c, bridge_->rate_state(), on_a, sl[swz]});
+      else if (sl[c] >= 0)
+        out.push_back({bridge_->cage(), c, sl[c], on_a});
+    }
+  }
+  /// The moment bends the bridge; the force moves the cage (both share one centre: no moment with it).
+  void scatter(const Model&, const Segment&, bool, const double* w, double, const double*, Loads& loads) const override {
+    loads.node[static_cast<std::size_t>(bridge_->force_offset)] += w[5];
+    for (int i = 0; i < 3; ++i) loads.body[static_cast<std::size_t>(bridge_->cage())].force[i] += w[i];
+  }
+  void add_rate_derivative(const JacobianAssembly& a, int state, const Wrench& dw) const override {
+    bridge_->add_moment_derivative(state, dw.moment.z(), a.jac);
+    Wrench force = dw;
+    force.moment = contact::Vec3::Zero();
+    a.add_body_rate_derivative(bridge_->cage(), state, force);
+  }
+
+ private:
+  std::shared_ptr<const CageBridge> bridge_;
+  int planning_id_ = -1;
+};
+
+/// The bridges' nodes and markers, in bridge order.
+struct BridgeParts {
+  std::vector<int> node, marker;
+};
+BridgeParts bridge_parts(const Model& m) {
+  BridgeParts parts;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (dynamic_cast<const CageBridge*>(m.nodes[i].get())) parts.node.push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < m.markers.size(); ++i)
+    if (const auto* kind = std::get_if<std::shared_ptr<const MarkerKind>>(&m.markers[i]))
+      if (dynamic_cast<const BridgeMarker*>(kind->get())) parts.marker.push_back(static_cast<int>(i));
+  return parts;
+}
+
+}  // namespace
+
 void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
   if (scene.cage.bridges != io::CageBridges::flexible) return;
   const BridgeBeam beam = bridge_beam(scene, cage_height);
@@ -44,55 +173,61 @@ void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
     throw std::runtime_error(fmt::format("cage.inertia: the flexible bridges' inertia ({} x {:.4g} kg m^2) exceeds "
                                          "the cage's",
                                          m.element_count, bridge_inertia));
+  // The angle class's tolerance (rtol rad) would allow k R rtol of bridge force, 21 N at rtol 1e-6
+  // in seed 003's bearing, the size of the pocket forces without the carrier: the bending angle
+  // gets rtol F / (k R), F the largest ring load (at least 1 N), so the bridge force is resolved to
+  // rtol F; its rate that times the bending frequency.
+  double load = 1.0;
+  for (const io::RingSpec* r : {&scene.inner_ring, &scene.outer_ring})
+    load = std::max({load, max_abs(r->load.fx), max_abs(r->load.fy)});
+  const double angle_tolerance = scene.solver.rtol * load / (beam.stiffness * m.pitch_radius);
   for (int k = 0; k < m.element_count; ++k) {
-    Body b;
-    b.name = fmt::format("cage_bridge[{}]", k);
-    b.kind = BodyKind::cage_bridge;
-    b.index = k;
-    b.mass = beam.modal_mass;
-    // Its states: the angle and rate relative to the cage; u = pitch radius x angle.
-    b.axial_inertia = bridge_inertia;
-    b.carrier = m.cage;
-    for (Coordinate c : {sx, sy, svx, svy}) b.slot[c] = cage.slot[c];
-    b.offset = m.state_size;
-    add_state(m, b, saz, VariableClass::angle, "bending_angle");
-    add_state(m, b, swz, VariableClass::angular_velocity, "bending_rate");
-    b.size = m.state_size - b.offset;
-    m.border_bodies_after_elements.push_back(b);
+    const std::string name = fmt::format("cage_bridge[{}]", k);
+    const int angle = add_state(m, VariableClass::angle, name + ".bending_angle");
+    add_state(m, VariableClass::angular_velocity, name + ".bending_rate");
+    auto bridge = std::make_shared<CageBridge>(k, m.element_count, m.cage, angle, beam, m.pitch_radius, angle_tolerance);
+    const int node = m.add_node(bridge);
+    m.add_marker(std::shared_ptr<const MarkerKind>(std::make_shared<BridgeMarker>(bridge, m.node_planning_id(node))));
+    m.rate_followers.push_back({m.cage, swz, bridge->rate_state(), -1.0});  // relative: less the cage's
   }
 }
 
 void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_height) {
-  if (m.bridge_count == 0) return;
+  const BridgeParts parts = bridge_parts(m);
+  if (parts.node.empty()) return;
   const BridgeBeam beam = bridge_beam(scene, cage_height);
-  m.laws.push_back(contact::CageBridgeSegment{m.pitch_radius, beam.stiffness, beam.damping});
+  m.laws.push_back(CageBridgeSpring{m.pitch_radius, beam.stiffness, beam.damping});
   const int law = static_cast<int>(m.laws.size()) - 1;
-  for (int k = 0; k < m.bridge_count; ++k)
-    m.segments.push_back({SegmentKind::cage_bridge, m.cage, m.first_bridge + k, law, -1,
-                          fmt::format("cage_bridge[{}]", k)});
-}
-
-void set_bridge_tolerances(const Model& m, std::vector<double>& atol) {
-  const Segment* spring = m.first_segment(SegmentKind::cage_bridge);
-  if (!spring) return;
-  const auto& law = m.law<contact::CageBridgeSegment>(*spring);
-  double load = 1.0;
-  for (const io::RingSpec* r : {&m.scene->inner_ring, &m.scene->outer_ring})
-    load = std::max({load, max_abs(r->load.fx), max_abs(r->load.fy)});
-  const double angle = m.scene->solver.rtol * load / (law.stiffness * law.radius);
-  const double frequency = std::sqrt(law.stiffness * law.radius * law.radius /
-                                     m.bodies[static_cast<std::size_t>(m.first_bridge)].axial_inertia);
-  for (int k = 0; k < m.bridge_count; ++k) {
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_bridge + k)];
-    atol[static_cast<std::size_t>(b.slot[saz])] = angle;
-    atol[static_cast<std::size_t>(b.slot[swz])] = angle * frequency;
+  for (std::size_t k = 0; k < parts.node.size(); ++k) {
+    Segment seg{SegmentKind::cage_bridge, m.cage, m.cage, law, -1, fmt::format("cage_bridge[{}]", k)};
+    seg.marker_b = parts.marker[k];
+    m.segments.push_back(seg);
   }
 }
 
-int pocket_bar_body(const Model& m, int k, int side) {
-  if (m.bridge_count == 0) return m.cage;
-  const int n = m.bridge_count;
-  return m.first_bridge + (side > 0 ? k : (k + n - 1) % n);
+int pocket_bar_marker(const Model& m, int k, int side) {
+  const BridgeParts parts = bridge_parts(m);
+  if (parts.marker.empty()) return -1;
+  const int n = static_cast<int>(parts.marker.size());
+  return parts.marker[static_cast<std::size_t>(side > 0 ? k : (k + n - 1) % n)];
+}
+
+std::vector<const CageBridge*> cage_bridges_of(const Model& m) {
+  std::vector<const CageBridge*> out;
+  for (const auto& n : m.nodes)
+    if (const auto* b = dynamic_cast<const CageBridge*>(n.get())) out.push_back(b);
+  return out;
+}
+
+std::string describe_bridge_segments(const Model& m) {
+  const Segment* bridge = m.first_segment(SegmentKind::cage_bridge);
+  if (!bridge) return "";
+  int count = 0;
+  for (const auto& s : m.segments) count += s.kind == SegmentKind::cage_bridge;
+  const auto& b = m.law<CageBridgeSpring>(*bridge);
+  return fmt::format("  cage_bridge x{}: flexible bridges (clamped beams), k = {:.4g} N/m, c = {:.4g} N s/m at "
+                     "radius {:.4g} mm; the pocket bars ride on them\n",
+                     count, b.stiffness, b.damping, 1e3 * b.radius);
 }
 
 }  // namespace raceway::solver

@@ -8,6 +8,7 @@
 // of it and the one behind), so its states cannot live in a roller's block.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "io/scene/scene.hpp"
@@ -36,22 +37,49 @@ struct BridgeBeam {
 /// 22.37 sqrt(E I / (m L^3)). `cage_height`: the cage's radial section.
 BridgeBeam bridge_beam(const io::Scene& scene, double cage_height);
 
-/// With [cage] bridges = "flexible": one body per bridge (bridge k lies between pockets k and
-/// k + 1), riding on the cage (Body::carrier): its angle and rate relative to the cage's (its
-/// bending) are two border states, and the cage keeps its inertia less the bridges' modal inertia.
-/// Call right after the cage's states; the bodies follow the rolling elements (Model::bodies).
+/// A bridge's bending: its angle and rate relative to the cage (two border states), the moment on it
+/// as its generalized force. Its marker (the pocket bars riding on it) translates with the cage and
+/// turns by the cage's angle plus its own; the force on it moves the cage.
+class CageBridge final : public Node {
+ public:
+  CageBridge(int index, int count, int cage, int angle_state, const BridgeBeam& beam, double pitch_radius,
+             double angle_tolerance);
+  int angle_state() const { return angle_; }
+  int rate_state() const { return rate_; }
+  int cage() const { return cage_; }
+  double inertia() const { return inertia_; }
+  /// Adds d(bending acceleration)/d(state) from a derivative dm of the moment on the bridge.
+  void add_moment_derivative(int state, double dm, BorderedMatrix& jac) const;
+
+  std::string name() const override;
+  int force_count() const override { return 1; }
+  void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const override;
+  void add_own_jacobian(const Model& m, double t, BorderedMatrix& jac) const override;
+  void add_energy(const Model& m, double t, const double* z, double& e) const override;
+  void set_tolerances(std::vector<double>& atol) const override;
+  void initial_state(std::vector<double>& z) const override;
+  std::string describe(const Model& m) const override;
+
+ private:
+  int index_, count_, cage_, angle_, rate_;
+  double mass_, inertia_, angle_tolerance_, rate_tolerance_;
+};
+
+/// With [cage] bridges = "flexible": one node per bridge (bridge k lies between pockets k and k + 1)
+/// with its marker; the cage keeps its inertia less the bridges' modal inertia. Call right after the
+/// cage's states.
 void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height);
 
-/// The bridge springs (one cage_bridge segment per bridge), after the pocket segments.
+/// The bridge springs (one cage_bridge element per bridge), after the pocket elements.
 void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_height);
 
-/// Absolute tolerances of the bridges' bending states. The angle class's (rtol rad) would allow
-/// k R rtol of bridge force, 21 N at rtol 1e-6 in seed 003's bearing, the size of the pocket
-/// forces without the carrier: the bending angle gets rtol F / (k R), F the largest ring load (at
-/// least 1 N), so the bridge force is resolved to rtol F; its rate that times the bending frequency.
-void set_bridge_tolerances(const Model& m, std::vector<double>& atol);
+/// The marker of the bar ahead of (side +1) or behind (side -1) pocket k: a bridge's, or -1 (the
+/// cage's centre) when the bridges are rigid.
+int pocket_bar_marker(const Model& m, int k, int side);
 
-/// The body carrying the bar ahead of (side +1) or behind (side -1) pocket k: a bridge, or the cage.
-int pocket_bar_body(const Model& m, int k, int side);
+/// The model's bridges (empty when they are rigid).
+std::vector<const CageBridge*> cage_bridges_of(const Model& m);
+/// The model description's line for the bridge springs.
+std::string describe_bridge_segments(const Model& m);
 
 }  // namespace raceway::solver

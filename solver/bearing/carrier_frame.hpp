@@ -44,10 +44,10 @@ struct CarrierFrame {
   }
 };
 
-/// The carrier frame of the scene at time t, or nullopt when the bearing frame is inertial.
-inline std::optional<CarrierFrame> carrier_frame(const io::Scene& scene, double t) {
-  if (!scene.carrier.present) return std::nullopt;
-  return CarrierFrame{scene.carrier.radius, scene.carrier.speed(t), scene.carrier.speed.derivative(t)};
+/// The carrier frame at time t, or nullopt when the bearing frame is inertial.
+inline std::optional<CarrierFrame> carrier_frame(const io::CarrierSpec& carrier, double t) {
+  if (!carrier.present) return std::nullopt;
+  return CarrierFrame{carrier.radius, carrier.speed(t), carrier.speed.derivative(t)};
 }
 
 }  // namespace raceway::solver

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "solver/bearing/ring_modes.hpp"
+#include "solver/bearing/element_evaluation.hpp"
 
 namespace raceway::solver {
 
@@ -18,15 +18,15 @@ std::unique_ptr<BodyDynamics> make_body_dynamics(const Model& model) {
 }
 
 FiniteDifferenceSteps::FiniteDifferenceSteps(const Model& model)
-    : relative_(model.scene->solver.jacobian_perturbation),
+    : relative_(model.params().solver.jacobian_perturbation),
       scale_(static_cast<std::size_t>(model.state_size)),
       position_step_(static_cast<std::size_t>(model.state_size), 0.0) {
   // The class scales, not the bridges' tighter bending tolerances: a bridge's kinematics add its
   // bending angle to the cage's, so a smaller step would drown in the sum's round-off.
-  const auto atol = physical_absolute_tolerance(*model.scene, model.state_class, model.pitch_radius,
+  const auto atol = physical_absolute_tolerance(model.params(), model.state_class, model.pitch_radius,
                                                 model.element_radius);
   for (std::size_t i = 0; i < scale_.size(); ++i) {
-    scale_[i] = atol[i] / model.scene->solver.rtol;
+    scale_[i] = atol[i] / model.params().solver.rtol;
     const auto c = model.state_class[i];
     if (c == VariableClass::position || c == VariableClass::angle) position_step_[i] = relative_ * 1e-3 * scale_[i];
   }
@@ -38,74 +38,26 @@ double FiniteDifferenceSteps::operator()(int state, const double* z) const {
   return relative_ * std::max(std::abs(z[state]), scale_[i]);
 }
 
-namespace {
-
-/// Laws of the line-contact family take planar kinematics; the point-contact family spatial ones.
-template <class Law>
-constexpr bool line_family = std::is_same_v<Law, contact::RollerRaceSegment> ||
-                             std::is_same_v<Law, contact::CageBarSegment> ||
-                             std::is_same_v<Law, contact::CageLandSegment> ||
-                             std::is_same_v<Law, contact::CageBridgeSegment> ||
-                             std::is_same_v<Law, contact::RingModeSegment>;
-
-template <class Law>
-auto kinematics_for(const Model& m, int b, double t, const double* z) {
-  if constexpr (line_family<Law>)
-    return m.planar_kinematics(b, t, z);
-  else
-    return m.kinematics(b, t, z);
+ElementShape element_shape(const Model& m, const Segment& seg) {
+  ElementShape shape;
+  shape.columns = segment_columns(m, seg);
+  for (const bool on_a : {true, false}) {
+    const MarkerKind* kind = element_detail::kind_of(m.markers[static_cast<std::size_t>(on_a ? seg.marker_a : seg.marker_b)]);
+    if (!kind) continue;
+    (on_a ? shape.shift_a : shape.shift_b) = kind->shift_columns();
+    shape.coupled = shape.coupled || kind->follows_partner();
+  }
+  if (shape.record_columns() > 2 * coordinate_count)
+    throw std::logic_error(fmt::format("element {}: more Jacobian columns ({}) than a record holds", seg.name,
+                                       shape.record_columns()));
+  return shape;
 }
+
+namespace {
 
 template <class Law>
 int elastic_energy_field() {
-  if constexpr (line_family<Law>)
-    return contact::field_index(contact::line_diagnostic_fields, "elastic_energy");
-  else
-    return contact::field_index(contact::point_diagnostic_fields, "elastic_energy");
-}
-
-int state_count(const Body& b) {
-  int n = 0;
-  for (int c = 0; c < coordinate_count; ++c) n += b.slot[c] >= 0;
-  return n;
-}
-
-/// The record of one segment's Jacobian task: its result at (t, z), then one column of wrench
-/// differences per state of body A, then of body B (in coordinate order), by forward differences.
-template <class Law>
-void segment_jacobian_record(const Model& m, const FiniteDifferenceSteps& step, const Law& law, const Segment& seg,
-                             double t, const double* z, std::span<double> rec) {
-  const auto ka = kinematics_for<Law>(m, seg.body_a, t, z);
-  const auto kb = kinematics_for<Law>(m, seg.body_b, t, z);
-  const auto base = contact::evaluate(law, ka, kb);
-  bool ok = base.valid;
-  std::vector<double> zp(z, z + m.state_size);
-  const std::vector<SegmentColumn> columns = segment_columns(m, seg);
-  for (std::size_t column = 0; column < columns.size(); ++column) {
-    const SegmentColumn& c = columns[column];
-    const auto j = static_cast<std::size_t>(c.state);
-    const double h = step(c.state, z);
-    zp[j] = z[j] + h;
-    const auto kp = kinematics_for<Law>(m, c.body, t, zp.data());
-    const auto r = c.on_a ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
-    zp[j] = z[j];
-    ok = ok && r.valid;
-    write_difference(r, base, 1.0 / h, rec.data() + SegmentRecord::size + SegmentRecord::wrench_rows * column);
-  }
-  // The columns of states it does not depend on: zero (a task writes its whole record).
-  std::fill(rec.begin() + SegmentRecord::size + SegmentRecord::wrench_rows * static_cast<std::ptrdiff_t>(columns.size()),
-            rec.end(), 0.0);
-  write_result(base, rec);
-  rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
-}
-
-/// Adds a segment's wrench on body b to the sums; a body riding on a carrier (a flexible cage
-/// bridge) passes the force on to it (both share one centre, so no moment goes with it).
-void add_body_wrench(const Model& m, std::vector<Wrench>& sums, int b, const double* rec) {
-  add_wrench(sums[static_cast<std::size_t>(b)], rec);
-  const int carrier = m.bodies[static_cast<std::size_t>(b)].carrier;
-  if (carrier >= 0)
-    for (int i = 0; i < 3; ++i) sums[static_cast<std::size_t>(carrier)].force[i] += rec[i];
+  return diagnostic_index<Law>("elastic_energy");
 }
 
 }  // namespace
@@ -115,16 +67,18 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
       executor_(executor),
       dynamics_(make_body_dynamics(model)),
       step_(model),
-      contact_(model.bodies.size()),
       net_(model.bodies.size()),
       context_(2 + static_cast<std::size_t>(model.state_size), 0.0),
       rhs_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { rhs_task(ctx, s, rec); }),
       jacobian_task_([this](std::span<const double> ctx, int s, std::span<double> rec) { jacobian_task(ctx, s, rec); }) {
+  followers_.resize(model.bodies.size());
+  for (const Model::RateFollower& f : model.rate_followers) followers_[static_cast<std::size_t>(f.body)].push_back(f);
+  contact_.body.resize(model.bodies.size());
+  contact_.node.resize(static_cast<std::size_t>(model.node_force_count()));
   // Counted here, not in the tasks, which may run on other ranks.
   for (const Segment& seg : model.segments) {
-    jacobian_segment_evaluations_ += 1 + state_count(model.bodies[static_cast<std::size_t>(seg.body_a)]) +
-                                     state_count(model.bodies[static_cast<std::size_t>(seg.body_b)]) +
-                                     (on_rim(model, seg) ? rim_shift_columns : 0);
+    shapes_.push_back(element_shape(model, seg));
+    jacobian_segment_evaluations_ += 1 + shapes_.back().record_columns();
     elastic_energy_field_.push_back(std::visit(
         [](const auto& law) { return elastic_energy_field<std::decay_t<decltype(law)>>(); },
         model.laws[static_cast<std::size_t>(seg.law)]));
@@ -144,16 +98,8 @@ void Equations::rhs_task(std::span<const double> context, int task, std::span<do
   const double* z = context.data() + 1;
   if (context.back() != 0.0) return rest_task(s, t, z, rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  if (on_rim(model_, seg))
-    return write_result(evaluate_on_rim(model_.law<contact::RollerRaceSegment>(seg), model_, seg, t, z), rec);
-  std::visit(
-      [&](const auto& law) {
-        using Law = std::decay_t<decltype(law)>;
-        write_result(contact::evaluate(law, kinematics_for<Law>(model_, seg.body_a, t, z),
-                                       kinematics_for<Law>(model_, seg.body_b, t, z)),
-                     rec);
-      },
-      model_.laws[static_cast<std::size_t>(seg.law)]);
+  std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
+             model_.laws[static_cast<std::size_t>(seg.law)]);
 }
 
 std::pair<contact::SpatialKinematics, contact::SpatialKinematics> groove_kinematics_at_rest(const Model& m,
@@ -199,11 +145,12 @@ void Equations::jacobian_task(std::span<const double> context, int task, std::sp
   if (parts_[static_cast<std::size_t>(s)] > 1)
     return jacobian_part(context.data(), s, task - first_task_[static_cast<std::size_t>(s)], rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  if (on_rim(model_, seg))
-    return rim_jacobian_record(model_.law<contact::RollerRaceSegment>(seg), model_, step_, seg, context[0],
+  std::visit(
+      [&](const auto& law) {
+        write_element_jacobian(model_, step_, law, seg, shapes_[static_cast<std::size_t>(s)], context[0],
                                context.data() + 1, rec);
-  std::visit([&](const auto& law) { segment_jacobian_record(model_, step_, law, seg, context[0], context.data() + 1, rec); },
-             model_.laws[static_cast<std::size_t>(seg.law)]);
+      },
+      model_.laws[static_cast<std::size_t>(seg.law)]);
 }
 
 scheduler::TaskCatalogue Equations::task_catalogue() const {
@@ -213,8 +160,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   for (int s : task_segment_) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     c.group.push_back(seg.element >= 0 ? seg.element : scheduler::border_group);
-    c.bodies.push_back({model_.bodies[static_cast<std::size_t>(seg.body_a)].has_states() ? seg.body_a : -1,
-                        model_.bodies[static_cast<std::size_t>(seg.body_b)].has_states() ? seg.body_b : -1});
+    c.bodies.push_back({planning_id(seg.marker_a), planning_id(seg.marker_b)});
   }
   c.parent = task_segment_;
   c.function[static_cast<int>(scheduler::Phase::rhs)] = rhs_task_;
@@ -225,14 +171,12 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   // segment its whole record (in the Jacobian: its result and one column per state it depends on).
   for (std::size_t t = 0; t < task_segment_.size(); ++t) {
     const int s = task_segment_[t];
-    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     for (const auto phase : {scheduler::Phase::rhs, scheduler::Phase::jacobian}) {
       int used = SegmentRecord::size;
       if (parts_[static_cast<std::size_t>(s)] > 1)
         used = segment_part_record_size(phase, s, static_cast<int>(t) - first_task_[static_cast<std::size_t>(s)]);
       else if (phase == scheduler::Phase::jacobian)
-        used += SegmentRecord::wrench_rows * (static_cast<int>(segment_columns(model_, seg).size()) +
-                                              (on_rim(model_, seg) ? rim_shift_columns : 0));
+        used += SegmentRecord::wrench_rows * shapes_[static_cast<std::size_t>(s)].record_columns();
       c.used_size[static_cast<std::size_t>(phase)].push_back(used);
     }
   }
@@ -249,22 +193,20 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   const int ntask = static_cast<int>(task_segment_.size());
   executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
   if (cut_) combine_rhs_parts(records_);
-  // Sum in the canonical (segment) order: bitwise identical for any schedule.
-  for (auto& w : contact_) w = {};
+  // Sum in the canonical (element) order: bitwise identical for any schedule.
+  contact_.clear();
   int status = 0;
   for (int s = 0; s < nseg; ++s) {
     const double* rec = records_.data() + static_cast<std::size_t>(s) * SegmentRecord::size;
-    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-    add_body_wrench(model_, contact_, seg.body_a, rec + SegmentRecord::on_a);
-    add_body_wrench(model_, contact_, seg.body_b, rec + SegmentRecord::on_b);
-    if (on_rim(model_, seg)) add_rim_forces(seg, t, z, rec, contact_);
+    scatter(model_.segments[static_cast<std::size_t>(s)], rec, t, z, contact_);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
     }
   }
   for (std::size_t b = 0; b < model_.bodies.size(); ++b)
-    dynamics_->rates(static_cast<int>(b), t, z, contact_[b], net_[b], zdot);
+    dynamics_->rates(static_cast<int>(b), t, z, contact_.body[b], net_[b], zdot);
+  for (const auto& node : model_.nodes) node->rates(model_, t, z, contact_.node.data() + node->force_offset, zdot);
   return status;
 }
 
@@ -274,103 +216,48 @@ void Equations::add_rate_derivative(int b, int state, const double* z, const Wre
   dynamics_->contact_rate_derivative(b, z, dw, rates);
   for (int c = svx; c < coordinate_count; ++c)
     if (body.slot[c] >= 0 && rates[c] != 0.0) jac.add(body.slot[c], state, rates[c]);
-  if (rates[swz] != 0.0)  // a rider's angle is relative: its acceleration less its carrier's
-    for (int r : body.riders) jac.add(model_.bodies[static_cast<std::size_t>(r)].slot[swz], state, -rates[swz]);
+  for (const Model::RateFollower& f : followers_[static_cast<std::size_t>(b)])  // relative coordinates
+    if (rates[f.coordinate] != 0.0) jac.add(f.row, state, f.factor * rates[f.coordinate]);
 }
 
-void Equations::add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const {
+void Equations::scatter(const Segment& seg, const double* rec, double t, const double* z, Loads& loads) const {
+  for (const bool on_a : {true, false}) {
+    const Marker& marker = model_.markers[static_cast<std::size_t>(on_a ? seg.marker_a : seg.marker_b)];
+    const double* w = rec + (on_a ? SegmentRecord::on_a : SegmentRecord::on_b);
+    if (const auto* centre = std::get_if<BodyCentre>(&marker))
+      add_wrench(loads.body[static_cast<std::size_t>(centre->body)], w);
+    else
+      std::get<std::shared_ptr<const MarkerKind>>(marker)->scatter(model_, seg, on_a, w, t, z, loads);
+  }
+}
+
+int Equations::planning_id(int marker_index) const {
+  const Marker& marker = model_.markers[static_cast<std::size_t>(marker_index)];
+  if (const auto* centre = std::get_if<BodyCentre>(&marker))
+    return model_.bodies[static_cast<std::size_t>(centre->body)].has_states() ? centre->body : -1;
+  return std::get<std::shared_ptr<const MarkerKind>>(marker)->planning_id();
+}
+
+void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAssembly& assembly) const {
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  const int body_index[2] = {seg.body_a, seg.body_b};
-  const Body* bodies[2] = {&model_.bodies[static_cast<std::size_t>(seg.body_a)],
-                           &model_.bodies[static_cast<std::size_t>(seg.body_b)]};
-  const std::vector<SegmentColumn> columns = segment_columns(model_, seg);
+  const Marker* markers[2] = {&model_.markers[static_cast<std::size_t>(seg.marker_a)],
+                              &model_.markers[static_cast<std::size_t>(seg.marker_b)]};
+  const std::vector<SegmentColumn>& columns = shapes_[static_cast<std::size_t>(s)].columns;
   for (std::size_t column = 0; column < columns.size(); ++column) {
     const SegmentColumn& c = columns[column];
-    const int k = c.coordinate;
     const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column;
-    // A rider's kinematics hold its carrier's angle plus its own: the column counts for both.
-    const int carrier = model_.bodies[static_cast<std::size_t>(c.body)].carrier;
-    const bool relative = carrier >= 0 && (k == saz || k == swz);
-    for (const int state : {c.state, relative ? model_.bodies[static_cast<std::size_t>(carrier)].slot[k] : -1}) {
+    // A relative coordinate's column stands for its carrier's state too (the marker adds both).
+    for (const int state : {c.state, c.also}) {
       if (state < 0) continue;
       for (int target = 0; target < 2; ++target) {
-        const Body& rb = *bodies[target];
-        if (!rb.has_states()) continue;
         Wrench dw;
         for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
-        add_rate_derivative(body_index[target], state, z, dw, jac);
-        if (rb.carrier >= 0) {  // the force on a bridge moves its carrier (add_body_wrench)
-          dw.moment = contact::Vec3::Zero();
-          add_rate_derivative(rb.carrier, state, z, dw, jac);
-        }
+        marker_add_rate_derivative(model_, *markers[target], assembly, state, dw);
       }
     }
   }
-}
-
-void Equations::add_rim_forces(const Segment& seg, double t, const double* z, const double* rec,
-                               std::vector<Wrench>& sums) const {
-  const RimPoint p = rim_point(model_, model_.planar_kinematics(seg.body_a, t, z),
-                               model_.planar_kinematics(seg.body_b, t, z), z);
-  add_modal_forces(model_, p, rec + SegmentRecord::on_a, sums);
-}
-
-// A rim contact (ring_modes.hpp): its force on the ring drives the modes through Q = f . phi_n(theta),
-// theta the contact's azimuth. Rows of the modes: dQ/dz = (df/dz) . phi_n + f . phi_n'(theta) dtheta/dz,
-// with phi_a' = -(n - 1/n) sin(n theta) e_r and phi_b' = (n - 1/n) cos(n theta) e_r (e_r' = e_t,
-// e_t' = -e_r). Columns of the modes: the contact depends on them through the rim's displacement
-// u = sum phi_n a_n at the contact, so d(wrench)/d a_n = d(wrench)/d u . phi_n from the record's
-// shift columns, for the ring's, the roller's and the modes' own rows.
-void Equations::add_rim_jacobian(const Segment& seg, const double* rec, double t, const double* z,
-                                 BorderedMatrix& jac) const {
-  const Model& m = model_;
-  const RimPoint p = rim_point(m, m.planar_kinematics(seg.body_a, t, z), m.planar_kinematics(seg.body_b, t, z), z);
-  const double co = p.cos_theta, si = p.sin_theta;
-  const ModeShapes shape(co, si, m.ring_mode_count + 1);
-  const double radial = rec[SegmentRecord::on_a] * co + rec[SegmentRecord::on_a + 1] * si;
-  // The modes' rows from a column: d (force on the ring) and d theta.
-  auto add_mode_rows = [&](int state, const double* d, double dtheta) {
-    const double dr = d[0] * co + d[1] * si, dt = -d[0] * si + d[1] * co;
-    for (int k = 0; k < m.ring_mode_count; ++k) {
-      const int n = k + 2;
-      const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n, turn = (n - inv_n) * radial * dtheta;
-      Wrench dq;
-      dq.force.x() = dr * c - dt * s * inv_n - turn * s;
-      dq.force.y() = dr * s + dt * c * inv_n + turn * c;
-      add_rate_derivative(m.first_ring_mode + k, state, z, dq, jac);
-    }
-  };
-  const std::vector<SegmentColumn> columns = segment_columns(m, seg);
-  for (std::size_t i = 0; i < columns.size(); ++i) {
-    const SegmentColumn& c = columns[i];
-    const double side = c.on_a ? -1.0 : 1.0;  // theta is the roller's azimuth about the ring's centre
-    const double dtheta = c.coordinate == sx ? -side * si / p.distance : c.coordinate == sy ? side * co / p.distance : 0.0;
-    add_mode_rows(c.state, rec + SegmentRecord::size + SegmentRecord::wrench_rows * i, dtheta);
-  }
-  const double* shift = rec + SegmentRecord::size + SegmentRecord::wrench_rows * columns.size();
-  for (int k = 0; k < m.ring_mode_count; ++k) {
-    const Body& mode = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
-    const int n = k + 2;
-    const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n;
-    // phi_a = c e_r - (s / n) e_t, phi_b = s e_r + (c / n) e_t, as x, y components.
-    const double phi[2][2] = {{c * co + s * inv_n * si, c * si - s * inv_n * co},
-                              {s * co - c * inv_n * si, s * si + c * inv_n * co}};
-    for (const auto& [state, shape_index, rate] : {std::tuple{mode.slot[sx], 0, 0}, std::tuple{mode.slot[sy], 1, 0},
-                                                   std::tuple{mode.slot[svx], 0, 1}, std::tuple{mode.slot[svy], 1, 1}}) {
-      double d[SegmentRecord::wrench_rows];
-      const double* dx = shift + SegmentRecord::wrench_rows * (2 * rate);
-      const double* dy = dx + SegmentRecord::wrench_rows;
-      for (int r = 0; r < SegmentRecord::wrench_rows; ++r) d[r] = dx[r] * phi[shape_index][0] + dy[r] * phi[shape_index][1];
-      for (int target = 0; target < 2; ++target) {
-        const int b = target == 0 ? seg.body_a : seg.body_b;
-        if (!m.bodies[static_cast<std::size_t>(b)].has_states()) continue;
-        Wrench dw;
-        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
-        add_rate_derivative(b, state, z, dw, jac);
-      }
-      add_mode_rows(state, d, 0.0);
-    }
-  }
+  for (const Marker* marker : markers)
+    if (const MarkerKind* kind = element_detail::kind_of(*marker)) kind->add_jacobian_terms(assembly, seg, columns, rec);
 }
 
 int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
@@ -385,28 +272,25 @@ int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
   if (cut_) combine_jacobian_parts(z);
   jac.set_zero();
   int status = 0;
-  std::vector<Wrench> contacts(model_.bodies.size());
+  Loads contacts{std::vector<Wrench>(model_.bodies.size()), std::vector<double>(contact_.node.size(), 0.0)};
+  const JacobianAssembly assembly{model_, *this, t, z, jac};
   for (int s = 0; s < nseg; ++s) {
     const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * jacobian_record;
-    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;
     }
-    add_body_wrench(model_, contacts, seg.body_a, rec + SegmentRecord::on_a);
-    add_body_wrench(model_, contacts, seg.body_b, rec + SegmentRecord::on_b);
-    add_segment_jacobian(s, rec, z, jac);
-    if (on_rim(model_, seg)) {
-      add_rim_forces(seg, t, z, rec, contacts);
-      add_rim_jacobian(seg, rec, t, z, jac);
-    }
+    scatter(model_.segments[static_cast<std::size_t>(s)], rec, t, z, contacts);
+    add_segment_jacobian(s, rec, assembly);
   }
-  dynamics_->add_body_jacobian(t, z, contacts, step_, jac);
+  dynamics_->add_body_jacobian(t, z, contacts.body, step_, jac);
+  for (const auto& node : model_.nodes) node->add_own_jacobian(model_, t, jac);
   return status;
 }
 
 double Equations::energy(double t, const double* z) const {
   double e = dynamics_->body_energy(t, z);
+  for (const auto& node : model_.nodes) node->add_energy(model_, t, z, e);
   for (std::size_t s = 0; s < model_.segments.size(); ++s) e += diagnostic(s, elastic_energy_field_[s]);
   return e;
 }

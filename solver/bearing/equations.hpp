@@ -11,6 +11,7 @@
 
 #include "scheduler/executor.hpp"
 #include "solver/bearing/body_dynamics.hpp"
+#include "solver/bearing/element_evaluation.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/segment_record.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
@@ -58,8 +59,11 @@ class Equations final : public DynamicSystem {
   double energy(double t, const double* z) const;
   /// Net force and moment on each body from the last rhs() (contacts + loads + supports + gravity).
   const std::vector<Wrench>& body_loads() const { return net_; }
-  /// Contact force and moment on each body from the last rhs() (segments only).
-  const std::vector<Wrench>& contact_loads() const { return contact_; }
+  /// Contact force and moment on each body from the last rhs() (elements only).
+  const std::vector<Wrench>& contact_loads() const { return contact_.body; }
+  /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian (with the
+  /// rows that follow b's rates: relative coordinates).
+  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
   /// Adds the wrenches of the ball-groove segments with their rings at rest (the seating's force
   /// balance) to `sums` (per body), in segment order: evaluated as tasks through the executor like
   /// a right-hand side (spread over the ranks; a cut contact's parts combined as in rhs()), the
@@ -86,7 +90,12 @@ class Equations final : public DynamicSystem {
   /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
   void rhs_task(std::span<const double> context, int task, std::span<double> rec) const;
   void jacobian_task(std::span<const double> context, int task, std::span<double> rec) const;
-  void add_segment_jacobian(int s, const double* rec, const double* z, BorderedMatrix& jac) const;
+  /// Element s's Jacobian terms from its record, through its markers.
+  void add_segment_jacobian(int s, const double* rec, const JacobianAssembly& assembly) const;
+  /// Adds an element's record's wrenches to the loads through its markers.
+  void scatter(const Segment& seg, const double* rec, double t, const double* z, Loads& loads) const;
+  /// The scheduler's identity of a marker (a body with states, a node), or -1.
+  int planning_id(int marker) const;
   /// Sub-task `part` of a segment cut into parts_[s] (rhs: a traction-grid block; Jacobian: every
   /// parts_[s]-th of its evaluations: the base point, then the columns).
   void rhs_part(const double* context, int s, int part, std::span<double> rec) const;
@@ -99,12 +108,6 @@ class Equations final : public DynamicSystem {
   /// A whole segment's rhs record in the seating's mode (context's last entry 1).
   void rest_task(int s, double t, const double* z, std::span<double> rec) const;
   void combine_jacobian_parts(const double* z);
-  /// A contact on a flexible rim (ring_modes.hpp): its force's share on the ring's modes, and its
-  /// Jacobian terms through the rim's displacement and the modes' generalized forces.
-  void add_rim_forces(const Segment& seg, double t, const double* z, const double* rec, std::vector<Wrench>& sums) const;
-  void add_rim_jacobian(const Segment& seg, const double* rec, double t, const double* z, BorderedMatrix& jac) const;
-  /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian.
-  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
 
   const Model& model_;
   scheduler::Executor& executor_;
@@ -117,7 +120,10 @@ class Equations final : public DynamicSystem {
   std::vector<int> task_segment_;
   bool cut_ = false;             ///< some segment has more than one task
   std::vector<double> task_records_, jac_task_records_;
-  std::vector<Wrench> contact_, net_;
+  std::vector<ElementShape> shapes_;  ///< per element: its Jacobian columns
+  std::vector<std::vector<Model::RateFollower>> followers_;  ///< per body
+  Loads contact_;
+  std::vector<Wrench> net_;
   std::vector<int> elastic_energy_field_;  ///< per segment, in its family's field table
   /// [t, z..., mode] sent with every evaluation; mode 1: the seating's (add_groove_loads_at_rest)
   std::vector<double> context_;

@@ -8,7 +8,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "solver/bearing/cage_bridges.hpp"
 
 namespace raceway::solver {
 
@@ -32,40 +31,76 @@ const char* segment_kind_name(SegmentKind k) {
 }
 
 namespace {
-const ModelBuilder& builder_of(io::ModelKind kind) {
-  return kind == io::ModelKind::spatial ? ball_model_builder() : roller_model_builder();
+
+std::shared_ptr<const ModelParameters> copy_parameters(const io::Scene& scene) {
+  auto p = std::make_shared<ModelParameters>();
+  p->scene_name = scene.scene.name;
+  p->source = scene.source;
+  p->bearing = scene.bearing;
+  p->cage = scene.cage;
+  p->inner_ring = scene.inner_ring;
+  p->outer_ring = scene.outer_ring;
+  p->carrier = scene.carrier;
+  p->solver = scene.solver;
+  p->ball_race = scene.ball_race;
+  p->ball_cage = scene.ball_cage;
+  return p;
 }
+
 }  // namespace
 
-Model build_model(const io::Scene& scene) {
-  const ModelBuilder& builder = builder_of(scene.scene.model);
+Model build_model(const io::Scene& scene) { return build_model(scene, builder_for(scene.bearing.type)); }
+
+Model build_model(const io::Scene& scene, const ModelBuilder& builder) {
   builder.check(scene);
   Model m;
-  m.scene = &scene;
+  m.describer = builder.describe;
+  m.parameters = copy_parameters(scene);
+  m.bearing_type = scene.bearing.type;
   m.gravity = scene.gravity ? 9.80665 : 0.0;
   builder.geometry(m, scene);
   builder.rings(m, scene);
   builder.cage(m, scene);
   m.border_size = m.state_size;
   builder.rolling_elements(m, scene);
-  if (!m.border_bodies_after_elements.empty()) {
-    for (Body& b : m.border_bodies_after_elements) {
-      const int index = static_cast<int>(m.bodies.size());
-      int& first = b.kind == BodyKind::ring_mode ? m.first_ring_mode : m.first_bridge;
-      if (first < 0) first = index;
-      ++(b.kind == BodyKind::ring_mode ? m.ring_mode_count : m.bridge_count);
-      m.bodies.push_back(std::move(b));
-    }
-    m.border_bodies_after_elements.clear();
-    for (std::size_t b = 0; b < m.bodies.size(); ++b)
-      if (m.bodies[b].carrier >= 0) m.bodies[static_cast<std::size_t>(m.bodies[b].carrier)].riders.push_back(static_cast<int>(b));
-  }
   m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
   builder.segments(m, scene);
+  // A body-centre marker for every body; elements that name no marker attach at their bodies' centres.
+  const int first_centre = static_cast<int>(m.markers.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) m.markers.emplace_back(BodyCentre{static_cast<int>(b)});
+  for (Segment& seg : m.segments) {
+    if (seg.marker_a < 0) seg.marker_a = first_centre + seg.body_a;
+    if (seg.marker_b < 0) seg.marker_b = first_centre + seg.body_b;
+  }
   return m;
 }
 
-std::string Model::describe() const { return builder_of(kind).describe(*this); }
+std::string Model::describe() const { return describer ? describer(*this) : std::string(); }
+
+int Model::add_marker(Marker marker) {
+  markers.push_back(std::move(marker));
+  return static_cast<int>(markers.size()) - 1;
+}
+
+int Model::add_node(std::shared_ptr<Node> node) {
+  int forces = 0;
+  for (const auto& n : nodes) forces += n->force_count();
+  node->force_offset = forces;
+  nodes.push_back(std::move(node));
+  return static_cast<int>(nodes.size()) - 1;
+}
+
+int Model::node_force_count() const {
+  int forces = 0;
+  for (const auto& n : nodes) forces += n->force_count();
+  return forces;
+}
+
+int add_state(Model& m, VariableClass cls, const std::string& name) {
+  m.state_class.push_back(cls);
+  m.state_name.push_back(name);
+  return m.state_size++;
+}
 
 void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* what) {
   b.slot[c] = m.state_size++;
@@ -121,13 +156,7 @@ contact::PlanarKinematics Model::planar_kinematics(int b, double t, const double
   auto state = [&](Coordinate c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
   double omega = state(swz);
   if (body.ring && body.ring->motion == io::RingMotion::driven) omega = body.ring->speed(t);
-  double theta = state(saz);
-  if (body.carrier >= 0) {  // a rider's angle and rate are relative to its carrier's
-    const Body& carrier = bodies[static_cast<std::size_t>(body.carrier)];
-    theta += z[carrier.slot[saz]];
-    omega += z[carrier.slot[swz]];
-  }
-  return {state(sx), state(sy), theta, state(svx), state(svy), omega};
+  return {state(sx), state(sy), state(saz), state(svx), state(svy), omega};
 }
 
 double Model::ring_spin(int b, double t, const double* z) const {
@@ -150,8 +179,6 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:
-    case BodyKind::cage_bridge:
-    case BodyKind::ring_mode:  // planar only
       k.rotation = cardan_rotation(v[sax], v[say], v[saz]);
       k.angular_velocity = k.rotation * Vec3(v[swx], v[swy], v[swz]);
       break;
@@ -195,10 +222,10 @@ double max_abs(const io::TimeFunction& f) {
   return v;
 }
 
-std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
+std::vector<double> physical_absolute_tolerance(const ModelParameters& p, const std::vector<VariableClass>& state_class,
                                                 double pitch_radius, double rolling_element_radius) {
-  const auto& s = scene.solver;
-  double drive = std::max(max_abs(scene.inner_ring.speed), max_abs(scene.outer_ring.speed));
+  const auto& s = p.solver;
+  double drive = std::max(max_abs(p.inner_ring.speed), max_abs(p.outer_ring.speed));
   drive = std::max(drive, 1.0);
   const double surface_speed = drive * pitch_radius;
   const double spin_scale = drive * pitch_radius / rolling_element_radius;
@@ -217,19 +244,31 @@ std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const st
 }
 
 std::vector<double> Model::absolute_tolerance() const {
-  std::vector<double> atol = physical_absolute_tolerance(*scene, state_class, pitch_radius, element_radius);
-  set_bridge_tolerances(*this, atol);
+  std::vector<double> atol = physical_absolute_tolerance(*parameters, state_class, pitch_radius, element_radius);
+  for (const auto& node : nodes) node->set_tolerances(atol);
   return atol;
+}
+
+void add_body_columns(const Model& m, int b, bool on_a, std::vector<SegmentColumn>& out) {
+  for (int c = 0; c < coordinate_count; ++c)
+    if (const int j = m.bodies[static_cast<std::size_t>(b)].slot[c]; j >= 0) out.push_back({b, c, j, on_a});
 }
 
 std::vector<SegmentColumn> segment_columns(const Model& m, const Segment& seg) {
   std::vector<SegmentColumn> columns;
-  for (int side = 0; side < 2; ++side) {
-    const int b = side == 0 ? seg.body_a : seg.body_b;
-    for (int c = 0; c < coordinate_count; ++c)
-      if (const int j = m.bodies[static_cast<std::size_t>(b)].slot[c]; j >= 0) columns.push_back({b, c, j, side == 0});
+  for (const bool on_a : {true, false}) {
+    const Marker& marker = m.markers[static_cast<std::size_t>(on_a ? seg.marker_a : seg.marker_b)];
+    if (const auto* centre = std::get_if<BodyCentre>(&marker))
+      add_body_columns(m, centre->body, on_a, columns);
+    else
+      std::get<std::shared_ptr<const MarkerKind>>(marker)->columns(m, on_a, columns);
   }
   return columns;
+}
+
+void Loads::clear() {
+  for (auto& w : body) w = {};
+  for (double& f : node) f = 0.0;
 }
 
 }  // namespace raceway::solver

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -25,6 +26,9 @@
 #include "contact/segments/ball_segments.hpp"
 #include "contact/segments/roller_segments.hpp"
 #include "io/scene/scene.hpp"
+#include "solver/bearing/internal_springs.hpp"
+#include "solver/bearing/marker.hpp"
+#include "solver/bearing/nodes.hpp"
 
 namespace raceway::solver {
 
@@ -36,9 +40,7 @@ enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, 
 inline constexpr int coordinate_count = 12;
 
 enum class VariableClass { position, angle, velocity, angular_velocity };
-/// cage_bridge: a flexible bar between two roller pockets (solver/bearing/cage_bridges.cpp);
-/// ring_mode: a bending mode of a flexible outer ring, its amplitudes as x and y (ring_modes.hpp).
-enum class BodyKind { inner_ring, outer_ring, cage, rolling_element, cage_bridge, ring_mode };
+enum class BodyKind { inner_ring, outer_ring, cage, rolling_element };
 
 /// One rigid body. Its degrees of freedom are the coordinates with a slot (the mask).
 struct Body {
@@ -50,12 +52,8 @@ struct Body {
   double transverse_inertia = 0;  ///< kg m^2 about a diameter (spatial bodies)
   std::array<int, coordinate_count> slot{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   int offset = 0, size = 0;       ///< contiguous block of this body's states
-  const io::RingSpec* ring = nullptr;  ///< rings: motion, drive, loads, support
-  /// A body that rides on another (a flexible cage bridge on the cage): its x, y and their rates
-  /// are the carrier's states (its slots point at them), its own angle and rate are relative to the
-  /// carrier's (its bending); the force on it moves the carrier, the moment on it bends it. -1: none.
-  int carrier = -1;
-  std::vector<int> riders;  ///< the bodies whose carrier this is
+  /// Rings: motion, drive, loads, support (in the model's own parameters, never the scene's).
+  const io::RingSpec* ring = nullptr;
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };
@@ -68,42 +66,66 @@ enum class SegmentKind {
 inline constexpr int segment_kind_count = 10;
 const char* segment_kind_name(SegmentKind k);
 
-/// The contact laws a segment can evaluate, with their parameters (contact/segments). Dispatched
-/// once per segment evaluation by std::visit: a jump table, no virtual call per contact.
+/// The laws an element can evaluate, with their parameters: the contact laws of contact/segments
+/// and the internal springs of the flexible parts (solver/bearing/internal_springs.hpp).
+/// Dispatched once per element evaluation by std::visit: a jump table, no virtual call per contact.
 using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
                                 contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3,
-                                contact::CageBridgeSegment, contact::RingModeSegment>;
+                                CageBridgeSpring, RingModeSpring>;
 
-/// A contact segment: two bodies (A, B as in contact/segments) and its law in Model::laws.
+/// An element: a contact or an internal spring between two markers (A, B as in contact/segments),
+/// with its law in Model::laws. `body_a`, `body_b`: the rigid bodies the markers move with (for
+/// start-up, diagnostics and the cut contacts, which attach to body centres only).
 struct Segment {
   SegmentKind kind;
   int body_a, body_b;
   int law;      ///< index into Model::laws (segments of one kind often share one)
   int element;  ///< rolling element it belongs to, -1 for cage-land
   std::string name;
+  int marker_a = -1, marker_b = -1;  ///< indices into Model::markers (build_model fills body centres)
+};
+
+/// What the model copies from the scene at build time: the model holds no scene.
+struct ModelParameters {
+  std::string scene_name, source;
+  io::BearingGeometry bearing;
+  io::CageSpec cage;
+  io::RingSpec inner_ring, outer_ring;
+  io::CarrierSpec carrier;
+  io::SolverSpec solver;
+  io::ContactSpec ball_race, ball_cage;  ///< for the model's description
 };
 
 struct Model {
-  const io::Scene* scene = nullptr;
-  io::ModelKind kind = io::ModelKind::planar;
-  /// Inner ring, outer ring, cage, rolling elements (in that order, always), then the outer ring's
-  /// bending modes and the flexible cage bridges if any: their states are in the border (built with
-  /// the rings and the cage), the bodies come last so that rings, cage and rolling elements keep
-  /// their places.
+  /// The scene's values the model and its dynamics read after the build. Shared and immutable, so
+  /// Body::ring stays valid when a model is moved or copied.
+  std::shared_ptr<const ModelParameters> parameters;
+  io::ModelKind kind = io::ModelKind::planar;  ///< the space: planar or spatial dynamics
+  io::BearingType bearing_type = io::BearingType::cylindrical_roller;
+  /// Rigid bodies: inner ring, outer ring, cage, rolling elements (in that order, always).
   std::vector<Body> bodies;
   int inner_ring = 0, outer_ring = 1, cage = 2, first_element = 3;
-  int first_bridge = -1, bridge_count = 0;  ///< flexible cage bridges: bodies[first_bridge ..)
-  /// A flexible outer ring's bending modes (n = 2, 3, ..): bodies[first_ring_mode ..), border states.
-  int first_ring_mode = -1, ring_mode_count = 0;
-  std::vector<Body> border_bodies_after_elements;  ///< built with the border, appended by build_model
+  /// Blocks of coordinates that are not rigid bodies (a flexible ring's modes, a bridge's bending):
+  /// each knows its states, rates, own Jacobian terms, energy and start (nodes.hpp). Their states
+  /// are in the border, placed where their builder step adds them.
+  std::vector<std::shared_ptr<const Node>> nodes;
+  /// Where elements attach: a body's centre, or a marker kind of a flexible part (marker.hpp).
+  std::vector<Marker> markers;
   int element_count = 0;
   int state_size = 0;
-  int border_size = 0;  ///< states of rings and cage; rolling-element blocks follow
+  int border_size = 0;  ///< states of rings, cage and nodes; rolling-element blocks follow
   int block_size = 0;   ///< states per rolling element
   std::vector<VariableClass> state_class;
   std::vector<std::string> state_name;
   std::vector<SegmentLaw> laws;
   std::vector<Segment> segments;
+  /// Rows whose rate follows a body's acceleration (a relative coordinate's): when a contact's
+  /// wrench derivative moves body b's rate of `coordinate`, row `row` gets factor times it.
+  struct RateFollower {
+    int body, coordinate, row;
+    double factor;
+  };
+  std::vector<RateFollower> rate_followers;
 
   // Geometry, kept for start-up, output and diagnostics.
   double pitch_radius = 0, element_radius = 0;
@@ -113,10 +135,20 @@ struct Model {
   double gravity = 0;                                   ///< m/s^2 along -y
   const char* element_group = "rollers";                ///< output group of the rolling elements
 
+  const ModelParameters& params() const { return *parameters; }
   template <class Law>
   const Law& law(const Segment& s) const { return std::get<Law>(laws[static_cast<std::size_t>(s.law)]); }
   /// The first segment of a kind, or nullptr.
   const Segment* first_segment(SegmentKind k) const;
+  /// Adds a marker; returns its index. (build_model adds a body-centre marker per body at the end and
+  /// attaches every element that names no marker to its bodies' centres.)
+  int add_marker(Marker marker);
+  /// Adds a node (its states already added with add_state) and gives it its force slots; returns its index.
+  int add_node(std::shared_ptr<Node> node);
+  /// Generalized-force slots of all nodes (Loads::node).
+  int node_force_count() const;
+  /// Planning identity of node n for the scheduler (after the bodies').
+  int node_planning_id(int n) const { return static_cast<int>(bodies.size()) + n; }
 
   /// Absolute tolerance per state from the scene, or from physical scales where the scene is silent.
   std::vector<double> absolute_tolerance() const;
@@ -133,26 +165,33 @@ struct Model {
   double epicyclic_cage_speed(double t, double contact_angle) const;
   /// The model explained: bodies, states, segments, laws and the reasons (raceway check).
   std::string describe() const;
+  std::string (*describer)(const Model&) = nullptr;  ///< its builder's description
 };
 
-/// A column of a segment's Jacobian: a state of body A, then of body B, in coordinate order. The
-/// Jacobian tasks (whole or in parts) and the assembly read this one order.
+/// A column of an element's Jacobian: a state marker A's kinematics depend on, then marker B's (a
+/// body's in coordinate order). The Jacobian tasks (whole or in parts) and the assembly read this
+/// one order.
 struct SegmentColumn {
-  int body = -1;        ///< the body whose state it is
+  int body = -1;        ///< the body whose state it is (or whose frame the marker moves with)
   int coordinate = -1;  ///< the coordinate (Coordinate) of that body
   int state = -1;       ///< its index in the state vector
-  bool on_a = true;     ///< body A's (else B's)
+  bool on_a = true;     ///< marker A's (else B's)
+  int also = -1;        ///< a second state the same column stands for (a relative coordinate's carrier), or -1
 };
+/// The columns of element seg: marker A's, then marker B's.
 std::vector<SegmentColumn> segment_columns(const Model& m, const Segment& seg);
 
-/// Builds the model of the scene's kind. Throws std::runtime_error naming the scene key when
-/// something cannot be built.
+/// Builds the model of the scene's bearing type (the builder registry, builders.cpp). Throws
+/// std::runtime_error naming the scene key when something cannot be built.
 Model build_model(const io::Scene& scene);
+struct ModelBuilder;
+/// The same with a given builder (a variant of a bearing type, or a test's).
+Model build_model(const io::Scene& scene, const ModelBuilder& builder);
 
 /// Absolute tolerances per state from physical scales, where the scene's [solver] section gives
 /// none: positions rtol times the pitch radius, angles rtol, velocities rtol times the driven ring's
 /// surface speed at the pitch radius, angular velocities rtol times a rolling element's rolling spin.
-std::vector<double> physical_absolute_tolerance(const io::Scene& scene, const std::vector<VariableClass>& state_class,
+std::vector<double> physical_absolute_tolerance(const ModelParameters& p, const std::vector<VariableClass>& state_class,
                                                 double pitch_radius, double rolling_element_radius);
 
 /// R = Rx(ax) Ry(ay) Rz(az).
@@ -161,10 +200,12 @@ contact::Mat3 cardan_rotation(double ax, double ay, double az);
 /// far beyond any cage tilt).
 contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angular_velocity);
 
-/// The steps of one bearing kind's builder. build_model runs them in the order every model has:
-/// rings, cage (together the border), rolling elements (equal blocks), contact segments.
+/// The steps of one bearing type's builder. build_model runs them in the order every model has:
+/// rings, cage (together the border, with the nodes of their flexible parts), rolling elements
+/// (equal blocks), elements. The builder is chosen by the bearing type (builders.cpp), the
+/// dynamics by the space (planar or spatial), separately.
 struct ModelBuilder {
-  void (*check)(const io::Scene&);          ///< throws when the scene is not of this kind
+  void (*check)(const io::Scene&);          ///< throws when the builder cannot build this scene (its space)
   void (*geometry)(Model&, const io::Scene&);  ///< kind, element count, radii
   void (*rings)(Model&, const io::Scene&);
   void (*cage)(Model&, const io::Scene&);
@@ -174,6 +215,8 @@ struct ModelBuilder {
 };
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
+/// The builder of a bearing type (the registry: builders.cpp).
+const ModelBuilder& builder_for(io::BearingType type);
 
 /// The largest magnitude a time function takes (its table's values; it interpolates linearly).
 double max_abs(const io::TimeFunction& f);
@@ -181,6 +224,8 @@ double max_abs(const io::TimeFunction& f);
 double annulus_mass(double density, double r_in, double r_out, double width);
 /// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.
 void add_state(Model& m, Body& b, Coordinate c, VariableClass cls, const char* what);
+/// A new state named `name` of class cls that belongs to no body (a node's); returns its index.
+int add_state(Model& m, VariableClass cls, const std::string& name);
 /// Three states of body b: coordinates first, first + 1, first + 2 (x, y, z of a vector).
 void add_states(Model& m, Body& b, Coordinate first, VariableClass cls, const std::array<const char*, 3>& what);
 /// The scene's rolling elements: equal bodies "<name>[k]" whose states `add_states` adds (positions

@@ -17,8 +17,6 @@ class PlanarDynamics final : public BodyDynamics {
   void rates(int b, double t, const double* z, const Wrench& contacts, Wrench& net, double* zdot) const override {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     const auto& sl = body.slot;
-    if (body.carrier >= 0) return bridge_rates(body, t, z, contacts, net, zdot);
-    if (body.kind == BodyKind::ring_mode) return mode_rates(body, z, contacts, net, zdot);
     double fx = contacts.force.x(), fy = contacts.force.y(), mz = contacts.moment.z();
     if (sl[svy] >= 0) fy -= body.mass * m_.gravity;
     if (body.ring) {
@@ -34,7 +32,7 @@ class PlanarDynamics final : public BodyDynamics {
     net = Wrench{};
     net.force.x() = fx, net.force.y() = fy, net.moment.z() = mz;
     // The carrier frame's inertial forces drive the rates; the net wrench holds the real forces.
-    if (const auto frame = carrier_frame(*m_.scene, t)) {
+    if (const auto frame = carrier_frame(m_.params().carrier, t)) {
       if (sl[sx] >= 0) {
         const auto f = frame->force(body.mass, z[sl[sx]], z[sl[sy]], z[sl[svx]], z[sl[svy]]);
         fx += f[0], fy += f[1];
@@ -54,10 +52,6 @@ class PlanarDynamics final : public BodyDynamics {
   void contact_rate_derivative(int b, const double*, const Wrench& dw, double rates[coordinate_count]) const override {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     for (int c = 0; c < coordinate_count; ++c) rates[c] = 0;
-    if (body.carrier >= 0) {  // a bridge's force moves its carrier (Equations); its own rate takes the moment
-      rates[swz] = dw.moment.z() * (1.0 / body.axial_inertia);  // (less the carrier's: Equations)
-      return;
-    }
     const double inv_mass = 1.0 / body.mass;
     rates[svx] = dw.force.x() * inv_mass;
     rates[svy] = dw.force.y() * inv_mass;
@@ -67,10 +61,10 @@ class PlanarDynamics final : public BodyDynamics {
   /// Kinematic rows (dq/dt = v), ring supports and the carrier frame's forces, analytically.
   void add_body_jacobian(double t, const double*, const std::vector<Wrench>&, const FiniteDifferenceSteps&,
                          BorderedMatrix& jac) const override {
-    const auto frame = carrier_frame(*m_.scene, t);
+    const auto frame = carrier_frame(m_.params().carrier, t);
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
-      if (sl[sx] >= 0 && body.carrier < 0) {  // a bridge's x, y are its carrier's
+      if (sl[sx] >= 0) {
         jac.add(sl[sx], sl[svx], 1.0);
         jac.add(sl[sy], sl[svy], 1.0);
         if (body.ring && body.ring->support.stiffness > 0) {
@@ -80,7 +74,7 @@ class PlanarDynamics final : public BodyDynamics {
             jac.add(sl[svx + d], sl[svx + d], -sup.damping / body.mass);
           }
         }
-        if (frame && body.kind != BodyKind::ring_mode) {
+        if (frame) {
           const auto d = frame->force_derivative();
           const int columns[4] = {sl[sx], sl[sy], sl[svx], sl[svy]};
           for (int row = 0; row < 2; ++row)
@@ -96,21 +90,19 @@ class PlanarDynamics final : public BodyDynamics {
     double e = 0;
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
-      if (sl[svx] >= 0 && body.carrier < 0) {  // a bridge's translation is its carrier's
+      if (sl[svx] >= 0) {
         const double vx = z[sl[svx]], vy = z[sl[svy]];
         const double x = z[sl[sx]], y = z[sl[sy]];
         e += 0.5 * body.mass * (vx * vx + vy * vy);
-        if (body.kind == BodyKind::ring_mode) continue;  // a mode's x, y are amplitudes: no field acts on them
         e += body.mass * m_.gravity * y;
         if (body.ring) {
           e -= body.ring->load.fx(t) * x + body.ring->load.fy(t) * y;
           e += 0.5 * body.ring->support.stiffness * (x * x + y * y);
         }
-        if (const auto frame = carrier_frame(*m_.scene, t)) e += frame->potential(body.mass, x, y);
+        if (const auto frame = carrier_frame(m_.params().carrier, t)) e += frame->potential(body.mass, x, y);
       }
       if (sl[swz] >= 0) {
-        double w = z[sl[swz]];
-        if (body.carrier >= 0) w += z[m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz]];
+        const double w = z[sl[swz]];
         e += 0.5 * body.axial_inertia * w * w;
       }
     }
@@ -118,36 +110,6 @@ class PlanarDynamics final : public BodyDynamics {
   }
 
  private:
-  /// A flexible cage bridge: the moment on it bends it; the force on it went to the cage, which
-  /// carries it (Equations). Its states are its angle and rate relative to the cage, so its
-  /// acceleration is its absolute one, I w' = M (+ the frame's Euler moment), less the cage's,
-  /// which the cage's rates hold already: bodies are visited in order, the cage before its bridges.
-  void bridge_rates(const Body& body, double t, const double* z, const Wrench& contacts, Wrench& net,
-                    double* zdot) const {
-    const auto& sl = body.slot;
-    double mz = contacts.moment.z();
-    net = Wrench{};
-    net.moment.z() = mz;
-    if (const auto frame = carrier_frame(*m_.scene, t)) mz += frame->moment(body.axial_inertia);
-    const int carrier_rate = m_.bodies[static_cast<std::size_t>(body.carrier)].slot[swz];
-    zdot[sl[saz]] = z[sl[swz]];
-    zdot[sl[swz]] = mz / body.axial_inertia - zdot[carrier_rate];
-  }
-
-  /// A bending mode of a flexible outer ring (ring_modes.hpp): its amplitudes' accelerations are
-  /// the generalized forces (contacts and the mode's own spring, both in `contacts`) over the modal
-  /// mass. Neither gravity nor the carrier frame's forces act on a bending mode (their fields are
-  /// uniform or linear across the rim: they project onto n = 0 and 1 only).
-  void mode_rates(const Body& body, const double* z, const Wrench& contacts, Wrench& net, double* zdot) const {
-    const auto& sl = body.slot;
-    net = Wrench{};
-    net.force.x() = contacts.force.x(), net.force.y() = contacts.force.y();
-    zdot[sl[sx]] = z[sl[svx]];
-    zdot[sl[sy]] = z[sl[svy]];
-    zdot[sl[svx]] = contacts.force.x() / body.mass;
-    zdot[sl[svy]] = contacts.force.y() / body.mass;
-  }
-
   const Model& m_;
 };
 

@@ -6,8 +6,8 @@
 //   w(theta) = sum_n a_n cos(n theta) + b_n sin(n theta)          (radial, outward)
 //   v(theta) = sum_n (b_n cos(n theta) - a_n sin(n theta)) / n    (tangential: dv/dtheta = -w, no stretch)
 //
-// whose amplitudes and rates are border states (one body per mode, BodyKind::ring_mode, the
-// amplitudes as its x and y): a ring's radial compliance is spread over all azimuths, so every
+// whose amplitudes and rates are border states (a node, RingModes: four states per mode): a ring's
+// radial compliance is spread over all azimuths, so every
 // roller's outer-race contact sees every mode. The rigid modes are the ring body's own (n = 1 its
 // translation; the extensional n = 0 is stiff and left out). A dynamic rim rather than seed 003's
 // quasi-static compliance: the rim's lowest bending mode (about 1 kHz in seed 003's bearing) is near
@@ -36,14 +36,16 @@
 // rim's mass project onto n = 0 and 1 only (a uniform field and a field linear in position), so
 // the bending modes see none of them.
 //
-// Contacts: roller k's outer-race contact sees the rim displaced by u = w e_r + v e_t (and moving
-// at u') at its azimuth theta_k about the ring's centre: the ring's centre is moved by u for that
-// contact (the same gap, to first order, as the raceway bent outward by w), and the contact's force
-// f on the ring goes to the ring body whole (n = 1) and to the modes as their generalized forces
-// f . d u / d a_n (virtual work: action equals reaction, and the modes' power is what the contacts
-// give them).
+// Contacts: roller k's outer-race contact attaches to the ring at a rim point (RimPointMarker): it
+// sees the rim displaced by u = w e_r + v e_t (and moving at u') at its azimuth theta_k about the
+// ring's centre: the ring's centre is moved by u for that contact (the same gap, to first order, as
+// the raceway bent outward by w), and the contact's force f on the ring goes to the ring body whole
+// (n = 1) and to the modes as their generalized forces f . d u / d a_n (virtual work: action equals
+// reaction, and the modes' power is what the contacts give them). Each mode's spring (an
+// outer_ring_mode element, internal_springs.hpp) attaches to the mode's amplitudes (ModeMarker).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "contact/segments/roller_segments.hpp"
@@ -68,11 +70,45 @@ struct RimRing {
 /// The rim of the scene's outer ring (flexibility = "ring_modes"); `ring_mass` its body's mass.
 RimRing rim_ring(const io::Scene& scene, double race_radius, double ring_mass);
 
-/// With [outer_ring] flexibility = "ring_modes": one body per bending mode (amplitudes a_n, b_n as
-/// x and y, their rates as vx, vy: four border states). Call right after the outer ring's states.
+/// The node of a flexible ring's bending modes n = 2..N: per mode the amplitudes a_n, b_n and their
+/// rates (four border states, in that order); per mode two generalized forces (Q_a, Q_b).
+class RingModes final : public Node {
+ public:
+  RingModes(RimRing rim, int ring_body, int first_state);
+  int count() const { return static_cast<int>(rim_.mass.size()); }
+  /// State i (0: a, 1: b, 2: a', 3: b') of mode index k (n = k + 2).
+  int state(int k, int i) const { return first_state_ + 4 * k + i; }
+  const RimRing& rim() const { return rim_; }
+  int ring_body() const { return ring_body_; }
+  /// Adds d(rates of mode k)/d(state) from a derivative (dq_a, dq_b) of its generalized forces.
+  void add_force_derivative(int k, int state, double dq_a, double dq_b, BorderedMatrix& jac) const;
+
+  std::string name() const override { return "outer_ring_modes"; }
+  int force_count() const override { return 2 * count(); }
+  void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const override;
+  void add_own_jacobian(const Model& m, double t, BorderedMatrix& jac) const override;
+  void add_energy(const Model& m, double t, const double* z, double& e) const override;
+  void initial_state(std::vector<double>& z) const override;
+  std::string describe(const Model& m) const override;
+
+ private:
+  RimRing rim_;
+  int ring_body_ = 0, first_state_ = 0;
+};
+
+/// With [outer_ring] flexibility = "ring_modes": the node of the outer ring's bending modes (four
+/// border states per mode). Call right after the outer ring's states.
 void add_ring_modes(Model& m, const io::Scene& scene);
-/// The modes' elasticity (one outer_ring_mode segment per mode), after the contact segments.
-void add_ring_mode_segments(Model& m, const io::Scene& scene);
+/// The modes' elasticity (one outer_ring_mode element per mode, on the mode's marker), after the
+/// contact elements.
+void add_ring_mode_segments(Model& m);
+/// The marker of a roller's outer-race contact: a rim point when the outer ring is flexible, or -1
+/// (the ring's centre).
+int outer_race_marker(Model& m);
+/// The model's ring-modes node, or nullptr.
+const RingModes* ring_modes_of(const Model& m);
+/// The model description's line for the modes' elements.
+std::string describe_ring_mode_segments(const Model& m);
 
 /// The mode shapes at an azimuth: cos(n theta) and sin(n theta) for n = 2..highest, by the
 /// angle-sum recurrence from cos(theta), sin(theta) (no trigonometric call per mode).
@@ -88,29 +124,11 @@ struct RimPoint {
   double distance = 0;                  ///< m, from the ring's centre to the roller's
   double u[2] = {}, u_rate[2] = {};     ///< m, m/s: displacement w e_r + v e_t and its rate
 };
-RimPoint rim_point(const Model& m, const contact::PlanarKinematics& ring, const contact::PlanarKinematics& roller,
-                   const double* z);
-
-/// A flexible outer-race contact (a roller_outer_race segment of a model with ring modes): the
-/// ring's kinematics moved by the rim's displacement at the contact, plus `extra` (d u x, d u y,
-/// d u' x, d u' y, for the Jacobian's differences; null: none); the moment on the ring is about its
-/// own centre.
-contact::SegmentResult evaluate_on_rim(const contact::RollerRaceSegment& law, const Model& m, const Segment& seg,
-                                       double t, const double* z, const double* extra = nullptr);
-/// Whether segment `seg` of model m is a contact on a flexible rim.
-inline bool on_rim(const Model& m, const Segment& seg) {
-  return m.ring_mode_count > 0 && seg.kind == SegmentKind::roller_outer_race;
-}
-/// Columns of a rim contact's Jacobian record after its bodies' (segment_columns): d/d u x, u y, u' x, u' y.
-inline constexpr int rim_shift_columns = 4;
-/// The Jacobian task's record of a rim contact: the result, one column per state of the ring and
-/// the roller (both sides' kinematics re-evaluated: the rim's displacement follows the roller's
-/// azimuth), then the rim_shift_columns.
-void rim_jacobian_record(const contact::RollerRaceSegment& law, const Model& m, const FiniteDifferenceSteps& step,
-                         const Segment& seg, double t, const double* z, std::span<double> rec);
+RimPoint rim_point(const RingModes& modes, const contact::PlanarKinematics& ring,
+                   const contact::PlanarKinematics& roller, const double* z);
 
 /// The generalized forces on the modes of a rim contact's force `on_ring` (force x, y on the ring):
-/// adds (Q_a, Q_b) of mode n to sums[mode body].force x, y.
-void add_modal_forces(const Model& m, const RimPoint& p, const double* on_ring, std::vector<Wrench>& sums);
+/// adds (Q_a, Q_b) of mode k to forces[2 k], forces[2 k + 1].
+void add_modal_forces(const RingModes& modes, const RimPoint& p, const double* on_ring, double* forces);
 
 }  // namespace raceway::solver

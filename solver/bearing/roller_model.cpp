@@ -185,6 +185,7 @@ void add_roller_segments(Model& m, const io::Scene& scene) {
   add_race_film(outer_race, scene);
   const int inner = add_law(m, inner_race);
   const int outer = add_law(m, outer_race);
+  const int outer_marker = outer_race_marker(m);  // a point on a flexible rim, or the ring's centre
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
     const double pocket = 2.0 * pi * k / m.element_count;
@@ -196,11 +197,13 @@ void add_roller_segments(Model& m, const io::Scene& scene) {
     const int front = add_law(m, front_bar);
     const int rear = add_law(m, rear_bar);
     m.segments.push_back({SegmentKind::roller_inner_race, m.inner_ring, body, inner, k, fmt::format("roller[{}]/inner_race", k)});
-    m.segments.push_back({SegmentKind::roller_outer_race, m.outer_ring, body, outer, k, fmt::format("roller[{}]/outer_race", k)});
-    m.segments.push_back({SegmentKind::cage_bar_front, pocket_bar_body(m, k, +1), body, front, k,
-                          fmt::format("roller[{}]/cage_bar_front", k)});
-    m.segments.push_back({SegmentKind::cage_bar_rear, pocket_bar_body(m, k, -1), body, rear, k,
-                          fmt::format("roller[{}]/cage_bar_rear", k)});
+    m.segments.push_back({SegmentKind::roller_outer_race, m.outer_ring, body, outer, k,
+                          fmt::format("roller[{}]/outer_race", k), outer_marker});
+    // The pocket bars ride on flexible bridges where the cage has them.
+    m.segments.push_back({SegmentKind::cage_bar_front, m.cage, body, front, k, fmt::format("roller[{}]/cage_bar_front", k),
+                          pocket_bar_marker(m, k, +1)});
+    m.segments.push_back({SegmentKind::cage_bar_rear, m.cage, body, rear, k, fmt::format("roller[{}]/cage_bar_rear", k),
+                          pocket_bar_marker(m, k, -1)});
   }
 }
 
@@ -238,9 +241,9 @@ void add_rings(Model& m, const io::Scene& scene) {
   const auto& g = scene.bearing;
   const double density = scene.material(g.ring_material).density;
   const double width = g.ring_width > 0 ? g.ring_width : g.roller_length;
-  add_ring(m, BodyKind::inner_ring, "inner_ring", scene.inner_ring, 0.5 * g.inner_bore_diameter, m.inner_race_radius,
-           width, density);
-  add_ring(m, BodyKind::outer_ring, "outer_ring", scene.outer_ring, m.outer_race_radius,
+  add_ring(m, BodyKind::inner_ring, "inner_ring", m.params().inner_ring, 0.5 * g.inner_bore_diameter,
+           m.inner_race_radius, width, density);
+  add_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, m.outer_race_radius,
            0.5 * g.outer_outside_diameter, width, density);
   add_ring_modes(m, scene);
 }
@@ -250,7 +253,7 @@ void add_segments(Model& m, const io::Scene& scene) {
   const CageGeometry geo = cage_geometry(m, scene.cage);
   add_land_segment(m, scene, geo);
   add_cage_bridge_segments(m, scene, geo.r_out - geo.r_in);
-  add_ring_mode_segments(m, scene);
+  add_ring_mode_segments(m);
 }
 
 }  // namespace
@@ -267,9 +270,10 @@ const ModelBuilder& roller_model_builder() {
 
 std::string describe_roller_model(const Model& m) {
   std::string out;
-  const auto& sc = *m.scene;
-  out += fmt::format("scene '{}' ({}): planar model, {} bodies, {} states, {} contact segments\n",
-                     sc.scene.name, sc.source, m.bodies.size(), m.state_size, m.segments.size());
+  const auto& sc = m.params();
+  out += fmt::format("scene '{}' ({}): planar model, {} bodies{}, {} states, {} contact segments\n", sc.scene_name,
+                     sc.source, m.bodies.size(), m.nodes.empty() ? "" : fmt::format(" and {} nodes", m.nodes.size()),
+                     m.state_size, m.segments.size());
   out += "bodies (border first, then one block per roller):\n";
   for (const Body& b : m.bodies) {
     std::string why;
@@ -287,23 +291,15 @@ std::string describe_roller_model(const Model& m) {
       }
       case BodyKind::cage: why = "x, y, angle and rates: its pockets are not symmetric"; break;
       case BodyKind::rolling_element: why = "x, y, spin rate: the contact does not depend on its angle"; break;
-      case BodyKind::cage_bridge: why = "bending angle and rate (relative to the cage): border states"; break;
-      case BodyKind::ring_mode: why = "the outer ring's bending mode: amplitudes and rates, border states"; break;
     }
-    const bool repeated = b.kind != BodyKind::inner_ring && b.kind != BodyKind::outer_ring && b.kind != BodyKind::cage;
-    const int count = b.kind == BodyKind::cage_bridge ? m.bridge_count
-                      : b.kind == BodyKind::ring_mode ? m.ring_mode_count
-                                                      : m.element_count;
-    const int first = b.kind == BodyKind::ring_mode ? 2 : 0;  // modes are numbered from n = 2
-    if (repeated && b.index > first && b.index < first + count - 1) continue;
+    const bool repeated = b.kind == BodyKind::rolling_element;
+    const int count = m.element_count;
+    if (repeated && b.index > 0 && b.index < count - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", b.name, b.mass,
                        b.axial_inertia, b.size, b.offset, b.offset + b.size, why);
-    if (repeated && b.index == first && count > 2)
-      out += fmt::format("  ... ({} more {} alike)\n", count - 2,
-                         b.kind == BodyKind::cage_bridge ? "bridges"
-                         : b.kind == BodyKind::ring_mode ? "modes"
-                                                         : "rollers");
+    if (repeated && b.index == 0 && count > 2) out += fmt::format("  ... ({} more rollers alike)\n", count - 2);
   }
+  for (const auto& node : m.nodes) out += node->describe(m);
   out += fmt::format("border states {}, roller blocks {} x {}\n", m.border_size, m.element_count, m.block_size);
   int counts[segment_kind_count] = {};
   for (const auto& s : m.segments) counts[static_cast<int>(s.kind)]++;
@@ -328,21 +324,8 @@ std::string describe_roller_model(const Model& m) {
   } else {
     out += "  no cage_land segment: the cage is guided by the rollers\n";
   }
-  if (const Segment* bridge = m.first_segment(SegmentKind::cage_bridge)) {
-    const auto& b = m.law<contact::CageBridgeSegment>(*bridge);
-    out += fmt::format("  cage_bridge x{}: flexible bridges (clamped beams), k = {:.4g} N/m, c = {:.4g} N s/m at "
-                       "radius {:.4g} mm; the pocket bars ride on them\n",
-                       count(SegmentKind::cage_bridge), b.stiffness, b.damping, 1e3 * b.radius);
-  }
-  if (m.ring_mode_count > 0) {
-    const RimRing rim = rim_ring(*m.scene, m.outer_race_radius, m.bodies[static_cast<std::size_t>(m.outer_ring)].mass);
-    out += fmt::format("  outer_ring_mode x{}: flexible outer ring, thin rim of mean radius {:.4g} mm, section {:.4g} x "
-                       "{:.4g} mm, E I = {:.4g} N m^2, {:.4g} kg/m; modes n = 2..{}: k_2 = {:.4g} N/m, f_2 = {:.4g} Hz, "
-                       "f_{} = {:.4g} Hz; the outer-race contacts see the rim's displacement\n",
-                       m.ring_mode_count, 1e3 * rim.radius, 1e3 * rim.thickness, 1e3 * rim.width,
-                       rim.bending_stiffness, rim.mass_per_length, rim.highest_mode, rim.stiffness[0],
-                       rim.frequency(2) / (2 * pi), rim.highest_mode, rim.frequency(rim.highest_mode) / (2 * pi));
-  }
+  out += describe_bridge_segments(m);
+  out += describe_ring_mode_segments(m);
   out += fmt::format("geometry: pitch radius {:.4f} mm, races {:.4f} / {:.4f} mm, roller radius {:.4f} mm\n",
                      1e3 * m.pitch_radius, 1e3 * m.inner_race_radius, 1e3 * m.outer_race_radius,
                      1e3 * m.element_radius);

@@ -23,7 +23,7 @@ struct Seating {
   double load_direction;  // azimuth of the load on the inner ring relative to the outer [rad]
   double spin = 0;                 // roller spin of the returned state [rad/s]
   double ring_speed[2] = {0, 0};   // inner, outer ring rotation speeds at t0 [rad/s]
-  std::optional<CarrierFrame> frame = carrier_frame(*m.scene, t0);  // planetary bearings
+  std::optional<CarrierFrame> frame = carrier_frame(m.params().carrier, t0);  // planetary bearings
 
   /// The kinematics the returned state will have: rings at rest but for their drive speed, the
   /// roller orbiting at the epicyclic speed with its rolling spin (so damping and traction are in
@@ -206,7 +206,7 @@ Eigen::VectorXd newton_on_rings(const Seating& s, const std::vector<int>& free_r
 /// fails the continuation is used there too.
 Eigen::VectorXd seat_rings(const Seating& s, const std::vector<int>& free_rings, double load_scale,
                            StartupReport& rep) {
-  const double clearance = s.m.scene->bearing.radial_clearance;
+  const double clearance = s.m.params().bearing.radial_clearance;
   const double share = 0.5 * clearance / static_cast<double>(free_rings.size());
   auto solve = [&](bool continuation, Eigen::VectorXd& x) {
     x = along_load(s, free_rings, continuation ? take_up_play(s, free_rings, share) : 1e-7);
@@ -245,12 +245,12 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   if (m.bodies[m.outer_ring].slot[sx] >= 0) free_rings.push_back(1);
 
   // Direction in which the load pushes the inner ring against the outer one.
-  const auto& in = m.scene->inner_ring.load;
-  const auto& out = m.scene->outer_ring.load;
+  const auto& in = m.params().inner_ring.load;
+  const auto& out = m.params().outer_ring.load;
   double lx = in.fx(t0) - out.fx(t0), ly = in.fy(t0) - out.fy(t0);
   const double g = m.gravity;
   ly -= g * (m.bodies[m.inner_ring].mass - m.bodies[m.outer_ring].mass);
-  if (const auto frame = carrier_frame(*m.scene, t0)) {
+  if (const auto frame = carrier_frame(m.params().carrier, t0)) {
     // The carrier's field pulls both rings outwards (+x) and the rollers onto the outer race.
     const auto free_mass = [&](int r) { return m.bodies[r].slot[sx] >= 0 ? m.bodies[r].mass : 0.0; };
     double outward = free_mass(m.inner_ring) - free_mass(m.outer_ring);
@@ -310,13 +310,7 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   }
   rep.state[cage.slot[saz]] = s.load_direction;
   rep.state[cage.slot[swz]] = wc;
-  for (int k = 0; k < m.bridge_count; ++k) {  // flexible bridges: undeflected
-    const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge + k)];
-    rep.state[bridge.slot[saz]] = 0.0;
-    rep.state[bridge.slot[swz]] = 0.0;
-  }
-  for (int k = 0; k < m.ring_mode_count; ++k)  // a flexible outer ring: round, at rest
-    for (Coordinate c : {sx, sy, svx, svy}) rep.state[m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)].slot[c]] = 0.0;
+  for (const auto& node : m.nodes) node->initial_state(rep.state);  // flexible parts: their own start
   rep.summary = fmt::format(
       "start-up: rings seated in {} Newton iterations (residual {:.2e} N), inner ring at ({:.4f}, {:.4f}) um, "
       "rollers at {:.2f} rpm orbit, spin {:.1f} rad/s",

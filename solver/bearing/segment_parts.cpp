@@ -78,7 +78,7 @@ int Equations::segment_part_record_size(scheduler::Phase phase, int s, int part)
   const int parts = parts_[static_cast<std::size_t>(s)];
   if (phase == scheduler::Phase::rhs)
     return traction_size + (part == 0 ? prepared_share : part == 1 ? contact::PreparedGrooveContact::size - prepared_share : 0);
-  const int evaluations = 1 + static_cast<int>(segment_columns(model_, model_.segments[static_cast<std::size_t>(s)]).size());
+  const int evaluations = 1 + static_cast<int>(shapes_[static_cast<std::size_t>(s)].columns.size());
   const int n = part_evaluations(evaluations, part, parts);
   return static_cast<int>(jacobian_part_offset(part, n));
 }
@@ -136,7 +136,7 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
   const double* z = context + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   const auto& law = groove_law(model_, seg);
-  const std::vector<SegmentColumn> columns = segment_columns(model_, seg);
+  const std::vector<SegmentColumn>& columns = shapes_[static_cast<std::size_t>(s)].columns;
   const auto ka = model_.kinematics(seg.body_a, t, z), kb = model_.kinematics(seg.body_b, t, z);
   std::fill(rec.begin(), rec.end(), 0.0);
   bool ok = true;
@@ -173,7 +173,7 @@ void Equations::combine_jacobian_parts(const double* z) {
     std::copy_n(first + jacobian_part_offset(0, 0), SegmentRecord::size, out);
     bool ok = true;
     for (int k = 0; k < parts; ++k) ok = ok && first[static_cast<std::size_t>(k) * size] != 0.0;
-    const std::vector<SegmentColumn> columns = segment_columns(model_, model_.segments[s]);
+    const std::vector<SegmentColumn>& columns = shapes_[s].columns;
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const std::size_t offset = SegmentRecord::size + SegmentRecord::wrench_rows * c;
       const int e = static_cast<int>(c) + 1;

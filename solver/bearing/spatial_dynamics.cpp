@@ -36,8 +36,6 @@ class SpatialDynamics final : public BodyDynamics {
       case BodyKind::cage: cage_rates(body, z, r, zdot); break;
       case BodyKind::inner_ring:
       case BodyKind::outer_ring: ring_rates(body, m_.ring_spin(b, t, z), z, r, zdot); break;
-      case BodyKind::cage_bridge:  // flexible bridges and ring modes belong to planar roller bearings
-      case BodyKind::ring_mode: break;
     }
   }
 
@@ -64,8 +62,6 @@ class SpatialDynamics final : public BodyDynamics {
         rates[swy] = w.moment.y() / body.transverse_inertia;
         rates[swz] = w.moment.z() / body.axial_inertia;
         break;
-      case BodyKind::cage_bridge:  // flexible bridges and ring modes belong to planar roller bearings
-      case BodyKind::ring_mode: break;
     }
   }
 
@@ -123,7 +119,7 @@ class SpatialDynamics final : public BodyDynamics {
       return {s.stiffness, s.damping, s.axial_stiffness, s.axial_damping, s.tilt_stiffness, s.tilt_damping};
     }
     if (body.kind == BodyKind::cage) {
-      const auto& s = m_.scene->cage.support;
+      const auto& s = m_.params().cage.support;
       return {s.radial_stiffness, s.radial_damping, s.axial_stiffness, s.axial_damping, s.tilt_stiffness, s.tilt_damping};
     }
     return {};
@@ -134,7 +130,7 @@ class SpatialDynamics final : public BodyDynamics {
     Wrench w;
     auto state = [&](int c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
     if (body.slot[svy] >= 0) w.force.y() -= body.mass * m_.gravity;
-    if (body.kind == BodyKind::cage && m_.scene->cage.mass_eccentricity > 0) w.force += unbalance_force(body, z);
+    if (body.kind == BodyKind::cage && m_.params().cage.mass_eccentricity > 0) w.force += unbalance_force(body, z);
     if (body.ring) {
       const auto& l = body.ring->load;
       w.force += Vec3(l.fx(t), l.fy(t), l.fz(t));
@@ -176,7 +172,7 @@ class SpatialDynamics final : public BodyDynamics {
   Vec3 unbalance_force(const Body& body, const double* z) const {
     const auto& sl = body.slot;
     const Mat3 r = cardan_rotation(z[sl[sax]], z[sl[say]], z[sl[saz]]);
-    const Vec3 rho = r.col(0) * m_.scene->cage.mass_eccentricity;
+    const Vec3 rho = r.col(0) * m_.params().cage.mass_eccentricity;
     const Vec3 w = r * Vec3(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
     return -body.mass * w.cross(w.cross(rho));
   }

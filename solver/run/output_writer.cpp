@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "io/scene/scene_parser.hpp"
+#include "solver/bearing/element_traits.hpp"
 #include "solver/run/pocket_steps.hpp"
 
 namespace raceway::solver {
@@ -75,11 +76,6 @@ double component(const BodySample& s, Quantity q, int c) {
   return 0;
 }
 
-bool is_line_family(const SegmentLaw& law) {
-  return std::holds_alternative<contact::RollerRaceSegment>(law) || std::holds_alternative<contact::CageBarSegment>(law) ||
-         std::holds_alternative<contact::CageLandSegment>(law) || std::holds_alternative<contact::CageBridgeSegment>(law) ||
-         std::holds_alternative<contact::RingModeSegment>(law);
-}
 
 template <class Table>
 void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns,
@@ -143,9 +139,7 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   if (scene.output.segments)
     for (const Segment& s : m.segments)
-      values += static_cast<long>(is_line_family(m.laws[static_cast<std::size_t>(s.law)])
-                                      ? contact::line_diagnostic_fields.size()
-                                      : contact::point_diagnostic_fields.size());
+      values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
   e.values_per_sample = values;
   e.bytes = samples * static_cast<double>(values) * sizeof(double);
   e.samples = samples < 9e18 ? static_cast<long>(samples) : -1;
@@ -200,7 +194,7 @@ std::map<std::string, SegmentSeries> segment_series(const Model& m) {
     auto add = [&](const auto& fields) {
       for (std::size_t f = 0; f < fields.size(); ++f) all[g + fields[f].name] = {static_cast<int>(f), segments};
     };
-    if (is_line_family(m.laws[static_cast<std::size_t>(m.segments[static_cast<std::size_t>(segments[0])].law)]))
+    if (is_planar_element(m.laws[static_cast<std::size_t>(m.segments[static_cast<std::size_t>(segments[0])].law)]))
       add(contact::line_diagnostic_fields);
     else
       add(contact::point_diagnostic_fields);
@@ -259,7 +253,7 @@ void OutputWriter::define_segment_groups() {
         index_[k].push_back(static_cast<int>(s));
       }
     if (names.empty()) continue;
-    line_family_[k] = is_line_family(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
+    line_family_[k] = is_planar_element(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
     const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
     file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
     if (m_.kind == io::ModelKind::spatial)

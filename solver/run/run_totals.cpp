@@ -48,7 +48,7 @@ void RunTotals::process_counts(const Equations& eq, const scheduler::Executor& e
 RunTotals::RunTotals(const Model& m, double end_time)
     : m_(m),
       end_(end_time),
-      drive_(m.scene->inner_ring.motion == io::RingMotion::driven ? &m.scene->inner_ring : &m.scene->outer_ring) {}
+      drive_(m.params().inner_ring.motion == io::RingMotion::driven ? &m.params().inner_ring : &m.params().outer_ring) {}
 
 void RunTotals::turn_to(double t) {
   if (!turned_) last_t_ = t, turned_ = true;
@@ -65,7 +65,7 @@ void RunTotals::record(double t, const std::vector<double>& z, const Equations& 
   if (t < 0.5 * end_ - 1e-12) return;
   // The second half's means (summary): contact force and load on the inner ring, cage speed.
   force_sum_ += eq.contact_loads()[static_cast<std::size_t>(m_.inner_ring)].force;
-  const auto& l = m_.scene->inner_ring.load;
+  const auto& l = m_.params().inner_ring.load;
   load_sum_ += Vec3(l.fx(t), l.fy(t), l.fz(t));
   constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
   std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "scheduler/executor.hpp"
+#include "solver/bearing/cage_bridges.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
@@ -56,7 +57,7 @@ std::vector<double> pressed_state(const Model& m, double push) {
   z[static_cast<std::size_t>(cage.slot[sx])] = 0;
   z[static_cast<std::size_t>(cage.slot[sy])] = 0;
   const double theta = z[static_cast<std::size_t>(cage.slot[saz])];
-  const double half = 0.5 * m.scene->cage.pocket_clearance;
+  const double half = 0.5 * m.params().cage.pocket_clearance;
   const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
   z[static_cast<std::size_t>(roller.slot[sx])] = m.pitch_radius * std::cos(theta) - (half + push) * std::sin(theta);
   z[static_cast<std::size_t>(roller.slot[sy])] = m.pitch_radius * std::sin(theta) + (half + push) * std::cos(theta);
@@ -66,20 +67,20 @@ std::vector<double> pressed_state(const Model& m, double push) {
 TEST(CageBridge, StaticDeflectionMatchesTheClampedBeam) {
   const io::Scene scene = bridge_scene();
   const Model m = build_model(scene);
-  ASSERT_EQ(m.bridge_count, m.element_count);
+  ASSERT_EQ(static_cast<int>(cage_bridges_of(m).size()), m.element_count);
   scheduler::SerialExecutor ex;
   Equations eq(m, ex);
   std::vector<double> z = pressed_state(m, 30e-6), zdot(z.size());
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
-  const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge)];  // ahead of pocket 0
-  const auto angle = static_cast<std::size_t>(bridge.slot[saz]);
+  const CageBridge& bridge = *cage_bridges_of(m)[0];  // ahead of pocket 0
+  const auto angle = static_cast<std::size_t>(bridge.angle_state());
 
   // The bridge's static deflection: its absolute angular acceleration (its own, relative to the
   // cage, plus the cage's) zero, by the secant method.
   auto acceleration = [&](double bending_angle) {
     z[angle] = bending_angle;
     EXPECT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
-    return zdot[static_cast<std::size_t>(bridge.slot[swz])] + zdot[static_cast<std::size_t>(cage.slot[swz])];
+    return zdot[static_cast<std::size_t>(bridge.rate_state())] + zdot[static_cast<std::size_t>(cage.slot[swz])];
   };
   double a = 0, fa = acceleration(a), b = 1e-4, fb = acceleration(b);
   for (int i = 0; i < 60 && std::abs(b - a) > 1e-15; ++i) {
@@ -129,13 +130,13 @@ TEST(CageBridge, BendingFrequencyMatchesTheClampedBeamMode) {
   scheduler::SerialExecutor ex;
   Equations eq(m, ex);
   std::vector<double> z = pressed_state(m, -50e-6), zdot(z.size());  // roller 0 clear of its bars
-  const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge + 5)];
+  const CageBridge& bridge = *cage_bridges_of(m)[5];
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const double phi = 1e-5;
-  z[static_cast<std::size_t>(bridge.slot[saz])] = phi;
+  z[static_cast<std::size_t>(bridge.angle_state())] = phi;
   ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
   // On a cage held still: the bridge's absolute acceleration (relative plus the cage's).
-  const double absolute = zdot[static_cast<std::size_t>(bridge.slot[swz])] + zdot[static_cast<std::size_t>(cage.slot[swz])];
+  const double absolute = zdot[static_cast<std::size_t>(bridge.rate_state())] + zdot[static_cast<std::size_t>(cage.slot[swz])];
   const double omega = std::sqrt(-absolute / phi);
   const double e = scene.material(scene.cage.material).youngs_modulus;
   const double span = scene.bearing.roller_length;
@@ -155,10 +156,10 @@ TEST(CageBridge, JacobianMatchesCentralDifferences) {
   scheduler::SerialExecutor ex;
   Equations eq(m, ex);
   std::vector<double> z = pressed_state(m, 20e-6);
-  const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge)];
+  const CageBridge& bridge = *cage_bridges_of(m)[0];
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
-  z[static_cast<std::size_t>(bridge.slot[saz])] = 1e-4;
-  z[static_cast<std::size_t>(bridge.slot[swz])] = 3.0;  // and moving: the damper works
+  z[static_cast<std::size_t>(bridge.angle_state())] = 1e-4;
+  z[static_cast<std::size_t>(bridge.rate_state())] = 3.0;  // and moving: the damper works
   const int nb = m.border_size, blocks = m.element_count, bs = m.block_size;
   BorderedMatrix jac(nb, blocks, bs);
   ASSERT_EQ(eq.jacobian(0.0, z.data(), jac), 0);
@@ -179,9 +180,9 @@ TEST(CageBridge, JacobianMatchesCentralDifferences) {
               error);
   // The entries that carry the bridge: its acceleration from its angle and from the roller's
   // position, the cage's acceleration from the roller's position (the force passed on).
-  for (const auto& [row, col] : {std::pair{bridge.slot[swz], bridge.slot[saz]}, {bridge.slot[swz], roller.slot[sx]},
-                                 {cage.slot[svx], roller.slot[sx]}, {cage.slot[swz], bridge.slot[saz]},
-                                 {bridge.slot[swz], cage.slot[saz]}}) {
+  for (const auto& [row, col] : {std::pair{bridge.rate_state(), bridge.angle_state()}, {bridge.rate_state(), roller.slot[sx]},
+                                 {cage.slot[svx], roller.slot[sx]}, {cage.slot[swz], bridge.angle_state()},
+                                 {bridge.rate_state(), cage.slot[saz]}}) {
     ASSERT_GT(std::abs(fd(row, col)), 1.0) << m.state_name[static_cast<std::size_t>(row)];
     EXPECT_NEAR(model(row, col), fd(row, col), 1e-4 * std::abs(fd(row, col)))
         << m.state_name[static_cast<std::size_t>(row)] << " / " << m.state_name[static_cast<std::size_t>(col)];
@@ -195,8 +196,8 @@ TEST(CageBridge, ActionEqualsReaction) {
   scheduler::SerialExecutor ex;
   Equations eq(m, ex);
   std::vector<double> z = pressed_state(m, 20e-6), zdot(z.size());
-  const Body& bridge = m.bodies[static_cast<std::size_t>(m.first_bridge)];
-  z[static_cast<std::size_t>(bridge.slot[swz])] = 3.0;
+  const CageBridge& bridge = *cage_bridges_of(m)[0];
+  z[static_cast<std::size_t>(bridge.rate_state())] = 3.0;
   ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
   // Every segment's wrenches on A and B: equal and opposite forces, moments balanced about the origin.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
@@ -222,15 +223,13 @@ TEST(CageBridge, ActionEqualsReaction) {
   const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   const double cage_rate = zdot[static_cast<std::size_t>(cage.slot[swz])];
   double momentum_rate = cage.axial_inertia * cage_rate, external = 0;
-  for (int k = 0; k < m.bridge_count; ++k) {
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_bridge + k)];
-    momentum_rate += b.axial_inertia * (cage_rate + zdot[static_cast<std::size_t>(b.slot[swz])]);
-  }
+  for (const CageBridge* b : cage_bridges_of(m))
+    momentum_rate += b->inertia() * (cage_rate + zdot[static_cast<std::size_t>(b->rate_state())]);
   for (std::size_t s = 0; s < m.segments.size(); ++s) {
     const Segment& seg = m.segments[s];
     if (seg.kind == SegmentKind::cage_bridge) continue;
     const double* rec = eq.segment_records().data() + s * SegmentRecord::size;
-    const auto on_cage = [&](int b) { return b == m.cage || m.bodies[static_cast<std::size_t>(b)].carrier == m.cage; };
+    const auto on_cage = [&](int b) { return b == m.cage; };  // the bars ride on the bridges, which move with it
     if (on_cage(seg.body_a)) external += rec[SegmentRecord::on_a + 5];
     if (on_cage(seg.body_b)) external += rec[SegmentRecord::on_b + 5];
   }

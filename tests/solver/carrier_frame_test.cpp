@@ -157,7 +157,7 @@ TEST(CarrierFrame, JacobianTermsMatchCentralDifferences) {
 TEST(CarrierFrame, AbsentCarrierChangesNothing) {
   const io::Scene scene = test::load_job_scene("seed002_40hz.toml");
   EXPECT_FALSE(scene.carrier.present);
-  EXPECT_FALSE(carrier_frame(scene, 0.0).has_value());
+  EXPECT_FALSE(carrier_frame(scene.carrier, 0.0).has_value());
   io::Scene zero_speed = scene;  // a carrier at rest at any radius: the same rates
   zero_speed.carrier = {true, 0.2, io::TimeFunction::constant(0.0)};
   const Model a = build_model(scene), c = build_model(zero_speed);

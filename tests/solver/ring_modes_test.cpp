@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "scheduler/executor.hpp"
@@ -76,11 +77,23 @@ Section section_of(const io::Scene& s, const Model& m) {
 
 double modal_stiffness(const Model& m, int n) {
   for (const Segment& seg : m.segments)
-    if (seg.kind == SegmentKind::outer_ring_mode && seg.body_b == m.first_ring_mode + n - 2)
-      return m.law<contact::RingModeSegment>(seg).stiffness;
+    if (seg.kind == SegmentKind::outer_ring_mode && seg.name == "outer_ring_mode[" + std::to_string(n) + "]")
+      return m.law<RingModeSpring>(seg).stiffness;
   ADD_FAILURE() << "no mode " << n;
   return 0;
 }
+
+/// Mode index k's states (amplitudes a, b, rates) and modal mass.
+struct Mode {
+  std::size_t a, b, va, vb;
+  double mass;
+};
+Mode mode(const Model& m, int k) {
+  const RingModes& modes = *ring_modes_of(m);
+  auto at = [&](int i) { return static_cast<std::size_t>(modes.state(k, i)); };
+  return {at(0), at(1), at(2), at(3), modes.rim().mass[static_cast<std::size_t>(k)]};
+}
+int mode_count(const Model& m) { return ring_modes_of(m) ? ring_modes_of(m)->count() : 0; }
 
 /// At rest: every velocity zero, the rim round.
 std::vector<double> rest_state(const Model& m) {
@@ -98,28 +111,28 @@ TEST(RingModes, DiametralPinchMatchesTheThinRingAndConverges) {
   for (int modes : {4, 8, 16, 40}) {
     const io::Scene scene = rim_scene(modes, true);
     const Model m = build_model(scene);
-    ASSERT_EQ(m.ring_mode_count, modes - 1);
+    ASSERT_EQ(mode_count(m), modes - 1);
     const Section sec = section_of(scene, m);
     // The loads' generalized forces by the model's projection: inward at theta = 0 and pi.
-    std::vector<Wrench> q(m.bodies.size());
+    std::vector<double> q(2 * static_cast<std::size_t>(mode_count(m)), 0.0);
     RimPoint at0, at_pi;
     at_pi.cos_theta = -1;
     const double inward0[2] = {-load, 0.0}, inward_pi[2] = {load, 0.0};
-    add_modal_forces(m, at0, inward0, q);
-    add_modal_forces(m, at_pi, inward_pi, q);
+    add_modal_forces(*ring_modes_of(m), at0, inward0, q.data());
+    add_modal_forces(*ring_modes_of(m), at_pi, inward_pi, q.data());
     // Each mode at rest: k_n a_n = Q_n.
     std::vector<double> z(static_cast<std::size_t>(m.state_size), 0.0);
-    for (int k = 0; k < m.ring_mode_count; ++k) {
-      const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
-      state(z, b, sx) = q[static_cast<std::size_t>(m.first_ring_mode + k)].force.x() / modal_stiffness(m, k + 2);
-      state(z, b, sy) = q[static_cast<std::size_t>(m.first_ring_mode + k)].force.y() / modal_stiffness(m, k + 2);
+    for (int k = 0; k < mode_count(m); ++k) {
+      const Mode md = mode(m, k);
+      z[md.a] = q[2 * static_cast<std::size_t>(k)] / modal_stiffness(m, k + 2);
+      z[md.b] = q[2 * static_cast<std::size_t>(k) + 1] / modal_stiffness(m, k + 2);
     }
     // The rim's radial displacement at both loads, as a contact there sees it.
     contact::PlanarKinematics centre;
     auto radial = [&](double x) {
       contact::PlanarKinematics roller;
       roller.x = x;
-      const RimPoint p = rim_point(m, centre, roller, z.data());
+      const RimPoint p = rim_point(*ring_modes_of(m), centre, roller, z.data());
       return p.u[0] * p.cos_theta + p.u[1] * p.sin_theta;
     };
     const double shortening = -(radial(0.05) + radial(-0.05));
@@ -148,11 +161,11 @@ TEST(RingModes, FrequenciesMatchTheClassicRing) {
   const Section sec = section_of(scene, m);
   for (int n = 2; n <= 8; ++n) {
     std::vector<double> z = rest_state(m), zdot(z.size());  // the rollers clear of the outer race
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + n - 2)];
+    const Mode md = mode(m, n - 2);
     const double amplitude = 0.2e-6;
-    state(z, b, sy) = amplitude;
+    z[md.b] = amplitude;
     ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
-    const double omega = std::sqrt(-zdot[static_cast<std::size_t>(b.slot[svy])] / amplitude);
+    const double omega = std::sqrt(-zdot[md.vb] / amplitude);
     const double nn = n * n;
     const double exact = std::sqrt(sec.bending_stiffness * nn * (nn - 1) * (nn - 1) /
                                    (sec.mass_per_length * std::pow(sec.radius, 4) * (nn + 1)));
@@ -176,9 +189,9 @@ std::vector<double> pinched_state(const Model& m) {
   const double r = m.outer_race_radius - m.element_radius + 12e-6;  // 12 um into the round race
   const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
   state(z, roller, sx) = r * std::cos(theta), state(z, roller, sy) = r * std::sin(theta);
-  for (int k = 0; k < m.ring_mode_count; ++k) {
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
-    state(z, b, sx) = 1.5e-6 / (k + 1), state(z, b, sy) = -0.8e-6 / (k + 1);
+  for (int k = 0; k < mode_count(m); ++k) {
+    const Mode md = mode(m, k);
+    z[md.a] = 1.5e-6 / (k + 1), z[md.b] = -0.8e-6 / (k + 1);
   }
   return z;
 }
@@ -199,18 +212,19 @@ TEST(RingModes, GeneralizedForceIsTheWorkConjugate) {
   };
   ASSERT_GT(race_energy(z), 1e-3);  // roller 0 is loaded (some kN)
   std::vector<std::pair<double, double>> forces;  // generalized, -dU/da
-  for (int k = 0; k < m.ring_mode_count; ++k) {
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
+  for (int k = 0; k < mode_count(m); ++k) {
+    const Mode md = mode(m, k);
     for (Coordinate c : {sx, sy}) {
       ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
       // The contacts' generalized force: the mode's acceleration times its mass, less its spring.
-      const double rate = zdot[static_cast<std::size_t>(b.slot[c == sx ? svx : svy])];
-      const double generalized = b.mass * rate + modal_stiffness(m, k + 2) * state(z, b, c);
-      const double h = 1e-9, a = state(z, b, c);
+      const std::size_t amplitude = c == sx ? md.a : md.b;
+      const double rate = zdot[c == sx ? md.va : md.vb];
+      const double generalized = md.mass * rate + modal_stiffness(m, k + 2) * z[amplitude];
+      const double h = 1e-9, a = z[amplitude];
       std::vector<double> zp = z;
-      state(zp, b, c) = a + h;
+      zp[amplitude] = a + h;
       const double ep = race_energy(zp);
-      state(zp, b, c) = a - h;
+      zp[amplitude] = a - h;
       const double em = race_energy(zp);
       const double conjugate = -(ep - em) / (2 * h);
       std::printf("[ rim ] mode %d %s: generalized force %.6f N, -dU/da %.6f N\n", k + 2, c == sx ? "cos" : "sin",
@@ -232,8 +246,8 @@ TEST(RingModes, FreeVibrationConservesEnergy) {
   // Pinch the rim inward at the azimuth of roller 0 and its opposite (mode 2 alone).
   const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
   const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
-  const Body& mode2 = m.bodies[static_cast<std::size_t>(m.first_ring_mode)];
-  state(z, mode2, sx) = -20e-6 * std::cos(2 * theta), state(z, mode2, sy) = -20e-6 * std::sin(2 * theta);
+  const Mode mode2 = mode(m, 0);
+  z[mode2.a] = -20e-6 * std::cos(2 * theta), z[mode2.b] = -20e-6 * std::sin(2 * theta);
   const std::size_t n = z.size();
   std::vector<double> k1(n), k2(n), k3(n), k4(n), tmp(n);
   auto f = [&](double t, const std::vector<double>& y, std::vector<double>& out) {
@@ -241,11 +255,10 @@ TEST(RingModes, FreeVibrationConservesEnergy) {
   };
   auto mode_energy = [&](const std::vector<double>& y) {
     double e = 0;
-    for (int k = 0; k < m.ring_mode_count; ++k) {
-      const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
-      const double a = y[static_cast<std::size_t>(b.slot[sx])], bb = y[static_cast<std::size_t>(b.slot[sy])];
-      const double va = y[static_cast<std::size_t>(b.slot[svx])], vb = y[static_cast<std::size_t>(b.slot[svy])];
-      e += 0.5 * modal_stiffness(m, k + 2) * (a * a + bb * bb) + 0.5 * b.mass * (va * va + vb * vb);
+    for (int k = 0; k < mode_count(m); ++k) {
+      const Mode md = mode(m, k);
+      const double a = y[md.a], bb = y[md.b], va = y[md.va], vb = y[md.vb];
+      e += 0.5 * modal_stiffness(m, k + 2) * (a * a + bb * bb) + 0.5 * md.mass * (va * va + vb * vb);
     }
     return e;
   };
@@ -284,9 +297,9 @@ TEST(RingModes, JacobianMatchesCentralDifferences) {
   std::vector<double> z = pinched_state(m);
   Equations& eq = rb.eq;
   state(z, roller, svx) = 0.02, state(z, roller, svy) = -0.03, state(z, roller, swz) = 5.0;  // sliding, approaching
-  for (int k = 0; k < m.ring_mode_count; ++k) {
-    const Body& b = m.bodies[static_cast<std::size_t>(m.first_ring_mode + k)];
-    state(z, b, svx) = 0.004 / (k + 1), state(z, b, svy) = 0.003;
+  for (int k = 0; k < mode_count(m); ++k) {
+    const Mode md = mode(m, k);
+    z[md.va] = 0.004 / (k + 1), z[md.vb] = 0.003;
   }
   BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
   ASSERT_EQ(eq.jacobian(0.0, z.data(), jac), 0);
@@ -305,8 +318,7 @@ TEST(RingModes, JacobianMatchesCentralDifferences) {
   // states (its force and its azimuth) and from the modes' (through the contact); the roller's and
   // the ring's rows from the modes' states (through the rim's displacement at the contact).
   const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
-  const Body& first_mode = m.bodies[static_cast<std::size_t>(m.first_ring_mode)];
-  const int modes_begin = first_mode.offset, modes_size = 4 * m.ring_mode_count;
+  const int modes_begin = static_cast<int>(mode(m, 0).a), modes_size = 4 * mode_count(m);
   struct Block {
     const char* name;
     int row, rows, col, cols;

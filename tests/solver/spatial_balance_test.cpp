@@ -56,7 +56,7 @@ Balance contact_balance(Equations& eq, const Model& m, double t, const std::vect
                                          rec[s * SegmentRecord::size + SegmentRecord::on_b + 1],
                                          rec[s * SegmentRecord::size + SegmentRecord::on_b + 2])
                                         .norm());
-  const double radius = 0.5 * m.scene->bearing.outer_outside_diameter;
+  const double radius = 0.5 * m.params().bearing.outer_outside_diameter;
   b.force = force.norm() / b.largest;
   b.moment = moment.norm() / (b.largest * radius);
   return b;

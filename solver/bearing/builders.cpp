@@ -1,0 +1,20 @@
+// The builder registry: which builder makes the model of a bearing type. The space (planar or
+// spatial dynamics) is the scene's choice, made separately; a builder refuses a space it cannot
+// build (its check step).
+#include <stdexcept>
+
+#include "solver/bearing/model.hpp"
+
+namespace raceway::solver {
+
+const ModelBuilder& builder_for(io::BearingType type) {
+  switch (type) {
+    case io::BearingType::cylindrical_roller: return roller_model_builder();
+    case io::BearingType::deep_groove_ball:
+    case io::BearingType::four_point_contact_ball:
+    case io::BearingType::angular_contact_ball: return ball_model_builder();
+  }
+  throw std::logic_error("builder_for: a bearing type without a builder");
+}
+
+}  // namespace raceway::solver
