@@ -272,7 +272,7 @@ std::string describe_roller_model(const Model& m) {
   std::string out;
   const auto& sc = m.params();
   out += fmt::format("scene '{}' ({}): planar model, {} bodies{}, {} states, {} contact segments\n", sc.scene_name,
-                     sc.source, m.bodies.size(), m.nodes.empty() ? "" : fmt::format(" and {} nodes", m.nodes.size()),
+                     sc.source, m.bodies.size(), m.nodes.empty() ? "" : fmt::format(" and {} node{}", m.nodes.size(), m.nodes.size() == 1 ? "" : "s"),
                      m.state_size, m.segments.size());
   out += "bodies (border first, then one block per roller):\n";
   for (const Body& b : m.bodies) {
