@@ -196,7 +196,9 @@ def compare(answer, actual, verbose):
 
 def table(rows):
     head = ("quantity", "index", "expected", "actual", "|diff|", "allowed", "")
-    cells = [head] + [tuple(f"{c:.10g}" if isinstance(c, float) else str(c) for c in r) for r in rows]
+    digits = (None, None, 10, 10, 3, 3, None)  # values in full enough to see the change, sizes short
+    cells = [head] + [tuple(f"{c:.{d}g}" if isinstance(c, float) else str(c) for c, d in zip(r, digits))
+                      for r in rows]
     widths = [max(len(r[i]) for r in cells) for i in range(len(head))]
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in cells)
 
@@ -221,6 +223,7 @@ def build_of(raceway):
 
 
 def relative_scene(scene):
+    """A path inside the repository relative to its root, others absolute."""
     path = os.path.abspath(scene)
     return os.path.relpath(path, ROOT) if path.startswith(ROOT + os.sep) else path
 
@@ -317,11 +320,11 @@ def check(args, scene, workdir):
     summary, output = run_scene(args.raceway, scene, answer["window"] + args.set, workdir)
     rows, failures = compare(answer, quantities(summary, output), args.verbose)
     header = (f"{scene_name(scene)} ({' '.join(answer['window'] + [f'--set {s}' for s in args.set])}; "
-              f"answers {path}, written by {answer.get('written_by', '?')})")
+              f"answers {relative_scene(path)}, written by {answer.get('written_by', '?')})")
     if failures:
         print(f"{header}: {failures} of {len(answer['quantities'])} quantities outside their tolerance\n"
-              f"{table(rows)}\n(tolerance: |actual - expected| <= abs + rel * scale; classes in "
-              f"scripts/scene_answers.py; if the change is intended: "
+              f"{table(rows)}\n(allowed: abs + rel * scale, with each quantity's noise, rel and abs in "
+              f"the answer file; if the change is intended: "
               f"scripts/scene_answers.py --update {relative_scene(scene)})")
         return 1
     print(f"{header}: all {len(answer['quantities'])} quantities agree")
