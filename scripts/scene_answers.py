@@ -122,9 +122,17 @@ def run_scene(raceway, scene, overrides, workdir, tag=""):
 
 
 def first_present(f, paths):
+    """The first of the paths the file holds; failing that, a dataset of the same group whose
+    name begins with a candidate's (a renamed `cage/angle` is still found as `cage/angle_z`)."""
     for path in paths:
         if path in f:
             return f[path]
+    for path in paths:
+        group, _, stem = path.rpartition("/")
+        if group in f and isinstance(f[group], h5py.Group):
+            names = sorted(n for n in f[group] if n.startswith(stem) and isinstance(f[group][n], h5py.Dataset))
+            if names:
+                return f[group][names[0]]
     return None
 
 
