@@ -88,9 +88,7 @@ def collect(path, args, mapping):
     with h5py.File(path, "r") as f:
         def add_attributes(name, obj):
             for key, value in obj.attrs.items():
-                if name == "/" and key in IGNORED_ROOT_ATTRIBUTES + tuple(args.ignore_attr):
-                    continue
-                if key in args.ignore_attr:
+                if key in args.ignore_attr or (name == "/" and key in IGNORED_ROOT_ATTRIBUTES):
                     continue
                 if key in REFERENCE_ATTRIBUTES:
                     items[renamed(f"{name}@{key}", mapping)] = (
@@ -148,14 +146,23 @@ def describe(a, b):
     yb = y.view(np.uint8).reshape(y.shape + (-1,)) if y.ndim else np.frombuffer(y.tobytes(), np.uint8)[None]
     differing = np.any(xb != yb, axis=-1).reshape(x.shape)
     xf, yf = x.astype(float), y.astype(float)
-    nan_mismatch = int(np.sum(np.isnan(xf) != np.isnan(yf)))
-    diff = np.where(np.isnan(xf) | np.isnan(yf), 0.0, np.abs(xf - yf))
-    where = np.unravel_index(int(np.argmax(diff)), x.shape) if x.ndim else ()
-    scale = np.max(np.abs(np.nan_to_num(xf))) if x.size else 0.0
-    text = (f"{int(differing.sum())} of {x.size} values differ; largest |A - B| {float(diff[where]):.3g}"
-            f" ({float(diff[where]) / scale if scale else float('nan'):.2g} of max |A|)"
-            f" at {list(where)}: {xf[where]!r} against {yf[where]!r}")
-    return text + (f"; NaN in one file only at {nan_mismatch} places" if nan_mismatch else "")
+    text = f"{int(differing.sum())} of {x.size} values differ"
+    nan_in_one = np.isnan(xf) != np.isnan(yf)
+    numeric = differing & ~np.isnan(xf) & ~np.isnan(yf)
+    if numeric.any():
+        diff = np.where(numeric, np.abs(xf - yf), -1.0)
+        where = np.unravel_index(int(np.argmax(diff)), x.shape) if x.ndim else ()
+        scale = float(np.nanmax(np.abs(xf))) if x.size else 0.0
+        text += (f"; largest |A - B| {float(diff[where]):.3g}"
+                 f"{f' ({float(diff[where]) / scale:.2g} of max |A|)' if scale else ''}"
+                 f" at {list(where)}: {xf[where]!r} against {yf[where]!r}")
+    if nan_in_one.any():
+        first = np.argwhere(nan_in_one)[0].tolist() if x.ndim else []
+        text += f"; NaN in one file only at {int(nan_in_one.sum())} place(s), first {first}"
+    nan_bits = differing & np.isnan(xf) & np.isnan(yf)
+    if nan_bits.any():
+        text += f"; NaN of other bits at {int(nan_bits.sum())} place(s)"
+    return text
 
 
 def shorten(text, limit=120):
