@@ -1,0 +1,178 @@
+#!/bin/bash
+# The Slurm recipes of jobs/campaigns on a real Slurm: a one-node cluster on localhost (munge,
+# slurmctld, slurmd; tests/campaign/slurm_cluster.sh), skipped (exit 77) where Debian's slurm-wlm
+# and munge are not installed. Every wait is bounded; the daemons and the jobs' processes end with
+# the test on every path (a trap, and a guard process for a test killed outright).
+#   campaign: jobs/campaigns/slurm_campaign.sh submitted with the user's options (2 tasks, a time
+#             limit, a partition that is not the default) runs a campaign with the default launcher
+#             (srun --mpi=pmix); Slurm's SIGUSR1 to the batch script (scancel --batch) stops it with
+#             checkpoints (exit 4); the job requeues itself and runs again with every option it was
+#             submitted with and the environment it was submitted from (its SLURM_* variables are
+#             run 1's and SLURM_RESTART_COUNT); it resumes and writes the table. Then a job whose
+#             script gets SIGUSR1 at once (as Slurm sends it when --time is under the signal's lead):
+#             a clean stop (exit 4, not the 138 of a death by the signal), and not requeued (the next
+#             run would get it at once again).
+#   array:    jobs/campaigns/slurm_array.sh submits the array of 3 scenes (with the user's options:
+#             1 task, a partition) and the aggregation step; RACEWAY_LAUNCHER="mpirun" (mpirun inside
+#             the allocation); one task is killed outright (SIGKILL to every process of the job, a
+#             lost node), one stopped by SIGUSR1; the aggregation step submits both again, they
+#             resume, and the next one writes the table with every scene done. Then a campaign whose
+#             launcher cannot start raceway (plain srun: Open MPI ends in MPI_Init without PMIx):
+#             each scene is recorded as failed once, with the launcher's exit code, and nothing is
+#             submitted again.
+# Usage: real_slurm_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
+set -u
+case_name=$1 raceway=$(realpath "$2") source_dir=$(realpath "$4")
+cluster=$source_dir/tests/campaign/slurm_cluster.sh
+if ! why=$("$cluster" available); then
+  echo "SKIP: no Slurm to test the recipes on: $why"
+  exit 77
+fi
+source "$source_dir/tests/test_lib.sh"
+trap '"$cluster" stop "$work/slurm"; rm -rf "$work"' EXIT
+export OMPI_MCA_rmaps_base_oversubscribe=1
+python=/usr/bin/python3
+small=$source_dir/tests/campaign/slurm_campaign.toml
+
+# A job of this cluster submitted from a Slurm job would otherwise take that job's variables.
+# shellcheck disable=SC2046
+unset $(compgen -v SLURM_) $(compgen -v SBATCH_) $(compgen -v SRUN_) 2> /dev/null
+"$cluster" start "$work/slurm" $$ > "$work/cluster.log" 2>&1 || { cat "$work/cluster.log"; fail "no cluster"; finish; }
+export SLURM_CONF=$work/slurm/slurm.conf
+
+# FIELD of job JOB (scontrol show job), e.g. JobState, Restarts, NumTasks.
+job_field() {
+  timeout 20 scontrol show job "$1" 2> /dev/null | tr ' ' '\n' | sed -n "s/^$2=//p" | head -1
+}
+# Waits (at most SECONDS) until the command succeeds; fails with WHAT otherwise.
+wait_until() {  # SECONDS WHAT COMMAND...
+  local limit=$1 what=$2
+  shift 2
+  for _ in $(seq 1 $((limit * 10))); do "$@" && return 0; sleep 0.1; done
+  fail "waited $limit s for $what"
+  return 1
+}
+job_ended() {  # JOB
+  [[ $(job_field "$1" JobState) =~ ^(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY)$ ]]
+}
+has_checkpoint() { compgen -G "$1/*.checkpoint" > /dev/null; }
+has_checkpoint_or_ended() { has_checkpoint "$1" || job_ended "$2"; }
+# Whether FILE exists, or job JOB has ended (then waiting for FILE is over).
+appeared_or_ended() { [[ -e $1 ]] || job_ended "$2"; }
+# Stops the test here: the rest would wait for what did not happen.
+give_up() {
+  fail "$*"
+  echo "--- slurmctld.log (last lines)"; tail -20 "$work/slurm/slurmctld.log"
+  for f in "$work"/*.log; do echo "--- $f"; tail -30 "$f"; done
+  finish
+}
+
+# raceway behind a wrapper that keeps the SLURM_* variables each rank 0 of a campaign started with
+# (by job and run), then starts raceway.
+wrapper=$work/raceway
+cat > "$wrapper" <<EOF
+#!/bin/bash
+if [[ \${1:-} == campaign && \${2:-} != check && \${SLURM_PROCID:-0} == 0 && -n \${SLURM_JOB_ID:-} ]]; then
+  env | grep '^SLURM_' | sort > "$work/env_\${SLURM_JOB_ID}_run\$((\${SLURM_RESTART_COUNT:-0} + 1))"
+fi
+exec "$raceway" "\$@"
+EOF
+chmod +x "$wrapper"
+export RACEWAY=$wrapper
+# The jobs' logs (sbatch's default folder is the one it is called in).
+cd "$work" || give_up "no $work"
+
+case $case_name in
+campaign)
+  script=$source_dir/jobs/campaigns/slurm_campaign.sh
+  job=$(sbatch --parsable --ntasks=2 --time=10 --partition=other --output="$work/chain-%j.log" \
+          "$script" "$small" "$work/c") || give_up "sbatch"
+  wait_until 90 "a checkpoint of job $job's first run" has_checkpoint_or_ended "$work/c" "$job"
+  has_checkpoint "$work/c" || give_up "no checkpoint"
+  # What --signal=B:USR1@300 does five minutes before the time limit.
+  scancel --batch --signal=USR1 "$job" || fail "scancel --signal=USR1"
+  wait_until 150 "job $job to end after its requeue" job_ended "$job" || give_up "job $job did not end"
+  log=$work/chain-$job.log
+  [[ $(job_field "$job" JobState) == COMPLETED && $(job_field "$job" ExitCode) == 0:0 ]] \
+    || fail "job $job: $(job_field "$job" JobState), exit $(job_field "$job" ExitCode): $(tail -5 "$log")"
+  [[ $(job_field "$job" Restarts) == 1 ]] || fail "job $job ran $(($(job_field "$job" Restarts) + 1)) times, expected 2"
+  # The options it was submitted with, kept by the requeue.
+  [[ $(job_field "$job" NumTasks) == 2 && $(job_field "$job" TimeLimit) == 00:10:00 &&
+     $(job_field "$job" Partition) == other ]] \
+    || fail "job $job's options: NumTasks=$(job_field "$job" NumTasks) TimeLimit=$(job_field "$job" TimeLimit) Partition=$(job_field "$job" Partition)"
+  for expected in "launcher: srun --mpi=pmix" "run 1 of at most 20, 2 task(s)" "SIGUSR1: asking raceway to checkpoint and stop" \
+                  "campaign stopped by a signal" "requeueing job $job" "run 2 of at most 20, 2 task(s) on 1 node(s) --resume" \
+                  "3 of 3 scenes done, 0 failed"; do
+    grep -qF -- "$expected" "$log" || fail "not in job $job's log: '$expected'"
+  done
+  grep -q "stopped, left for --resume" "$log" || fail "no scene was stopped by the signal: $(cat "$log")"
+  # Run 2 started from the environment job $job was submitted from: the same SLURM_* variables as
+  # run 1 (none left over from run 1), with SLURM_RESTART_COUNT.
+  [[ -f "$work/env_${job}_run1" && -f "$work/env_${job}_run2" ]] || fail "no environment of the runs: $(ls "$work")"
+  extra=$(comm -13 <(cut -d= -f1 "$work/env_${job}_run1") <(cut -d= -f1 "$work/env_${job}_run2") | tr '\n' ' ')
+  missing=$(comm -23 <(cut -d= -f1 "$work/env_${job}_run1") <(cut -d= -f1 "$work/env_${job}_run2") | tr '\n' ' ')
+  [[ $extra == "SLURM_RESTART_COUNT " && -z $missing ]] || fail "run 2's SLURM_* variables: extra '$extra', missing '$missing'"
+  { grep -qx "SLURM_NTASKS=2" "$work/env_${job}_run2" && grep -qx "SLURM_JOB_PARTITION=other" "$work/env_${job}_run2"; } \
+    || fail "run 2's environment: $(cat "$work/env_${job}_run2")"
+  "$python" - "$work/c" <<'PY' || fail "the table"
+import csv, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv")))
+assert [r["scene"] for r in rows] == ["s000", "s001", "s002"], rows
+for r in rows:
+    assert r["status"] == "done" and float(r["cage_speed_rpm"]) > 0 and int(r["steps"]) > 0, r
+PY
+  # SIGUSR1 at once: as soon as the batch script runs its first line (the trap), as Slurm sends it
+  # when the time limit is shorter than the signal's lead.
+  job=$(sbatch --parsable --ntasks=2 --time=10 --output="$work/early-%j.log" "$script" "$small" "$work/e") \
+    || give_up "sbatch"
+  script_has_trap() {
+    local pid
+    for pid in $(timeout 10 scontrol listpids "$job" 2> /dev/null | awk 'NR > 1 {print $1}'); do
+      grep -q slurm_script "/proc/$pid/cmdline" 2> /dev/null || continue
+      # SIGUSR1 (10) caught: bit 9 of SigCgt.
+      (( 0x$(awk '/^SigCgt:/ {print $2}' "/proc/$pid/status") & 0x200 )) && return 0
+    done
+    return 1
+  }
+  wait_until 60 "job $job's script" script_has_trap || give_up "job $job's script never ran"
+  scancel --batch --signal=USR1 "$job" || fail "scancel --signal=USR1"
+  wait_until 60 "job $job to end" job_ended "$job" || give_up "job $job did not end"
+  log=$work/early-$job.log
+  [[ $(job_field "$job" ExitCode) == 4:0 && $(job_field "$job" Restarts) == 0 ]] \
+    || fail "job $job, SIGUSR1 at once: exit $(job_field "$job" ExitCode), $(job_field "$job" Restarts) restarts: $(cat "$log")"
+  grep -q "not requeued: SIGUSR1 came while raceway was starting" "$log" || fail "job $job: $(cat "$log")"
+  grep -q "^SIGUSR1" "$log" || fail "job $job: the signal was not taken: $(cat "$log")"
+  ;;
+array)
+  script=$source_dir/jobs/campaigns/slurm_array.sh
+  export RACEWAY_SBATCH_OPTIONS="--ntasks=1 --time=10 --partition=other" RACEWAY_LAUNCHER=mpirun
+  bash "$script" "$small" "$work/c" > "$work/submit.log" 2>&1 || give_up "submit: $(cat "$work/submit.log")"
+  array=$(sed -n 's/.* as array job \([0-9]*\),.*/\1/p' "$work/submit.log")
+  [[ -n $array ]] || give_up "no array job: $(cat "$work/submit.log")"
+  # s001 killed outright once it has a checkpoint (every process of the task: a lost node), s002
+  # stopped by SIGUSR1 to its batch script (the time limit's warning).
+  wait_until 90 "a checkpoint of s001" test -f "$work/c/s001.h5.checkpoint" || give_up "s001 never ran"
+  scancel --full --signal=KILL "${array}_1" || fail "scancel s001"
+  wait_until 90 "a checkpoint of s002" test -f "$work/c/s002.h5.checkpoint" || give_up "s002 never ran"
+  scancel --batch --signal=USR1 "${array}_2" || fail "scancel --signal=USR1 s002"
+  # Round 1's aggregation submits s001 and s002 again; round 2's writes the table.
+  last_report() { squeue -h -n raceway-array-report -o %i 2> /dev/null | sort -n | tail -1; }
+  table_written() { [[ -f "$work/c/campaign_table.csv" && -z $(squeue -h 2> /dev/null) ]]; }
+  wait_until 240 "the table" table_written || give_up "no table"
+  ls "$work"/raceway-array-* > /dev/null 2>&1 || true
+  reports=$(scontrol show jobs 2> /dev/null | grep -c "JobName=raceway-array-report")
+  [[ $reports == 2 ]] || fail "$reports aggregation steps, expected 2 (one round of resubmission)"
+  "$python" - "$work/c" <<'PY' || fail "the table"
+import csv, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv")))
+assert [r["scene"] for r in rows] == ["s000", "s001", "s002"], rows
+for r in rows:
+    assert r["status"] == "done" and float(r["cage_speed_rpm"]) > 0 and int(r["steps"]) > 0, r
+PY
+  grep -l '"exit_code": 4' "$work/c/"campaign_status_s002_*.json > /dev/null || fail "s002 has no record of its stop"
+  compgen -G "$work/c/campaign_status_s001_*.json" > /dev/null && [[ $(grep -l '"exit_code": 0' "$work/c/"campaign_status_s001_*.json | wc -l) == 1 ]] \
+    || fail "s001's records: $(cat "$work/c/"campaign_status_s001_*.json)"
+  ;;
+*) fail "unknown case $case_name" ;;
+esac
+finish
