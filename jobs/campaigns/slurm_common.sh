@@ -46,12 +46,12 @@ run_passing_usr1() {
     code=4
     return
   fi
-  started=$(mktemp "${TMPDIR:-/tmp}/raceway_launch.XXXXXX") || { code=1; return; }
+  started=$(date '+%Y-%m-%d %H:%M:%S.%N')
   "$@" &
   child=$!
   while true; do
     if (( ${usr1_pending:-0} && !passed )); then
-      if [[ "$output/campaign.json" -nt "$started" ]]; then
+      if [[ -n $(find "$output/campaign.json" -newermt "$started" 2> /dev/null) ]]; then
         echo "SIGUSR1: asking raceway to checkpoint and stop"
         kill -USR1 "$child" 2> /dev/null
         passed=1
@@ -66,7 +66,6 @@ run_passing_usr1() {
     code=$?
     kill -0 "$child" 2> /dev/null || break
   done
-  rm -f "$started"
 }
 
 # A fingerprint of the campaign's progress in OUTPUT: its finished scenes and its checkpoints, with

@@ -13,13 +13,14 @@
 #             a clean stop (exit 4, not the 138 of a death by the signal), and not requeued (the next
 #             run would get it at once again).
 #   array:    jobs/campaigns/slurm_array.sh submits the array of 3 scenes (with the user's options:
-#             1 task, a partition) and the aggregation step; RACEWAY_LAUNCHER="mpirun" (mpirun inside
-#             the allocation); one task is killed outright (SIGKILL to every process of the job, a
-#             lost node), one stopped by SIGUSR1; the aggregation step submits both again, they
-#             resume, and the next one writes the table with every scene done. Then a campaign whose
-#             launcher cannot start raceway (plain srun: Open MPI ends in MPI_Init without PMIx):
-#             each scene is recorded as failed once, with the launcher's exit code, and nothing is
-#             submitted again.
+#             1 task, a time limit, a partition) and the aggregation step; RACEWAY_LAUNCHER="mpirun"
+#             (mpirun inside the allocation); one task is killed outright (SIGKILL to every process of
+#             the job, a lost node), one stopped by SIGUSR1; the aggregation step submits both again
+#             (the user's options, none of its own SLURM_* variables), they resume, and the next one
+#             writes the table with every scene done. Then a campaign whose launcher cannot start
+#             raceway (plain srun: Open MPI ends in MPI_Init without PMIx): each scene is recorded as
+#             failed once, with the launcher's exit code, nothing is submitted again, and the
+#             aggregation step says why.
 # Usage: real_slurm_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
 set -u
 case_name=$1 raceway=$(realpath "$2") source_dir=$(realpath "$4")
@@ -151,17 +152,33 @@ array)
   [[ -n $array ]] || give_up "no array job: $(cat "$work/submit.log")"
   # s001 killed outright once it has a checkpoint (every process of the task: a lost node), s002
   # stopped by SIGUSR1 to its batch script (the time limit's warning).
-  wait_until 90 "a checkpoint of s001" test -f "$work/c/s001.h5.checkpoint" || give_up "s001 never ran"
+  wait_until 90 "a checkpoint of s001" appeared_or_ended "$work/c/s001.h5.checkpoint" "${array}_1"
   scancel --full --signal=KILL "${array}_1" || fail "scancel s001"
-  wait_until 90 "a checkpoint of s002" test -f "$work/c/s002.h5.checkpoint" || give_up "s002 never ran"
+  wait_until 90 "a checkpoint of s002" appeared_or_ended "$work/c/s002.h5.checkpoint" "${array}_2"
   scancel --batch --signal=USR1 "${array}_2" || fail "scancel --signal=USR1 s002"
-  # Round 1's aggregation submits s001 and s002 again; round 2's writes the table.
-  last_report() { squeue -h -n raceway-array-report -o %i 2> /dev/null | sort -n | tail -1; }
-  table_written() { [[ -f "$work/c/campaign_table.csv" && -z $(squeue -h 2> /dev/null) ]]; }
-  wait_until 240 "the table" table_written || give_up "no table"
-  ls "$work"/raceway-array-* > /dev/null 2>&1 || true
-  reports=$(scontrol show jobs 2> /dev/null | grep -c "JobName=raceway-array-report")
-  [[ $reports == 2 ]] || fail "$reports aggregation steps, expected 2 (one round of resubmission)"
+  wait_until 30 "task 1 to end" job_ended "${array}_1"
+  [[ -f "$work/c/s001.h5" ]] && give_up "s001 finished before it was killed"
+  # Round 1's aggregation step submits s001 and s002 again; round 2's writes the table.
+  all_ended() { [[ -f "$work/c/campaign_table.csv" && -z $(squeue -h 2> /dev/null) ]]; }
+  wait_until 240 "the table and the end of every job" all_ended || give_up "no table"
+  reports=$(scontrol show jobs 2> /dev/null | sed -n 's/^JobId=\([0-9]*\) JobName=raceway-array-report$/\1/p')
+  [[ $(echo "$reports" | wc -l) == 2 ]] || fail "aggregation steps '$reports', expected 2 (one round of resubmission)"
+  grep -q "round 1: 2 scene(s) not finished (stopped or killed): submitted again" "$work"/raceway-array-*.log \
+    || fail "round 1 did not submit s001 and s002 again"
+  # Every job with the user's options (the aggregation steps on one task); the last one ended well.
+  for id in $(scontrol show jobs 2> /dev/null | sed -n 's/^JobId=\([0-9]*\) .*/\1/p'); do
+    [[ $(job_field "$id" Partition) == other && $(job_field "$id" TimeLimit) == 00:10:00 &&
+       $(job_field "$id" NumTasks) == 1 ]] || fail "job $id: $(timeout 20 scontrol show job "$id")"
+  done
+  [[ $(job_field "$(echo "$reports" | tail -1)" ExitCode) == 0:0 ]] || fail "the last aggregation step failed"
+  grep -q "launcher: mpirun (RACEWAY_LAUNCHER)" "$work"/raceway-array-"${array}"_0.log || fail "task 0's launcher"
+  # A task submitted by an aggregation step (a job) started with the variables of a task submitted
+  # from the login node: none of the aggregation job's left over.
+  first=$(grep -l "^SLURM_ARRAY_JOB_ID=$array$" "$work"/env_* | head -1)
+  again=$(grep -L "^SLURM_ARRAY_JOB_ID=$array$" "$work"/env_* | head -1)
+  [[ -n $first && -n $again ]] || fail "no environment of the tasks: $(ls "$work")"
+  [[ $(cut -d= -f1 "$first") == "$(cut -d= -f1 "$again")" ]] \
+    || fail "a resubmitted task's SLURM_* variables differ: $(diff <(cut -d= -f1 "$first") <(cut -d= -f1 "$again"))"
   "$python" - "$work/c" <<'PY' || fail "the table"
 import csv, sys
 rows = list(csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv")))
@@ -169,9 +186,24 @@ assert [r["scene"] for r in rows] == ["s000", "s001", "s002"], rows
 for r in rows:
     assert r["status"] == "done" and float(r["cage_speed_rpm"]) > 0 and int(r["steps"]) > 0, r
 PY
-  grep -l '"exit_code": 4' "$work/c/"campaign_status_s002_*.json > /dev/null || fail "s002 has no record of its stop"
-  compgen -G "$work/c/campaign_status_s001_*.json" > /dev/null && [[ $(grep -l '"exit_code": 0' "$work/c/"campaign_status_s001_*.json | wc -l) == 1 ]] \
-    || fail "s001's records: $(cat "$work/c/"campaign_status_s001_*.json)"
+  grep -q '"exit_code": 4' "$work/c/"campaign_status_s002_*.json || fail "s002 has no record of its stop"
+  # A launcher that cannot start raceway: a plain srun (MpiDefault=none), with which Open MPI ends
+  # every rank in MPI_Init. Each scene is recorded once as failed, nothing is submitted again, and
+  # the aggregation step says why (exit 1).
+  export RACEWAY_LAUNCHER=srun RACEWAY_SBATCH_OPTIONS="--ntasks=2 --time=10"
+  bash "$script" "$small" "$work/f" > "$work/submit_f.log" 2>&1 || give_up "submit: $(cat "$work/submit_f.log")"
+  report=$(sed -n 's/.* the aggregation step as job \([0-9]*\) .*/\1/p' "$work/submit_f.log")
+  wait_until 120 "the aggregation step $report" job_ended "$report" || give_up "aggregation step $report"
+  sleep 2  # anything it submitted would be in the queue now
+  log=$(ls "$work"/raceway-array-"$report"_*.log)
+  [[ $(job_field "$report" ExitCode) == 1:0 ]] || fail "aggregation step: exit $(job_field "$report" ExitCode): $(cat "$log")"
+  grep -q "no table: raceway started on no scene (3 failed, 0 not finished)" "$log" || fail "aggregation step: $(cat "$log")"
+  grep -q "the launcher (srun) ended with exit code 1 and raceway left no record" "$log" || fail "no diagnosis: $(cat "$log")"
+  [[ -z $(squeue -h 2> /dev/null) ]] || fail "submitted again: $(squeue)"
+  for id in s000 s001 s002; do
+    [[ $(cat "$work/f/campaign_status_${id}"_*.json 2> /dev/null | grep -c '"exit_code": 1') == 1 ]] \
+      || fail "$id's records: $(cat "$work/f/campaign_status_${id}"_*.json)"
+  done
   ;;
 *) fail "unknown case $case_name" ;;
 esac
