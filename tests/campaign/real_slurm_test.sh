@@ -1,7 +1,7 @@
 #!/bin/bash
 # The Slurm recipes of jobs/campaigns on a real Slurm: a one-node cluster on localhost (munge,
 # slurmctld, slurmd; tests/campaign/slurm_cluster.sh), skipped (exit 77) where Debian's slurm-wlm
-# and munge are not installed. Every wait is bounded; the daemons and the jobs' processes end with
+# and munge are not installed or the test is not root (slurmd must be). Every wait is bounded; the daemons and the jobs' processes end with
 # the test on every path (a trap, and a guard process for a test killed outright).
 #   campaign: jobs/campaigns/slurm_campaign.sh submitted with the user's options (2 tasks, a time
 #             limit, a partition that is not the default) runs a campaign with the default launcher

@@ -2,7 +2,8 @@
 # A one-node Slurm cluster on localhost for the tests of jobs/campaigns/slurm_*.sh
 # (real_slurm_test.sh): Debian's munge and slurm-wlm, every file in one folder, ports free now.
 #
-#   slurm_cluster.sh available           exit 0 if the commands are installed, else says which lack
+#   slurm_cluster.sh available           exit 0 if the commands are installed and this is root, else
+#                                        says why not
 #   slurm_cluster.sh start DIR OWNER_PID starts munged, slurmctld and slurmd with DIR/slurm.conf and
 #                                        a guard that stops them when OWNER_PID ends (also when the
 #                                        test is killed with SIGKILL and its traps never run)
@@ -159,6 +160,8 @@ available)
   missing=()
   for c in "${commands[@]}"; do command -v "$c" > /dev/null || missing+=("$c"); done
   (( ${#missing[@]} == 0 )) || { echo "not installed: ${missing[*]} (Debian: apt-get install slurm-wlm munge)"; exit 1; }
+  # slurmd starts each job as its user.
+  [[ $(id -u) == 0 ]] || { echo "slurmd needs root, this is $(id -un)"; exit 1; }
   ;;
 start) start "$2" "$3" ;;
 stop) stop "$2" ;;
