@@ -9,6 +9,7 @@ packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev libhwloc-d
   libpetsc-real-dev libsundials-dev libeigen3-dev libhdf5-openmpi-dev hdf5-tools libmetis-dev
   libgtest-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
   python3-matplotlib python3-h5py python3-numpy
+  slurm-wlm munge  # the Slurm recipes' test (tests/campaign/real_slurm_test.sh): a one-node Slurm
   chromium python3-vtk9 ffmpeg)  # the report tests: page screenshot, VTK read-back, MP4 animation
 
 missing=()

@@ -417,7 +417,6 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
     return 2;
   }
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
-  solver::accept_stop_requests();
   scheduler::MpiExecutor executor(comm, cl.exec_options);
   const driver::OutputThreadPlace output_thread = driver::place_output_thread(cl.output_thread, comm);
   if (rank != 0) {
@@ -461,12 +460,28 @@ int check_or_report(CommandLine& cl) {
   });
 }
 
+/// Whether the command line is a run or a campaign that runs scenes (not `campaign check` or
+/// `campaign report`): read before the parser exists, since the stop signals are taken first.
+bool takes_stop_requests(int argc, char** argv) {
+  if (argc < 2) return false;
+  const std::string_view command = argv[1];
+  if (command == "run") return true;
+  if (command != "campaign") return false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--check" || arg == "--help" || arg == "-h" || (i == 2 && (arg == "check" || arg == "report")))
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   // First, before MPI or anything else starts a thread: SIGINT, SIGTERM and SIGUSR1 go to one thread
-  // that waits for them, blocked in all others (solver/run/stop_signals.hpp says why).
-  solver::take_stop_signals();
+  // that waits for them, blocked in all others (solver/run/stop_signals.hpp says why). A run or a
+  // campaign takes them as stop requests from here on (Slurm's SIGUSR1 may come at once).
+  solver::take_stop_signals(takes_stop_requests(argc, argv));
   // A file-size limit (ulimit -f, a quota) is reported by the write that hits it, as an error with
   // the file's name, rather than ending the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);

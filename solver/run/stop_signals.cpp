@@ -47,7 +47,9 @@ void watch_stop_signals(sigset_t set) {
 
 }  // namespace
 
-void take_stop_signals() {
+void take_stop_signals(bool accept_requests) {
+  // Before the watching thread exists: no signal can find it not yet accepting.
+  g_accepting.store(accept_requests);
   const sigset_t set = stop_signal_set();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
   // Detached: it waits until the process ends (nothing to join; exit() does not wait for it).

@@ -19,9 +19,12 @@ namespace raceway::solver {
 
 /// Blocks the stop signals in the calling thread, which every thread it creates afterwards
 /// inherits, and starts the thread that takes them. Call it first in main(), before any library
-/// starts a thread (MPI_Init does); once per process. Until accept_stop_requests, a stop signal
+/// starts a thread (MPI_Init does); once per process. With `accept_requests` (a run, a campaign)
+/// a stop signal is a stop request from this moment on: a batch scheduler may send its warning
+/// within a second of the job's start, while MPI starts or the scene loads, and the run then
+/// stops at its first output time (exit 4). Without it, until accept_stop_requests, a stop signal
 /// ends the process as it would without raceway (a `check` or a `report` is not asked to stop).
-void take_stop_signals();
+void take_stop_signals(bool accept_requests = false);
 
 /// From now on the first stop signal asks for a stop (stop_request() names it) and a second ends
 /// the process.

@@ -12,9 +12,11 @@
 #              anything is written.
 #   spatial:   a spatial campaign's rows hold `raceway report`'s cage-centroid metrics (vortex radius
 #              ratio, sigma_v, ...) over the window after settling, and only the metrics asked for.
-#   slurm:     jobs/campaigns/slurm_campaign.sh under Slurm's environment without Slurm: SIGUSR1
-#              stops with checkpoints and resubmits; the next job resumes and completes the table.
-#   slurm_array: jobs/campaigns/slurm_array.sh under Slurm's environment without Slurm: it submits an
+#   early_signal: SIGUSR1 the moment raceway takes the stop signals (Slurm may send it within a
+#              second of a job's start): a run on 1 and 2 ranks and a campaign stop cleanly (exit 4)
+#              and the runs resume.
+#   slurm_array: jobs/campaigns/slurm_array.sh under Slurm's environment without Slurm (the same on a
+#              real Slurm: real_slurm_test.sh): it submits an
 #              array of the 4 scenes and a dependent aggregation job (stub sbatch); the tasks run
 #              (two at once, one on 2 ranks, one killed with SIGKILL mid-scene, one stopped by
 #              SIGUSR1); the aggregation step submits the killed and the stopped scene again; their
@@ -239,7 +241,7 @@ slurm_array)
     [[ "$(sed -n "$1p" "$work/sbatch_args")" == "$2" ]] || fail "sbatch call $1: '$(sed -n "$1p" "$work/sbatch_args")', expected '$2'"
   }
   expect_args 1 "1001 --parsable --array=0-3 --ntasks=1 --time=1:00:00 --export=ALL,RACEWAY_ARRAY_STEP=task,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
-  expect_args 2 "1002 --parsable --dependency=afterany:1001 --ntasks=1 --job-name=raceway-array-report --export=ALL,RACEWAY_ARRAY_STEP=report,RACEWAY_JOB_NUMBER=1,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
+  expect_args 2 "1002 --parsable --dependency=afterany:1001 --ntasks=1 --time=1:00:00 --nodes=1 --ntasks=1 --job-name=raceway-array-report --export=ALL,RACEWAY_ARRAY_STEP=report,RACEWAY_JOB_NUMBER=1,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
   # The array tasks, as Slurm would start them (one rank each, s003 on 2).
   task() {  # INDEX LAUNCHER; exec: a task started with & is the script's own process (signals reach it)
     exec env SLURM_ARRAY_JOB_ID=1001 SLURM_ARRAY_TASK_ID="$1" SLURM_JOB_ID=$((2000 + $1)) RACEWAY_ARRAY_STEP=task \
@@ -270,7 +272,7 @@ slurm_array)
   RACEWAY_ARRAY_STEP=report RACEWAY_SLURM_SCRIPT=$script bash "$script" "$small" "$work/c" > "$work/r1.log" 2>&1 \
     || fail "aggregation 1: $(cat "$work/r1.log")"
   expect_args 3 "1003 --parsable --array=1,2 --ntasks=1 --time=1:00:00 --export=ALL,RACEWAY_ARRAY_STEP=task,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
-  expect_args 4 "1004 --parsable --dependency=afterany:1003 --ntasks=1 --job-name=raceway-array-report --export=ALL,RACEWAY_ARRAY_STEP=report,RACEWAY_JOB_NUMBER=2,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
+  expect_args 4 "1004 --parsable --dependency=afterany:1003 --ntasks=1 --time=1:00:00 --nodes=1 --ntasks=1 --job-name=raceway-array-report --export=ALL,RACEWAY_ARRAY_STEP=report,RACEWAY_JOB_NUMBER=2,RACEWAY_SLURM_SCRIPT=$script $script $small $work/c"
   [[ -f "$work/c/campaign_table.csv" ]] && fail "a table with scenes left"
   [[ -f "$work/c/s001.h5.checkpoint" ]] || fail "s001: no checkpoint to resume from"
   (task 1 "") > "$work/t1b.log" 2>&1 || fail "task 1 again: $(tail -3 "$work/t1b.log")"
@@ -363,29 +365,49 @@ for bar in ("front", "rear"):
 assert "cage_speed_rpm" in row and "steps" in row and "cage_slip" not in row and "wall_time_s" not in row, list(row)
 PY
   ;;
-slurm)
-  # jobs/campaigns/slurm_campaign.sh with Slurm's environment but without Slurm: sbatch is a stub
-  # that records its arguments; SIGUSR1 (what --signal=B:USR1@300 sends) stops the campaign with
-  # checkpoints (exit 4) and resubmits; the resubmitted job resumes and completes the table.
-  printf '#!/bin/bash\necho "$@" > %q/sbatch_args\n' "$work" > "$work/sbatch"
-  chmod +x "$work/sbatch"
-  export SLURM_JOB_ID=4242 SLURM_NTASKS=2 SLURM_SUBMIT_DIR=$work RACEWAY=$raceway SBATCH=$work/sbatch \
-    RACEWAY_LAUNCHER="$mpiexec -np 2" RACEWAY_SLURM_SCRIPT=$source_dir/jobs/campaigns/slurm_campaign.sh
-  bash "$RACEWAY_SLURM_SCRIPT" "$small" "$work/c" > "$work/job1.log" 2>&1 &
-  job=$!
-  for _ in $(seq 1 600); do ls "$work/c/"*.checkpoint > /dev/null 2>&1 && break; sleep 0.05; done
-  kill -USR1 $job
-  wait $job; rc=$?
-  [[ $rc == 4 ]] || fail "job 1: exit $rc, expected 4: $(tail -5 "$work/job1.log")"
-  grep -q "campaign stopped by a signal" "$work/job1.log" || fail "no stop message: $(tail -5 "$work/job1.log")"
-  [[ "$(cat "$work/sbatch_args" 2> /dev/null)" == "--export=ALL,RACEWAY_JOB_NUMBER=2 $RACEWAY_SLURM_SCRIPT $small $work/c" ]] \
-    || fail "resubmission: '$(cat "$work/sbatch_args" 2> /dev/null)'"
-  rm -f "$work/sbatch_args"
-  RACEWAY_JOB_NUMBER=2 bash "$RACEWAY_SLURM_SCRIPT" "$small" "$work/c" > "$work/job2.log" 2>&1 \
-    || fail "job 2: $(tail -5 "$work/job2.log")"
-  grep -q -- "--resume" "$work/job2.log" || fail "job 2 did not resume"
-  [[ -f "$work/sbatch_args" ]] && fail "a finished campaign was resubmitted"
-  check_table "$work/c"
+early_signal)
+  # SIGUSR1 at the first moment raceway can take it (its first act in main blocks it), long before
+  # MPI, the scene and the run are ready: Slurm may send it within a second of a job's start. A run
+  # (1 and 2 ranks) and a campaign stop cleanly (exit 4, not 138, a death by the signal) and resume.
+  # LOG PIDS_OF N COMMAND...: runs the command, sends SIGUSR1 to the N processes `PIDS_OF JOB_PID`
+  # names as soon as every one of them blocks it (10: bit 9 of SigBlk); rc = the command's exit code.
+  usr1_at_start() {
+    local log=$1 pids_of=$2 n=$3 pids p key value ready job
+    shift 3
+    "$@" > "$log" 2>&1 &
+    job=$!
+    for _ in $(seq 1 20000); do
+      pids=$($pids_of "$job") ready=0
+      for p in $pids; do
+        key="" value=0
+        { while read -r key value; do [[ $key == SigBlk: ]] && break; done < "/proc/$p/status"; } 2> /dev/null
+        [[ $key == SigBlk: ]] && (( 0x$value & 0x200 )) && ready=$((ready + 1))
+      done
+      (( ready == n )) && break
+      kill -0 "$job" 2> /dev/null || break
+    done
+    (( ready == n )) || fail "$*: never blocked SIGUSR1"
+    # shellcheck disable=SC2086  # pids
+    kill -USR1 $pids
+    wait "$job"
+    rc=$?
+  }
+  self() { echo "$1"; }
+  ranks() { rank_pid "$1" 0; rank_pid "$1" 1; }
+  short='scene.end_time=20 ms'
+  usr1_at_start "$work/run1.log" self 1 "$raceway" run --set "$short" -o "$work/r1.h5"
+  [[ $rc == 4 ]] || fail "run, SIGUSR1 at once: exit $rc, expected 4: $(tail -3 "$work/run1.log")"
+  grep -q "stopped by signal 10" "$work/run1.log" || fail "run: no stop message: $(tail -3 "$work/run1.log")"
+  "$raceway" run --set "$short" -o "$work/r1.h5" --resume > "$work/run1b.log" 2>&1 || fail "run --resume: $(tail -3 "$work/run1b.log")"
+  usr1_at_start "$work/run2.log" ranks 2 "$mpiexec" -np 2 "$raceway" run --set "$short" -o "$work/r2.h5"
+  [[ $rc == 4 ]] || fail "run on 2 ranks, SIGUSR1 at once to both: exit $rc, expected 4: $(tail -3 "$work/run2.log")"
+  "$mpiexec" -np 2 "$raceway" run --set "$short" -o "$work/r2.h5" --resume > "$work/run2b.log" 2>&1 \
+    || fail "run on 2 ranks --resume: $(tail -3 "$work/run2b.log")"
+  "$python" "$source_dir/tests/parallel/compare_outputs.py" "$work/r1.h5" "$work/r2.h5" > /dev/null \
+    || fail "the two runs stopped at once and resumed differ"
+  usr1_at_start "$work/c.log" self 1 "$raceway" campaign "$small" -o "$work/c"
+  [[ $rc == 4 ]] || fail "campaign, SIGUSR1 at once: exit $rc, expected 4: $(tail -3 "$work/c.log")"
+  grep -q "campaign stopped by a signal" "$work/c.log" || fail "campaign: no stop message: $(tail -3 "$work/c.log")"
   ;;
 *) fail "unknown case $case_name" ;;
 esac

@@ -106,6 +106,19 @@ TEST_F(StopSignals, ASecondSignalEndsTheProcess) {
       testing::KilledBySignal(SIGINT), "");
 }
 
+TEST_F(StopSignals, ARunAcceptsRequestsFromTheFirstMoment) {
+  // `raceway run` and `raceway campaign` accept them as the signals are taken: Slurm's SIGUSR1 may
+  // come within a second of the job's start, before MPI or the scene is ready.
+  EXPECT_EXIT(
+      {
+        take_stop_signals(true);
+        kill(getpid(), SIGUSR1);
+        wait_for_request();
+        std::exit(stop_request().load() == SIGUSR1 ? 0 : 1);
+      },
+      testing::ExitedWithCode(0), "");
+}
+
 TEST_F(StopSignals, BeforeRequestsAreAcceptedASignalEndsTheProcess) {
   // `raceway check` and `raceway report` never accept them: Ctrl-C ends them as usual.
   EXPECT_EXIT(
