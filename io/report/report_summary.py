@@ -34,8 +34,10 @@ def cage_speed(run, w):
 
 
 def contact_angles(run, w):
-    """Load-weighted mean contact angle of each groove kind over the window (time mean), in deg."""
+    """Load-weighted mean contact angle of each groove kind over the window (time mean), in deg;
+    an angle below the model's resolution (rm.contact_angle_resolution) is reported as 0."""
     out = {}
+    resolution = rm.contact_angle_resolution(run.geometry)
     for kind in ("ball_inner_groove", "ball_outer_groove"):
         seg = run.contact.get(kind)
         if not seg or "contact_angle" not in seg:
@@ -43,9 +45,16 @@ def contact_angles(run, w):
         q = seg["normal_force"][w.slice]
         a = np.abs(seg["contact_angle"][w.slice])
         total = float(np.sum(q))
-        out[f"{kind}_loaded_mean_deg"] = float(np.sum(q * a) / total) * DEG if total > 0 else math.nan
+        mean = float(np.sum(q * a) / total) if total > 0 else math.nan
         loaded = q > 0
-        out[f"{kind}_max_deg"] = float(np.max(a[loaded])) * DEG if loaded.any() else math.nan
+        peak = float(np.max(a[loaded])) if loaded.any() else math.nan
+        out[f"{kind}_loaded_mean_deg"] = rm.above_resolution(mean, resolution) * DEG
+        out[f"{kind}_max_deg"] = rm.above_resolution(peak, resolution) * DEG
+    if out and math.isfinite(resolution):
+        out["resolution_deg"] = resolution * DEG
+        out["note"] = ("angles below the resolution are 0: the integrator's tolerance on the ball positions "
+                       "(element_position_tolerance) over the distance from the ball centre to the nearer groove's "
+                       "curvature centre ((f - 1/2) D)")
     return out
 
 
@@ -76,6 +85,8 @@ def contact_fields(run, w):
 def centroid(run, w, cage_mean):
     m = rm.centroid_metrics(run.time, run.cage_xy[:, 0], run.cage_xy[:, 1], run.cage_vxy[:, 0], run.cage_vxy[:, 1],
                             w, cage_mean)
+    land = None if run.land_force is None else float(np.mean(run.land_force[w.slice] > 0))
+    m.update(rm.whirl_state(m, land))
     for key in ("land_clearance", "pocket_clearance", "pitch_radius"):
         m[f"{key}_m"] = run.geometry.get(key, math.nan)
     return m
@@ -226,10 +237,14 @@ def headlines(s, run):
         lines.append(f"kinematic cage speed at the loaded contact angle {cs['rolling_rpm']:.2f} rpm (mean): "
                      f"slip {100 * cs['slip_rolling']:.3f} %")
     c = s["cage_centroid"]
-    lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
-                 f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f} over the last {c['vortex_turns']} whole "
-                 f"whirl turns ({c['vortex_window_s']:.4g} s), whirl {c['whirl_frequency_rad_s']:.3g} "
-                 f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
+    if c["whirl"] == "whirling":
+        lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
+                     f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f} over the last {c['vortex_turns']} "
+                     f"whole whirl turns ({c['vortex_window_s']:.4g} s), whirl {c['whirl_frequency_rad_s']:.3g} "
+                     f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
+    else:
+        lines.append(f"cage centroid: {c['whirl_note']}; centre {1e6 * c['axis_radius_mean_m']:.3g} um from the "
+                     "bearing axis (mean)")
     if "pocket_forces" in s:
         p = s["pocket_forces"]
         source = ("at every step" if p["statistics"]["events_peaks_impulses_contact_time"] == "steps"
