@@ -4,11 +4,14 @@ shape and units, every documented one is written, /time is the dimension scale o
 and the root carries the layout version, the build and the bearing attributes. The files are read
 with the raceway package (io/report/raceway, the reader users are pointed to).
 
-    output_layout_test.py CASE RACEWAY SOURCE_DIR
+    output_layout_test.py CASE RACEWAY SOURCE_DIR [BUILD_DIR]
         CASE: planar, spatial, planar_bridges   one run each against the documented tables
               shared_names                      a planar and a spatial run speak one dialect
               previous                          the committed layout version 2 files
                                                 (tests/run/layout_v2) read under version 3's names
+              package                           `import raceway` from the build tree and from an
+                                                installation (cmake --install into a temporary
+                                                prefix), its table and pandas view
 
 The run cases run a short scene (serial, --scheduler-log, so /scheduler is written and checked too).
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
@@ -27,6 +30,8 @@ except ImportError as err:
     sys.exit(77)
 
 case, raceway, source = sys.argv[1:4]
+source = os.path.abspath(source)
+build = os.path.abspath(sys.argv[4]) if len(sys.argv) > 4 else ""
 sys.path.insert(0, os.path.join(source, "io", "report"))
 from raceway import BEARING_ATTRIBUTES, BUILD_ATTRIBUTES, LAYOUT_VERSION, RacewayOutput  # noqa: E402
 
@@ -232,7 +237,63 @@ def previous():
             check(len(table) == f.rows and table.columns[-1] == "cage/epicyclic_speed", f"{name}: table {table.columns}")
 
 
+PROBE = """
+import os, sys, raceway
+with raceway.open_output(sys.argv[1]) as out:
+    t = out.table(["cage/angular_velocity", "rollers/position"])
+    assert t.columns[0] == "cage/angular_velocity[about z]", t.columns[:3]
+    assert t.units["rollers/position[0, x]"] == "m" and len(t) == out.rows
+    try:
+        import pandas
+    except ImportError:
+        pandas = None
+    if pandas is None:
+        try:
+            t.to_pandas()
+            raise SystemExit("to_pandas without pandas did not fail")
+        except ImportError as err:
+            assert "python3-pandas" in str(err), err
+    else:
+        df = t.to_pandas()
+        assert list(df.columns) == t.columns and df.index.name == "time" and df.attrs["units"]["time"] == "s"
+        assert (df["cage/angular_velocity[about z]"].to_numpy() == t["cage/angular_velocity[about z]"]).all()
+print(os.path.realpath(raceway.__file__), "pandas" if pandas else "no pandas")
+"""
+
+
+def package():
+    """`import raceway` from outside the sources: the build tree's python/ and an installed prefix;
+    the installed report imports it too."""
+    fixture = os.path.join(source, "tests", "run", "layout_v2", "planar_v2.h5")
+    with tempfile.TemporaryDirectory() as work:
+        def probe(path, where):
+            env = dict(os.environ, PYTHONPATH=path)
+            r = subprocess.run(["/usr/bin/python3", "-c", PROBE, fixture], capture_output=True, text=True, cwd=work,
+                               env=env, timeout=120)
+            check(r.returncode == 0, f"import raceway from {where}: {r.stderr[-1500:]}")
+            print(f"{where}: {r.stdout.strip()}", file=sys.stderr)
+            return r.stdout
+        probe(os.path.join(build, "python"), "the build tree")
+        prefix = os.path.join(work, "prefix")
+        r = subprocess.run(["cmake", "--install", build, "--prefix", prefix], capture_output=True, text=True,
+                           timeout=300)
+        check(r.returncode == 0, f"cmake --install: {r.stderr[-1500:]}")
+        found = [os.path.join(d, "..") for d, _, files in os.walk(prefix) if "__init__.py" in files
+                 and os.path.basename(d) == "raceway" and "dist-packages" in d]
+        check(len(found) == 1, f"the installed package: {found}")
+        if found:
+            where = probe(os.path.realpath(found[0]), "the installation")
+            check(where.startswith(os.path.realpath(prefix)), f"imported from {where}, not the installation")
+        report = subprocess.run([os.path.join(prefix, "bin", "raceway"), "report", fixture, "-o",
+                                 os.path.join(work, "report"), "--no-plots"], capture_output=True, text=True, timeout=300)
+        check(report.returncode == 0, f"the installed raceway report on a layout 2 file: {report.stderr[-1500:]}")
+
+
 def main():
+    if case == "package":
+        package()
+        print(f"{case}: {'passed' if not failures else f'{len(failures)} failure(s)'}")
+        return 1 if failures else 0
     if case == "shared_names":
         shared_names()
         print(f"{case}: {'passed' if not failures else f'{len(failures)} failure(s)'}")
