@@ -123,7 +123,7 @@ def scene_metrics(path, settling_time):
     cs, centroid, loads = report["cage_speed"], report["cage_centroid"], run.element_load[w.slice]
     m = {
         "cage_speed_rpm": cs["mean_rpm"],
-        "cage_slip": cs.get("slip_rolling", cs["slip"]),
+        "cage_slip": cs["slip"],
         "cage_whirl_radius_m": float(np.mean(radius)),
         "cage_whirl_radius_std_m": float(np.std(radius)),
         "vortex_radius_ratio": _number(centroid["vortex_radius_ratio"]),

@@ -39,9 +39,10 @@ def _speed_rows(summary):
         label = ("kinematic cage speed, rollers rolling without slip (mean)" if summary.get("model_kind") == "planar"
                  else "kinematic cage speed, nominal contact angle (mean)")
         return out + [(label, _fmt(cs["epicyclic_rpm"], "rpm", digits=6)), ("slip against it", _fmt(cs["slip"], "%", 100))]
-    return out + [("kinematic cage speed, nominal contact angle (mean)", _fmt(cs["epicyclic_rpm"], "rpm", digits=6)),
-                  ("kinematic cage speed, loaded contact angle (mean)", _fmt(cs["rolling_rpm"], "rpm", digits=6)),
-                  ("slip against the loaded-angle speed (the run summary's cage_slip)", _fmt(cs["slip_rolling"], "%", 100))]
+    return out + [("kinematic cage speed, loaded contact angle (mean)", _fmt(cs["rolling_rpm"], "rpm", digits=6)),
+                  ("slip against it (the run's cage_slip)", _fmt(cs["slip"], "%", 100)),
+                  ("kinematic cage speed, nominal contact angle (mean; reference only)",
+                   _fmt(cs["epicyclic_rpm"], "rpm", digits=6))]
 
 
 def _angle_rows(summary):

@@ -80,11 +80,11 @@ def cage_speed(run, s, folder):
     ax.plot(run.time, run.cage_speed * rm.RPM, lw=0.8, label=f"cage (window mean {cs['mean_rpm']:.2f} rpm)")
     if run.kind == "spatial":
         ax.plot(run.time, run.epicyclic_speed * rm.RPM, lw=1.2, ls=":", color="0.3",
-                label=f"kinematic at the nominal contact angle ({cs['epicyclic_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %)")
+                label=f"kinematic at the nominal contact angle ({cs['epicyclic_rpm']:.2f} rpm)")
     if "rolling_rpm" in cs:
         label = "kinematic at the loaded contact angle" if run.kind == "spatial" else "kinematic (epicyclic, line contact)"
         ax.plot(run.time, run.rolling_speed * rm.RPM, lw=1.4, ls="--", color="k",
-                label=f"{label} ({cs['rolling_rpm']:.2f} rpm, slip {100 * cs['slip_rolling']:.3f} %)")
+                label=f"{label} ({cs['rolling_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %)")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed about the bearing axis [rpm]")
     w = s["window"]

@@ -21,15 +21,20 @@ def cage_speed(run, w):
     s = rm.speed_stats(run.cage_speed, run.epicyclic_speed, w)
     out = {"mean_rad_s": s["mean_rad_s"], "mean_rpm": s["mean_rpm"], "min_rad_s": s["min_rad_s"],
            "max_rad_s": s["max_rad_s"], "epicyclic_rad_s": s["kinematic_rad_s"], "epicyclic_rpm": s["kinematic_rpm"],
-           "slip": s["slip"], "direction": rm.cage_direction(s["mean_rad_s"])}
+           "slip": s["slip"], "slip_nominal": s["slip"], "direction": rm.cage_direction(s["mean_rad_s"])}
+    # One slip: against the kinematic speed at the loaded contact angle (the run summary's cage_slip
+    # and the campaign tables' too); the nominal angle's only as slip_nominal.
     if run.rolling_speed is not None:
         r = rm.speed_stats(run.cage_speed, run.rolling_speed, w)
-        out.update({"rolling_rad_s": r["kinematic_rad_s"], "rolling_rpm": r["kinematic_rpm"], "slip_rolling": r["slip"]})
+        out.update({"rolling_rad_s": r["kinematic_rad_s"], "rolling_rpm": r["kinematic_rpm"], "slip": r["slip"]})
     if run.kind == "planar":
         out["reference"] = "epicyclic speed of line contacts at 0 deg from the rings' speeds (rolling = epicyclic)"
+    elif run.rolling_speed is not None:
+        out["reference"] = ("slip: 1 - cage / rolling, rolling the kinematic speed at the load-weighted mean contact "
+                            "angle of the inner-groove contacts per sample, then the window mean; slip_nominal: "
+                            "against the epicyclic speed at the nominal contact angle")
     else:
-        out["reference"] = ("epicyclic at the nominal contact angle; rolling at the load-weighted mean contact "
-                            "angle of the inner-groove contacts, per sample, then the window mean")
+        out["reference"] = "epicyclic at the nominal contact angle (the file has no /cage/rolling_speed)"
     return out
 
 
@@ -231,11 +236,10 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
 
 def headlines(s, run):
     w, cs = s["window"], s["cage_speed"]
+    reference = (f"kinematic at the loaded contact angle {cs['rolling_rpm']:.2f} rpm" if "rolling_rpm" in cs
+                 and run.kind == "spatial" else f"epicyclic {cs['epicyclic_rpm']:.2f} rpm")
     lines = [f"window {w['start_s']:.6g} .. {w['end_s']:.6g} s ({w['samples']} samples): cage {cs['mean_rpm']:.2f} rpm "
-             f"(mean), epicyclic {cs['epicyclic_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %"]
-    if "rolling_rpm" in cs and run.kind == "spatial":
-        lines.append(f"kinematic cage speed at the loaded contact angle {cs['rolling_rpm']:.2f} rpm (mean): "
-                     f"slip {100 * cs['slip_rolling']:.3f} %")
+             f"(mean), {reference}, slip {100 * cs['slip']:.3f} %"]
     c = s["cage_centroid"]
     if c["whirl"] == "whirling":
         lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "

@@ -117,13 +117,13 @@ def check_summary(s, h5, element):
     near(cs["mean_rad_s"], e["cage_mean"], 1e-12, "cage speed window mean")
     near(cs["mean_rpm"], run_summary["cage_speed_rpm"], 1e-9, "cage speed against the run's own summary")
     # One slip definition: the run's summary (and its last line) and the report, at the loaded angle.
-    slip = cs.get("slip_rolling", cs["slip"])
+    slip = cs["slip"]
     near(run_summary["cage_slip"], slip, 1e-9, "the run summary's cage_slip against the report's", 1e-12)
     near(run_summary["rolling_cage_speed_rpm"], cs.get("rolling_rpm", cs["epicyclic_rpm"]), 1e-9,
          "the run summary's kinematic speed at the loaded angle against the report's")
     if spatial:
         near(cs["rolling_rad_s"], e["rolling_mean"], 1e-12, "kinematic speed at the loaded contact angle")
-        near(cs["slip_rolling"], 1 - e["cage_mean"] / e["rolling_mean"], 1e-9, "slip at the loaded angle", 1e-12)
+        near(cs["slip"], 1 - e["cage_mean"] / e["rolling_mean"], 1e-9, "slip at the loaded angle", 1e-12)
     else:
         near(cs["epicyclic_rpm"], run_summary["epicyclic_cage_speed_rpm"], 1e-6, "planar epicyclic speed against the "
              "run's own summary")
@@ -240,7 +240,7 @@ def main():
         check(page.count("data:image/png;base64,") == len(pngs), "the page embeds every figure")
         check(s["scene_name"] in page and "<pre>" in page, "the page names the scene and holds its text")
         impacts = check_summary(s, h5, element)
-        slip = s["cage_speed"].get("slip_rolling", s["cage_speed"]["slip"])
+        slip = s["cage_speed"]["slip"]
         check(run_line is not None and abs(float(run_line.group(1)) - 100 * slip) <= 0.0005 + 1e-9,
               f"the run's last line says slip {run_line.group(1) if run_line else '?'} %, the report "
               f"{100 * slip:.4f} %")
