@@ -163,12 +163,15 @@ PINNED_LAND_CONTACT = 0.9
 def whirl_state(m, land_contact_fraction=None):
     """Whether the vortex metrics (centroid_metrics `m`) mean anything for the cage's motion: they
     describe a centre orbiting its vortex centre, so they need at least one whole whirl turn in the
-    window. Returns {"whirl": state, "whirl_note": why} and, unless the cage whirls, NaN for every
-    vortex and whirl metric (WHIRL_KEYS): "still" (the centre does not move), "pinned_on_land"
-    (the cage touches its guiding land in >= 90 % of the window's samples and turns less than once
-    about its centre), "no_whirl" (less than one whole turn), "whirling"."""
-    turns = m.get("vortex_turns", 0)
+    window (vortex_turns, and net about the vortex centre, whirl_revolutions). Returns {"whirl":
+    state, "whirl_note": why} and, unless the cage whirls, NaN for every vortex and whirl metric
+    (WHIRL_KEYS): "still" (the centre does not move), "pinned_on_land" (the cage touches its
+    guiding land in >= 90 % of the window's samples and turns less than once about its centre),
+    "no_whirl" (less than one whole turn), "whirling"."""
     swept = m.get("whirl_revolutions", math.nan)
+    # Whole turns both ways: about the mean centre of the window's end (vortex_turns) and, net, about
+    # the vortex centre over the whole window (whirl_revolutions).
+    turns = min(m.get("vortex_turns", 0), math.floor(abs(swept)) if math.isfinite(swept) else 0)
     if not math.isfinite(m.get("vortex_radius_ratio", math.nan)) and not math.isfinite(swept):
         state, note = "still", "the cage centre does not move: no whirl, vortex metrics undefined"
     elif turns < 1 and land_contact_fraction is not None and land_contact_fraction >= PINNED_LAND_CONTACT:
@@ -177,8 +180,10 @@ def whirl_state(m, land_contact_fraction=None):
                 f"{abs(swept):.2g} turns about its centre): no whirl, vortex metrics undefined")
     elif turns < 1:
         state = "no_whirl"
-        note = (f"the cage centre turns {abs(swept):.2g} times about its mean centre in the window, less than once: "
-                "no whirl, vortex metrics undefined")
+        land = "" if land_contact_fraction is None else \
+            f" (on its land in {100 * land_contact_fraction:.0f} % of the window)"
+        note = (f"the cage centre turns {abs(swept):.2g} times about its vortex centre in the window{land}, less than "
+                "once: no whirl, vortex metrics undefined")
     else:
         return {"whirl": "whirling", "whirl_note": f"{turns} whole whirl turns in the window"}
     out = {"whirl": state, "whirl_note": note}

@@ -8,6 +8,7 @@ returns (names written, failures); each helper is importable on its own (figure(
 """
 import math
 import os
+import textwrap
 import traceback
 
 import matplotlib
@@ -114,7 +115,7 @@ def cage_centroid(run, s, folder):
     ax.set_ylabel("y [um]")
     ax.set_title(f"vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (mean), whirl "
                  f"{c['whirl_to_cage_speed_ratio']:.3g} x cage speed" if c.get("whirl") == "whirling"
-                 else c.get("whirl_note", "centre"), fontsize=10 if c.get("whirl") != "whirling" else None)
+                 else textwrap.fill(c.get("whirl_note", "centre"), 70), fontsize=10 if c.get("whirl") != "whirling" else None)
     ax.legend(loc="upper right", fontsize=9)
     r = np.hypot(x - 1e6 * c["centre_x_m"], y - 1e6 * c["centre_y_m"])
     ax2.plot(run.time, r, lw=0.7)
