@@ -218,8 +218,8 @@ METRIC_LABELS = {"cage_slip": "cage slip (loaded contact angle)", "vortex_radius
 UNIT_SUFFIXES = ("_rpm", "_m", "_n", "_hz", "_w", "_s", "_per_rev")
 
 
-def metric_label(metric):
-    """ "cage_whirl_radius_std_m" -> "cage whirl radius std [m]"."""
+def metric_label(metric, unit=None):
+    """ "cage_whirl_radius_std_m" -> "cage whirl radius std [m]" (`unit`: another unit than the column's)."""
     name = METRIC_LABELS.get(metric)
     if name is None:
         name = metric
@@ -228,7 +228,7 @@ def metric_label(metric):
                 name = name[:-len(suffix)]
                 break
         name = name.replace("_", " ")
-    unit = UNITS[metric][0]
+    unit = unit or UNITS[metric][0]
     return f"{name} [{unit}]" if unit not in ("1", "") else name
 
 
@@ -257,18 +257,21 @@ def _draw_trend(folder, manifest, done, axis, metric, plt):
     given = axis_values(done, axis)
     unit = given[1] if given else manifest.get("axis_units", {}).get(axis, "")
     x_of = {id(r): v for r, v in zip(done, given[0])} if given else {id(r): r[f"{axis}_si"] for r in done}
+    # Lengths of micrometres in um, not as 1e-6 m.
+    values = [abs(r[metric]) for r in done if isinstance(r.get(metric), (int, float)) and math.isfinite(r[metric])]
+    scale, y_unit = (1e6, "um") if UNITS[metric][0] == "m" and values and max(values) < 1e-3 else (1.0, None)
     groups = {}
     for r in done:
         groups.setdefault(r[others[0]] if others else "", []).append(r)
     for label, group in groups.items():
         group = sorted(group, key=lambda r: x_of[id(r)] if x_of[id(r)] is not None else 0)
         x = [x_of[id(r)] for r in group]
-        y = [r[metric] if r.get(metric) is not None else np.nan for r in group]
+        y = [scale * r[metric] if r.get(metric) is not None else np.nan for r in group]
         ax.plot(x, y, "o-", ms=7, lw=1.5, label=f"{others[0]} = {label}" if others else None)
     key = manifest["axes"][axis]
     ax.set_xlabel(f"{key.replace('_', ' ').replace('.', ' ')}{f' [{unit}]' if unit else ''}", fontsize=14)
-    ax.set_ylabel(metric_label(metric), fontsize=14)
-    ax.set_title(f"{manifest['campaign']}: {metric_label(metric)} against {axis}", fontsize=15)
+    ax.set_ylabel(metric_label(metric, y_unit), fontsize=14)
+    ax.set_title(f"{manifest['campaign']}: {metric_label(metric, y_unit)} against {axis}", fontsize=15)
     ax.tick_params(labelsize=12)
     if others:
         ax.legend(fontsize=12)
