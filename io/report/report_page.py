@@ -32,17 +32,22 @@ def _fmt(v, unit="", scale=1.0, digits=4):
 
 def _speed_rows(summary):
     """The cage speed, its kinematic reference and the slip: one reference row for line contacts
-    (planar: rolling at 0 deg, the nominal and the loaded angle are one), two for ball bearings."""
+    (planar: rolling at 0 deg, the nominal and the loaded angle are one) and for ball bearings whose
+    loaded angle gives the nominal one's speed to the digits shown (a deep groove bearing under
+    radial load), else two."""
     cs = summary["cage_speed"]
     out = [("cage speed (mean)", _fmt(cs["mean_rpm"], "rpm", digits=6))]
     if summary.get("model_kind") == "planar" or "rolling_rpm" not in cs:
         label = ("kinematic cage speed, rollers rolling without slip (mean)" if summary.get("model_kind") == "planar"
                  else "kinematic cage speed, nominal contact angle (mean)")
         return out + [(label, _fmt(cs["epicyclic_rpm"], "rpm", digits=6)), ("slip against it", _fmt(cs["slip"], "%", 100))]
-    return out + [("kinematic cage speed, loaded contact angle (mean)", _fmt(cs["rolling_rpm"], "rpm", digits=6)),
+    rolling, nominal = _fmt(cs["rolling_rpm"], "rpm", digits=6), _fmt(cs["epicyclic_rpm"], "rpm", digits=6)
+    if rolling == nominal:
+        return out + [("kinematic cage speed, loaded contact angle = nominal (mean)", rolling),
+                      ("slip against it (the run's cage_slip)", _fmt(cs["slip"], "%", 100))]
+    return out + [("kinematic cage speed, loaded contact angle (mean)", rolling),
                   ("slip against it (the run's cage_slip)", _fmt(cs["slip"], "%", 100)),
-                  ("kinematic cage speed, nominal contact angle (mean; reference only)",
-                   _fmt(cs["epicyclic_rpm"], "rpm", digits=6))]
+                  ("kinematic cage speed, nominal contact angle (mean; reference only)", nominal)]
 
 
 def _angle_rows(summary):

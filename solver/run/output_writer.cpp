@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "io/scene/scene_parameters.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "solver/run/pocket_steps.hpp"
 
@@ -194,23 +195,12 @@ void check_output_size(const OutputEstimate& e, const io::Scene& scene) {
 
 namespace {
 
-const char* bearing_type_name(io::BearingType t) {
-  switch (t) {
-    case io::BearingType::cylindrical_roller: return "cylindrical_roller";
-    case io::BearingType::deep_groove_ball: return "deep_groove_ball";
-    case io::BearingType::four_point_contact_ball: return "four_point_contact_ball";
-    case io::BearingType::angular_contact_ball: return "angular_contact_ball";
-  }
-  return "unknown";
-}
-
-const char* guidance_name(io::CageGuidance g) {
-  switch (g) {
-    case io::CageGuidance::inner_land: return "inner_land";
-    case io::CageGuidance::outer_land: return "outer_land";
-    case io::CageGuidance::rolling_element: return "rolling_element";
-  }
-  return "unknown";
+/// A choice key's word as the scene spells it ("deep_groove_ball"), from the schema's resolved
+/// parameters (the one table of those names).
+std::string scene_word(const io::Scene& scene, const std::string& key) {
+  for (const io::SceneParameter& p : io::scene_parameters(scene))
+    if (p.key == key && p.word) return *p.word;
+  return "";
 }
 
 }  // namespace
@@ -220,7 +210,7 @@ void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m) {
   const io::BearingGeometry& g = scene.bearing;
   const bool spatial = m.kind == io::ModelKind::spatial;
   file.set_attribute("/", "model_kind", std::string(spatial ? "spatial" : "planar"));
-  file.set_attribute("/", "bearing_type", std::string(bearing_type_name(g.type)));
+  file.set_attribute("/", "bearing_type", scene_word(scene, "bearing.type"));
   file.set_attribute("/", "rolling_element", std::string(g.is_ball_bearing() ? "ball" : "roller"));
   file.set_attribute("/", "element_group", std::string(m.element_group));
   file.set_attribute("/", "element_count", static_cast<long long>(m.element_count));
@@ -237,7 +227,7 @@ void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m) {
   } else {
     file.set_attribute("/", "roller_length", g.roller_length);
   }
-  file.set_attribute("/", "cage_guidance", std::string(guidance_name(scene.cage.guidance)));
+  file.set_attribute("/", "cage_guidance", scene_word(scene, "cage.guidance"));
   file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
   file.set_attribute("/", "land_clearance",
                      m.first_segment(SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);

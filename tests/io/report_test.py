@@ -334,6 +334,11 @@ def case_page(source_dir, work):
     summary, _ = report_summary.summarize(report_data.read_run(h5))
     labels = [k for k, _ in report_page.rows(summary, "ball")]
     check(sum("kinematic cage speed" in k for k in labels) == 2, f"ball bearing: two kinematic rows: {labels}")
+    # A deep groove bearing under radial load: the loaded angle's speed is the nominal one's.
+    cs = summary["cage_speed"]
+    loaded = dict(summary, cage_speed=dict(cs, rolling_rpm=cs["epicyclic_rpm"] * (1 + 1e-9)))
+    labels = [k for k, _ in report_page.rows(loaded, "ball")]
+    check(sum("kinematic cage speed" in k for k in labels) == 1, f"equal kinematic speeds: one row: {labels}")
     summary["model_kind"] = "planar"
     summary["cage_speed"]["rolling_rpm"] = summary["cage_speed"]["epicyclic_rpm"]
     rows = report_page.rows(summary, "ball")
