@@ -120,7 +120,7 @@ def element_loads(f, kind_prefix):
     if "roller_inner_race" in seg:
         return seg["roller_inner_race/normal_force"][()]
     groove = seg["ball_inner_groove"]
-    balls = groove["ball"][()].astype(int)
+    balls = groove["element" if "element" in groove else "ball"][()].astype(int)  # layout 3 / 2
     force = groove["normal_force"][()]
     out = np.zeros((force.shape[0], balls.max() + 1))
     for col, b in enumerate(balls):
