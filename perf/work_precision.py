@@ -120,7 +120,7 @@ def element_loads(f, kind_prefix):
     if "roller_inner_race" in seg:
         return seg["roller_inner_race/normal_force"][()]
     groove = seg["ball_inner_groove"]
-    balls = groove["ball"][()].astype(int)
+    balls = groove["element" if "element" in groove else "ball"][()].astype(int)  # layout 3 / 2
     force = groove["normal_force"][()]
     out = np.zeros((force.shape[0], balls.max() + 1))
     for col, b in enumerate(balls):
@@ -148,7 +148,8 @@ def read_run(path):
                 states[f"{body}/{q}"] = f[f"{body}/{q}"][()][w]
         states[f"{elements}/position"] = f[f"{elements}/position"][()][w]
         states[f"{elements}/velocity"] = f[f"{elements}/velocity"][()][w]
-        spin = f[f"{elements}/angular_velocity" if spatial else f"{elements}/spin"][()][w]
+        # layout 3: angular_velocity in both kinds (planar files of layout 2 called it spin)
+        spin = f[f"{elements}/angular_velocity" if f"{elements}/angular_velocity" in f else f"{elements}/spin"][()][w]
         states[f"{elements}/spin"] = spin
         cage_w = f["cage/angular_velocity"][()][w]
         cage_w = cage_w[:, 2] if cage_w.ndim == 2 and cage_w.shape[1] == 3 else cage_w.ravel()

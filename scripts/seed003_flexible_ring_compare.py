@@ -68,7 +68,7 @@ def analyse(path, window_start):
     zone = {p: rm.load_zone(bins, p * peak_bin) for p in (0.01, 0.10)}
     gear = abs(float(np.mean(f["outer_ring/angular_velocity"][w.slice])))
     period = 2 * math.pi / gear
-    cage = f["cage/angle"][:]
+    cage = f["cage/angles" if "cage/angles" in f else "cage/angle"][:]  # layout 3 / layout 2
     cage_revs = abs(cage[w.begin + w.samples - 1] - cage[w.begin]) / (2 * math.pi)
     z = inner.shape[1]
     r = {"file": os.path.basename(path), "window": (time[w.begin], time[w.begin + w.samples - 1]),

@@ -29,7 +29,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 try:
     import numpy as np
     import report_metrics as rm
-    from raceway_output import RacewayOutput
+    from raceway import RacewayOutput
     from report_data import read_run
     from report_summary import summarize
 except ImportError as e:  # pragma: no cover
@@ -81,12 +81,6 @@ COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
               "power_loss": ["power_loss_w"], "steps": ["steps"], "wall_time": ["wall_time_s"]}
 
 
-def _axial(w):
-    """The component about z of a [T] (planar) or [T x 3] (spatial) angular velocity."""
-    w = np.asarray(w, dtype=float)
-    return w if w.ndim == 1 else w[:, 2]
-
-
 def _number(value):
     return float(value) if isinstance(value, (int, float)) and math.isfinite(value) else None
 
@@ -119,7 +113,8 @@ def scene_metrics(path, settling_time):
         keep[w.slice] = True
         cage_xy = np.asarray(out["cage/position"], dtype=float)[keep][:, :2]
         ring_xy = np.asarray(out["outer_ring/position"], dtype=float)[keep][:, :2]
-        relative = np.abs(_axial(out["inner_ring/angular_velocity"]) - _axial(out["outer_ring/angular_velocity"]))
+        relative = np.abs(np.asarray(out.component("inner_ring/angular_velocity", "about z"), dtype=float)
+                          - np.asarray(out.component("outer_ring/angular_velocity", "about z"), dtype=float))
         pocket = [np.asarray(out[f"segments/{k}/normal_force"], dtype=float)[keep] for k in out.segment_kinds()
                   if "pocket" in k or "cage_bar" in k]
     radius = np.hypot(*(cage_xy - ring_xy).T)
@@ -128,7 +123,7 @@ def scene_metrics(path, settling_time):
     cs, centroid, loads = report["cage_speed"], report["cage_centroid"], run.element_load[w.slice]
     m = {
         "cage_speed_rpm": cs["mean_rpm"],
-        "cage_slip": cs.get("slip_rolling", cs["slip"]),
+        "cage_slip": cs["slip"],
         "cage_whirl_radius_m": float(np.mean(radius)),
         "cage_whirl_radius_std_m": float(np.std(radius)),
         "vortex_radius_ratio": _number(centroid["vortex_radius_ratio"]),
@@ -213,29 +208,77 @@ def write_table(folder, manifest, rows):
                    "meaning": {c: UNITS[c][1] for c in columns if c in UNITS}, "rows": rows}, f, indent=1)
 
 
+#: Trend plots: 1200 x 750 px, labels at a size that reads on a page.
+PLOT_SIZE_IN, PLOT_DPI = (12.0, 7.5), 100
+#: A metric's readable name on a plot: its column without the unit suffix, in words.
+METRIC_LABELS = {"cage_slip": "cage slip (loaded contact angle)", "vortex_radius_ratio": "vortex radius ratio",
+                 "sigma_v": "vortex velocity deviation sigma_v", "impacts_front_per_rev": "front-bar impacts per revolution",
+                 "impacts_rear_per_rev": "rear-bar impacts per revolution",
+                 "max_element_load_mean_n": "largest rolling-element load (mean)"}
+UNIT_SUFFIXES = ("_rpm", "_m", "_n", "_hz", "_w", "_s", "_per_rev")
+
+
+def metric_label(metric, unit=None):
+    """ "cage_whirl_radius_std_m" -> "cage whirl radius std [m]" (`unit`: another unit than the column's)."""
+    name = METRIC_LABELS.get(metric)
+    if name is None:
+        name = metric
+        for suffix in UNIT_SUFFIXES:
+            if name.endswith(suffix):
+                name = name[:-len(suffix)]
+                break
+        name = name.replace("_", " ")
+    unit = unit or UNITS[metric][0]
+    return f"{name} [{unit}]" if unit not in ("1", "") else name
+
+
+def axis_values(rows, axis):
+    """The swept values in the sweep's own unit, as the campaign file gives them ("2400 rpm" -> 2400,
+    "rpm") when every value is a number with one and the same unit; else the SI values and their unit
+    (None: fall back)."""
+    numbers, units = [], set()
+    for r in rows:
+        text = str(r.get(axis, "")).strip()
+        head, _, unit = text.partition(" ")
+        try:
+            numbers.append(float(head))
+        except ValueError:
+            return None
+        units.add(unit.strip())
+    return (numbers, units.pop()) if len(units) == 1 else None
+
+
 def _draw_trend(folder, manifest, done, axis, metric, plt):
-    """One plot: `metric` against `axis`, one line per value of the other axis (if any)."""
+    """One plot: `metric` against `axis` in the sweep's own units, one line per value of the other
+    axis (if any)."""
     axes = list(manifest["axes"])
     others = [a for a in axes if a != axis]
-    fig, ax = plt.subplots(figsize=(6, 4))
+    fig, ax = plt.subplots(figsize=PLOT_SIZE_IN)
+    given = axis_values(done, axis)
+    unit = given[1] if given else manifest.get("axis_units", {}).get(axis, "")
+    x_of = {id(r): v for r, v in zip(done, given[0])} if given else {id(r): r[f"{axis}_si"] for r in done}
+    # Lengths of micrometres in um, not as 1e-6 m.
+    values = [abs(r[metric]) for r in done if isinstance(r.get(metric), (int, float)) and math.isfinite(r[metric])]
+    scale, y_unit = (1e6, "um") if UNITS[metric][0] == "m" and values and max(values) < 1e-3 else (1.0, None)
     groups = {}
     for r in done:
         groups.setdefault(r[others[0]] if others else "", []).append(r)
     for label, group in groups.items():
-        group = sorted(group, key=lambda r: r[f"{axis}_si"] if r[f"{axis}_si"] is not None else 0)
-        x = [r[f"{axis}_si"] for r in group]
-        y = [r[metric] if r.get(metric) is not None else np.nan for r in group]
-        ax.plot(x, y, "o-", label=f"{others[0]} = {label}" if others else None)
-    unit = manifest.get("axis_units", {}).get(axis, "")
-    ax.set_xlabel(f"{axis} ({manifest['axes'][axis]}){f' [{unit}]' if unit else ''}")
-    ax.set_ylabel(f"{metric} [{UNITS[metric][0]}]")
-    ax.set_title(f"{manifest['campaign']}: {metric}")
+        group = sorted(group, key=lambda r: x_of[id(r)] if x_of[id(r)] is not None else 0)
+        x = [x_of[id(r)] for r in group]
+        y = [scale * r[metric] if r.get(metric) is not None else np.nan for r in group]
+        ax.plot(x, y, "o-", ms=7, lw=1.5, label=f"{others[0]} = {label}" if others else None)
+    key = manifest["axes"][axis]
+    ax.set_xlabel(f"{key.replace('_', ' ').replace('.', ' ')}{f' [{unit}]' if unit else ''}", fontsize=14)
+    ax.set_ylabel(metric_label(metric, y_unit), fontsize=14)
+    ax.set_title(f"{manifest['campaign']}: {metric_label(metric, y_unit)} against {axis}", fontsize=15)
+    ax.tick_params(labelsize=12)
     if others:
-        ax.legend(fontsize="small")
+        ax.legend(fontsize=12)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
     path = os.path.join(folder, "plots", f"{metric}_vs_{axis}.png")
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=PLOT_DPI)
     plt.close(fig)
     return path
 

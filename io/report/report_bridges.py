@@ -74,6 +74,7 @@ def bridge_force_time(run, s, folder):
     rp.shade_window(ax, s)
     ax.plot(run.time, np.max(np.abs(f), axis=1), lw=0.6, color="0.4", label="largest |force| over the bridges")
     ax.plot(run.time, f[:, 0], lw=0.8, color="tab:green", label="bridge 0 (+: pushed in +z)")
+    rp.scale_to_window(ax, run, s, np.max(np.abs(f), axis=1), f[:, 0])
     ax.axhline(b["median_1ms_max_n"], color="k", ls="--", lw=1,
                label=f"median of the 1 ms maxima in the window, {b['median_1ms_max_n']:.4g} N (peak {b['peak_n']:.4g} N)")
     ax.set_xlabel("time [s]")

@@ -153,6 +153,66 @@ def centroid_metrics(time, x, y, vx, vy, window, cage_speed_mean):
     return m
 
 
+WHIRL_KEYS = ("vortex_radius_mean_m", "vortex_radius_min_m", "vortex_radius_max_m", "vortex_radius_ratio",
+              "speed_mean_m_s", "speed_std_m_s", "sigma_v", "whirl_frequency_rad_s", "whirl_frequency_hz",
+              "whirl_to_cage_speed_ratio", "whirl_revolutions")
+#: Land contact in at least this share of the window's samples, with no whole whirl turn: pinned.
+PINNED_LAND_CONTACT = 0.9
+
+
+def whirl_state(m, land_contact_fraction=None):
+    """Whether the vortex metrics (centroid_metrics `m`) mean anything for the cage's motion: they
+    describe a centre orbiting its vortex centre, so they need at least one whole whirl turn in the
+    window (vortex_turns, and net about the vortex centre, whirl_revolutions). Returns {"whirl":
+    state, "whirl_note": why} and, unless the cage whirls, NaN for every vortex and whirl metric
+    (WHIRL_KEYS): "still" (the centre does not move), "pinned_on_land" (the cage touches its
+    guiding land in >= 90 % of the window's samples and turns less than once about its centre),
+    "no_whirl" (less than one whole turn), "whirling"."""
+    swept = m.get("whirl_revolutions", math.nan)
+    # Whole turns both ways: about the mean centre of the window's end (vortex_turns) and, net, about
+    # the vortex centre over the whole window (whirl_revolutions).
+    turns = min(m.get("vortex_turns", 0), math.floor(abs(swept)) if math.isfinite(swept) else 0)
+    if not math.isfinite(m.get("vortex_radius_ratio", math.nan)) and not math.isfinite(swept):
+        state, note = "still", "the cage centre does not move: no whirl, vortex metrics undefined"
+    elif turns < 1 and land_contact_fraction is not None and land_contact_fraction >= PINNED_LAND_CONTACT:
+        state = "pinned_on_land"
+        note = (f"the cage is pinned on its land (land contact in {100 * land_contact_fraction:.0f} % of the window, "
+                f"{abs(swept):.2g} turns about its centre): no whirl, vortex metrics undefined")
+    elif turns < 1:
+        state = "no_whirl"
+        land = "" if land_contact_fraction is None else \
+            f" (on its land in {100 * land_contact_fraction:.0f} % of the window)"
+        note = (f"the cage centre turns {abs(swept):.2g} times about its vortex centre in the window{land}, less than "
+                "once: no whirl, vortex metrics undefined")
+    else:
+        return {"whirl": "whirling", "whirl_note": f"{turns} whole whirl turns in the window"}
+    out = {"whirl": state, "whirl_note": note}
+    out.update({k: math.nan for k in WHIRL_KEYS})
+    return out
+
+
+# ---- contact angle --------------------------------------------------------------------------------
+
+def contact_angle_resolution(geometry):
+    """The smallest contact angle [rad] the model resolves: the integrator's absolute tolerance on the
+    rolling elements' positions over the distance from the ball centre to a groove's curvature
+    centre, (f - 1/2) D = groove radius - ball radius (the contact angle is the direction of that
+    line; an error of the tolerance across it turns it by tolerance / distance). The nearer groove
+    sets it. NaN when the geometry is not known (no ball grooves)."""
+    tol = geometry.get("element_position_tolerance", math.nan)
+    r = geometry.get("element_radius", math.nan)
+    arms = [geometry.get(k, math.nan) - r for k in ("inner_groove_radius", "outer_groove_radius")]
+    arms = [a for a in arms if math.isfinite(a) and a > 0]
+    return tol / min(arms) if arms and math.isfinite(tol) and tol > 0 else math.nan
+
+
+def above_resolution(angle, resolution):
+    """`angle` where it exceeds `resolution` (in magnitude), else 0 (NaN stays NaN; NaN resolution: angle)."""
+    if not math.isfinite(angle) or not math.isfinite(resolution):
+        return angle
+    return angle if abs(angle) > resolution else 0.0
+
+
 # ---- pocket (bar) forces --------------------------------------------------------------------------
 
 def split_bar_forces(normal_force, circumferential_force, ball, pockets, direction):

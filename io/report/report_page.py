@@ -13,7 +13,9 @@ CAPTIONS = {
     "pocket_force_time.png": "Pocket (bar) forces, every sample: the largest front and rear bar force over the pockets, "
                              "and the peak of every impact.",
     "pocket_force_azimuth.png": "Pocket forces against the pocket's azimuth over the window: time mean and peak per bin.",
-    "contact_angle.png": "Load-weighted mean contact angle of the groove contacts.",
+    "contact_angle.png": "Load-weighted mean contact angle of the groove contacts; angles below the model's resolution "
+                         "(the integrator's tolerance on the ball positions over (f - 1/2) D) are drawn as 0, and the "
+                         "figure is left out when every angle is below it.",
     "contact_pressure.png": "Largest Hertz pressure of each contact kind.",
     "film_thickness.png": "Thinnest central film thickness of the loaded contacts of each kind.",
     "cage_land_force.png": "Normal force between the cage and its guiding land.",
@@ -28,22 +30,64 @@ def _fmt(v, unit="", scale=1.0, digits=4):
     return f"{scale * v:.{digits}g}{(' ' + unit) if unit else ''}"
 
 
+def _speed_rows(summary):
+    """The cage speed, its kinematic reference and the slip: one reference row for line contacts
+    (planar: rolling at 0 deg, the nominal and the loaded angle are one) and for ball bearings whose
+    loaded angle gives the nominal one's speed to the digits shown (a deep groove bearing under
+    radial load), else two."""
+    cs = summary["cage_speed"]
+    out = [("cage speed (mean)", _fmt(cs["mean_rpm"], "rpm", digits=6))]
+    if summary.get("model_kind") == "planar" or "rolling_rpm" not in cs:
+        label = ("kinematic cage speed, rollers rolling without slip (mean)" if summary.get("model_kind") == "planar"
+                 else "kinematic cage speed, nominal contact angle (mean)")
+        return out + [(label, _fmt(cs["epicyclic_rpm"], "rpm", digits=6)), ("slip against it", _fmt(cs["slip"], "%", 100))]
+    rolling, nominal = _fmt(cs["rolling_rpm"], "rpm", digits=6), _fmt(cs["epicyclic_rpm"], "rpm", digits=6)
+    if rolling == nominal:
+        return out + [("kinematic cage speed, loaded contact angle = nominal (mean)", rolling),
+                      ("slip against it (the run's cage_slip)", _fmt(cs["slip"], "%", 100))]
+    return out + [("kinematic cage speed, loaded contact angle (mean)", rolling),
+                  ("slip against it (the run's cage_slip)", _fmt(cs["slip"], "%", 100)),
+                  ("kinematic cage speed, nominal contact angle (mean; reference only)", nominal)]
+
+
+def _angle_rows(summary):
+    angles = summary.get("contact_angle", {})
+    resolution = angles.get("resolution_deg")
+    out = []
+    for key, value in angles.items():
+        if key.endswith("loaded_mean_deg"):
+            text = _fmt(value, "deg")
+            if resolution is not None and value == 0:
+                text = f"0 (below the model's resolution, {_fmt(resolution, 'deg', digits=2)})"
+            out.append((f"{key[:-len('_loaded_mean_deg')]} contact angle (load-weighted mean)", text))
+    return out
+
+
+def _whirl_rows(c):
+    if c.get("whirl", "whirling") != "whirling":
+        return [("cage whirl", c["whirl_note"]), ("cage centre from the bearing axis (mean)",
+                                                  _fmt(c["axis_radius_mean_m"], "um", 1e6))]
+    return [("cage vortex radius (mean)", _fmt(c["vortex_radius_mean_m"], "um", 1e6)),
+            ("cage whirl / cage speed", _fmt(c["whirl_to_cage_speed_ratio"])), ("sigma_v", _fmt(c["sigma_v"]))]
+
+
+def _pocket_rows(p):
+    steps = p["statistics"]["events_peaks_impulses_contact_time"] == "steps"
+    onsets = ("contacts start from zero force, at every integrator step" if steps
+              else f"runs of samples above {_fmt(p['threshold_n'], 'N', digits=3)}")
+    return [("pocket contacts in the window, front / rear bar (" + onsets + ")",
+             f"{p['front']['events']} / {p['rear']['events']}"),
+            (f"pocket impacts in the whole run (runs of output samples above {_fmt(p['threshold_n'], 'N', digits=3)} "
+             "on one bar of one pocket, marked in the pocket force figure)", str(p["impacts"]["count"])),
+            ("front / rear bar force (peak)", f"{_fmt(p['front']['peak_n'], 'N')} / {_fmt(p['rear']['peak_n'], 'N')}")]
+
+
 def rows(summary, element):
     """(quantity, value) pairs of the main numbers; means are window means."""
-    cs, c = summary["cage_speed"], summary["cage_centroid"]
+    c = summary["cage_centroid"]
     out = [("window", f"{summary['window']['start_s']:.6g} .. {summary['window']['end_s']:.6g} s "
-                      f"({summary['window']['samples']} samples)"),
-           ("cage speed (mean)", _fmt(cs["mean_rpm"], "rpm", digits=6)),
-           ("kinematic cage speed, nominal contact angle (mean)", _fmt(cs["epicyclic_rpm"], "rpm", digits=6)),
-           ("slip against it", _fmt(cs["slip"], "%", 100))]
-    if "rolling_rpm" in cs:
-        out += [("kinematic cage speed, loaded contact angle (mean)", _fmt(cs["rolling_rpm"], "rpm", digits=6)),
-                ("slip against it", _fmt(cs["slip_rolling"], "%", 100))]
-    for key, value in summary.get("contact_angle", {}).items():
-        if key.endswith("loaded_mean_deg"):
-            out.append((f"{key[:-len('_loaded_mean_deg')]} contact angle (load-weighted mean)", _fmt(value, "deg")))
-    out += [("cage vortex radius (mean)", _fmt(c["vortex_radius_mean_m"], "um", 1e6)),
-            ("cage whirl / cage speed", _fmt(c["whirl_to_cage_speed_ratio"])), ("sigma_v", _fmt(c["sigma_v"]))]
+                      f"({summary['window']['samples']} samples)")]
+    out += _speed_rows(summary) + _angle_rows(summary) + _whirl_rows(c)
     ld = summary[f"{element}_load"]
     out += [(f"largest {element} load (mean)", _fmt(ld["largest_mean_n"], "N")),
             (f"largest {element} load (peak)", _fmt(ld["max_n"], "N")),
@@ -51,10 +95,7 @@ def rows(summary, element):
              f"{_fmt(ld['load_zone_width_deg'], 'deg', digits=3)} wide, centred at "
              f"{_fmt(ld['load_zone_centre_deg'], 'deg', digits=3)}")]
     if "pocket_forces" in summary:
-        p = summary["pocket_forces"]
-        out += [("pocket impacts (whole run)", str(p["impacts"]["count"])),
-                ("front / rear bar contacts (window)", f"{p['front']['events']} / {p['rear']['events']}"),
-                ("front / rear bar force (peak)", f"{_fmt(p['front']['peak_n'], 'N')} / {_fmt(p['rear']['peak_n'], 'N')}")]
+        out += _pocket_rows(summary["pocket_forces"])
     for kind, e in summary.get("contact", {}).items():
         if "max_pressure_largest_mean_pa" in e:
             out.append((f"{kind} max pressure (mean / peak)", f"{_fmt(e['max_pressure_largest_mean_pa'], 'GPa', 1e-9)}"
@@ -84,7 +125,8 @@ def write_page(run, summary, folder, pngs, name="report.html"):
              "figcaption{color:#444;margin-bottom:1.5em}</style></head><body>",
              f"<h1>{esc(run.scene_name)}</h1>",
              f"<p>{esc(run.kind)} bearing, {run.elements} {esc(run.element)}s; file <code>{esc(run.path)}</code>. "
-             "Values are means over the window unless marked peak.</p>",
+             "Values are means over the window unless marked peak. Time plots show the whole run with the "
+             "window shaded; their vertical axes are scaled to the window.</p>",
              "<h2>Numbers</h2><table><tr><th>quantity</th><th>value</th></tr>"]
     parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in rows(summary, run.element)]
     parts.append("</table><p>All metrics: <code>summary.json</code> beside this page.</p><h2>Figures</h2>")

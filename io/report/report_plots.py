@@ -2,11 +2,13 @@
 
 Every figure is 1600 px wide, titled with the scene's name, with plain tick labels (no axis offset
 such as "+1.19e3") and units in its axis labels; time series show every sample (no thinning, so
-every impact is drawn), the analysis window shaded. draw_all(run, summary, folder) writes them and
+every impact is drawn), the analysis window shaded and the vertical axis scaled to the values inside
+it (scale_to_window: a start-up transient is clipped, not allowed to flatten the window). draw_all(run, summary, folder) writes them and
 returns (names written, failures); each helper is importable on its own (figure(), save()).
 """
 import math
 import os
+import textwrap
 import traceback
 
 import matplotlib
@@ -50,6 +52,28 @@ def shade_window(ax, summary):
     ax.axvspan(w["start_s"], w["end_s"], color="0.93", zorder=0, label=f"window {w['start_s']:.4g}-{w['end_s']:.4g} s")
 
 
+def scale_to_window(ax, run, summary, *series):
+    """The vertical axis of a time plot scaled to the values inside the analysis window (the whole
+    run stays on the time axis), so a start-up transient (a spin-up) does not flatten the window;
+    earlier samples beyond the scale are clipped, and the plot says so."""
+    w = summary["window"]
+    inside = (run.time >= w["start_s"] - 1e-12) & (run.time <= w["end_s"] + 1e-12)
+    values = [np.asarray(y, dtype=float) for y in series if y is not None]
+    within = np.concatenate([y[inside].ravel() for y in values]) if values else np.zeros(0)
+    within = within[np.isfinite(within)]
+    if within.size == 0:
+        return
+    lo, hi = float(within.min()), float(within.max())
+    span = hi - lo if hi > lo else max(abs(hi), 1e-12)
+    lo, hi = lo - 0.08 * span, hi + 0.08 * span
+    ax.set_ylim(lo, hi)
+    outside = np.concatenate([y[~inside].ravel() for y in values])
+    outside = outside[np.isfinite(outside)]
+    if outside.size and (outside.min() < lo or outside.max() > hi):
+        ax.text(0.01, 0.98, "scaled to the window: earlier samples (start-up) off scale", transform=ax.transAxes,
+                va="top", ha="left", fontsize=10, color="0.3")
+
+
 def cage_speed(run, s, folder):
     fig, ax = figure(run, "cage speed against the kinematic speed")
     shade_window(ax, s)
@@ -57,11 +81,11 @@ def cage_speed(run, s, folder):
     ax.plot(run.time, run.cage_speed * rm.RPM, lw=0.8, label=f"cage (window mean {cs['mean_rpm']:.2f} rpm)")
     if run.kind == "spatial":
         ax.plot(run.time, run.epicyclic_speed * rm.RPM, lw=1.2, ls=":", color="0.3",
-                label=f"kinematic at the nominal contact angle ({cs['epicyclic_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %)")
+                label=f"kinematic at the nominal contact angle ({cs['epicyclic_rpm']:.2f} rpm)")
     if "rolling_rpm" in cs:
         label = "kinematic at the loaded contact angle" if run.kind == "spatial" else "kinematic (epicyclic, line contact)"
         ax.plot(run.time, run.rolling_speed * rm.RPM, lw=1.4, ls="--", color="k",
-                label=f"{label} ({cs['rolling_rpm']:.2f} rpm, slip {100 * cs['slip_rolling']:.3f} %)")
+                label=f"{label} ({cs['rolling_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %)")
     ax.set_xlabel("time [s]")
     ax.set_ylabel("speed about the bearing axis [rpm]")
     w = s["window"]
@@ -90,11 +114,13 @@ def cage_centroid(run, s, folder):
     ax.set_xlabel("x [um]")
     ax.set_ylabel("y [um]")
     ax.set_title(f"vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (mean), whirl "
-                 f"{c['whirl_to_cage_speed_ratio']:.3g} x cage speed" if c["vortex_radius_mean_m"] else "centre")
+                 f"{c['whirl_to_cage_speed_ratio']:.3g} x cage speed" if c.get("whirl") == "whirling"
+                 else textwrap.fill(c.get("whirl_note", "centre"), 70), fontsize=10 if c.get("whirl") != "whirling" else None)
     ax.legend(loc="upper right", fontsize=9)
     r = np.hypot(x - 1e6 * c["centre_x_m"], y - 1e6 * c["centre_y_m"])
     ax2.plot(run.time, r, lw=0.7)
     shade_window(ax2, s)
+    scale_to_window(ax2, run, s, r)
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("distance from the vortex centre [um]")
     ax2.axvline(c["vortex_window_start_s"], color="k", lw=0.8, ls=":")  # the vortex metrics' whole turns
@@ -131,6 +157,7 @@ def pocket_force_time(run, s, folder):
     shade_window(ax, s)
     ax.plot(run.time, run.bar_front.max(axis=1), lw=0.6, color=FRONT, label="front bar (largest over pockets)")
     ax.plot(run.time, -run.bar_rear.max(axis=1), lw=0.6, color=REAR, label="rear bar (largest over pockets), drawn negative")
+    drawn = [run.bar_front.max(axis=1), -run.bar_rear.max(axis=1)]
     if run.pocket_steps is not None:
         # The peak over every step of each output interval (drawn over the interval it closes):
         # the contacts the samples fall between still show at their height.
@@ -138,12 +165,14 @@ def pocket_force_time(run, s, folder):
             peak = run.pocket_steps[bar]["peak_force"].max(axis=1)
             ax.plot(run.time, sign * peak, lw=0.5, alpha=0.45, color=color, drawstyle="steps-pre",
                     label=f"{bar} bar, peak between samples (every step)")
+            drawn.append(sign * peak)
     t = np.asarray(imp["time_s"], dtype=float)
     f = np.asarray(imp["peak_n"], dtype=float)
     front = np.asarray([b == "front" for b in imp["bar"]], dtype=bool)
     ax.plot(t[front], f[front], "v", color=FRONT, ms=5, label=f"front impact peaks ({int(front.sum())})")
     ax.plot(t[~front], -f[~front], "^", color=REAR, ms=5, label=f"rear impact peaks ({int((~front).sum())})")
     ax.axhline(0, color="k", lw=0.5)
+    scale_to_window(ax, run, s, *drawn)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("bar normal force [N] (rear < 0)")
     ax.set_title(f"contact threshold {p['threshold_n']:.3g} N; front = the bar ahead in the cage's sense of rotation")
@@ -170,16 +199,17 @@ def pocket_force_azimuth(run, s, folder):
 def _per_kind(run, s, folder, name, what, ylabel, value, scale):
     fig, ax = figure(run, what)
     shade_window(ax, s)
-    drawn = False
+    drawn = []
     for kind, seg in run.contact.items():
         y = value(seg)
         if y is None or not np.any(np.isfinite(y)) or not np.any(y != 0):
             continue
         ax.plot(run.time, scale * y, lw=0.8, label=kind)
-        drawn = True
+        drawn.append(scale * y)
     if not drawn:
         plt.close(fig)
         return None
+    scale_to_window(ax, run, s, *drawn)
     ax.set_xlabel("time [s]")
     ax.set_ylabel(ylabel)
     ax.legend(loc="upper right")
@@ -204,14 +234,22 @@ def film_thickness(run, s, folder):
 
 
 def contact_angle(run, s, folder):
+    """Omitted where every angle is below the model's resolution (rm.contact_angle_resolution); the
+    angles below it are drawn as 0."""
+    resolution = rm.contact_angle_resolution(run.geometry)
+    floor = resolution if math.isfinite(resolution) else 0.0
+
     def weighted(seg):
         if "contact_angle" not in seg or not np.any(seg["contact_angle"]):
             return None
         q = seg["normal_force"]
         total = q.sum(axis=1)
-        return np.where(total > 0, (q * np.abs(seg["contact_angle"])).sum(axis=1) / np.where(total > 0, total, 1), np.nan)
-    return _per_kind(run, s, folder, "contact_angle.png", "load-weighted mean contact angle of the groove contacts",
-                     "contact angle [deg]", weighted, 180 / math.pi)
+        a = np.where(total > 0, (q * np.abs(seg["contact_angle"])).sum(axis=1) / np.where(total > 0, total, 1), np.nan)
+        return np.where(a > floor, a, np.where(np.isfinite(a), 0.0, np.nan))
+    what = "load-weighted mean contact angle of the groove contacts"
+    if math.isfinite(resolution):
+        what += f" (below the model's resolution, {resolution * 180 / math.pi:.2g} deg: 0)"
+    return _per_kind(run, s, folder, "contact_angle.png", what, "contact angle [deg]", weighted, 180 / math.pi)
 
 
 def cage_land(run, s, folder):
@@ -220,6 +258,7 @@ def cage_land(run, s, folder):
     cl = s["cage_land"]
     ax.plot(run.time, run.land_force, lw=0.7, color="tab:purple",
             label=f"land normal force (window mean {cl['force_mean_n']:.4g} N, peak {cl['force_peak_n']:.4g} N)")
+    scale_to_window(ax, run, s, run.land_force)
     ax.set_xlabel("time [s]")
     ax.set_ylabel("normal force [N]")
     ax.legend(loc="upper right")
@@ -235,12 +274,14 @@ def friction(run, s, folder):
                 label=f"contacts' moment against the {fr['driven_ring']}'s rotation "
                       f"(window mean {1e3 * fr['friction_torque_mean_n_m']:.4g} mN m)")
         shade_window(ax, s)
+        scale_to_window(ax, run, s, -sign * run.driven_moment * 1e3)
         ax.set_ylabel("friction torque [mN m]")
         ax.set_xlabel("time [s]")
         ax.legend(loc="upper right", fontsize=9)
     for kind, p in run.power_loss.items():
         ax2.plot(run.time, p, lw=0.7, label=f"{kind} ({fr.get(kind + '_power_loss_mean_w', math.nan):.4g} W mean)")
     shade_window(ax2, s)
+    scale_to_window(ax2, run, s, *run.power_loss.values())
     ax2.set_xlabel("time [s]")
     ax2.set_ylabel("power loss [W]")
     ax2.legend(loc="upper right", fontsize=9)

@@ -21,21 +21,28 @@ def cage_speed(run, w):
     s = rm.speed_stats(run.cage_speed, run.epicyclic_speed, w)
     out = {"mean_rad_s": s["mean_rad_s"], "mean_rpm": s["mean_rpm"], "min_rad_s": s["min_rad_s"],
            "max_rad_s": s["max_rad_s"], "epicyclic_rad_s": s["kinematic_rad_s"], "epicyclic_rpm": s["kinematic_rpm"],
-           "slip": s["slip"], "direction": rm.cage_direction(s["mean_rad_s"])}
+           "slip": s["slip"], "slip_nominal": s["slip"], "direction": rm.cage_direction(s["mean_rad_s"])}
+    # One slip: against the kinematic speed at the loaded contact angle (the run summary's cage_slip
+    # and the campaign tables' too); the nominal angle's only as slip_nominal.
     if run.rolling_speed is not None:
         r = rm.speed_stats(run.cage_speed, run.rolling_speed, w)
-        out.update({"rolling_rad_s": r["kinematic_rad_s"], "rolling_rpm": r["kinematic_rpm"], "slip_rolling": r["slip"]})
+        out.update({"rolling_rad_s": r["kinematic_rad_s"], "rolling_rpm": r["kinematic_rpm"], "slip": r["slip"]})
     if run.kind == "planar":
         out["reference"] = "epicyclic speed of line contacts at 0 deg from the rings' speeds (rolling = epicyclic)"
+    elif run.rolling_speed is not None:
+        out["reference"] = ("slip: 1 - cage / rolling, rolling the kinematic speed at the load-weighted mean contact "
+                            "angle of the inner-groove contacts per sample, then the window mean; slip_nominal: "
+                            "against the epicyclic speed at the nominal contact angle")
     else:
-        out["reference"] = ("epicyclic at the nominal contact angle; rolling at the load-weighted mean contact "
-                            "angle of the inner-groove contacts, per sample, then the window mean")
+        out["reference"] = "epicyclic at the nominal contact angle (the file has no /cage/rolling_speed)"
     return out
 
 
 def contact_angles(run, w):
-    """Load-weighted mean contact angle of each groove kind over the window (time mean), in deg."""
+    """Load-weighted mean contact angle of each groove kind over the window (time mean), in deg;
+    an angle below the model's resolution (rm.contact_angle_resolution) is reported as 0."""
     out = {}
+    resolution = rm.contact_angle_resolution(run.geometry)
     for kind in ("ball_inner_groove", "ball_outer_groove"):
         seg = run.contact.get(kind)
         if not seg or "contact_angle" not in seg:
@@ -43,9 +50,16 @@ def contact_angles(run, w):
         q = seg["normal_force"][w.slice]
         a = np.abs(seg["contact_angle"][w.slice])
         total = float(np.sum(q))
-        out[f"{kind}_loaded_mean_deg"] = float(np.sum(q * a) / total) * DEG if total > 0 else math.nan
+        mean = float(np.sum(q * a) / total) if total > 0 else math.nan
         loaded = q > 0
-        out[f"{kind}_max_deg"] = float(np.max(a[loaded])) * DEG if loaded.any() else math.nan
+        peak = float(np.max(a[loaded])) if loaded.any() else math.nan
+        out[f"{kind}_loaded_mean_deg"] = rm.above_resolution(mean, resolution) * DEG
+        out[f"{kind}_max_deg"] = rm.above_resolution(peak, resolution) * DEG
+    if out and math.isfinite(resolution):
+        out["resolution_deg"] = resolution * DEG
+        out["note"] = ("angles below the resolution are 0: the integrator's tolerance on the ball positions "
+                       "(element_position_tolerance) over the distance from the ball centre to the nearer groove's "
+                       "curvature centre ((f - 1/2) D)")
     return out
 
 
@@ -76,6 +90,8 @@ def contact_fields(run, w):
 def centroid(run, w, cage_mean):
     m = rm.centroid_metrics(run.time, run.cage_xy[:, 0], run.cage_xy[:, 1], run.cage_vxy[:, 0], run.cage_vxy[:, 1],
                             w, cage_mean)
+    land = None if run.land_force is None else float(np.mean(run.land_force[w.slice] > 0))
+    m.update(rm.whirl_state(m, land))
     for key in ("land_clearance", "pocket_clearance", "pitch_radius"):
         m[f"{key}_m"] = run.geometry.get(key, math.nan)
     return m
@@ -220,16 +236,19 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
 
 def headlines(s, run):
     w, cs = s["window"], s["cage_speed"]
+    reference = (f"kinematic at the loaded contact angle {cs['rolling_rpm']:.2f} rpm" if "rolling_rpm" in cs
+                 and run.kind == "spatial" else f"epicyclic {cs['epicyclic_rpm']:.2f} rpm")
     lines = [f"window {w['start_s']:.6g} .. {w['end_s']:.6g} s ({w['samples']} samples): cage {cs['mean_rpm']:.2f} rpm "
-             f"(mean), epicyclic {cs['epicyclic_rpm']:.2f} rpm, slip {100 * cs['slip']:.3f} %"]
-    if "rolling_rpm" in cs and run.kind == "spatial":
-        lines.append(f"kinematic cage speed at the loaded contact angle {cs['rolling_rpm']:.2f} rpm (mean): "
-                     f"slip {100 * cs['slip_rolling']:.3f} %")
+             f"(mean), {reference}, slip {100 * cs['slip']:.3f} %"]
     c = s["cage_centroid"]
-    lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
-                 f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f} over the last {c['vortex_turns']} whole "
-                 f"whirl turns ({c['vortex_window_s']:.4g} s), whirl {c['whirl_frequency_rad_s']:.3g} "
-                 f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
+    if c["whirl"] == "whirling":
+        lines.append(f"cage centroid: vortex radius {1e6 * c['vortex_radius_mean_m']:.3g} um (ratio "
+                     f"{c['vortex_radius_ratio']:.3f}), sigma_v {c['sigma_v']:.3f} over the last {c['vortex_turns']} "
+                     f"whole whirl turns ({c['vortex_window_s']:.4g} s), whirl {c['whirl_frequency_rad_s']:.3g} "
+                     f"rad/s = {c['whirl_to_cage_speed_ratio']:.3f} x cage speed")
+    else:
+        lines.append(f"cage centroid: {c['whirl_note']}; centre {1e6 * c['axis_radius_mean_m']:.3g} um from the "
+                     "bearing axis (mean)")
     if "pocket_forces" in s:
         p = s["pocket_forces"]
         source = ("at every step" if p["statistics"]["events_peaks_impulses_contact_time"] == "steps"

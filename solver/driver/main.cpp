@@ -178,8 +178,8 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
                sum.simulated_time_s, sum.driven_ring_revolutions, sum.wall_time_s, sum.stats.steps,
                sum.model_rhs_evaluations, sum.model_jacobian_evaluations, sum.stats.newton_failures,
                sum.stats.error_test_failures);
-  spdlog::info("cage speed {:.3f} rpm (second half), epicyclic {:.3f} rpm, slip {:.3f} %", sum.cage_speed_rpm,
-               sum.epicyclic_cage_speed_rpm, 100 * sum.cage_slip);
+  spdlog::info("cage speed {:.3f} rpm (second half), kinematic at the loaded contact angle {:.3f} rpm, slip {:.3f} %",
+               sum.cage_speed_rpm, sum.rolling_cage_speed_rpm, 100 * sum.cage_slip);
   if (const auto* log = executor.schedule_log(); log && log->ranks > 1) {
     auto ratio = [&](int p) {
       return log->sum_mean_seconds[p] > 0 ? log->sum_max_seconds[p] / log->sum_mean_seconds[p] : 1.0;

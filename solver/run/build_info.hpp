@@ -9,8 +9,9 @@
 
 namespace raceway::solver {
 
-/// The output file's layout version: increased when a reader of the file would need to change.
-inline constexpr long long kOutputLayoutVersion = 2;
+/// The output file's layout version: increased when a reader of the file would need to change
+/// (3: one dataset name per quantity in planar and spatial runs, the bearing attributes always).
+inline constexpr long long kOutputLayoutVersion = 3;
 
 /// (attribute name, value) pairs: raceway_version, raceway_commit, build_type, compiler,
 /// hdf5_version, sundials_version, petsc_version, mpi_library (the given text; "" when not run

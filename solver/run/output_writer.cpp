@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "io/scene/scene_parameters.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "solver/bearing/element_traits.hpp"
 #include "solver/run/pocket_steps.hpp"
@@ -25,11 +26,14 @@ struct BodySeries {
   const char* meaning;
 };
 
+// One name per quantity in both spaces (layout version 3): a planar bearing stores the planar
+// components (x, y and about z) of the quantity a spatial one stores in full; each series' attribute
+// `components` names its columns. docs/output_layout.md lists the names of earlier versions.
 const std::vector<BodySeries>& border_series(io::ModelKind kind) {
   static const std::vector<BodySeries> planar = {
       {"position", Quantity::position, {0, 1}, "m", "centre x, y in the bearing frame"},
       {"velocity", Quantity::velocity, {0, 1}, "m/s", "centre velocity"},
-      {"angle", Quantity::angles, {2}, "rad", "rotation about z (0 where not a state)"},
+      {"angles", Quantity::angles, {2}, "rad", "rotation about z (0 where not a state)"},
       {"angular_velocity", Quantity::angular_velocity, {2}, "rad/s", "rotation rate about z (drive speed if driven)"},
       {"acceleration", Quantity::acceleration, {0, 1, 5}, "m/s^2, m/s^2, rad/s^2",
        "ax, ay, angular acceleration (0 where not a state)"},
@@ -39,6 +43,8 @@ const std::vector<BodySeries>& border_series(io::ModelKind kind) {
       {"velocity", Quantity::velocity, {0, 1, 2}, "m/s", "centre velocity"},
       {"angles", Quantity::angles, {0, 1, 2}, "rad", "tilt about x, tilt about y, rotation about z (rings: 0 about z)"},
       {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "angular velocity, bearing frame"},
+      {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
+       "centre acceleration and angular acceleration, bearing frame (0 where not a state)"},
       {"force", Quantity::force, {0, 1, 2, 3, 4, 5}, "N, N m",
        "net force and moment at the centre (contacts, loads, supports, gravity)"}};
   return kind == io::ModelKind::spatial ? spatial : planar;
@@ -48,13 +54,34 @@ const std::vector<BodySeries>& element_series(io::ModelKind kind) {
   static const std::vector<BodySeries> planar = {
       {"position", Quantity::position, {0, 1}, "m", "roller centres x, y"},
       {"velocity", Quantity::velocity, {0, 1}, "m/s", "roller centre velocities"},
-      {"spin", Quantity::angular_velocity, {2}, "rad/s", "roller rotation rate about its axis"},
+      {"angular_velocity", Quantity::angular_velocity, {2}, "rad/s", "roller rotation rate about its axis"},
       {"acceleration", Quantity::acceleration, {0, 1, 5}, "m/s^2, m/s^2, rad/s^2", "ax, ay, spin acceleration"}};
   static const std::vector<BodySeries> spatial = {
       {"position", Quantity::position, {0, 1, 2}, "m", "ball centres"},
       {"velocity", Quantity::velocity, {0, 1, 2}, "m/s", "ball centre velocities"},
-      {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "ball angular velocities, bearing frame"}};
+      {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "ball angular velocities, bearing frame"},
+      {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
+       "ball centre acceleration and angular acceleration, bearing frame"}};
   return kind == io::ModelKind::spatial ? spatial : planar;
+}
+
+/// The `components` attribute of a series: what each of its columns is ("x", "about z", ...).
+std::vector<std::string> component_names(const BodySeries& s) {
+  static const char* const linear[] = {"x", "y", "z"};
+  static const char* const angular[] = {"about x", "about y", "about z"};
+  static const char* const wrench[] = {"x", "y", "z", "about x", "about y", "about z"};
+  std::vector<std::string> names;
+  for (int c : s.components) {
+    switch (s.quantity) {
+      case Quantity::position:
+      case Quantity::velocity: names.emplace_back(linear[c]); break;
+      case Quantity::angles:
+      case Quantity::angular_velocity: names.emplace_back(angular[c]); break;
+      case Quantity::acceleration:
+      case Quantity::force: names.emplace_back(wrench[c]); break;
+    }
+  }
+  return names;
 }
 
 /// The row shape of a series: `leading` (the rolling elements, or none), then the components unless
@@ -135,7 +162,7 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   // first: a scene that passed the sane ranges can still ask for 1e17 samples.
   const double samples = std::floor(end / dt + 1e-9) + 1;
   long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m.kind));
-  if (m.kind == io::ModelKind::spatial) values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
+  values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   if (scene.output.segments)
     for (const Segment& s : m.segments)
@@ -158,6 +185,53 @@ void check_output_size(const OutputEstimate& e, const io::Scene& scene) {
                   bytes_text(e.bytes), e.bytes / (8.0 * static_cast<double>(e.values_per_sample)),
                   scene.scene.output_interval, scene.scene.end_time, e.values_per_sample, bytes_text(limit),
                   scene.output.segments ? ", set [output] segments = false" : ""));
+}
+
+namespace {
+
+/// A choice key's word as the scene spells it ("deep_groove_ball"), from the schema's resolved
+/// parameters (the one table of those names).
+std::string scene_word(const io::Scene& scene, const std::string& key) {
+  for (const io::SceneParameter& p : io::scene_parameters(scene))
+    if (p.key == key && p.word) return *p.word;
+  return "";
+}
+
+}  // namespace
+
+void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m) {
+  const io::Scene& scene = *m.scene;
+  const io::BearingGeometry& g = scene.bearing;
+  const bool spatial = m.kind == io::ModelKind::spatial;
+  file.set_attribute("/", "model_kind", std::string(spatial ? "spatial" : "planar"));
+  file.set_attribute("/", "bearing_type", scene_word(scene, "bearing.type"));
+  file.set_attribute("/", "rolling_element", std::string(g.is_ball_bearing() ? "ball" : "roller"));
+  file.set_attribute("/", "element_group", std::string(m.element_group));
+  file.set_attribute("/", "element_count", static_cast<long long>(m.element_count));
+  file.set_attribute("/", "pitch_radius", m.pitch_radius);
+  file.set_attribute("/", "element_radius", m.element_radius);
+  file.set_attribute("/", "inner_race_radius", 0.5 * g.inner_race_diameter());
+  file.set_attribute("/", "outer_race_radius", 0.5 * g.outer_race_diameter());
+  file.set_attribute("/", "diametral_clearance", g.radial_clearance);
+  file.set_attribute("/", "nominal_contact_angle", m.nominal_contact_angle);
+  file.set_attribute("/", "arcs_per_ring", static_cast<long long>(m.arcs_per_ring));
+  if (g.is_ball_bearing()) {
+    file.set_attribute("/", "inner_groove_radius", g.ball.inner_conformity * g.ball.ball_diameter);
+    file.set_attribute("/", "outer_groove_radius", g.ball.outer_conformity * g.ball.ball_diameter);
+  } else {
+    file.set_attribute("/", "roller_length", g.roller_length);
+  }
+  file.set_attribute("/", "cage_guidance", scene_word(scene, "cage.guidance"));
+  file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
+  file.set_attribute("/", "land_clearance",
+                     m.first_segment(SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);
+  // The integrator's error control on the rolling elements' positions: the resolution of what is
+  // read from them (the report's contact-angle resolution).
+  const std::vector<double> atol = m.absolute_tolerance();
+  const Body& element = m.bodies[static_cast<std::size_t>(m.first_element)];
+  const int slot = element.slot[spatial ? sz : sx];
+  file.set_attribute("/", "element_position_tolerance", slot >= 0 ? atol[static_cast<std::size_t>(slot)] : 0.0);
+  file.set_attribute("/", "relative_tolerance", scene.solver.rtol);
 }
 
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
@@ -207,26 +281,36 @@ OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segmen
   file_.define_series("/time", {}, "s", "output times (interpolated, not solver steps)");
   file_.define_series("/energy", {}, "J", "kinetic + elastic + support + load potential energy");
   for (int b = 0; b < m.first_element; ++b)
-    for (const BodySeries& s : border_series(m.kind))
-      file_.define_series("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name, row_shape(s, {}), s.unit,
-                          s.meaning);
+    for (const BodySeries& s : border_series(m.kind)) {
+      const std::string path = "/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name;
+      file_.define_series(path, row_shape(s, {}), s.unit, s.meaning);
+      file_.set_attribute(path, "components", component_names(s));
+    }
   if (m.kind == io::ModelKind::spatial) {
     file_.define_series("/cage/epicyclic_speed", {}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
     file_.define_series("/cage/rolling_speed", {}, "rad/s",
                         "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
                         "(nominal angle when none is loaded)");
+  } else {
+    file_.define_series("/cage/epicyclic_speed", {}, "rad/s",
+                        "kinematic cage speed: rollers rolling without slip on both races (line contacts, 0 deg)");
+    file_.define_series("/cage/rolling_speed", {}, "rad/s",
+                        "kinematic cage speed at the loaded contact angle: line contacts roll at 0 deg, so the "
+                        "epicyclic speed");
   }
   const auto n = static_cast<std::size_t>(m.element_count);
-  for (const BodySeries& s : element_series(m.kind))
-    file_.define_series(std::string("/") + m.element_group + "/" + s.name, row_shape(s, {n}), s.unit, s.meaning);
+  for (const BodySeries& s : element_series(m.kind)) {
+    const std::string path = std::string("/") + m.element_group + "/" + s.name;
+    file_.define_series(path, row_shape(s, {n}), s.unit, s.meaning);
+    file_.set_attribute(path, "components", component_names(s));
+  }
   define_pocket_steps();
   if (segments_) define_segment_groups();
   time_ = file_.series_id("/time"), energy_ = file_.series_id("/energy");
   for (int b = 0; b < m.first_element; ++b)
     for (const BodySeries& s : border_series(m.kind))
       border_ids_.push_back(file_.series_id("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name));
-  if (m.kind == io::ModelKind::spatial)
-    epicyclic_ = file_.series_id("/cage/epicyclic_speed"), rolling_ = file_.series_id("/cage/rolling_speed");
+  epicyclic_ = file_.series_id("/cage/epicyclic_speed"), rolling_ = file_.series_id("/cage/rolling_speed");
   for (const BodySeries& s : element_series(m.kind))
     element_ids_.push_back(file_.series_id(std::string("/") + m.element_group + "/" + s.name));
   file_.set_time_scale("/time", "time");
@@ -256,8 +340,8 @@ void OutputWriter::define_segment_groups() {
     line_family_[k] = is_planar_element(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
     const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
     file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
-    if (m_.kind == io::ModelKind::spatial)
-      file_.write_array(g + "/ball", {elements.size()}, elements, "-", "ball index (0-based) of each column; -1 for cage-land");
+    file_.write_array(g + "/element", {elements.size()}, elements, "-",
+                      "rolling element (0-based) of each column; -1 for cage-land");
     if (line_family_[k]) {
       define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size(), shared_);
       diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::line_diagnostic_fields);
@@ -280,6 +364,11 @@ double OutputWriter::loaded_contact_angle(const Model& m, const Equations& eq) {
   return load > 0 ? weighted / load : m.nominal_contact_angle;
 }
 
+double OutputWriter::rolling_cage_speed(const Model& m, const Equations& eq, double t) {
+  if (m.kind != io::ModelKind::spatial) return m.epicyclic_cage_speed(t);  // line contacts roll at 0 deg
+  return m.epicyclic_cage_speed(t, loaded_contact_angle(m, eq));
+}
+
 void OutputWriter::append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot,
                                  const Equations& eq) {
   const auto& loads = eq.body_loads();
@@ -292,12 +381,10 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
       file_.append(*id++, row_);
     }
   }
-  if (m_.kind == io::ModelKind::spatial) {
-    const double epi = m_.epicyclic_cage_speed(t);
-    file_.append(epicyclic_, std::span<const double>(&epi, 1));
-    const double rolling = m_.epicyclic_cage_speed(t, loaded_contact_angle(m_, eq));
-    file_.append(rolling_, std::span<const double>(&rolling, 1));
-  }
+  const double epi = m_.epicyclic_cage_speed(t);
+  file_.append(epicyclic_, std::span<const double>(&epi, 1));
+  const double rolling = rolling_cage_speed(m_, eq, t);
+  file_.append(rolling_, std::span<const double>(&rolling, 1));
   const auto& all = element_series(m_.kind);
   std::vector<BodySample> samples;
   for (int k = 0; k < m_.element_count; ++k) {

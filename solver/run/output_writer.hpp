@@ -37,6 +37,12 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene);
 /// numbers, when the estimate exceeds [output] max_size.
 void check_output_size(const OutputEstimate& estimate, const io::Scene& scene);
 
+/// The root attributes that describe the bearing, written for every run (docs/output_layout.md,
+/// "Bearing attributes"): its kind, the rolling elements, the geometry in SI (radii, clearances,
+/// contact angle) and the integrator's tolerances of the element positions, so that readers never
+/// parse the model's description.
+void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m);
+
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
                        const Wrench& net);
 
@@ -65,6 +71,10 @@ class OutputWriter {
   /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
   /// balls roll at); the nominal angle when none is loaded.
   static double loaded_contact_angle(const Model& m, const Equations& eq);
+  /// The kinematic cage speed at that angle at time t (/cage/rolling_speed): the cage speed of
+  /// elements rolling without slip at the angle they are loaded at. Planar: the epicyclic speed of
+  /// line contacts (0 deg).
+  static double rolling_cage_speed(const Model& m, const Equations& eq, double t);
 
  private:
   void define_segment_groups();

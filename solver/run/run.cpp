@@ -50,6 +50,7 @@ io::JsonObject RunSummary::to_json() const {
         model_jacobian_evaluations > 0 ? jacobian_seconds / static_cast<double>(model_jacobian_evaluations) : 0.0);
   j.add("cage_speed_rpm", cage_speed_rpm);
   j.add("epicyclic_cage_speed_rpm", epicyclic_cage_speed_rpm);
+  j.add("rolling_cage_speed_rpm", rolling_cage_speed_rpm);
   j.add("cage_slip", cage_slip);
   j.add("driven_ring_revolutions", driven_ring_revolutions);
   j.add("inner_ring_contact_force_n", inner_ring_contact_force_n);
@@ -116,14 +117,7 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   file.set_attribute("/", "layout_version", kOutputLayoutVersion);
   for (const auto& [name, value] : build_info(options.mpi_library)) file.set_attribute("/", name, value);
   file.set_attribute("/", "model", model.describe());
-  if (model.kind == io::ModelKind::spatial) {
-    file.set_attribute("/", "model_kind", std::string("spatial"));
-    file.set_attribute("/", "ball_count", static_cast<long long>(model.element_count));
-    file.set_attribute("/", "pitch_radius", model.pitch_radius);
-    file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
-    file.set_attribute("/", "land_clearance",
-                       model.first_segment(SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);
-  }
+  write_bearing_attributes(file, model);
   return file;
 }
 

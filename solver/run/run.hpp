@@ -93,8 +93,9 @@ struct RunSummary {
   /// there), beside the run's thread; 0 when the run's thread writes (the parallel output).
   double output_thread_seconds = 0;
   double cage_speed_rpm = 0;            ///< mean over the second half of the run
-  double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples
-  double cage_slip = 0;                 ///< 1 - cage / epicyclic
+  double epicyclic_cage_speed_rpm = 0;  ///< mean over the same samples, at the nominal contact angle
+  double rolling_cage_speed_rpm = 0;    ///< the same at the loaded contact angle (/cage/rolling_speed)
+  double cage_slip = 0;                 ///< 1 - cage / rolling (the loaded contact angle)
   double driven_ring_revolutions = 0;
   std::vector<double> inner_ring_contact_force_n;  ///< mean over the second half, from the rolling elements
   std::vector<double> inner_ring_load_n;           ///< applied, mean over the same samples

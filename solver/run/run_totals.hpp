@@ -55,7 +55,7 @@ class RunTotals {
   bool turned_ = false;
   // Over the second half.
   contact::Vec3 force_sum_ = contact::Vec3::Zero(), load_sum_ = contact::Vec3::Zero();
-  double cage_sum_ = 0, epicyclic_sum_ = 0, max_element_load_ = 0;
+  double cage_sum_ = 0, epicyclic_sum_ = 0, rolling_sum_ = 0, max_element_load_ = 0;
   long half_count_ = 0;
   // Counters of the integrators that have ended, and what this process's counters start from.
   IntegratorStatistics finished_;

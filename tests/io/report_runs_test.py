@@ -7,9 +7,10 @@ Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --
 - the page, the figures (PNG, at least 1200 px wide) and summary.json exist; the page embeds every
   figure and names the scene;
 - summary.json's numbers against values this test computes from the output file itself through the
-  reader (raceway_output.py) and against the run's own summary (summary_json, written by the C++
+  reader (the raceway package) and against the run's own summary (summary_json, written by the C++
   run loop): the cage speed window mean, the kinematic speed (spatial: /cage/rolling_speed mean;
-  planar: the run's epicyclic speed), the largest rolling-element load's window mean, the pocket
+  planar: the run's epicyclic speed), one slip in the run's last line, its summary and the report
+  (at the loaded contact angle), the largest rolling-element load's window mean, the pocket
   impact count (every run of samples above the contact threshold on one bar of one pocket), the
   cage-land force mean;
 - the XDMF file: it parses, every HDF DataItem names a dataset of the .h5 with its shape, every
@@ -79,7 +80,7 @@ def expected_from_file(out, window_start):
     if spatial:
         e["rolling_mean"] = float(np.mean(np.asarray(out["cage/rolling_speed"])[w]))
         g = out.segments("ball_inner_groove")
-        balls = np.asarray(g["ball"], dtype=int)
+        balls = np.asarray(g["element"], dtype=int)
         n = int(balls.max()) + 1
         load = np.zeros((len(t), n))
         for c, k in enumerate(balls):
@@ -87,7 +88,7 @@ def expected_from_file(out, window_start):
         p = out.segments("ball_pocket")
         direction = -1 if e["cage_mean"] < 0 else 1
         front, rear = np.zeros((len(t), n)), np.zeros((len(t), n))
-        for c, k in enumerate(np.asarray(p["ball"], dtype=int)):
+        for c, k in enumerate(np.asarray(p["element"], dtype=int)):
             fn, fc = p["normal_force"][:, c], p["circumferential_force"][:, c]
             front[:, k] += np.where((fn > 0) & (fc * direction < 0), fn, 0.0)
             rear[:, k] += np.where((fn > 0) & (fc * direction >= 0), fn, 0.0)
@@ -106,7 +107,7 @@ def expected_from_file(out, window_start):
 
 def check_summary(s, h5, element):
     sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
-    from raceway_output import RacewayOutput
+    from raceway import RacewayOutput
     with RacewayOutput(h5) as out:
         run_summary = out.summary
         e = expected_from_file(out, s["window"]["start_s"])
@@ -115,9 +116,14 @@ def check_summary(s, h5, element):
     cs = s["cage_speed"]
     near(cs["mean_rad_s"], e["cage_mean"], 1e-12, "cage speed window mean")
     near(cs["mean_rpm"], run_summary["cage_speed_rpm"], 1e-9, "cage speed against the run's own summary")
+    # One slip definition: the run's summary (and its last line) and the report, at the loaded angle.
+    slip = cs["slip"]
+    near(run_summary["cage_slip"], slip, 1e-9, "the run summary's cage_slip against the report's", 1e-12)
+    near(run_summary["rolling_cage_speed_rpm"], cs.get("rolling_rpm", cs["epicyclic_rpm"]), 1e-9,
+         "the run summary's kinematic speed at the loaded angle against the report's")
     if spatial:
         near(cs["rolling_rad_s"], e["rolling_mean"], 1e-12, "kinematic speed at the loaded contact angle")
-        near(cs["slip_rolling"], 1 - e["cage_mean"] / e["rolling_mean"], 1e-9, "slip at the loaded angle", 1e-12)
+        near(cs["slip"], 1 - e["cage_mean"] / e["rolling_mean"], 1e-9, "slip at the loaded angle", 1e-12)
     else:
         near(cs["epicyclic_rpm"], run_summary["epicyclic_cage_speed_rpm"], 1e-6, "planar epicyclic speed against the "
              "run's own summary")
@@ -217,6 +223,7 @@ def main():
         check(r.returncode == 0, f"run: exit code {r.returncode}: {r.stderr[-2000:]}")
         if r.returncode:
             return 1
+        run_line = re.search(r"slip (-?[0-9.]+) %", r.stderr)
         r = subprocess.run([raceway, "report", h5, "--xdmf", "--vtk"], capture_output=True, text=True, timeout=600)
         check(r.returncode == 0, f"report: exit code {r.returncode}: {r.stderr[-3000:]}")
         folder = os.path.join(work, scene + "_report")
@@ -233,6 +240,10 @@ def main():
         check(page.count("data:image/png;base64,") == len(pngs), "the page embeds every figure")
         check(s["scene_name"] in page and "<pre>" in page, "the page names the scene and holds its text")
         impacts = check_summary(s, h5, element)
+        slip = s["cage_speed"]["slip"]
+        check(run_line is not None and abs(float(run_line.group(1)) - 100 * slip) <= 0.0005 + 1e-9,
+              f"the run's last line says slip {run_line.group(1) if run_line else '?'} %, the report "
+              f"{100 * slip:.4f} %")
         check_xdmf(os.path.join(work, scene + ".xdmf"), h5)
         check_vtk(os.path.join(work, scene + "_vtk", scene + ".pvd"), h5)
         print(f"{scene}: {len(pngs)} figures, cage {s['cage_speed']['mean_rpm']:.3f} rpm, {impacts} impacts",

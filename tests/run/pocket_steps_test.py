@@ -80,7 +80,7 @@ def sampled_sides(d):
     if "ball_pocket" in d["segments"]:
         seg = d["segments"]["ball_pocket"]
         fn, fc = seg["normal_force"], seg["circumferential_force"]
-        for c, k in enumerate(seg["ball"].astype(int)):
+        for c, k in enumerate(seg["element"].astype(int)):
             side = np.where(fc[:, c] < 0, 0, 1)
             on = fn[:, c] > 0
             for s in (0, 1):

@@ -42,7 +42,7 @@ struct SegmentSeries {
 SegmentSeries read_segments(const std::string& file, const std::string& kind, const std::string& diagnostic) {
   SegmentSeries s;
   s.values = test::read_dataset(file, "/segments/" + kind + "/" + diagnostic);
-  const auto b = test::read_dataset(file, "/segments/" + kind + "/ball");
+  const auto b = test::read_dataset(file, "/segments/" + kind + "/element");
   for (double v : b.values) s.ball.push_back(static_cast<int>(std::lround(v)));
   s.names = test::read_strings(file, "/segments/" + kind + "/names");
   return s;
