@@ -64,7 +64,8 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
   std::ifstream in(path);
   if (!in)
     throw OptionsError(
-        fmt::format("{}: cannot read the fidelity table (--table; written by perf/calibration/fidelity_table.py)", path));
+        fmt::format("{}: cannot read the fidelity table (shipped in share/raceway/data beside the executable: reinstall, "
+                    "or give --table; written by perf/calibration/fidelity_table.py)", path));
   std::vector<std::string> header;
   std::vector<FidelityRow> rows;
   std::string line;
@@ -289,7 +290,8 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
 
 std::vector<RankRow> read_rank_table(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw OptionsError(fmt::format("{}: cannot read the rank table (--rank-table; written by "
+  if (!in) throw OptionsError(fmt::format("{}: cannot read the rank table (shipped in share/raceway/data beside "
+                                          "the executable: reinstall, or give --rank-table; written by "
                                           "perf/calibration/replay_model.py --table)", path));
   std::vector<RankRow> rows;
   std::string line;

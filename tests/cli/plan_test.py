@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """`raceway plan`: one recommendation checked against an actual run, and its refusals of bad input.
 
-  plan_test.py CASE RACEWAY SOURCE_DIR
+  plan_test.py CASE RACEWAY SOURCE_DIR [CMAKE]
 
   recommendation: `raceway plan jobs/scenes/6309_R3.toml --target cage_speed=1% --target max_load=1%`
     recommends at least one change (a --set line); the scene with those overrides, run over the
@@ -16,6 +16,10 @@
     probe's predicted steps and CPU time for the scene's whole run (40 ms, 2.7 revolutions), and so
     its cost per revolution, agree with that run made for real: steps within 10 %, CPU time within
     35 % (the smaller of two runs; CPU time on a shared machine scatters by tens of per cent).
+  installed: `cmake --install` of the build into a prefix, the prefix copied to another folder
+    (the build and source trees out of the copy's sight: it finds its tables beside itself), and
+    the copy's `raceway plan` run from an unrelated working folder: it reads the tables of the
+    copy's share/raceway/data (the paths it prints), for a table scene and for a probed one.
   ranks: the rank advice (how many ranks a scene deserves: the most whose predicted efficiency is
     at least 0.7) from a rank table written here, for a scene that has only rank data, and from the
     repository's own table (data/rank_table.csv) for the high-fidelity scene, against the
@@ -26,6 +30,7 @@ import json
 import os
 import re
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -149,6 +154,32 @@ def probe(work):
     check(abs(cpu_pred / real_cpu - 1) <= 0.35, f"predicted CPU {cpu_pred:.3g} s against {real_cpu:.3g} s real: > 35 %")
 
 
+def installed(work):
+    cmake = sys.argv[4]
+    prefix, copy = os.path.join(work, "prefix"), os.path.join(work, "elsewhere", "raceway")
+    r = subprocess.run([cmake, "--install", os.path.dirname(raceway), "--prefix", prefix], capture_output=True, text=True)
+    check(r.returncode == 0, f"cmake --install exit {r.returncode}: {r.stderr[-300:]}")
+    if r.returncode != 0:
+        return
+    shutil.copytree(prefix, copy, symlinks=False)
+    shutil.rmtree(prefix)
+    binary = os.path.join(copy, "bin", "raceway")
+    tables = os.path.join(copy, "share", "raceway", "data")
+    check(os.path.isfile(os.path.join(tables, "fidelity_table.csv")), "no fidelity_table.csv installed")
+    scene = os.path.join(work, "6309_R3.toml")  # the table's scene, copied away from the source tree
+    shutil.copy(os.path.join(source, "jobs", "scenes", "6309_R3.toml"), scene)
+    other = os.path.join(work, "seed002_slower.toml")
+    shutil.copy(os.path.join(source, "jobs", "scenes", "seed002_40hz.toml"), other)
+    for s, words in ((scene, "MEASURED on this scene over its first"), (other, "TRANSFERRED from seed002_40hz")):
+        p = subprocess.run([binary, "plan", s, "--target", "cage_speed=1%"], capture_output=True, text=True, cwd=work)
+        print(p.stdout[-1500:])
+        check(p.returncode == 0, f"installed plan {os.path.basename(s)}: exit {p.returncode}: {p.stderr}")
+        check(words in p.stdout, f"installed plan {os.path.basename(s)}: no '{words}'")
+        check(os.path.join(tables, "rank_table.csv") in p.stdout, f"installed plan does not read {tables}/rank_table.csv")
+    h = subprocess.run([binary, "plan", "--help"], capture_output=True, text=True, cwd=work)
+    check(os.path.join(tables, "fidelity_table.csv") in h.stdout, f"--table's default is not in {tables}: {h.stdout}")
+
+
 def deserved(p, network):
     lines = p.stdout.splitlines()
     for i, line in enumerate(lines):
@@ -185,7 +216,8 @@ def ranks(work):
 
 
 with tempfile.TemporaryDirectory() as work:
-    {"recommendation": recommendation, "refusals": refusals, "ranks": ranks, "probe": probe}[case](work)
+    {"recommendation": recommendation, "refusals": refusals, "ranks": ranks, "probe": probe,
+     "installed": installed}[case](work)
 if failures:
     print(f"{case}: {len(failures)} failure(s)", file=sys.stderr)
     sys.exit(1)
