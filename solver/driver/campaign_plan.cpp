@@ -12,8 +12,8 @@ namespace raceway::driver {
 
 namespace {
 
-// The fit of perf/campaign_cost_model.py to the QJ215 speed sweep (docs/campaigns/qj215_speed: 8
-// scenes, 1000..8000 r/min, 20 revolutions each, one rank; perf/results/campaign_cost_model.txt).
+// The fit of perf/calibration/campaign_cost_model.py to the QJ215 speed sweep (docs/campaigns/qj215_speed: 8
+// scenes, 1000..8000 r/min, 20 revolutions each, one rank; perf/calibration/results/campaign_cost_model.txt).
 constexpr double kReferenceRpm = 1000;
 constexpr double kStepsPerRevolutionAtReference = 6.17e3;  // steps per revolution at 1000 r/min
 constexpr double kStepsPerRevolutionExponent = -0.905;     // ~ 1 / speed: steps follow the simulated time

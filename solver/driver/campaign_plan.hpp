@@ -18,7 +18,7 @@ struct SceneCost {
 /// The prediction for `revolutions` turns of the driven ring at `speed_rpm` (relative to the other
 /// ring) of a bearing with `rolling_elements`: steps = revolutions x steps per revolution(speed),
 /// wall = steps x wall per step(speed) x rolling_elements / 15, both power laws fitted to the QJ215
-/// speed sweep (perf/campaign_cost_model.py, perf/results/campaign_cost_model.txt): the steps per
+/// speed sweep (perf/calibration/campaign_cost_model.py, perf/calibration/results/campaign_cost_model.txt): the steps per
 /// revolution fall with speed (the step size is set by the contacts' time scales, not by the
 /// turning), the wall per step rises (more Newton work per step).
 SceneCost predict_scene_cost(double revolutions, double speed_rpm, int rolling_elements);

@@ -7,7 +7,7 @@
     recommends at least one change (a --set line); the scene with those overrides, run over the
     fidelity table's duration, changes the mean cage speed and the mean largest ball load of the
     second half by no more than the targets against the scene as shipped run the same way (both
-    measured as perf/fidelity_table.py measures them).
+    measured as perf/calibration/fidelity_table.py measures them).
   refusals: an unknown quantity, a tolerance that is not positive, a probe time that is not a
     positive time, a bad --set, a missing table, a bad scene, a malformed rank table: exit 2, one
     line naming what is wrong, nothing on stdout.
@@ -36,7 +36,7 @@ import sys
 import tempfile
 
 case, raceway, source = sys.argv[1], sys.argv[2], sys.argv[3]
-sys.path.insert(0, os.path.join(source, "perf"))
+sys.path.insert(0, os.path.join(source, "perf", "studies"))
 try:
     from work_precision import SCENES, read_run, set_key  # noqa: E402  (h5py, numpy)
 except ImportError as e:
@@ -67,7 +67,7 @@ def recommendation(work):
     table = os.path.join(source, "data", "fidelity_table.csv")
     rows = [r for r in csv.DictReader(l for l in open(table) if not l.startswith("#")) if r["scene"] == "6309_R3"]
     duration = rows[0]["duration_s"]
-    check(duration == SCENES["6309_R3"]["end_time"], f"table duration {duration} is not perf/work_precision.py's")
+    check(duration == SCENES["6309_R3"]["end_time"], f"table duration {duration} is not perf/studies/work_precision.py's")
     base = open(scene_file).read()
     for key, value in SCENES["6309_R3"].items():
         base = set_key(base, "scene", key, f'"{value}"')

@@ -16,7 +16,7 @@ namespace {
 
 const std::filesystem::path kSourceDir = RACEWAY_SOURCE_DIR;
 
-/// perf/results/replay_model.txt, qj215_validation on this machine: 1.26 at 2 ranks, 1.42 at 4, 1.46 at 8.
+/// perf/studies/results/replay_model.txt, qj215_validation on this machine: 1.26 at 2 ranks, 1.42 at 4, 1.46 at 8.
 double qj215_speedup(int ranks) { return ranks == 2 ? 1.26 : ranks == 4 ? 1.42 : ranks == 8 ? 1.46 : NAN; }
 
 TEST(CampaignGroups, ManyScenesOnFewRanksRunOneRankEach) {
