@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """The cost model of `raceway campaign` (solver/driver/campaign_plan.cpp) against measured campaigns.
 
-    perf/calibration/campaign_cost_model.py [--binary build/raceway] [--tables DIR] > perf/calibration/results/campaign_cost_model.txt
+    perf/calibration/campaign_cost_model.py [--binary build/raceway] [--tables DIR] [--table data/campaign_cost_model.csv] \
+        > perf/calibration/results/campaign_cost_model.txt
 
 DIR holds <campaign>/campaign_table.csv of the three QJ215 campaigns as run (default docs/campaigns).
 
 1. Fits the two power laws of the model to the QJ215 speed sweep as run (docs/campaigns/qj215_speed/
    campaign_table.csv: 8 scenes, 1000..8000 r/min, 20 revolutions, one rank each):
      steps per revolution = a (n / 1000 r/min)^b        wall per step = c (n / 1000 r/min)^d
-   (least squares in logarithms). The constants of campaign_plan.cpp are these, rounded.
+   (least squares in logarithms). With --table it writes them, rounded to three digits, as the
+   cost model `raceway campaign` reads (data/campaign_cost_model.csv, shipped in share/raceway/data).
 2. Asks `raceway campaign check` for its predictions of every scene of the three QJ215 campaigns
    and compares them with the steps and wall times the campaigns recorded (docs/campaigns/*/):
    the error of each scene, the mean absolute error, and how well the predicted order (the
@@ -55,6 +57,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
     ap.add_argument("--tables", default=os.path.join(ROOT, "docs", "campaigns"))
+    ap.add_argument("--table", help="write the fitted constants here (the shipped model: data/campaign_cost_model.csv)")
     args = ap.parse_args()
     speed = measured(args.tables, "qj215_speed")
     rpm = np.array([float(r["speed"].split()[0]) for r in speed.values()])
@@ -65,6 +68,14 @@ def main():
     print(f"# fit to {args.tables}/qj215_speed (20 revolutions, 1000..8000 r/min, 15 balls, one rank):")
     print(f"steps per revolution = {np.exp(log_a):.4g} (n / 1000 r/min)^{b:.3f}")
     print(f"wall per step        = {np.exp(log_c):.4g} s (n / 1000 r/min)^{d:.3f}")
+    if args.table:
+        with open(args.table, "w", encoding="utf-8") as f:
+            f.write(f"# The campaign cost model (solver/driver/campaign_plan.hpp), read by `raceway campaign`: the fit of\n"
+                    f"# perf/calibration/campaign_cost_model.py to {os.path.relpath(args.tables, ROOT)}/qj215_speed, "
+                    f"rounded to three digits.\n")
+            f.write("reference_rpm,reference_rolling_elements,steps_per_revolution,steps_per_revolution_exponent,"
+                    "wall_per_step_s,wall_per_step_exponent\n")
+            f.write(f"1000,15,{np.exp(log_a):.3g},{b:.3f},{np.exp(log_c):.3g},{d:.3f}\n")
     print()
     print("campaign      scene  speed  steps: predicted measured error   wall: predicted measured error")
     all_steps, all_wall = [], []

@@ -1,5 +1,6 @@
 #include "solver/driver/data_files.hpp"
 
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
@@ -8,10 +9,11 @@ namespace raceway::driver {
 namespace fs = std::filesystem;
 
 std::vector<std::string> data_file_candidates(const std::string& name) {
+  std::vector<std::string> out;
+  if (const char* dir = std::getenv("RACEWAY_DATA_DIR"); dir && *dir) out.push_back((fs::path(dir) / name).string());
   std::error_code ec;
   const fs::path exe_dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  if (ec || exe_dir.empty()) return {};
-  std::vector<std::string> out;
+  if (ec || exe_dir.empty()) return out;
   for (const fs::path& dir : {exe_dir.parent_path() / "share" / "raceway" / "data", exe_dir / "share" / "raceway" / "data"})
     out.push_back((dir / name).string());
   return out;

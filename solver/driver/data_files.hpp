@@ -9,8 +9,9 @@
 
 namespace raceway::driver {
 
-/// Where the shipped data file NAME may be, in the order they are tried (the installed tree first).
-/// Empty when the executable's own path cannot be read.
+/// Where the shipped data file NAME may be, in the order they are tried: $RACEWAY_DATA_DIR/NAME when
+/// that variable is set (a test executable outside the build tree's top, another set of tables),
+/// then the installed tree's and the build tree's places beside the executable.
 std::vector<std::string> data_file_candidates(const std::string& name);
 
 /// The first of data_file_candidates(NAME) that is a file; when none is, the first candidate (so
