@@ -267,7 +267,8 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
   std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent),\n"
             "unless the table holds the combination measured (perf/calibration/fidelity_table.py measures the plans it "
             "checks)");
-  const std::string how = best.measured ? "measured" + on + (on.empty() ? "" : ", transferred") : "predicted";
+  const std::string how = best.measured ? "measured" + on + (on.empty() ? "" : ", transferred")
+                                        : on.empty() ? "predicted" : "predicted (effects measured" + on + ")";
   std::printf("recommended: %s cost %.2fx the scene as shipped", how.c_str(), best.cost_ratio);
   if (base.cpu_s > 0)
     std::printf(" (%.3g CPU seconds for %s, against %.3g s)", best.cost_ratio * base.cpu_s, base.span.c_str(), base.cpu_s);
