@@ -5,6 +5,6 @@ load() { uptime | sed 's/.*load average: /load /'; }
 # A run summary's wall time (--summary-json FILE).
 wall() { "${py:-/usr/bin/python3}" -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1"; }
 median() { printf '%s\n' "$@" | sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
-# This machine's MPI latency and bandwidth by message size (build/perf/pingpong under ROOT), the
+# This machine's MPI latency and bandwidth by message size (build/perf/bench/pingpong under ROOT), the
 # replay model's "here" network, as pingpong.txt holds them: measure_network ROOT > pingpong.txt
-measure_network() { { header; echo "# $(load)"; mpirun -np 2 "$1/build/perf/pingpong"; } 2>&1; }
+measure_network() { { header; echo "# $(load)"; mpirun -np 2 "$1/build/perf/bench/pingpong"; } 2>&1; }

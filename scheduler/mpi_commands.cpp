@@ -11,7 +11,7 @@
 // Why: the broadcast of a command of a few hundred doubles reached the worker 1.7-2.2 us after
 // rank 0 posted it (clock readings on both ranks, the heavy scene at np=2), out of an evaluation of
 // about 460 us, and rank 0's own send of an output command waits for MPI's progress; a store into
-// shared memory is seen by the other core in about 0.1 us (perf/results/parallel_notes.md (n), (o)).
+// shared memory is seen by the other core in about 0.1 us (perf/studies/results/parallel_notes.md (n), (o)).
 // A plan's owner list still follows its command as a broadcast: plans are rare.
 #include <algorithm>
 #include <atomic>

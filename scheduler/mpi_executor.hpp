@@ -73,7 +73,7 @@ struct MpiExecutorOptions {
   /// Fraction of each rank's planned work handed out on demand within an evaluation (the plan's
   /// tail, mark_tail; scheduler/mpi_tail.cpp): every rank evaluates its fixed list, then claims
   /// tail tasks until none is left. 0: off (fixed lists only); 1: every task on demand; 0.1 is
-  /// what perf/results/parallel_notes.md measured best.
+  /// what perf/studies/results/parallel_notes.md measured best.
   double tail_share = 0.1;
   /// With every rank on rank 0's node: rank 0's commands reach the workers through a shared-memory
   /// window (the buffer, then a command word; scheduler/mpi_commands.cpp) and the workers' records

@@ -108,7 +108,7 @@ void MpiExecutor::send_reply(int phase, const double* full, const double* second
 // Shared replies. Why not messages on one node: rank 0's wait for a worker's reply of a few kB
 // that finished at the same moment was measured at a median of 4.5-6.6 us by message (a rendezvous
 // past Open MPI's 4 KiB eager limit: three legs, each waiting on the other side's progress loop)
-// against 1.2-2.1 us through the window, on the heavy scene at np=2 (perf/results/parallel_notes.md
+// against 1.2-2.1 us through the window, on the heavy scene at np=2 (perf/studies/results/parallel_notes.md
 // (n)). Through the window a reply is the records in their slots and one word stored after them.
 void MpiExecutor::post_shared_reply(int phase, const double* full, const double* seconds) {
   const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank_)];

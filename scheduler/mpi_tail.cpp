@@ -2,7 +2,7 @@
 //
 // Why: the plans balance smoothed task costs, but each rank's task time scatters from one
 // evaluation to the next by a few % of its load, and every evaluation waits for the slowest rank.
-// The scatter does not carry over from one evaluation to the next (perf/results/parallel_notes.md,
+// The scatter does not carry over from one evaluation to the next (perf/studies/results/parallel_notes.md,
 // section (j)), so no plan removes it; handing the last part of the work to whichever rank is free
 // first does.
 //
@@ -23,7 +23,7 @@
 //
 // Why not messages: a claim protocol over point-to-point messages needs rank 0 to look for claims
 // between its own tasks; with Open MPI's yield_when_idle (the default when oversubscribed, and
-// perf/run_scaling_benchmarks.sh's setting) every look that finds nothing yields the core, 1-2 us
+// perf/calibration/run_scaling_benchmarks.sh's setting) every look that finds nothing yields the core, 1-2 us
 // each here, and about a hundred looks per evaluation cost more than the imbalance they remove
 // (measured, parallel_notes.md (j)). A window needs every rank on one node (shared memory): on
 // several nodes the tail is off (said at the start) and the fixed plan runs as before.

@@ -2,7 +2,7 @@
 //
 // H5SeriesWriter stores its series chunked, byte-shuffled and deflated. Through HDF5's filter
 // pipeline that work happens inside H5Dwrite/H5Dclose on the calling thread: measured, 30 ms of a
-// 0.13 s 6309 R3 run (perf/results/output_overhead.md). The writer therefore compresses each
+// 0.13 s 6309 R3 run (perf/studies/results/output_overhead.md). The writer therefore compresses each
 // chunk as soon as its rows are complete, on a background thread, with the same two filters HDF5
 // applies (shuffle, then zlib's compress2 at the dataset's level), and hands the result to
 // H5Dwrite_chunk at the next flush: the chunk stored is the one HDF5's pipeline would have

@@ -362,7 +362,7 @@ void H5SeriesWriter::submit_whole_chunks(Series& s) {
   // chunks), so it holds whole chunks first. They leave it for the compressor: a buffer that is
   // exactly one chunk (rows appended one at a time) is moved there whole, without a copy, and the
   // buffer stays one chunk long instead of growing until the next flush (measured: copies and page
-  // faults were about half of the appends' time, perf/results/output_notes.md).
+  // faults were about half of the appends' time, perf/studies/results/output_notes.md).
   if (!s.direct) return;
   const std::size_t chunk_values = s.chunk_rows * s.row_size;
   if (s.buffer.size() == chunk_values) {

@@ -5,21 +5,33 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <numeric>
+
+#include "solver/driver/data_files.hpp"
+#include "solver/numerics/petsc_runtime.hpp"
 
 namespace raceway::driver {
 
 namespace {
 
-// The fit of perf/campaign_cost_model.py to the QJ215 speed sweep (docs/campaigns/qj215_speed: 8
-// scenes, 1000..8000 r/min, 20 revolutions each, one rank; perf/results/campaign_cost_model.txt).
-constexpr double kReferenceRpm = 1000;
-constexpr double kStepsPerRevolutionAtReference = 6.17e3;  // steps per revolution at 1000 r/min
-constexpr double kStepsPerRevolutionExponent = -0.905;     // ~ 1 / speed: steps follow the simulated time
-constexpr double kWallPerStepAtReference = 4.21e-4;        // s per step at 1000 r/min, 15 balls
-constexpr double kWallPerStepExponent = 0.541;
-constexpr double kReferenceElements = 15;  // QJ215
+using solver::OptionsError;
+
+constexpr const char* kCostModelColumns[] = {"reference_rpm", "reference_rolling_elements", "steps_per_revolution",
+                                             "steps_per_revolution_exponent", "wall_per_step_s",
+                                             "wall_per_step_exponent"};
+
+/// The comma-separated fields of a line (the file is plain numbers and names: no quoting).
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> out(1);
+  for (const char c : line)
+    if (c == ',') out.emplace_back();
+    else if (c != '\r' && c != ' ') out.back() += c;
+  return out;
+}
 
 /// The makespan of the costs, longest first, each on the group free first.
 double makespan(std::vector<double> costs, int groups) {
@@ -31,14 +43,55 @@ double makespan(std::vector<double> costs, int groups) {
 
 }  // namespace
 
-SceneCost predict_scene_cost(double revolutions, double speed_rpm, int rolling_elements) {
+CostModel read_cost_model(const std::string& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw OptionsError(fmt::format("{}: cannot read the campaign cost model (shipped in share/raceway/data beside the "
+                                   "executable: reinstall; written by perf/calibration/campaign_cost_model.py "
+                                   "--table)", path));
+  std::vector<std::string> header;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto f = fields_of(line);
+    if (header.empty()) {
+      header = f;
+      if (!std::equal(std::begin(kCostModelColumns), std::end(kCostModelColumns), header.begin(), header.end()))
+        throw OptionsError(fmt::format("{}:{}: expected the header {}", path, number, fmt::join(kCostModelColumns, ",")));
+      continue;
+    }
+    std::vector<double> v;
+    for (const auto& text : f) {
+      char* end = nullptr;
+      const double x = text.empty() ? NAN : std::strtod(text.c_str(), &end);
+      v.push_back(end && *end == '\0' && std::isfinite(x) ? x : NAN);
+    }
+    if (v.size() != header.size() || !(v[0] > 0) || !(v[1] > 0) || !(v[2] > 0) || !(v[4] > 0) ||
+        !std::isfinite(v[3]) || !std::isfinite(v[5]))
+      throw OptionsError(fmt::format("{}:{}: expected six numbers (positive, the exponents finite), found '{}'", path,
+                                     number, line));
+    return {v[0], v[1], v[2], v[3], v[4], v[5]};
+  }
+  throw OptionsError(fmt::format("{}: no line of values after the header", path));
+}
+
+const CostModel& shipped_cost_model() {
+  static const CostModel model = read_cost_model(data_file_path("campaign_cost_model.csv"));
+  return model;
+}
+
+SceneCost predict_scene_cost(const CostModel& model, double revolutions, double speed_rpm, int rolling_elements) {
   // A ring at rest still takes steps: below 1 r/min the speed of 1 r/min is taken.
-  const double x = std::max(std::abs(speed_rpm), 1.0) / kReferenceRpm;
+  const double x = std::max(std::abs(speed_rpm), 1.0) / model.reference_rpm;
   SceneCost cost;
-  cost.steps = std::max(revolutions, 0.0) * kStepsPerRevolutionAtReference * std::pow(x, kStepsPerRevolutionExponent);
-  cost.wall_seconds = cost.steps * kWallPerStepAtReference * std::pow(x, kWallPerStepExponent) *
-                      std::max(rolling_elements, 1) / kReferenceElements;
+  cost.steps = std::max(revolutions, 0.0) * model.steps_per_revolution * std::pow(x, model.steps_exponent);
+  cost.wall_seconds = cost.steps * model.wall_per_step_s * std::pow(x, model.wall_exponent) *
+                      std::max(rolling_elements, 1) / model.reference_elements;
   return cost;
+}
+
+SceneCost predict_scene_cost(double revolutions, double speed_rpm, int rolling_elements) {
+  return predict_scene_cost(shipped_cost_model(), revolutions, speed_rpm, rolling_elements);
 }
 
 GroupSizeChoice choose_group_size(int world_size, const std::vector<double>& costs, const SpeedupPrediction& speedup) {

@@ -326,7 +326,7 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
                 "continue OUT.h5.partial from its last checkpoint (OUT.h5.checkpoint); start afresh when there is none");
   run->add_flag("--parallel-output", cl.parallel_output,
                 "with several ranks each writes the segment diagnostics it evaluated (HDF5 MPI-IO, collective "
-                "writes); default: rank 0 writes the whole file (perf/results/output_notes.md: faster here)");
+                "writes); default: rank 0 writes the whole file (perf/studies/results/output_notes.md: faster here)");
   run->add_option("--output-thread", cl.output_thread,
                   "the output's work at output times on a thread of rank 0's own: auto (when it gets a core no "
                   "rank uses; under mpirun's binding it is bound to such a core), on, off; the same results either way")

@@ -13,14 +13,11 @@
 #include <set>
 
 #include "io/scene/scene_parser.hpp"
+#include "io/scene/units.hpp"
+#include "solver/driver/data_files.hpp"
+#include "solver/driver/plan_probe.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
 
-#ifndef RACEWAY_FIDELITY_TABLE
-#define RACEWAY_FIDELITY_TABLE "perf/results/fidelity_table.csv"
-#endif
-#ifndef RACEWAY_RANK_TABLE
-#define RACEWAY_RANK_TABLE "perf/results/rank_table.csv"
-#endif
 
 namespace raceway::plan {
 
@@ -67,7 +64,8 @@ std::vector<FidelityRow> read_fidelity_table(const std::string& path) {
   std::ifstream in(path);
   if (!in)
     throw OptionsError(
-        fmt::format("{}: cannot read the fidelity table (--table; written by perf/fidelity_table.py)", path));
+        fmt::format("{}: cannot read the fidelity table (shipped in share/raceway/data beside the executable: reinstall, "
+                    "or give --table; written by perf/calibration/fidelity_table.py)", path));
   std::vector<std::string> header;
   std::vector<FidelityRow> rows;
   std::string line;
@@ -128,7 +126,7 @@ Target parse_target(const std::string& text) {
 namespace {
 
 /// The measured rows of combinations ("combination" rows: several choices at once, run by
-/// perf/fidelity_table.py for the plans it checks), by their overrides.
+/// perf/calibration/fidelity_table.py for the plans it checks), by their overrides.
 std::map<std::string, const FidelityRow*> measured_combinations(const std::vector<FidelityRow>& rows) {
   std::map<std::string, const FidelityRow*> out;
   for (const auto& r : rows)
@@ -191,18 +189,32 @@ Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector
 
 namespace {
 
-void print_choices(const std::vector<FidelityRow>& rows) {
-  std::puts("what each modelling choice costs and changes (one change at a time against the scene as shipped):");
+/// What the cost ratios multiply: the CPU time of the scene as shipped over a stated span, and where
+/// the rows come from.
+struct CostBase {
+  double cpu_s = 0;       ///< 0: no time to multiply
+  std::string span;       ///< "its 20 ms, measured", "its 0.2 s, predicted from the probe"
+  std::string reference;  ///< empty: the rows were measured on this scene; else the scene they come from
+};
+
+void print_choices(const std::vector<FidelityRow>& rows, const CostBase& base) {
+  if (base.reference.empty())
+    std::puts("what each modelling choice costs and changes (one change at a time against the scene as shipped):");
+  else
+    std::printf("what each modelling choice costs and changes, TRANSFERRED from %s (measured there, one change at a\n"
+                "time against %s as shipped; the cost here = this scene's probe cost x the cost ratio measured there):\n",
+                base.reference.c_str(), base.reference.c_str());
   std::printf("  %-14s %-11s %8s %11s %11s %12s  %s\n", "choice", "option", "cost", "cage speed", "max load",
               "pocket force", "how");
   for (const auto& r : rows) {
     if ((r.choice == "reference" && r.option == "as shipped") || r.choice == "combination") continue;
-    const std::string how = r.choice == "reference" ? r.note : !r.overrides.empty() ? "--set " + r.overrides : r.note;
+    std::string how = r.choice == "reference" ? r.note : !r.overrides.empty() ? "--set " + r.overrides : r.note;
     if (r.cost_ratio <= 0) {
       std::printf("  %-14s %-11s %8s  %s (%s)\n", r.choice.c_str(), r.option.c_str(), "failed", how.c_str(),
                   r.note.c_str());
       continue;
     }
+    if (!base.reference.empty() && base.cpu_s > 0) how = fmt::format("{:.3g} CPU s; {}", r.cost_ratio * base.cpu_s, how);
     std::printf("  %-14s %-11s %7.2fx %11s %11s %12s  %s\n", r.choice.c_str(), r.option.c_str(), r.cost_ratio,
                 percent(r.change[0]).c_str(), percent(r.change[1]).c_str(), percent(r.change[2]).c_str(), how.c_str());
   }
@@ -211,8 +223,8 @@ void print_choices(const std::vector<FidelityRow>& rows) {
             "   the timing scatter and never recommended)");
 }
 
-/// The `--set` form of a row's overrides: "a.b=1 c.d=[3, 3]" -> {"a.b=1", "c.d=[3, 3]"}. An override
-/// starts at a word followed by '=' after a space outside brackets.
+}  // namespace
+
 std::vector<std::string> split_overrides(const std::string& text) {
   std::vector<std::string> out;
   int depth = 0;
@@ -232,6 +244,8 @@ std::vector<std::string> split_overrides(const std::string& text) {
   return out;
 }
 
+namespace {
+
 std::string shell_quoted(const std::string& s) {
   if (s.find_first_of(" \"[]$'") == std::string::npos) return s;
   std::string out = "'";
@@ -240,25 +254,28 @@ std::string shell_quoted(const std::string& s) {
 }
 
 void print_recommendation(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets,
-                          const FidelityRow* reference, const FidelityRow* uncertainty) {
+                          const CostBase& base, const FidelityRow* uncertainty) {
+  const std::string on = base.reference.empty() ? "" : " on " + base.reference;
   for (const auto& t : targets) {
     const auto q = static_cast<std::size_t>(t.quantity);
     std::printf("target: %s within %s of the scene as shipped\n", kQuantities[q], percent(t.tolerance).c_str());
     if (uncertainty && uncertainty->change[q] > t.tolerance)
-      std::printf("  note: below the reference's own uncertainty (%s at rtol / 10): not resolved by the data\n",
-                  percent(uncertainty->change[q]).c_str());
+      std::printf("  note: below the reference's own uncertainty%s (%s at rtol / 10): not resolved by the data\n",
+                  on.c_str(), percent(uncertainty->change[q]).c_str());
   }
   const Recommendation best = recommend(rows, targets);
   std::puts("combining choices: their costs multiply and their changes add (a bound when the changes are independent),\n"
-            "unless the table holds the combination measured (perf/fidelity_table.py measures the plans it checks)");
-  std::printf("recommended: %s cost %.2fx the scene as shipped", best.measured ? "measured" : "predicted",
-              best.cost_ratio);
-  if (reference) std::printf(" (%.3g CPU seconds for its %s, against %.3g s)", best.cost_ratio * reference->cpu_s,
-                             reference->duration.c_str(), reference->cpu_s);
+            "unless the table holds the combination measured (perf/calibration/fidelity_table.py measures the plans it "
+            "checks)");
+  const std::string how = best.measured ? "measured" + on + (on.empty() ? "" : ", transferred")
+                                        : on.empty() ? "predicted" : "predicted (effects measured" + on + ")";
+  std::printf("recommended: %s cost %.2fx the scene as shipped", how.c_str(), best.cost_ratio);
+  if (base.cpu_s > 0)
+    std::printf(" (%.3g CPU seconds for %s, against %.3g s)", best.cost_ratio * base.cpu_s, base.span.c_str(), base.cpu_s);
   std::puts("");
   for (const auto& t : targets) {
     const auto q = static_cast<std::size_t>(t.quantity);
-    std::printf("  %s change of %s %s (target %s)\n", best.measured ? "measured" : "predicted", kQuantities[q],
+    std::printf("  %s change of %s %s (target %s)\n", how.c_str(), kQuantities[q],
                 ((best.measured ? std::string() : std::string("at most ")) + percent(best.change[q])).c_str(),
                 percent(t.tolerance).c_str());
   }
@@ -274,8 +291,9 @@ void print_recommendation(const std::vector<FidelityRow>& rows, const std::vecto
 
 std::vector<RankRow> read_rank_table(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw OptionsError(fmt::format("{}: cannot read the rank table (--rank-table; written by "
-                                          "perf/replay_model.py --table)", path));
+  if (!in) throw OptionsError(fmt::format("{}: cannot read the rank table (shipped in share/raceway/data beside "
+                                          "the executable: reinstall, or give --rank-table; written by "
+                                          "perf/calibration/replay_model.py --table)", path));
   std::vector<RankRow> rows;
   std::string line;
   bool header = true;
@@ -309,7 +327,7 @@ int deserved_ranks(const std::vector<RankRow>& rows, const std::string& network)
 
 void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path) {
   if (rows.empty()) {
-    std::printf("ranks: no replay prediction for this scene in %s (perf/run_scaling_benchmarks.sh)\n", path.c_str());
+    std::printf("ranks: no replay prediction for this scene in %s (perf/calibration/run_scaling_benchmarks.sh)\n", path.c_str());
     return;
   }
   std::set<std::string> networks;
@@ -326,9 +344,9 @@ void print_rank_advice(const std::vector<RankRow>& rows, const std::string& path
   }
 }
 
-std::string fidelity_table_path() { return RACEWAY_FIDELITY_TABLE; }
+std::string fidelity_table_path() { return driver::data_file_path("fidelity_table.csv"); }
 
-std::string rank_table_path() { return RACEWAY_RANK_TABLE; }
+std::string rank_table_path() { return driver::data_file_path("rank_table.csv"); }
 
 double predicted_speedup(const std::vector<RankRow>& rows, int ranks) {
   if (ranks == 1) return 1;
@@ -339,65 +357,135 @@ double predicted_speedup(const std::vector<RankRow>& rows, int ranks) {
 
 CLI::App* add_plan_command(CLI::App& app, PlanOptions& options) {
   auto* plan = app.add_subcommand("plan", "what each modelling choice of a scene costs and changes, and the cheapest "
-                                          "settings meeting --target (measured data: perf/results/fidelity_table.csv)");
-  plan->add_option("scene", options.scene_path, "scene file (TOML); its data are the table's rows of its file name")
+                                          "settings meeting --target (measured data: share/raceway/data)");
+  plan->add_option("scene", options.scene_path,
+                   "scene file (TOML): the table's rows of its file name, or (a scene the table has not measured) "
+                   "a probe run of the scene and the effects measured on the table's scenes")
       ->required();
   plan->add_option("--target", options.targets,
                    "QUANTITY=TOLERANCE, relative or with %: cage_speed, max_load (roller/ball loads), pocket_force; "
                    "repeatable");
+  plan->add_option("--set", options.overrides,
+                   "set a scene key, validated like the file's (repeatable); the scene is then probed")
+      ->allow_extra_args(false);
+  plan->add_option("--probe-time", options.probe_time,
+                   "simulated time of the probe run of a scene the table has not measured")
+      ->capture_default_str();
   options.table_path = fidelity_table_path();
   plan->add_option("--table", options.table_path, "the fidelity table")->capture_default_str();
   options.rank_table_path = rank_table_path();
   plan->add_option("--rank-table", options.rank_table_path,
-                   "predicted parallel efficiency per scene and rank count (perf/replay_model.py --table)")
+                   "predicted parallel efficiency per scene and rank count (perf/calibration/replay_model.py --table)")
       ->capture_default_str();
   return plan;
 }
 
-int plan_command(const PlanOptions& options) {
-  // Everything is checked before anything is printed: the scene, the targets, the table.
-  const io::Scene scene = io::load_scene(options.scene_path);
-  std::vector<Target> targets;
-  for (const auto& t : options.targets) targets.push_back(parse_target(t));
-  const std::string name = std::filesystem::path(options.scene_path).stem().string();
-  std::vector<FidelityRow> rows;
-  std::set<std::string> known;
-  for (auto& r : read_fidelity_table(options.table_path)) {
-    known.insert(r.scene);
-    if (r.scene == name) rows.push_back(std::move(r));
+namespace {
+
+/// --probe-time as seconds: a time quantity ("10 ms"), positive.
+double parse_probe_time(const std::string& text) {
+  double seconds = 0;
+  try {
+    seconds = io::parse_quantity(text, io::dim::time);
+  } catch (const io::UnitError& e) {
+    throw OptionsError(fmt::format("--probe-time '{}': {}", text, e.what()));
   }
-  std::vector<RankRow> ranks;
-  for (auto& r : read_rank_table(options.rank_table_path))
-    if (r.scene == name) ranks.push_back(std::move(r));
-  if (rows.empty() && ranks.empty())
-    throw OptionsError(fmt::format("{}: no measured data for scene '{}' (the table has {}); measure it with "
-                                   "perf/fidelity_table.py --scenes {}", options.table_path, name,
-                                   fmt::join(known, ", "), name));
-  if (rows.empty()) {  // a scene measured for its parallel run only
-    std::printf("plan for %s (%s): no fidelity data (%s), ranks only\n", options.scene_path.c_str(),
-                scene.scene.name.c_str(), options.table_path.c_str());
-    print_rank_advice(ranks, options.rank_table_path);
-    return 0;
-  }
+  if (!(seconds > 0)) throw OptionsError(fmt::format("--probe-time '{}': the probe needs a positive time", text));
+  return seconds;
+}
+
+std::string seconds_text(double s) { return s >= 0.1 ? fmt::format("{:.3g} s", s) : fmt::format("{:.3g} ms", 1e3 * s); }
+
+/// What the probe measured on this scene, and what it predicts for the scene's whole run.
+void print_probe(const io::Scene& scene, const Probe& p) {
+  std::printf("probe, MEASURED on this scene at its own settings (one rank, %s): %s of simulated time (%.3g "
+              "revolutions of the driven ring) in %.3g CPU s%s\n", p.method.c_str(), seconds_text(p.simulated_s).c_str(),
+              p.revolutions, p.cpu_s, p.simulated_s >= scene.scene.end_time ? " (the whole run)" : "");
+  std::printf("  start-up and the first %s: %.3g CPU s, %ld steps\n", seconds_text(p.window_start_s).c_str(),
+              p.cpu_at_window_s, p.steps_at_window);
+  std::printf("  over %s..%s: %.4g CPU s and %.4g steps per simulated second\n", seconds_text(p.window_start_s).c_str(),
+              seconds_text(p.simulated_s).c_str(), p.cpu_per_second(), p.steps_per_second());
+  if (p.revolutions_per_second() > 0)
+    std::printf("  per revolution of the driven ring: %.4g CPU s, %.4g steps (%.4g revolutions per second)\n",
+                p.cpu_per_second() / p.revolutions_per_second(), p.steps_per_second() / p.revolutions_per_second(),
+                p.revolutions_per_second());
+  else
+    std::puts("  the driven ring does not turn during the probe: no cost per revolution");
+  const double end = scene.scene.end_time;
+  std::printf("predicted for the whole run (end_time %s): %.3g CPU s, %.4g steps (the probe to %s, then the rates "
+              "above: a speed or load that changes after the probe changes them)\n", seconds_text(end).c_str(),
+              p.predicted_cpu_s(end), p.predicted_steps(end), seconds_text(p.window_start_s).c_str());
+}
+
+/// The plan of a scene the table has measured itself (its file name, no --set).
+void plan_measured(const io::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& rows,
+                   const std::vector<Target>& targets) {
   const auto find = [&](const char* option) -> const FidelityRow* {
     for (const auto& r : rows)
       if (r.choice == "reference" && r.option == option) return &r;
     return nullptr;
   };
   const FidelityRow* reference = find("as shipped");
-  std::printf("plan for %s (%s), measured over its first %s with perf/fidelity_table.py\n",
+  std::printf("plan for %s (%s): MEASURED on this scene over its first %s with perf/calibration/fidelity_table.py\n",
               options.scene_path.c_str(), scene.scene.name.c_str(), reference ? reference->duration.c_str() : "?");
+  const CostBase base{reference ? reference->cpu_s : 0, "its " + (reference ? reference->duration : "?"), ""};
+  print_choices(rows, base);
+  if (!targets.empty()) print_recommendation(rows, targets, base, find("uncertainty"));
+}
+
+/// The plan of any other scene: a probe run of it and the effects transferred from a table scene.
+void plan_probed(const io::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& table,
+                 const std::vector<Target>& targets) {
+  const Transfer transfer = transfer_from_table(options.scene_path, options.overrides, table);
+  const Probe probe = probe_scene(scene, options.probe_time.empty() ? kDefaultProbeSeconds
+                                                                    : parse_probe_time(options.probe_time));
+  std::printf("plan for %s (%s): not a scene of the fidelity table%s; a probe run of it, and the effects of the\n"
+              "modelling choices measured on the table's scenes\n", options.scene_path.c_str(), scene.scene.name.c_str(),
+              options.overrides.empty() ? "" : " (--set changes it)");
+  print_probe(scene, probe);
+  std::puts("which table scene the effects come from (an option applies when this scene with its --set is valid and "
+            "differs):");
+  for (const auto& line : transfer.reasons) std::printf("  %s\n", line.c_str());
+  if (transfer.reference.empty()) {
+    std::puts("no measured option applies to this scene: the probe's cost only, no recommendation");
+    return;
+  }
+  std::printf("  -> %s; its changes are taken as they are, its cost ratios scale this scene's predicted cost\n",
+              transfer.reference.c_str());
+  const CostBase base{probe.predicted_cpu_s(scene.scene.end_time),
+                      "its " + seconds_text(scene.scene.end_time) + ", predicted from the probe", transfer.reference};
+  print_choices(transfer.rows, base);
+  const FidelityRow* uncertainty = nullptr;
+  for (const auto& r : transfer.rows)
+    if (r.choice == "reference" && r.option == "uncertainty") uncertainty = &r;
+  if (!targets.empty()) print_recommendation(transfer.rows, targets, base, uncertainty);
+}
+
+}  // namespace
+
+int plan_command(const PlanOptions& options) {
+  // Everything is checked before anything is printed: the scene, the targets, the tables.
+  const io::Scene scene = io::load_scene(options.scene_path, options.overrides);
+  std::vector<Target> targets;
+  for (const auto& t : options.targets) targets.push_back(parse_target(t));
+  if (!options.probe_time.empty()) parse_probe_time(options.probe_time);
+  const std::string name = std::filesystem::path(options.scene_path).stem().string();
+  const std::vector<FidelityRow> table = read_fidelity_table(options.table_path);
+  std::vector<FidelityRow> rows;
+  for (const auto& r : table)
+    if (r.scene == name && options.overrides.empty()) rows.push_back(r);
+  std::vector<RankRow> ranks;
+  for (auto& r : read_rank_table(options.rank_table_path))
+    if (r.scene == name && options.overrides.empty()) ranks.push_back(std::move(r));
+  if (rows.empty()) plan_probed(scene, options, table, targets);
+  else plan_measured(scene, options, rows, targets);
   std::printf("planar or spatial: %s; a %s bearing is built %s only\n",
               scene.scene.model == io::ModelKind::spatial ? "spatial" : "planar",
               scene.bearing.is_ball_bearing() ? "ball" : "cylindrical roller",
               scene.bearing.is_ball_bearing() ? "spatial" : "planar");
-  print_choices(rows);
   print_rank_advice(ranks, options.rank_table_path);
-  if (targets.empty()) {
+  if (targets.empty())
     std::puts("no --target given: add e.g. --target cage_speed=1% for the cheapest settings that meet it");
-    return 0;
-  }
-  print_recommendation(rows, targets, reference, find("uncertainty"));
   return 0;
 }
 

@@ -1,11 +1,13 @@
 // `raceway plan SCENE [--target QUANTITY=TOL ...]`: the fidelity planner. It states what each
-// modelling choice of the scene costs and what it changes, from measured data kept in the
-// repository (perf/results/fidelity_table.csv, refreshed by perf/fidelity_table.py), and recommends
-// the cheapest combination of choices whose predicted change meets every target, printed as
-// `--set section.key=value` overrides; and, from the replay model's table
-// (perf/results/rank_table.csv, written by perf/replay_model.py --table: the model is Python and
-// needs a recorded run, so the executable reads its predictions instead of porting it), how many
-// ranks the scene deserves.
+// modelling choice of the scene costs and what it changes, from measured data the product ships
+// (data/fidelity_table.csv, installed in share/raceway/data; refreshed by
+// perf/calibration/fidelity_table.py), and recommends the cheapest combination of choices whose
+// predicted change meets every target, printed as `--set section.key=value` overrides; and, from the
+// replay model's table (data/rank_table.csv, written by perf/calibration/replay_model.py --table: the
+// model is Python and needs a recorded run, so the executable reads its predictions instead of
+// porting it), how many ranks the scene deserves. A scene the table has not measured (or one changed
+// by --set) is probed: a short run of it measures its cost, and the effects are transferred from
+// the table's scene whose options apply to it (solver/driver/plan_probe.hpp).
 #pragma once
 
 #include <array>
@@ -54,17 +56,24 @@ Target parse_target(const std::string& text);
 /// "combination" row replaces the prediction of its set of overrides by its measurement).
 Recommendation recommend(const std::vector<FidelityRow>& rows, const std::vector<Target>& targets);
 
-/// The fidelity table of the source tree (perf/results/fidelity_table.csv), unless --table names another.
+/// The `--set` form of a row's overrides: "a.b=1 c.d=[3, 3]" -> {"a.b=1", "c.d=[3, 3]"}. An override
+/// starts at a word followed by '=' after a space outside brackets.
+std::vector<std::string> split_overrides(const std::string& text);
+
+/// The shipped fidelity table (fidelity_table.csv of share/raceway/data beside the executable,
+/// solver/driver/data_files.hpp), unless --table names another.
 std::string fidelity_table_path();
 
 struct PlanOptions {
   std::string scene_path;
   std::vector<std::string> targets;
+  std::vector<std::string> overrides;  ///< --set section.key=VALUE
+  std::string probe_time;              ///< --probe-time, a time quantity; empty: kDefaultProbeSeconds
   std::string table_path;
   std::string rank_table_path;
 };
 
-/// One row of the rank table (perf/results/rank_table.csv, written by perf/replay_model.py --table):
+/// One row of the rank table (data/rank_table.csv, written by perf/calibration/replay_model.py --table):
 /// the replay model's prediction for a scene at a rank count on a network.
 struct RankRow {
   std::string scene, network;
@@ -73,12 +82,13 @@ struct RankRow {
 };
 
 /// The predicted speed-up of the scene whose rank-table rows are ROWS on RANKS ranks against one
-/// rank, on this machine's network ("here"): perf/replay_model.py's prediction, which `raceway plan`
+/// rank, on this machine's network ("here"): perf/calibration/replay_model.py's prediction, which `raceway plan`
 /// advises ranks by and `raceway campaign` sizes its groups by. The one function and the one table
 /// that say it: NaN when the table has no prediction for RANKS, 1 for one rank.
 double predicted_speedup(const std::vector<RankRow>& rows, int ranks);
 
-/// The rank table of the source tree (perf/results/rank_table.csv), unless --rank-table names another.
+/// The shipped rank table (rank_table.csv of share/raceway/data beside the executable), unless
+/// --rank-table names another.
 std::string rank_table_path();
 
 /// The rows of the rank table at PATH; throws solver::OptionsError naming the file and line.

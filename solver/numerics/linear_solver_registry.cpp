@@ -37,7 +37,7 @@ const LinearSolverBackend& linear_solver_backend(io::LinearSolverKind kind) {
 }
 
 // `auto` is the hand-written block elimination. Measured per Newton setup + solve (assembly, M =
-// I - gamma J, factorisation, one solve; perf/results/bordered_scaling.txt), both backends are O(N)
+// I - gamma J, factorisation, one solve; perf/bench/results/bordered_scaling.txt), both backends are O(N)
 // and exact, and the block elimination is 2.4 to 2.9 times cheaper at every N from 8 to 512 (real
 // bearings: 6309, 8 balls: 29 vs 85 us; QJ215, 15 balls: 36 vs 90 us; seed 002, 13 rollers: 11 vs
 // 31 us). PETSc's fixed and per-block costs: four sub-matrix extractions per setup, a sparse LU of

@@ -9,7 +9,7 @@
 //  - block-elimination (block_elimination_backend.cpp): the hand-written Schur complement
 //    elimination of bordered_matrix.hpp, on Eigen blocks. Kept because it is several times cheaper
 //    than PETSc per setup + solve for the system sizes of real bearings (numbers in README "Newton
-//    linear solvers" and perf/results/).
+//    linear solvers" and perf/bench/results/).
 //  - sundials-dense (sundials_dense_backend.cpp): SUNDIALS dense LU of the same matrix, the baseline.
 //
 // Collective: nothing here communicates; all of it runs on the master rank (PETSC_COMM_SELF).

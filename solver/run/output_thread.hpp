@@ -1,7 +1,7 @@
 // The output's work at each output time on a thread of its own, beside the integration: the run's
 // thread copies the interpolated state into a queue and integrates on; this thread evaluates the
 // right-hand side for the diagnostics, appends the rows and adds to the summary's sums
-// (docs/output_layout.md, "Who writes"; perf/results/output_notes.md has the measurements). The
+// (docs/output_layout.md, "Who writes"; perf/studies/results/output_notes.md has the measurements). The
 // samples are worked one at a time in the order given, by the same code as on the run's thread,
 // so the file and the sums are bitwise the ones the run's thread would have made.
 //

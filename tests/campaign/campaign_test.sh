@@ -24,7 +24,7 @@
 #              campaign's but for the wall times and the scene stopped by SIGUSR1 (resumed from the
 #              signal's checkpoint, off the uninterrupted step sequence); the killed one is bitwise.
 #   plan:      without ranks_per_scene the group size is the one of the shortest predicted campaign
-#              from the scene's predicted speed-up (perf/results/rank_table.csv, read here too): one
+#              from the scene's predicted speed-up (data/rank_table.csv, read here too): one
 #              6309 R3 scene on 2 ranks runs on both when its speed-up there is above 1, the 8 QJ215
 #              speeds on 8 ranks one each, 2 of them 4 each;
 #              --only with no such scene is refused (exit 2) before anything is written.
@@ -206,8 +206,8 @@ EOF
 plan)
   "$mpiexec" -np 2 "$raceway" campaign "$source_dir/tests/campaign/ranks_campaign.toml" -o "$work/c" > "$work/log" 2>&1 \
     || fail "campaign: $(tail -5 "$work/log")"
-  speedup2=$(awk -F, '$1 == "6309_R3" && $2 == "here" && $3 == 2 {printf "%.2f", $5}' "$source_dir/perf/results/rank_table.csv")
-  [[ -n $speedup2 ]] || fail "no 6309_R3 prediction for 2 ranks in perf/results/rank_table.csv"
+  speedup2=$(awk -F, '$1 == "6309_R3" && $2 == "here" && $3 == 2 {printf "%.2f", $5}' "$source_dir/data/rank_table.csv")
+  [[ -n $speedup2 ]] || fail "no 6309_R3 prediction for 2 ranks in data/rank_table.csv"
   grep -q "2 ranks per scene: 1 groups, speed-up $speedup2 " "$work/log" || fail "no speed-up $speedup2 line: $(cat "$work/log")"
   if awk -v s="$speedup2" 'BEGIN {exit !(s > 1)}'; then
     grep -q "chosen: 2 ranks per scene" "$work/log" || fail "not 2 ranks per scene (speed-up $speedup2): $(cat "$work/log")"

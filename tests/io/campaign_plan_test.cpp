@@ -16,7 +16,7 @@ namespace {
 
 const std::filesystem::path kSourceDir = RACEWAY_SOURCE_DIR;
 
-/// perf/results/replay_model.txt, qj215_validation on this machine: 1.26 at 2 ranks, 1.42 at 4, 1.46 at 8.
+/// perf/studies/results/replay_model.txt, qj215_validation on this machine: 1.26 at 2 ranks, 1.42 at 4, 1.46 at 8.
 double qj215_speedup(int ranks) { return ranks == 2 ? 1.26 : ranks == 4 ? 1.42 : ranks == 8 ? 1.46 : NAN; }
 
 TEST(CampaignGroups, ManyScenesOnFewRanksRunOneRankEach) {
@@ -89,6 +89,52 @@ TEST(CampaignCost, PredictedStepsFollowTheRecordedSpeedSweep) {
   EXPECT_DOUBLE_EQ(predict_scene_cost(40, 3000, 15).steps, 2 * predict_scene_cost(20, 3000, 15).steps);
   EXPECT_GT(predict_scene_cost(1, 0, 15).steps, 0);
   EXPECT_DOUBLE_EQ(predict_scene_cost(1, 3000, 15).wall_seconds, 0.5 * predict_scene_cost(1, 3000, 30).wall_seconds);
+}
+
+TEST(CampaignCost, TheModelIsTheShippedTable) {
+  // data/campaign_cost_model.csv holds the constants; a model read from another file predicts by
+  // its own (twice the steps per revolution, twice the steps; twice the reference elements, half
+  // the wall time).
+  const CostModel shipped = read_cost_model((kSourceDir / "data/campaign_cost_model.csv").string());
+  EXPECT_DOUBLE_EQ(shipped.steps_per_revolution, 6.17e3);
+  EXPECT_DOUBLE_EQ(shipped.wall_exponent, 0.541);
+  CostModel other = shipped;
+  other.steps_per_revolution *= 2;
+  other.reference_elements *= 2;
+  const SceneCost a = predict_scene_cost(shipped, 20, 3000, 15), b = predict_scene_cost(other, 20, 3000, 15);
+  EXPECT_DOUBLE_EQ(b.steps, 2 * a.steps);
+  EXPECT_DOUBLE_EQ(b.wall_seconds, a.wall_seconds);
+  EXPECT_DOUBLE_EQ(predict_scene_cost(20, 3000, 15).steps, a.steps);  // the shipped model, found by RACEWAY_DATA_DIR
+}
+
+TEST(CampaignCost, ABadTableIsRefusedNamingFileAndLine) {
+  const auto path = std::filesystem::temp_directory_path() / "raceway_bad_cost_model.csv";
+  const auto refused = [&](const std::string& text, const std::string& expected) {
+    std::ofstream(path) << text;
+    try {
+      read_cost_model(path.string());
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  const std::string header =
+      "reference_rpm,reference_rolling_elements,steps_per_revolution,steps_per_revolution_exponent,wall_per_step_s,"
+      "wall_per_step_exponent\n";
+  refused("# c\nrpm,elements\n1,2\n", path.string() + ":2: expected the header");
+  refused(header + "1000,15,6.17e3,-0.905,4.21e-4\n", path.string() + ":2: expected six numbers");
+  refused(header + "1000,15,-6.17e3,-0.905,4.21e-4,0.5\n", ":2: expected six numbers");
+  refused(header + "1000,15,6.17e3,nan,4.21e-4,0.5\n", ":2: expected six numbers");
+  refused(header, "no line of values");
+  std::filesystem::remove(path);
+  refused("", "no line of values");
+  std::filesystem::remove(path);
+  try {
+    read_cost_model(path.string());
+    ADD_FAILURE() << "a missing file was read";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read the campaign cost model"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
