@@ -299,21 +299,25 @@ namespace {
 std::vector<std::vector<std::size_t>> combinations(const Reader& r, const Campaign& c, int line) {
   std::vector<std::vector<std::size_t>> out;
   if (c.axes.empty()) return {{}};
-  if (c.sweep == "zip") {
+  if (c.sweep == "zip")
     for (const CampaignAxis& a : c.axes)
       if (a.values.size() != c.axes[0].values.size())
         r.fail(line, "campaign.sweep", fmt::format("zip needs axes of equal length: '{}' has {} values, '{}' {}",
                                                    c.axes[0].key, c.axes[0].values.size(), a.key, a.values.size()));
+  // Counted before they are listed: a product of long axes is refused, not expanded.
+  double count = c.sweep == "zip" ? double(c.axes[0].values.size()) : 1;
+  std::string sizes;
+  for (const CampaignAxis& a : c.axes)
+    sizes += fmt::format("{}{}", sizes.empty() ? "" : c.sweep == "zip" ? ", " : " x ", a.values.size());
+  if (c.sweep != "zip")
+    for (const CampaignAxis& a : c.axes) count *= double(a.values.size());
+  if (count > kMaxCampaignScenes)
+    r.fail(line, "campaign.sweep", fmt::format("the {} of the axes is {:.4g} scenes ({}); a campaign has at most {:.0f}",
+                                               c.sweep, count, sizes, kMaxCampaignScenes));
+  if (c.sweep == "zip") {
     for (std::size_t i = 0; i < c.axes[0].values.size(); ++i) out.emplace_back(c.axes.size(), i);
     return out;
   }
-  // Counted before they are listed: a product of long axes is refused, not expanded.
-  double count = 1;
-  std::string sizes;
-  for (const CampaignAxis& a : c.axes) count *= double(a.values.size()), sizes += fmt::format("{}{}", sizes.empty() ? "" : " x ", a.values.size());
-  if (count > kMaxCampaignScenes)
-    r.fail(line, "campaign.sweep", fmt::format("the product of the axes is {:.4g} scenes ({}); a campaign has at most {:.0f}",
-                                               count, sizes, kMaxCampaignScenes));
   std::vector<std::size_t> at(c.axes.size(), 0);
   while (true) {
     out.push_back(at);

@@ -45,7 +45,6 @@ std::vector<Entry> entries_of(const Campaign& c) {
   };
   add("campaign.name", c.name, "campaign.name", line("campaign.name"));
   add("campaign.sweep", c.sweep, "campaign.sweep", line("campaign.sweep"));
-  add("campaign.metrics", fmt::format("{}", fmt::join(c.metrics, ", ")), "campaign.metrics", line("campaign.metrics"));
   for (std::size_t a = 0; a < c.axes.size(); ++a) {
     const std::string key = fmt::format("axis[{}]", a);
     add(key, fmt::format("name {}, key {}", c.axes[a].name, c.axes[a].key), key, line(key));

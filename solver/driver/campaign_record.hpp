@@ -10,9 +10,10 @@
 namespace raceway::driver {
 
 /// The campaign's identity as canonical text, one `label = value` per line: everything its results
-/// and their labels depend on: its name, sweep, metrics, axes (column name and key), the base
-/// scene's text line by line, and per scene every override and the settling time. Not the campaign
-/// file's path, layout or comments, nor the predicted costs (a later build may predict otherwise).
+/// and their labels depend on: its name, sweep, axes (column name and key), the base scene's text
+/// line by line, and per scene every override and the settling time. Not the campaign file's path,
+/// layout or comments, nor the metrics asked for (the table is drawn again from the same outputs),
+/// nor the predicted costs (a later build may predict otherwise).
 std::string campaign_identity(const Campaign& campaign);
 
 /// The identity file of a campaign folder.

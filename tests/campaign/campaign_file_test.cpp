@@ -147,7 +147,7 @@ TEST_F(CampaignFileTest, AnOutputBeyondMaxSizeIsRefused) {
   refused("revolutions = 1\nsamples_per_revolution = 1e7\n", 4, "campaign.samples_per_revolution",
           "scene s000: the output would be");
   // One scene of a sweep over its limit: named with its axis value, on the value's line.
-  refused("end_time = \"40 ms\"\nset = { \"output.max_size\" = 1000000 }\n[[axis]]\nkey = \"scene.output_interval\"\n"
+  refused("end_time = \"40 ms\"\nset = { \"output.max_size\" = \"1 MB\" }\n[[axis]]\nkey = \"scene.output_interval\"\n"
           "name = \"dt\"\nvalues = [\"1 ms\", \"0.01 ms\"]\n",
           8, "axis[0].values", "scene s001, dt = 0.01 ms: the output would be");
   const Campaign c = accepted("end_time = \"40 ms\"\n[[axis]]\nkey = \"scene.output_interval\"\nvalues = [\"1 ms\", \"0.5 ms\"]\n");

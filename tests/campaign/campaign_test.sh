@@ -458,7 +458,7 @@ cases = []
 for f in found:
     key = f.split(" = ")[0]
     cases.append([f if l.startswith(key + " =") else l for l in lines])
-for _ in range(40):
+for _ in range(30):
     m = list(lines)
     for _ in range(rng.randint(1, 3)):
         i, j = rng.randrange(len(m)), rng.randrange(len(m))
