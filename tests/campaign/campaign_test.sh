@@ -13,7 +13,8 @@
 #   spatial:   a spatial campaign's rows hold `raceway report`'s cage-centroid metrics (vortex radius
 #              ratio, sigma_v, ...) over the window after settling, and only the metrics asked for.
 #   slurm:     jobs/campaigns/slurm_campaign.sh under Slurm's environment without Slurm: SIGUSR1
-#              stops with checkpoints and resubmits; the next job resumes and completes the table.
+#              stops with checkpoints (the table written, the stopped scenes "not finished") and
+#              resubmits; the next job resumes and completes the table.
 #   slurm_array: jobs/campaigns/slurm_array.sh under Slurm's environment without Slurm: it submits an
 #              array of the 4 scenes and a dependent aggregation job (stub sbatch); the tasks run
 #              (two at once, one on 2 ranks, one killed with SIGKILL mid-scene, one stopped by
@@ -409,6 +410,8 @@ slurm)
   wait $job; rc=$?
   [[ $rc == 4 ]] || fail "job 1: exit $rc, expected 4: $(tail -5 "$work/job1.log")"
   grep -q "campaign stopped by a signal" "$work/job1.log" || fail "no stop message: $(tail -5 "$work/job1.log")"
+  # The stopped campaign's table: its unfinished scenes recorded as such.
+  grep -q ",not finished," "$work/c/campaign_table.csv" || fail "stopped campaign's table: $(cat "$work/c/campaign_table.csv")"
   [[ "$(cat "$work/sbatch_args" 2> /dev/null)" == "--export=ALL,RACEWAY_JOB_NUMBER=2 $RACEWAY_SLURM_SCRIPT $small $work/c" ]] \
     || fail "resubmission: '$(cat "$work/sbatch_args" 2> /dev/null)'"
   rm -f "$work/sbatch_args"
