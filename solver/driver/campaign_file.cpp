@@ -166,6 +166,9 @@ CampaignAxis read_axis(const Reader& r, const toml::table& t, int index) {
   if ((values != nullptr) == (range != nullptr))
     r.fail(line_of(t), where, "give either values = [...] or range = [from, to, step]");
   if (values) {
+    if (t.get("unit"))
+      r.fail(line_of(*t.get("unit")), where + ".unit",
+             "unit applies to a range; give each value its unit (values = [\"1000 rpm\", ...])");
     const toml::array* a = values->as_array();
     if (!a) r.fail(line_of(*values), where + ".values", "expected an array of values");
     for (const toml::node& v : *a) axis.values.push_back(r.text_of(v, where + ".values")), axis.lines.push_back(line_of(v));

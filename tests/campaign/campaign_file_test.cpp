@@ -126,6 +126,9 @@ TEST_F(CampaignFileTest, OneKeySweptByTwoAxesIsRefused) {
                  "[[axis]]\nkey = \"inner_ring.load.fy\"\nvalues = [\"-2 N\"]\n",
           8, "axis[1].key", "is swept by axis[0] ('inner_ring.load') already");
   refused(kRun + "[[axis]]\nkey = \"speed\"\nvalues = [\"1000 rpm\"]\n", 5, "axis[0].key", "is not a scene key");
+  // A unit beside values would be ignored.
+  refused(kRun + "[[axis]]\nkey = \"inner_ring.speed\"\nvalues = [1000]\nunit = \"rpm\"\n", 7, "axis[0].unit",
+          "unit applies to a range");
 }
 
 TEST_F(CampaignFileTest, SetFixingASweptKeyIsRefused) {
