@@ -84,7 +84,9 @@ void CampaignDispatcher::loop() {
       result.diagnosis.resize(static_cast<std::size_t>(length));
       MPI_Recv(result.diagnosis.data(), length, MPI_CHAR, leader, kDiagnosisTag, groups_.dispatch, MPI_STATUS_IGNORE);
       record_.group_busy += asked - assigned_at[static_cast<std::size_t>(leader)];
-      const bool retry = result.code != 0 && result.code != 4 && result.attempt == 0;
+      // Retried once: an error or an integration failure (exit 1, 3). Not: a stop (4), bad input (2),
+      // which fails again the same way.
+      const bool retry = (result.code == 1 || result.code == 3) && result.attempt == 0;
       if (retry) queue.push_front({result.job, 1});
       if (events_.on_finish) events_.on_finish(result, group, retry);
     }

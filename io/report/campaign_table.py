@@ -13,7 +13,15 @@ The metrics are those of `raceway report` (report_summary.summarize over the sam
 and spatial alike: one definition of the cage slip, the vortex metrics of seed 001 eq. 9, the
 pocket impacts and forces, the power loss), plus the cage's orbit about the outer ring's centre;
 UNITS below lists every column. Exit codes: 0 done, 2 bad folder, 3 numpy/h5py/matplotlib missing.
+
+The table records every scene, also failed and unfinished ones, and is written whole or not at all
+(through a file of its own, renamed). SIGUSR1, a batch system's "time is nearly up" sent to every
+process of a job, is ignored: the campaign has stopped its scenes already, the table is its last step.
 """
+import signal
+
+signal.signal(signal.SIGUSR1, signal.SIG_IGN)  # first, before the imports' seconds
+
 import concurrent.futures
 import csv
 import functools
@@ -165,8 +173,15 @@ def build_table(folder):
         row.update(scene["axis_values"])
         path = os.path.join(folder, sid + ".h5")
         status = statuses.get(sid, {})
-        if os.path.exists(path):
-            metrics, summary = scene_metrics(path, scene["settling_time_s"])
+        readable = os.path.exists(path)
+        if readable:
+            try:
+                metrics, summary = scene_metrics(path, scene["settling_time_s"])
+            except Exception as e:  # a damaged file is a row that says so, not a missing table
+                readable = False
+                status = {"exit_code": 1, "attempts": status.get("attempts", 1),
+                          "diagnosis": f"{sid}.h5 cannot be read: {type(e).__name__}: {e}"}
+        if readable:
             params = summary.get("scene_parameters", {})
             for name, key in manifest["axes"].items():
                 manifest.setdefault("axis_units", {})[name] = params.get(key, {}).get("unit", "")
@@ -198,14 +213,21 @@ def write_table(folder, manifest, rows):
         ["window_revolutions", "window_samples"] + run + ["status", "attempts", "diagnosis"]
     units = {c: UNITS[c][0] for c in columns if c in UNITS}
     units.update({f"{a}_si": manifest.get("axis_units", {}).get(a, "") for a in manifest["axes"]})
-    with open(os.path.join(folder, "campaign_table.csv"), "w", newline="", encoding="utf-8") as f:
+    def replace(name, write):  # whole or not at all: a kill mid-write leaves the previous table
+        own = os.path.join(folder, f".{name}.{os.getpid()}")
+        with open(own, "w", newline="", encoding="utf-8") as f:
+            write(f)
+        os.replace(own, os.path.join(folder, name))
+
+    def write_csv(f):
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
         for r in rows:
             w.writerow({k: r.get(k, "") for k in columns})
-    with open(os.path.join(folder, "campaign_table.json"), "w", encoding="utf-8") as f:
-        json.dump({"campaign": manifest["campaign"], "columns": columns, "units": units,
-                   "meaning": {c: UNITS[c][1] for c in columns if c in UNITS}, "rows": rows}, f, indent=1)
+    replace("campaign_table.csv", write_csv)
+    replace("campaign_table.json", lambda f: json.dump(
+        {"campaign": manifest["campaign"], "columns": columns, "units": units,
+         "meaning": {c: UNITS[c][1] for c in columns if c in UNITS}, "rows": rows}, f, indent=1))
 
 
 #: Trend plots: 1200 x 750 px, labels at a size that reads on a page.

@@ -24,11 +24,14 @@
 #include "io/report/process.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "scheduler/campaign_dispatch.hpp"
+#include "solver/driver/campaign_check.hpp"
 #include "solver/driver/campaign_file.hpp"
+#include "solver/driver/campaign_record.hpp"
 #include "solver/driver/campaign_plan.hpp"
 #include "solver/driver/plan_command.hpp"
 #include "solver/driver/scene_on_ranks.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
+#include "solver/run/checkpoint.hpp"
 #include "solver/run/run.hpp"
 #include "solver/run/stop_signals.hpp"
 
@@ -47,6 +50,14 @@ std::string clock(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
   const long t = std::lround(s);
   return fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
+}
+
+/// "1.99 MB", "6.6 GB": a byte count in decimal units.
+std::string size_text(double bytes) {
+  constexpr std::pair<double, const char*> units[] = {{1e12, "TB"}, {1e9, "GB"}, {1e6, "MB"}, {1e3, "kB"}};
+  for (const auto& [size, name] : units)
+    if (bytes >= size) return fmt::format("{:.3g} {}", bytes / size, name);
+  return fmt::format("{:.0f} B", bytes);
 }
 
 std::string output_of(const std::string& dir, const CampaignScene& s) { return (fs::path(dir) / (s.id + ".h5")).string(); }
@@ -108,7 +119,14 @@ scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Camp
       run.on_info = [&](const std::string& s) { spdlog::debug("{}: {}", entry.id, s); };
       const auto summary = solver::run_scene(scene, run);
       io::write_json_file((fs::path(dir) / (entry.id + ".json")).string(), summary.to_json());
+    } catch (const solver::ResumeRefused& e) {
+      // A checkpoint this build cannot continue (another build, another scene): a failure that a
+      // fresh start mends, so it is retried from the beginning like an integration failure.
+      result.code = 1;
+      result.diagnosis = e.what();
     } catch (const std::exception& e) {
+      // Bad input (exit 2: a scene or path the run refuses) fails again the same way: not retried
+      // (scheduler/campaign_dispatch.cpp).
       result.code = exit_code_for(e);
       result.diagnosis = e.what();
     }
@@ -144,7 +162,10 @@ struct CampaignProgress {
                    r.wall_seconds, group, done, running, failed, total, clock(rate * cost_left));
     else
       spdlog::warn("campaign: {} {} (exit {}, group {}): {}", s.id,
-                   r.code == 4 ? "stopped, left for --resume" : retry ? "failed, retried once" : "failed twice",
+                   r.code == 4   ? "stopped, left for --resume"
+                   : retry        ? "failed, retried once"
+                   : r.attempt > 0 ? "failed twice"
+                                   : "failed, not retried (the same input fails again)",
                    r.code, group, r.diagnosis);
   }
 };
@@ -207,6 +228,7 @@ int only_scene(const Campaign& c, const std::string& only) {
 /// Rank 0: the campaign, the output folder and the scenes left to run; throws on bad input.
 std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
   const int only = only_scene(c, req.only);
+  check_identity(c, req.output_dir);  // before the folder is touched
   fs::create_directories(req.output_dir);
   std::vector<int> left;
   for (std::size_t i = 0; i < c.scenes.size(); ++i) {
@@ -219,6 +241,7 @@ std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
                                             fs::exists(out) ? ".h5" : ".h5.partial"));
     if (!fs::exists(out)) left.push_back(static_cast<int>(i));
   }
+  record_identity(c, req.output_dir);
   write_manifest(c, req.output_dir);
   return left;
 }
@@ -241,6 +264,9 @@ SpeedupPrediction planned_speedup(const Campaign& c) {
 /// chosen from the predicted speed-up and the scenes' predicted costs (logged with the reasons).
 int group_size(const Campaign& c, const CampaignRequest& req, const std::vector<int>& left, int world) {
   if (!req.only.empty()) return world;
+  if (c.ranks_per_scene > world)
+    spdlog::warn("campaign: {}:{}: ranks_per_scene = {}, but the job has {} rank(s): one group of {}", c.file,
+                 c.ranks_line, c.ranks_per_scene, world, world);
   if (c.ranks_per_scene > 0) return c.ranks_per_scene;
   std::vector<double> costs;
   for (const int j : left) costs.push_back(c.scenes[static_cast<std::size_t>(j)].predicted_cost);
@@ -311,12 +337,14 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     code = solver::stop_request().load() != 0 ? 4 : progress.failed > 0 ? 1 : 0;
     if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
     if (finished < progress.total && code == 0) code = 1;
-    // An array task (--only) leaves the table to `raceway campaign report DIR` after the last one.
-    if (code == 0 && req.only.empty()) {
+    // The table records every scene, done, failed or not finished, whatever the exit code; an array
+    // task (--only) leaves it to `raceway campaign report DIR` after the last one.
+    if (req.only.empty()) {
       // Every rank is done: the table's plots may use the cores the ranks had (rank 0 is bound to one).
       const int cores = use_every_core_of_the_job();
       spdlog::debug("campaign: the table and plots on {} core(s)", cores);
-      code = make_table(req.output_dir);
+      const int table = make_table(req.output_dir);
+      if (code == 0) code = table;
     }
   }
   scheduler::free_campaign_groups(g);
@@ -330,13 +358,18 @@ int check_campaign(const Campaign& c, int ranks) {
       c.ranks_per_scene > 0 ? fmt::format("{} rank(s) per scene", c.ranks_per_scene) : "ranks per scene not fixed";
   std::printf("campaign '%s': %zu scenes from %s (%s sweep), %s\n", c.name.c_str(), c.scenes.size(),
               c.scene_path.c_str(), c.sweep.c_str(), per_scene.c_str());
-  std::puts("  (predicted for one rank from the speed: steps and wall time, solver/driver/campaign_plan.hpp)");
+  std::puts("  (predicted for one rank from the speed: steps and wall time, solver/driver/campaign_plan.hpp;"
+            " output from the sampling and the model)");
+  double bytes = 0;
   for (const CampaignScene& s : c.scenes) {
     std::string values;
     for (std::size_t a = 0; a < c.axes.size(); ++a) values += fmt::format("  {}={}", c.axes[a].name, s.axis_values[a]);
-    std::printf("  %s  %.6g s (settling %.6g s)  predicted %.0f steps, %.1f s%s\n", s.id.c_str(), s.end_time,
-                s.settling_time, s.predicted_steps, s.predicted_cost, values.c_str());
+    std::printf("  %s  %.6g s (settling %.6g s)  predicted %.0f steps, %.1f s, output %s%s\n", s.id.c_str(),
+                s.end_time, s.settling_time, s.predicted_steps, s.predicted_cost, size_text(s.output_bytes).c_str(),
+                values.c_str());
+    bytes += s.output_bytes;
   }
+  std::printf("  outputs of all scenes: %s\n", size_text(bytes).c_str());
   if (ranks > 0 && c.ranks_per_scene == 0) {
     std::vector<double> costs;
     for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
@@ -378,8 +411,11 @@ int campaign_command(const CampaignRequest& req) {
   Campaign c;
   int code = 0;
   if (rank == 0) {
+    // Rank 0 also builds every scene's model for its output size: a scene that would exceed its
+    // max_size fails the same way every time, so it is refused here, before anything runs.
     code = exit_code_of([&] {
       c = load_campaign(file);
+      check_campaign_outputs(c);
       return 0;
     });
   } else {
@@ -389,6 +425,9 @@ int campaign_command(const CampaignRequest& req) {
       code = exit_code_for(e);
     }
   }
+  const int own = code;
+  MPI_Allreduce(&own, &code, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (rank == 0 && own == 0 && code != 0) spdlog::error("campaign: {} could not be read on every rank", file);
   if (code != 0 || check) return rank == 0 && code == 0 ? check_campaign(c, req.check_ranks) : code;
   if (req.output_dir.empty()) {
     if (rank == 0) spdlog::error("campaign: no output folder; give -o DIR");

@@ -18,6 +18,7 @@
 // also a value the scene rejects (the scene's reason follows).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,15 @@
 
 namespace raceway::driver {
 
+/// The most scenes a campaign may have: every one is parsed (and its model built) by `campaign
+/// check` before anything runs, about a millisecond or more each; a larger sweep is refused (split it).
+constexpr double kMaxCampaignScenes = 10000;
+/// The most ranks per scene a campaign file may fix.
+constexpr int kMaxRanksPerScene = 1 << 20;
+
 struct CampaignAxis {
   std::string key;                  ///< the scene key swept ("inner_ring.speed")
+  int line = 1;                     ///< the campaign file's line of the axis
   std::string name;                 ///< the table's column ("speed"; default: the key)
   std::vector<std::string> values;  ///< as --set values ("1000 rpm")
   std::vector<int> lines;           ///< the campaign file's line of each value
@@ -36,18 +44,23 @@ struct CampaignScene {
   std::string id;                      ///< "s000": the output is DIR/<id>.h5
   std::vector<std::string> axis_values;  ///< one per axis, as given
   std::vector<std::string> overrides;    ///< every --set of the scene, axis values and run length included
+  std::vector<int> override_lines;       ///< the campaign file's line of each override
+  std::vector<std::string> override_keys;  ///< the campaign key that gives each override ("axis[0].values")
   double end_time = 0, settling_time = 0;  ///< s
   double predicted_steps = 0;              ///< integration steps (solver/driver/campaign_plan.hpp)
   double predicted_cost = 0;               ///< one-rank wall time (s), for the order of dispatch
+  double output_bytes = 0;                 ///< predicted output series (campaign_check.hpp); 0: not predicted
 };
 
 struct Campaign {
   std::string file, name, scene_path, sweep = "product";
   std::vector<std::string> metrics;
   int ranks_per_scene = 0;  ///< 0: not fixed, chosen from the predicted speed-up at run time
+  int ranks_line = 1;       ///< the campaign file's line of ranks_per_scene
   std::vector<CampaignAxis> axes;
   std::vector<CampaignScene> scenes;
   std::string base_text;  ///< the base scene's text
+  std::map<std::string, int> key_lines;  ///< the line of each key given ("campaign.name", "axis[0]")
 };
 
 /// Reads, expands and validates the campaign: every scene is parsed with its overrides, before

@@ -30,6 +30,16 @@
 #              --only with no such scene is refused (exit 2) before anything is written.
 #   overrides: --set is stored in the summary with the resolved parameters; a resume with other
 #              overrides is refused.
+#   refused_resume: a finished campaign resumed with its file edited (a swept value), or with another
+#              campaign's file, is refused (exit 2) naming the difference, and the folder is left as it
+#              was; the same file resumes (nothing to run) and redraws the table.
+#   check_fuzz: random mutations of small_campaign.toml (and the extreme ones users found: ranges to
+#              +-inf, 1e9 scenes, negative settling, fractional ranks...) through `campaign check`
+#              under a timeout: each passes (exit 0) or is refused with FILE:LINE and exit 2, never a
+#              hang or a crash.
+#   table_signal: a campaign with a failing scene writes its table itself, the failure in it; SIGUSR1
+#              to mpirun and to the table's process while the table is drawn does not lose it; a
+#              deterministic failure (exit 2: an output path the run refuses) is not retried.
 # Usage: campaign_test.sh CASE RACEWAY MPIEXEC SOURCE_DIR
 set -u
 case_name=$1 raceway=$2 mpiexec=$3 source_dir=$4
@@ -95,6 +105,27 @@ rank_pid() {
   done
 }
 
+
+# A campaign of 2 short scenes of the default bearing, 1 rank each (refused_resume, table_signal).
+tiny_campaign() {  # FILE NAME SPEED2
+  cat > "$1" <<EOF
+[campaign]
+name = "$2"
+scene = "$source_dir/jobs/scenes/default.toml"
+end_time = "4 ms"
+settling_time = "2 ms"
+ranks_per_scene = 1
+
+[[axis]]
+key = "inner_ring.speed"
+name = "speed"
+values = [
+  "1000 rpm",
+  "$3",
+]
+EOF
+}
+
 case $case_name in
 resume)
   # The uninterrupted campaign: its table.
@@ -155,7 +186,7 @@ retry)
     && fail "a campaign with a failing scene exited 0"
   grep -q "s001 failed, retried once" "$work/log" || fail "no retry: $(cat "$work/log")"
   grep -q "s001 failed twice" "$work/log" || fail "not recorded as failed twice"
-  "$raceway" campaign report "$work/c" > /dev/null 2>&1 || fail "campaign report"
+  [[ -f "$work/c/campaign_table.csv" ]] || fail "the campaign wrote no table: $(tail -3 "$work/log")"
   "$python" - "$work/c" <<'PY' || fail "failed scene not in the table with its diagnosis"
 import csv, sys
 rows = {r["scene"]: r for r in csv.DictReader(open(f"{sys.argv[1]}/campaign_table.csv"))}
@@ -408,6 +439,125 @@ early_signal)
   usr1_at_start "$work/c.log" self 1 "$raceway" campaign "$small" -o "$work/c"
   [[ $rc == 4 ]] || fail "campaign, SIGUSR1 at once: exit $rc, expected 4: $(tail -3 "$work/c.log")"
   grep -q "campaign stopped by a signal" "$work/c.log" || fail "campaign: no stop message: $(tail -3 "$work/c.log")"
+  ;;
+refused_resume)
+  tiny_campaign "$work/a.toml" tiny "2000 rpm"
+  "$raceway" campaign "$work/a.toml" -o "$work/c" > "$work/a.log" 2>&1 || fail "campaign: $(tail -3 "$work/a.log")"
+  [[ -f "$work/c/campaign_table.csv" && -f "$work/c/campaign_identity.txt" ]] || fail "no table or identity: $(ls "$work/c")"
+  listing() { (cd "$work/c" && find . -type f -printf '%p %s %T@\n' | sort); }
+  before=$(listing)
+  # The same file with one swept value edited: refused, naming the value's line and the difference.
+  tiny_campaign "$work/a.toml" tiny "3000 rpm"
+  "$raceway" campaign "$work/a.toml" -o "$work/c" --resume > "$work/edit.log" 2>&1; rc=$?
+  [[ $rc == 2 ]] || fail "edited campaign resumed: exit $rc: $(cat "$work/edit.log")"
+  grep -q "a.toml:13: key 'axis\[0\].values': .* s001 --set inner_ring.speed: '3000 rpm' here, '2000 rpm' in the folder" \
+    "$work/edit.log" || fail "edited campaign: $(cat "$work/edit.log")"
+  # Another campaign's file: refused, its name the first difference.
+  tiny_campaign "$work/b.toml" other "2000 rpm"
+  "$raceway" campaign "$work/b.toml" -o "$work/c" --resume > "$work/other.log" 2>&1; rc=$?
+  [[ $rc == 2 ]] || fail "another campaign resumed: exit $rc"
+  grep -q "b.toml:2: key 'campaign.name': .*campaign.name: 'other' here, 'tiny' in the folder" "$work/other.log" \
+    || fail "another campaign: $(cat "$work/other.log")"
+  "$raceway" campaign "$work/b.toml" -o "$work/c" > "$work/other2.log" 2>&1 && fail "another campaign without --resume accepted"
+  [[ "$(listing)" == "$before" ]] || fail "a refused call changed the folder: $(diff <(echo "$before") <(listing))"
+  # The file it began with: nothing left to run, the table again.
+  tiny_campaign "$work/a.toml" tiny "2000 rpm"
+  "$raceway" campaign "$work/a.toml" -o "$work/c" --resume > "$work/same.log" 2>&1 || fail "same campaign: $(tail -3 "$work/same.log")"
+  grep -q "2 scenes, 2 finished, 0 to run" "$work/same.log" || fail "same campaign: $(cat "$work/same.log")"
+  ;;
+check_fuzz)
+  "$python" - "$raceway" "$small" "$source_dir" "$work" <<'PY' || fail "fuzz"
+import random, re, subprocess, sys
+raceway, small, source, work = sys.argv[1:]
+lines = open(small).read().replace('"../../jobs', f'"{source}/jobs').splitlines()
+# The mistakes users found, then random ones: a line dropped, doubled, swapped or given an extreme value.
+found = ["range = [1000, inf, 500]", "range = [-inf, 1000, 500]", "range = [1, 1e9, 1]", "settling_revolutions = -0.5",
+         "ranks_per_scene = 1e10", "ranks_per_scene = 0.5", "samples_per_revolution = 1e12"]
+extremes = ["inf", "-inf", "nan", "0", "-1", "1e9", "1e308", "0.5", "\"\"", "\"x\"", "[]", "{}", "true", "[1, inf, 1]",
+            "\"inner_ring.speed\"", "[1e300, 1e301, 1]"]
+rng = random.Random(20261127)
+cases = []
+for f in found:
+    key = f.split(" = ")[0]
+    cases.append([f if l.startswith(key + " =") else l for l in lines])
+for _ in range(30):
+    m = list(lines)
+    for _ in range(rng.randint(1, 3)):
+        i, j = rng.randrange(len(m)), rng.randrange(len(m))
+        op = rng.randrange(4)
+        if op == 0: del m[i]
+        elif op == 1: m.insert(i, m[j])
+        elif op == 2: m[i], m[j] = m[j], m[i]
+        elif " = " in m[i]: m[i] = m[i].split(" = ")[0] + " = " + rng.choice(extremes)
+    cases.append(m)
+bad = passed = refused = 0
+for n, m in enumerate(cases):
+    path = f"{work}/fuzz{n}.toml"
+    open(path, "w").write("\n".join(m) + "\n")
+    try:
+        p = subprocess.run([raceway, "campaign", "check", path], capture_output=True, text=True, timeout=30)
+    except subprocess.TimeoutExpired:
+        print(f"{path}: no answer within 30 s:\n" + "\n".join(m)); bad += 1; continue
+    out = p.stdout + p.stderr
+    if p.returncode == 0 and "campaign OK" in out:
+        passed += 1
+    elif p.returncode == 2 and re.search(r"\.toml:\d+: ", out):
+        refused += 1
+    else:
+        print(f"{path}: exit {p.returncode}: {out[-500:]}\n" + "\n".join(m)); bad += 1
+    if n < len(found) and p.returncode != 2:
+        print(f"{path}: a mistake users found was accepted:\n" + "\n".join(m)); bad += 1
+print(f"{len(cases)} campaign files: {passed} passed check, {refused} refused with exit 2")
+sys.exit(1 if bad or passed == 0 else 0)
+PY
+  ;;
+table_signal)
+  # s001 cannot finish within its wall-clock budget (exit 3), so it is retried and fails.
+  cat > "$work/t.toml" <<EOF
+[campaign]
+scene = "$source_dir/jobs/scenes/default.toml"
+sweep = "zip"
+end_time = "4 ms"
+settling_time = "2 ms"
+ranks_per_scene = 1
+[[axis]]
+key = "inner_ring.speed"
+name = "speed"
+values = ["1000 rpm", "1500 rpm"]
+[[axis]]
+key = "solver.max_wall_time"
+name = "budget"
+values = ["10 min", "1 us"]
+EOF
+  "$mpiexec" -np 2 "$raceway" campaign "$work/t.toml" -o "$work/c" > "$work/log" 2>&1 &
+  mpirun_pid=$!
+  table_pid=""
+  for _ in $(seq 1 3000); do
+    rank0=$(rank_pid $mpirun_pid 0)
+    for p in $( [[ -n $rank0 ]] && pgrep -P "$rank0"); do
+      # The table's process, once it ignores SIGUSR1 (its first line): signal 10, bit 9 of SigIgn.
+      grep -q campaign_table /proc/$p/cmdline 2> /dev/null || continue
+      (( 0x$(sed -n 's/^SigIgn:\t//p' /proc/$p/status 2> /dev/null || echo 0) & 0x200 )) && table_pid=$p
+    done
+    [[ -n $table_pid ]] && break
+    sleep 0.01
+  done
+  [[ -n $table_pid ]] || fail "the table's process was never seen"
+  # What a batch system's warning does: every process of the job gets SIGUSR1.
+  kill -USR1 $mpirun_pid "$table_pid" 2> /dev/null
+  wait $mpirun_pid; rc=$?
+  [[ $rc == 1 ]] || fail "a campaign with a failed scene: exit $rc: $(tail -5 "$work/log")"
+  grep -q "s001 failed twice" "$work/log" || fail "s001 not retried: $(cat "$work/log")"
+  grep -q "the table of .* failed" "$work/log" && fail "the table failed: $(cat "$work/log")"
+  grep -q "^s000,.*,done," "$work/c/campaign_table.csv" || fail "s000: $(cat "$work/c/campaign_table.csv")"
+  grep -q "^s001,.*,failed,2,.*wall" "$work/c/campaign_table.csv" || fail "s001: $(cat "$work/c/campaign_table.csv")"
+  # A failure that the same input repeats (exit 2: the scene's output lock cannot be made) is not retried.
+  tiny_campaign "$work/d.toml" deterministic "2000 rpm"
+  mkdir -p "$work/d/s001.h5.lock"
+  "$mpiexec" -np 2 "$raceway" campaign "$work/d.toml" -o "$work/d" > "$work/d.log" 2>&1 && fail "a failed scene: exit 0"
+  grep -q "s001 failed, not retried" "$work/d.log" || fail "deterministic failure: $(cat "$work/d.log")"
+  grep -q "retried once" "$work/d.log" && fail "a deterministic failure was retried"
+  grep -q "^s001,.*,failed,1," "$work/d/campaign_table.csv" || fail "s001: $(cat "$work/d/campaign_table.csv")"
   ;;
 *) fail "unknown case $case_name" ;;
 esac
