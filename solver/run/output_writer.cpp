@@ -199,8 +199,7 @@ std::string scene_word(const io::Scene& scene, const std::string& key) {
 
 }  // namespace
 
-void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m) {
-  const io::Scene& scene = *m.scene;
+void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m, const io::Scene& scene) {
   const io::BearingGeometry& g = scene.bearing;
   const bool spatial = m.kind == io::ModelKind::spatial;
   file.set_attribute("/", "model_kind", std::string(spatial ? "spatial" : "planar"));

@@ -41,7 +41,7 @@ void check_output_size(const OutputEstimate& estimate, const io::Scene& scene);
 /// "Bearing attributes"): its kind, the rolling elements, the geometry in SI (radii, clearances,
 /// contact angle) and the integrator's tolerances of the element positions, so that readers never
 /// parse the model's description.
-void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m);
+void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m, const io::Scene& scene);
 
 BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
                        const Wrench& net);

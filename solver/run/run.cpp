@@ -117,7 +117,7 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
   file.set_attribute("/", "layout_version", kOutputLayoutVersion);
   for (const auto& [name, value] : build_info(options.mpi_library)) file.set_attribute("/", name, value);
   file.set_attribute("/", "model", model.describe());
-  write_bearing_attributes(file, model);
+  write_bearing_attributes(file, model, scene);
   return file;
 }
 
