@@ -9,13 +9,14 @@ Runs jobs/scenes/SCENE.toml cut short (`--set scene.end_time=...`, END_TIMES bel
   the export, and at every time step reads the four bodies with points (the rolling elements, the
   cage, the inner and the outer ring: Z + (64 + 2 Z) + 66 + 66 points, Z rolling elements); at three
   steps (first, middle, last) the rolling elements are /balls|rollers/position at that time
-  (exactly), their element_radius_m is the model's, their inner_race_normal_force_N the file's
+  (exactly), one vertex each, their element_radius_m is the model's, their inner_race_normal_force_N the file's
   inner-race contact columns summed per element, the cage's circle is centred on /cage/position with
   the pitch radius, each ring's race circle on the ring's position with its race radius (planar: the
-  model's; spatial: pitch radius -/+ D/2);
+  model's; spatial: pitch radius -/+ D/2), and the cells are Z vertices and Z + 5 polylines (the
+  cage's circle and Z bars, each ring's circle and mark);
 - OUT_vtk/OUT.pvd with ParaView's PVD reader: every time step has the same points, and every .vtp
-  file it names, read with VTK's XML PolyData reader, has them (Z vertices, Z + 5 polylines: the
-  cage's circle and Z bars, each ring's circle and mark); the middle step's bodies as above.
+  file it names, read with VTK's XML PolyData reader, has them with Z vertices and Z + 5
+  polylines; the middle step's bodies as above.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (ParaView's Python, python3-paraview, or h5py missing).
 ParaView 5.11's Python can crash while it shuts down, so the test leaves through os._exit.
@@ -117,6 +118,10 @@ class Expected:
 def check_bodies(datasets, e, k, where):
     """The bodies at sample k against the file; the datasets' points are told apart by `body`
     (one block per body from the XDMF, one PolyData of all from the .pvd)."""
+    sizes = [d.GetCell(i).GetNumberOfPoints() for d in datasets for i in range(d.GetNumberOfCells())]
+    check(sizes.count(1) == e.count and len(sizes) == 2 * e.count + 5,
+          f"{where}: {len(sizes)} cells, {sizes.count(1)} vertices (expected {e.count} vertices and {e.count + 5} "
+          "polylines)")
     pts = np.vstack([points(d) for d in datasets])
     columns = {name: np.concatenate([array(d, name) for d in datasets])
                for name in ("body", "element_radius_m", "inner_race_normal_force_N")
