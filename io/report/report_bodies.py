@@ -7,7 +7,8 @@ From a run's .h5 (planar or spatial) at every stride-th sample:
   of its inner-race contacts (`inner_race_normal_force_N`, the columns of the element summed);
 - the inner and outer ring: the race circle (spatial: the groove bottom at the nominal pitch radius
   -/+ D/2, the clearance not drawn; planar: the race radii of the model) in the ring's plane, centred
-  on the ring's centre and tilted with it, and a radial mark at the ring's angle that turns with it;
+  on the ring's centre and tilted with it, and a radial mark that turns with the ring (its speed
+  integrated over the samples: a ring's angle about its axis is no state of the models);
 - the cage: the pitch circle in the cage's plane (its centre, tilt and angle) and one radial bar
   between each pair of pockets (pocket k at the cage angle + 2 pi k / Z, as in the models).
 Every point carries `body` (0..Z-1 the rolling elements, Z the cage, Z+1 the inner ring, Z+2 the
@@ -78,15 +79,31 @@ def _xyz(rows):
     return out
 
 
+def _turned(f, name, rows):
+    """The angle about z a ring has turned through at the sample rows: its speed integrated over every
+    sample from the first (trapezoid rule; a ring's angle about its axis is no state of the models)."""
+    if f"{name}/angular_velocity" not in f:
+        return np.zeros(len(rows))
+    w = np.asarray(f[f"{name}/angular_velocity"][:rows[-1] + 1], dtype=float)
+    w = w[:, 2] if w.ndim == 2 else w
+    t = np.asarray(f["time"][:rows[-1] + 1], dtype=float)
+    angle = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    return angle[rows]
+
+
 def _pose(f, name, rows):
-    """Centre [S x 3] and rotation [S x 3 x 3] of a ring or the cage at the sample rows."""
+    """Centre [S x 3] and rotation [S x 3 x 3] of a ring or the cage at the sample rows: its tilt
+    (spatial runs) and its angle about z (the cage's state; a ring's integrated speed)."""
     centre = _xyz(np.asarray(f[f"{name}/position"][rows], dtype=float))
+    angles = np.zeros((len(rows), 3))
     if f"{name}/angles" in f:
-        angles = np.asarray(f[f"{name}/angles"][rows], dtype=float)
-    else:
-        angles = np.zeros((len(rows), 3))
-        if f"{name}/angle" in f:
-            angles[:, 2] = np.asarray(f[f"{name}/angle"][rows], dtype=float)
+        angles[:, :2] = np.asarray(f[f"{name}/angles"][rows], dtype=float)[:, :2]
+    if name == "cage" and "cage/angles" in f:
+        angles[:, 2] = np.asarray(f["cage/angles"][rows], dtype=float)[:, 2]
+    elif name == "cage" and "cage/angle" in f:
+        angles[:, 2] = np.asarray(f["cage/angle"][rows], dtype=float)
+    elif name != "cage":
+        angles[:, 2] = _turned(f, name, rows)
     return centre, cardan_rotation(angles)
 
 

@@ -12,7 +12,8 @@ Runs jobs/scenes/SCENE.toml cut short (`--set scene.end_time=...`, END_TIMES bel
   (exactly), one vertex each, their element_radius_m is the model's, their inner_race_normal_force_N the file's
   inner-race contact columns summed per element, the cage's circle is centred on /cage/position with
   the pitch radius, each ring's race circle on the ring's position with its race radius (planar: the
-  model's; spatial: pitch radius -/+ D/2), and the cells are Z vertices and Z + 5 polylines (the
+  model's; spatial: pitch radius -/+ D/2), the rings' marks at their speed's integral and the cage's
+  first bar at its angle + pi / Z, and the cells are Z vertices and Z + 5 polylines (the
   cage's circle and Z bars, each ring's circle and mark);
 - OUT_vtk/OUT.pvd with ParaView's PVD reader: every time step has the same points, and every .vtp
   file it names, read with VTK's XML PolyData reader, has them with Z vertices and Z + 5
@@ -104,6 +105,15 @@ class Expected:
         out[..., :min(3, v.shape[-1])] = v[..., :3]
         return out
 
+    def turned(self, ring, k):
+        """The ring's angle about z at sample k: its speed integrated from the first sample."""
+        w = np.asarray(self.f[f"{ring}/angular_velocity"][:k + 1], dtype=float)
+        w = w[:, 2] if w.ndim == 2 else w
+        return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(self.times[:k + 1])))
+
+    def cage_angle(self, k):
+        return float(self.f["cage/angles"][k, 2] if "cage/angles" in self.f else self.f["cage/angle"][k])
+
     def load(self, k):
         kind = "ball_inner_groove" if self.elements == "balls" else "roller_inner_race"
         g = self.f[f"segments/{kind}"]
@@ -147,6 +157,12 @@ def check_bodies(datasets, e, k, where):
         r = np.linalg.norm(circle - centre, axis=1)
         check(np.ptp(r) < 1e-9 * e.pitch and math.isclose(r[0], radius, rel_tol=1e-9),
               f"{where}: {name} circle radius {r.min()}..{r.max()} (expected {radius})")
+        # The first mark (the ring's, the cage's first bar) turns with the body (in the x-y plane: the
+        # tilts, below 1e-2 rad, move it by their square).
+        mark = pts[mine][CIRCLE + 1] - pts[mine][CIRCLE]
+        angle = e.cage_angle(k) + math.pi / e.count if name == "cage" else e.turned(name, k)
+        off = (math.atan2(mark[1], mark[0]) - angle + math.pi) % (2 * math.pi) - math.pi
+        check(abs(off) < 1e-4, f"{where}: the {name}'s mark is {off:.3g} rad off its angle {angle:.6g} rad")
 
 
 def check_xdmf(xdmf, e):
