@@ -97,7 +97,8 @@ def _xml(bodies, heavy):
             topology = ET.SubElement(grid, "Topology", TopologyType="Mixed", NumberOfElements=str(len(body.cells)))
             _data_item(topology, (topology_size[body.name],), f"{heavy}:/{body.name}/cells", "Int", 8)
             geometry = ET.SubElement(grid, "Geometry", GeometryType="XYZ")
-            _data_item(geometry, body.points.shape[1:], _where(heavy, body.name, "points", varying[body.name, "points"], row))
+            where = _where(heavy, body.name, "points", varying[body.name, "points"], row)
+            _data_item(geometry, body.points.shape[1:], where)
             for name, values in body.point_data.items():
                 attribute = ET.SubElement(grid, "Attribute", Name=name, AttributeType="Scalar", Center="Node")
                 _data_item(attribute, values.shape[1:], _where(heavy, body.name, name, varying[body.name, name], row))

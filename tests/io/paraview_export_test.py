@@ -147,7 +147,8 @@ def check_bodies(datasets, e, k, where):
     check(np.all(columns["element_radius_m"][el] == e.radius), f"{where}: element radius {e.radius} m")
     check(np.allclose(columns["inner_race_normal_force_N"][el], e.load(k), rtol=1e-12, atol=0),
           f"{where}: inner-race normal force per element")
-    for offset, (name, radius) in enumerate((("cage", e.pitch), ("inner_ring", e.races[0]), ("outer_ring", e.races[1]))):
+    bodies = (("cage", e.pitch), ("inner_ring", e.races[0]), ("outer_ring", e.races[1]))
+    for offset, (name, radius) in enumerate(bodies):
         mine = body == e.count + offset
         check(np.count_nonzero(mine) == e.counts[name], f"{where}: {np.count_nonzero(mine)} points of the {name}")
         circle = pts[mine][:CIRCLE]
@@ -198,7 +199,8 @@ def check_pvd(pvd, e):
         reader.UpdatePipeline(t)
         if reader.GetDataInformation().GetNumberOfPoints() != total:
             empty.append(t)
-    check(len(times) > 1 and not empty, f"{reader.GetXMLName()}: {len(times)} steps, {len(empty)} without {total} points")
+    check(len(times) > 1 and not empty,
+          f"{reader.GetXMLName()}: {len(times)} steps, {len(empty)} without {total} points")
     t = times[len(times) // 2]
     reader.UpdatePipeline(t)
     check_bodies(leaves(servermanager.Fetch(reader)), e, e.row(t), f"{reader.GetXMLName()} at t = {t:.6g} s")
@@ -210,10 +212,13 @@ def check_pvd(pvd, e):
         vtp.SetFileName(os.path.join(os.path.dirname(pvd), entry.get("file")))
         vtp.Update()
         data = vtp.GetOutput()
-        if (data.GetNumberOfPoints(), data.GetNumberOfVerts(), data.GetNumberOfLines()) != (total, e.count, e.count + 5):
+        shape = (data.GetNumberOfPoints(), data.GetNumberOfVerts(), data.GetNumberOfLines())
+        if shape != (total, e.count, e.count + 5):
             bad.append(entry.get("file"))
-    check(not bad, f"{len(bad)} .vtp files without {total} points, {e.count} vertices, {e.count + 5} lines: {bad[:3]}")
-    print(f"{reader.GetXMLName()}: {len(times)} time steps, {len(entries)} .vtp files of {total} points", file=sys.stderr)
+    check(not bad, f"{len(bad)} .vtp files without {total} points, {e.count} vertices, {e.count + 5} lines: "
+          f"{bad[:3]}")
+    print(f"{reader.GetXMLName()}: {len(times)} time steps, {len(entries)} .vtp files of {total} points",
+          file=sys.stderr)
 
 
 def main():

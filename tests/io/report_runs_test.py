@@ -16,7 +16,9 @@ Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --
   DataItem names a dataset of OUT_xdmf.h5 with its shape, the time steps are output times, and the
   rolling elements' geometry at the middle step is their position there;
 - the VTK export's XML: every .vtp the .pvd names exists, and the middle step's first points are
-  the rolling elements' positions at that time;
+  the rolling elements' positions at that time; for 6309_R3, a copy of the file without its
+  'model' attribute (the ball diameter; the report alone does not need it) is refused with exit
+  code 2 before anything is written;
 - for 6309_R3 also the animation (the report script directly, 12 frames, MP4 through ffmpeg or GIF).
 With --screenshot only the run, the report and a headless chromium screenshot of the page (1600 px
 wide); skipped when chromium (a test package) is not installed.
@@ -178,6 +180,20 @@ def check_vtk(pvd, h5):
     check(np.array_equal(xyz[:len(position), :position.shape[1]], position), "element centres through the .vtp")
 
 
+def check_export_refusal(h5, raceway, work):
+    """A file the exports cannot draw (no 'model' attribute to take the radii from): exit 2 naming
+    the file and the attribute, before anything is written."""
+    bad = os.path.join(work, "no_model.h5")
+    shutil.copy(h5, bad)
+    with h5py.File(bad, "a") as f:
+        del f.attrs["model"]
+    r = subprocess.run([raceway, "report", bad, "--xdmf", "--vtk", "--no-plots"], capture_output=True, text=True,
+                       timeout=600)
+    written = [n for n in os.listdir(work) if n.startswith("no_model") and n != "no_model.h5"]
+    check(r.returncode == 2 and bad in r.stderr and "'model'" in r.stderr and not written,
+          f"export of a file without 'model': exit {r.returncode}, wrote {written}: {r.stderr[-500:]}")
+
+
 def browser():
     return shutil.which("chromium") or shutil.which("chromium-browser")
 
@@ -234,6 +250,8 @@ def main():
         impacts = check_summary(s, h5, element)
         check_xdmf(os.path.join(work, scene + ".xdmf"), h5)
         check_vtk(os.path.join(work, scene + "_vtk", scene + ".pvd"), h5)
+        if scene == "6309_R3":
+            check_export_refusal(h5, raceway, work)
         print(f"{scene}: {len(pngs)} figures, cage {s['cage_speed']['mean_rpm']:.3f} rpm, {impacts} impacts",
               file=sys.stderr)
         if scene == "6309_R3":
