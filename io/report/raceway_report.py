@@ -144,7 +144,8 @@ def main(argv):
     log("info", f"summary written to {summary_path}")
     if args.xdmf:
         import report_xdmf
-        log("info", f"ParaView file written to {report_xdmf.write_xdmf(args.input)}")
+        xdmf = report_xdmf.write_xdmf(args.input)
+        log("info", f"ParaView file written to {xdmf} (its data: {report_xdmf.data_path(xdmf)})")
     if args.vtk:
         import report_vtk
         log("info", f"VTK time series written to {report_vtk.write_vtk(args.input)}")

@@ -106,6 +106,11 @@ def _xml(bodies, heavy):
     return root
 
 
+def data_path(xdmf_path):
+    """The data file beside OUT.xdmf: OUT_xdmf.h5."""
+    return os.path.splitext(xdmf_path)[0] + "_xdmf.h5"
+
+
 def write_xdmf(h5_path, xdmf_path=None, max_steps=2000):
     """Writes OUT.xdmf (default: the .h5's path with .xdmf) and OUT_xdmf.h5 at every stride-th sample
     (the smallest stride giving at most max_steps steps; the run's .h5 keeps every sample) and returns
@@ -113,7 +118,7 @@ def write_xdmf(h5_path, xdmf_path=None, max_steps=2000):
     if xdmf_path is None:
         base = h5_path[:-len(".partial")] if h5_path.endswith(".partial") else h5_path
         xdmf_path = os.path.splitext(base)[0] + ".xdmf"
-    heavy_path = os.path.splitext(xdmf_path)[0] + "_xdmf.h5"
+    heavy_path = data_path(xdmf_path)
     if os.path.abspath(heavy_path) == os.path.abspath(h5_path):
         raise ValueError(f"{xdmf_path}: its data file would be the run's own file {h5_path}; choose another name")
     bodies = read_bodies(h5_path, max_steps)
