@@ -178,8 +178,12 @@ def read_bodies(h5_path, max_steps):
     """The bodies at every stride-th sample, the smallest stride giving at most max_steps samples."""
     with h5py.File(h5_path, "r") as f:
         elements, (element_radius, pitch, race_in, race_out) = _check(f, h5_path)
-        total = min(f[p].shape[0] for p in (f"{elements}/position", "cage/position", "inner_ring/position",
-                                            "outer_ring/position", "time"))
+        # An interrupted run's series may stop at different samples: cut them to the shortest.
+        inner_kind = "ball_inner_groove" if elements == "balls" else "roller_inner_race"
+        series = [f"{elements}/position", "time", f"segments/{inner_kind}/normal_force"]
+        series += [f"{body}/{name}" for body in ("cage", "inner_ring", "outer_ring")
+                   for name in ("position", "angles", "angle", "angular_velocity")]
+        total = min(f[p].shape[0] for p in series if p in f)
         if total < 1:
             raise ExportInputError(f"{h5_path}: no samples")
         stride = max(1, -(-total // max_steps))
