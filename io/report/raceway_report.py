@@ -11,8 +11,9 @@ directly too. Writes into DIR (default: <stem>_report beside the file):
     *.png          the figures (report_plots.py), 1600 px wide, titled with the scene
     report.html    one self-contained page: figures, numbers, scene text, build (report_page.py)
     cage.mp4/.gif  with --animate: the bearing seen along its axis (report_animation.py)
-and with --xdmf OUT.xdmf beside the .h5 for ParaView (report_xdmf.py), with --vtk OUT_vtk/OUT.pvd, the
-bodies as VTK PolyData files that any VTK or ParaView reads (report_vtk.py).
+and beside the .h5, for ParaView, the bodies over time (report_bodies.py: rolling elements with their
+radii, cage and rings as polylines): with --xdmf OUT.xdmf and its data OUT_xdmf.h5 (report_xdmf.py),
+with --vtk OUT_vtk/OUT.pvd and its VTK PolyData files (report_vtk.py).
 
 Exit codes: 0 done (plots skipped with a warning when matplotlib is missing); 2 bad input (a
 missing file or dataset, a bad option), naming the file and dataset; 3 numpy or h5py missing;
@@ -36,6 +37,7 @@ except ImportError as err:
           file=sys.stderr)
     sys.exit(3)
 
+from report_bodies import ExportInputError, check_exportable  # noqa: E402
 from report_data import ReportInputError, read_run  # noqa: E402
 from report_summary import summarize  # noqa: E402
 
@@ -123,7 +125,9 @@ def main(argv):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # means of empty azimuth bins are NaN by design
             summary, lines = summarize(run, args.window_start, args.bin_width, args.contact_threshold)
-    except ReportInputError as err:
+        if args.xdmf or args.vtk:
+            check_exportable(args.input)
+    except (ReportInputError, ExportInputError) as err:
         log("error", f"report: {err}")
         return 2
     except ValueError as err:
@@ -140,7 +144,8 @@ def main(argv):
     log("info", f"summary written to {summary_path}")
     if args.xdmf:
         import report_xdmf
-        log("info", f"ParaView file written to {report_xdmf.write_xdmf(args.input)}")
+        xdmf = report_xdmf.write_xdmf(args.input)
+        log("info", f"ParaView file written to {xdmf} (its data: {report_xdmf.data_path(xdmf)})")
     if args.vtk:
         import report_vtk
         log("info", f"VTK time series written to {report_vtk.write_vtk(args.input)}")
