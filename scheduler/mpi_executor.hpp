@@ -36,7 +36,8 @@
 // destructor then sends stop, so the workers leave serve() and the job ends with the master's exit
 // code. A worker that stops answering (stopped, hung, lost) is found by the master's waits, each
 // bounded by rank_timeout: the master names the rank(s) and calls MPI_Abort (exit code 1), which
-// ends every rank.
+// ends every rank. A stopped or lost master is found by the workers' waits when every rank is on
+// one node (watch_master(): rank 0's heartbeat in shared memory, scheduler/mpi_heartbeat.cpp).
 #pragma once
 
 #include <mpi.h>

@@ -1,7 +1,9 @@
 // A run's checkpoint: what `raceway run SCENE -o OUT.h5 --resume` needs to continue OUT.h5.partial
 // (docs/output_layout.md, "Checkpoints and resume"). A small HDF5 file OUT.h5.checkpoint, written
 // atomically (OUT.h5.checkpoint.partial, fsync, rename) after the output file was flushed, so it
-// never names rows that are not on disk.
+// never names rows that are not on disk. Sealed (io::sealed_file_problem: the CRC-32 of all its
+// bytes, checked before HDF5 reads it), with a CRC-32 of its payload and of the .partial file's
+// rows up to it: a damaged checkpoint or .partial is refused, never resumed with other results.
 #pragma once
 
 #include <map>
