@@ -212,8 +212,13 @@ stopped_master() {
   grep -q "rank 1 of 2: error: rank 0 sent nothing for 3 s and its heartbeat stopped (--rank-timeout)" "$work/log" ||
     fail "no message from rank 1 naming rank 0: $(tail -5 "$work/log")"
   [[ $elapsed -le 30 ]] || fail "took $elapsed s to end: $(tail -5 "$work/log")"
+  # mpirun may return while the kill of the stopped rank is still under way: 5 s for it to go.
+  for _ in $(seq 50); do
+    [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null || break
+    sleep 0.1
+  done
   if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
-    fail "the stopped rank 0 ($victim) is still alive"
+    fail "the stopped rank 0 ($victim) is still alive 5 s after the job ended"
     kill -CONT "$victim"; kill -KILL "$victim"
   fi
   pgrep -f "$work/long.toml" >/dev/null && fail "a rank is left behind"
