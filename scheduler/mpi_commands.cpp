@@ -88,10 +88,12 @@ void MpiExecutor::receive_command() {
     broadcast(message_.data(), static_cast<int>(message_size_), "a command");
     return;
   }
-  // A worker waits for its master as long as it takes (the master bounds its own waits).
+  // A worker waits for its master as long as it takes while rank 0 lives (its heartbeat:
+  // mpi_heartbeat.cpp; the master bounds its own waits).
   const std::int64_t next = commands_ + 1;
+  MasterWatch watch(*this);
   // Idle between commands, it yields at every look once the spin is over.
-  spin_then_yield(1, [&] { return load(*command_word_) >= next; }, [](clock_type::time_point) {});
+  spin_then_yield(1, [&] { return load(*command_word_) >= next; }, [&](clock_type::time_point) { watch.check(); });
   MPI_Win_sync(tail_window_);  // the word before the buffer
   std::copy_n(command_buffer_, message_size_, message_.begin());
   commands_ = next;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <thread>
 
 namespace raceway::scheduler {
 
@@ -92,6 +93,7 @@ MpiExecutor::MpiExecutor(MPI_Comm comm, MpiExecutorOptions options) : comm_(comm
 MpiExecutor::~MpiExecutor() {
   if (is_master() && !stopped_) stop();
   close_tail_window();  // collective: every rank gets here after stop
+  close_heartbeat();    // collective too
 }
 
 void MpiExecutor::fail(const std::string& what) const {
@@ -141,7 +143,7 @@ void MpiExecutor::broadcast(void* buffer, int count, MPI_Datatype type, const st
   if (is_master())
     wait_bounded(request, {-1}, what);
   else
-    MPI_Wait(request.data(), MPI_STATUS_IGNORE);  // a worker waits for its master as long as it takes
+    await_master(request);  // as long as rank 0 lives (its heartbeat, where there is one)
 }
 
 void MpiExecutor::attach(const TaskCatalogue& catalogue) {
@@ -315,6 +317,8 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
     throw std::invalid_argument("MpiExecutor::run: task count, record size or context size differ from the catalogue");
   maybe_replan(phase);
   ++evaluation_;
+  if (evaluation_ == options_.inject_pause_evaluation)
+    std::this_thread::sleep_for(std::chrono::duration<double>(options_.inject_pause_seconds));
   const double wall_start = now_seconds();
   const auto rs = static_cast<std::size_t>(record_size);
   if (!tail_[phase].empty()) reset_tail_claims(phase);  // before the command releases the workers

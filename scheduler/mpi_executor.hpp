@@ -36,7 +36,8 @@
 // destructor then sends stop, so the workers leave serve() and the job ends with the master's exit
 // code. A worker that stops answering (stopped, hung, lost) is found by the master's waits, each
 // bounded by rank_timeout: the master names the rank(s) and calls MPI_Abort (exit code 1), which
-// ends every rank.
+// ends every rank. A stopped or lost master is found by the workers' waits when every rank is on
+// one node (watch_master(): rank 0's heartbeat in shared memory, scheduler/mpi_heartbeat.cpp).
 #pragma once
 
 #include <mpi.h>
@@ -44,6 +45,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "scheduler/executor.hpp"
@@ -68,6 +70,10 @@ struct MpiExecutorOptions {
   /// Test only: throw inside the tasks of this rank at this evaluation (1-based; all phases).
   int inject_failure_rank = -1;
   long inject_failure_evaluation = 0;
+  /// Test only: rank 0 works (sleeps) this many seconds before it sends evaluation
+  /// inject_pause_evaluation: a long stretch of rank 0's own work between two commands.
+  long inject_pause_evaluation = 0;
+  double inject_pause_seconds = 0;
   /// Every n-th evaluation's balance goes into ScheduleLog::samples.
   int sample_every = 1;
   /// Fraction of each rank's planned work handed out on demand within an evaluation (the plan's
@@ -82,6 +88,8 @@ struct MpiExecutorOptions {
   /// nodes (for tests and comparisons).
   bool shared_exchange = true;
   /// Master: seconds to wait for the workers' answer to one command before ending the job.
+  /// Workers (after watch_master()): seconds without a heartbeat of rank 0 while waiting for it
+  /// before ending the job.
   double rank_timeout = 60.0;
   /// Master: called with one line per plan event (logging).
   std::function<void(const std::string&)> on_event;
@@ -111,6 +119,13 @@ class MpiExecutor final : public Executor {
   void stop() override;
   const ScheduleLog* schedule_log() const override { return &log_; }
 
+  /// Every rank, collective over the communicator, before any other call: with every rank on rank
+  /// 0's node, rank 0 starts a heartbeat (a word in shared memory a thread of its own renews every
+  /// 50 ms; scheduler/mpi_heartbeat.cpp) and every wait of a worker for rank 0 ends the job (exit
+  /// code 1, naming rank 0) when no beat comes for rank_timeout seconds: a stopped or lost rank 0.
+  /// A long stretch of rank 0's own work between commands (output, checkpoints) keeps beating.
+  /// Between nodes: nothing (the workers wait as long as it takes).
+  void watch_master();
   /// Worker: waits for the master's attach() (returns true) or stop (false: the master failed
   /// before it had a model, and has reported why).
   bool await_start();
@@ -139,6 +154,21 @@ class MpiExecutor final : public Executor {
   static constexpr std::size_t reply_word = 0, taken_word = 1;
 
   [[noreturn]] void fail(const std::string& what) const;
+  /// Worker, during one wait for rank 0 (after watch_master()): check() fails the job when rank 0's
+  /// heartbeat has not changed for rank_timeout seconds since the wait began or the last beat.
+  class MasterWatch {
+   public:
+    explicit MasterWatch(const MpiExecutor& executor);
+    void check();
+
+   private:
+    const MpiExecutor& executor_;
+    std::int64_t beat_;
+    double since_;
+  };
+  /// Worker: waits for `requests` (to or from rank 0, or passing on to it), watched (MasterWatch).
+  void await_master(std::vector<MPI_Request>& requests) const;
+  void close_heartbeat();
   /// steady_clock seconds.
   static double now_seconds();
   /// A task of this rank's: evaluates `task` into record (whole). Everything it throws ends the job
@@ -249,6 +279,11 @@ class MpiExecutor final : public Executor {
   double* command_buffer_ = nullptr;      ///< the last command (message_size_ doubles)
   std::int64_t commands_ = 0;             ///< through the window: written (master), taken (worker)
   std::int64_t commands_taken_by_all_ = 0;  ///< master: every worker has taken this many
+  // Rank 0's heartbeat (watch_master): a word on rank 0's memory, renewed by its thread.
+  MPI_Comm heartbeat_comm_ = MPI_COMM_NULL;
+  MPI_Win heartbeat_window_ = MPI_WIN_NULL;
+  std::int64_t* heartbeat_word_ = nullptr;
+  std::jthread heartbeat_thread_;
   double* tail_slots_ = nullptr;        ///< per task: rank, seconds, record
   std::size_t tail_slot_size_ = 0;
   std::vector<double> cost_[phase_count];                ///< smoothed task seconds

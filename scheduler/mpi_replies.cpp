@@ -101,8 +101,10 @@ void MpiExecutor::send_reply(int phase, const double* full, const double* second
   double* out = reply.data();
   for (std::size_t i = 0; i < mine.size(); ++i) out = std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), out);
   std::copy_n(seconds, mine.size(), out);
-  MPI_Waitall(static_cast<int>(from.size()), from.data(), MPI_STATUSES_IGNORE);  // as long as it takes, like serve()
-  MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_);
+  await_master(from);  // as long as it takes while rank 0 lives, like serve()
+  std::vector<MPI_Request> to(1);
+  MPI_Isend(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, rank_ & (rank_ - 1), phase, comm_, to.data());
+  await_master(to);
 }
 
 // Shared replies. Why not messages on one node: rank 0's wait for a worker's reply of a few kB

@@ -120,7 +120,16 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
     if (w.file_ < 0) w.fail("H5Fopen", "/");
     w.resuming_ = true;
   } else {
-    w.file_ = H5Fcreate(w.partial_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+    // The root's attributes in dense storage (a heap, no size limit): a compact attribute lives in
+    // one object-header message of at most 64 KiB, which state_names (16 bytes per state) passes
+    // above 4096 states (816 rollers, 452 balls). Tracking their creation order gives the root the
+    // 1.8 object header that dense storage needs, with the library's bounds left at their default.
+    const Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+    if (!fcpl.ok() || H5Pset_attr_creation_order(fcpl.get(), H5P_CRT_ORDER_TRACKED) < 0 ||
+        H5Pset_attr_phase_change(fcpl.get(), 0, 0) < 0 ||
+        (options.sealed && H5Pset_userblock(fcpl.get(), kSealBytes) < 0))
+      w.fail("making the file creation property list", "/");
+    w.file_ = H5Fcreate(w.partial_path_.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
     if (w.file_ < 0) w.fail("H5Fcreate", "/");
   }
   w.dxpl_ = H5Pcreate(H5P_DATASET_XFER);  // collective transfer mode goes here later
@@ -135,10 +144,11 @@ H5SeriesWriter H5SeriesWriter::create(const std::string& final_path, const H5Wri
 
 H5SeriesWriter H5SeriesWriter::reopen(const std::string& final_path, std::size_t rows,
                                       std::map<std::string, std::vector<double>> unwritten,
-                                      const H5WriterOptions& options) {
+                                      const H5WriterOptions& options, std::map<std::string, double> checksums) {
   H5SeriesWriter w = open_file(final_path, options, true);
   w.resume_rows_ = rows;
   w.resume_unwritten_ = std::move(unwritten);
+  w.resume_checksums_ = std::move(checksums);
   return w;
 }
 
@@ -151,6 +161,7 @@ H5SeriesWriter::H5SeriesWriter(H5SeriesWriter&& other) noexcept
       resuming_(other.resuming_),
       resume_rows_(other.resume_rows_),
       resume_unwritten_(std::move(other.resume_unwritten_)),
+      resume_checksums_(std::move(other.resume_checksums_)),
       buffered_bytes_(std::exchange(other.buffered_bytes_, 0)),
       residual_bytes_(std::exchange(other.residual_bytes_, 0)),
       flushed_(other.flushed_),
@@ -173,6 +184,7 @@ H5SeriesWriter& H5SeriesWriter::operator=(H5SeriesWriter&& other) noexcept {
     resuming_ = other.resuming_;
     resume_rows_ = other.resume_rows_;
     resume_unwritten_ = std::move(other.resume_unwritten_);
+    resume_checksums_ = std::move(other.resume_checksums_);
     buffered_bytes_ = std::exchange(other.buffered_bytes_, 0);
     residual_bytes_ = std::exchange(other.residual_bytes_, 0);
     flushed_ = other.flushed_;
@@ -268,6 +280,7 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
   if (dims[0] < file_rows)
     throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': series '{}' has {} rows, the "
                                          "checkpoint needs {}", partial_path_, key, dims[0], file_rows));
+  if (!s.shared) resume_row_checksum(key, s, stored_rows_crc(dataset, key, file_rows, s.row_size), tail);
   dims[0] = file_rows;
   if (H5Dset_extent(dataset, dims.data()) < 0) fail("cutting the series to the checkpoint (H5Dset_extent)", key);
   s.rows_written = file_rows;
@@ -339,6 +352,7 @@ void H5SeriesWriter::append(SeriesId id, std::span<const double> row) {
                                             s.path, partial_path_, s.row_size, row.size()));
   }
   if (s.shared && s.mine.size() < s.buffer.size() + row.size()) s.mine.insert(s.mine.end(), row.size(), 1);
+  if (!s.shared) s.crc = row_crc(s.crc, row);
   s.buffer.insert(s.buffer.end(), row.begin(), row.end());
   buffered_bytes_ += row.size_bytes();
   submit_whole_chunks(s);
@@ -556,6 +570,7 @@ void H5SeriesWriter::commit() {
     file_ = -1;
   }
   release_disk(partial_path_);
+  if (options_.sealed) seal(partial_path_);
   fsync_file(partial_path_);
   std::error_code ec;
   std::filesystem::rename(partial_path_, final_path_, ec);

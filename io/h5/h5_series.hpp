@@ -88,7 +88,20 @@ struct H5WriterOptions {
   /// The logical CPU the background compressor's thread is bound to (io/h5/thread_core.hpp); -1:
   /// wherever the process may run.
   int compressor_core = -1;
+  /// commit() seals the file before it syncs and renames it: a 512-byte user block at its start
+  /// (HDF5 starts the file after it) holds the CRC-32 and the size of every byte after it, so that
+  /// sealed_file_problem() finds any damage before HDF5 parses a byte (HDF5 1.10 can crash on
+  /// damaged metadata). For small files written once (checkpoints).
+  bool sealed = false;
 };
+
+/// The user block of a sealed file (HDF5's smallest): the seal, then HDF5's file.
+inline constexpr std::size_t kSealBytes = 512;
+
+/// Why the sealed file at `path` (H5WriterOptions::sealed) is not as it was committed: "" when its
+/// seal reads and the CRC-32 and size of the bytes after it match; else the reason (no seal, cut,
+/// another size, another CRC-32). Reads the whole file (h5_checksums.cpp).
+std::string sealed_file_problem(const std::string& path);
 
 class H5SeriesWriter {
  public:
@@ -101,9 +114,12 @@ class H5SeriesWriter {
   /// std::runtime_error), cuts it to `rows` less the rows of the series in `unwritten` (its
   /// unwritten_rows() when the checkpoint was taken; std::runtime_error if the file has fewer) and
   /// buffers those again. Throws std::runtime_error naming the file if it is missing or not HDF5.
+  /// `checksums` (row_checksums() when the checkpoint was taken): each series' rows read back from
+  /// the file, followed by its unwritten rows, must have that CRC-32, else std::runtime_error
+  /// naming the series as damaged.
   static H5SeriesWriter reopen(const std::string& final_path, std::size_t rows,
                                std::map<std::string, std::vector<double>> unwritten = {},
-                               const H5WriterOptions& options = {});
+                               const H5WriterOptions& options = {}, std::map<std::string, double> checksums = {});
 
   H5SeriesWriter(const H5SeriesWriter&) = delete;
   H5SeriesWriter& operator=(const H5SeriesWriter&) = delete;
@@ -189,6 +205,10 @@ class H5SeriesWriter {
   /// chunk), by normalized series path, row-major; series with none are left out. Throws
   /// std::logic_error when whole chunks appended since the last flush are not yet written.
   std::map<std::string, std::vector<double>> unwritten_rows() const;
+  /// Per series written by this process alone (not shared), the CRC-32 (zlib) of the bytes of every
+  /// row appended since the file was created, in order (those in the file and the unwritten ones):
+  /// what a checkpoint keeps so that reopen() can tell a damaged .partial file from a sound one.
+  std::map<std::string, double> row_checksums() const;
 
   /// Writes buffered rows, closes the file and renames the .partial file over the final path.
   /// After commit() the writer is closed; any further call except the destructor throws
@@ -217,6 +237,7 @@ class H5SeriesWriter {
     std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
     bool shared = false;                   // written by all ranks together (share_series_with)
     std::vector<unsigned char> mine;       // shared: per buffered value, whether this process writes it
+    unsigned long crc = 0;                 // CRC-32 of the bytes of every row appended (row_checksums)
   };
 
   H5SeriesWriter(std::string final_path, const H5WriterOptions& options);
@@ -254,6 +275,16 @@ class H5SeriesWriter {
   bool resuming_ = false;       // reopen(): define_series opens existing datasets
   std::size_t resume_rows_ = 0;
   std::map<std::string, std::vector<double>> resume_unwritten_;
+  std::map<std::string, double> resume_checksums_;
+  /// Resuming: the CRC-32 of the `rows` first rows of `dataset` as stored, read back in blocks
+  /// (h5_checksums.cpp); std::runtime_error naming the series when they cannot be read.
+  unsigned long stored_rows_crc(Hid dataset, const std::string& key, std::size_t rows, std::size_t row_size);
+  /// Resuming: `stored` continued over the checkpoint's unwritten `tail` becomes s.crc; throws
+  /// std::runtime_error naming the series when a checksum was given for it and differs.
+  void resume_row_checksum(const std::string& key, Series& s, unsigned long stored, std::span<const double> tail);
+  static unsigned long row_crc(unsigned long crc, std::span<const double> values);
+  /// The user block of a sealed file (H5WriterOptions::sealed) filled in: magic, CRC-32, size.
+  static void seal(const std::string& path);
   std::size_t buffered_bytes_ = 0;
   std::size_t residual_bytes_ = 0;  // buffered after the last flush (its partial chunks)
   bool flushed_ = false;        // a flush() completed: the file on disk is consistent

@@ -9,7 +9,12 @@ namespace raceway::io {
 
 namespace {
 
-std::string label(std::string_view text) { return fmt::format("--set {}", text); }
+/// "--set TEXT" for messages, line breaks shown as \n (a value may carry them: parsed_value).
+std::string label(std::string_view text) {
+  std::string shown;
+  for (const char c : text) shown += c == '\n' ? std::string("\\n") : c == '\r' ? std::string("\\r") : std::string(1, c);
+  return fmt::format("--set {}", shown);
+}
 
 /// The parts of a dotted key; empty parts are an error.
 std::vector<std::string> parts_of(std::string_view key, std::string_view text) {
@@ -26,13 +31,27 @@ std::vector<std::string> parts_of(std::string_view key, std::string_view text) {
   }
 }
 
-/// VALUE as a TOML value, or as a string when it is not one (3000 rpm, erk).
+/// VALUE as a TOML value, or as a string when it is not one (3000 rpm, erk). One value only: text
+/// after it that TOML reads as more keys or tables (a newline and more TOML) would otherwise be
+/// dropped without a word, and a line break in a bare string is no value of any key.
 toml::node_view<toml::node> parsed_value(toml::table& holder, const SceneOverride& o) {
+  const auto more_than_one = [&](const std::string& what) {
+    return SceneError(label(o.text()), 0, o.key,
+                      fmt::format("the value holds {}: one value per --set (quote a string: {}=\"...\")", what, o.key));
+  };
   try {
     holder = toml::parse("v = " + o.value, std::string_view(label(o.text())));
   } catch (const toml::parse_error&) {
+    if (o.value.find_first_of("\n\r") != std::string::npos)
+      throw more_than_one("a line break, and what follows it is not part of one TOML value");
     holder = toml::table{};
     holder.insert("v", o.value);
+  }
+  if (holder.size() != 1) {
+    std::string extra;
+    for (const auto& [name, node] : holder)
+      if (name.str() != "v") extra += (extra.empty() ? "'" : ", '") + std::string(name.str()) + "'";
+    throw more_than_one(fmt::format("more than one TOML value (after a line break: {})", extra));
   }
   return holder["v"];
 }

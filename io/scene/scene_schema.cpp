@@ -498,8 +498,9 @@ constexpr Row kRows[] = {
      .meaning = "per-segment (per-contact) diagnostics"},
     {.section = "output", .key = "max_size", .kind = number, .field = FIELD(scene.output.max_size),
      .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
-     .meaning = "largest output (its series: samples x values x 8 bytes, estimated by `raceway check`); a larger "
-                "run is refused before it starts"},
+     .meaning = "largest output file (its series uncompressed, samples x values x 8 bytes, plus a bound of names, "
+                "attributes and indexes, estimated by `raceway check`); a larger run is refused before it starts; the "
+                "`/scheduler` log is thinned to what is left"},
     {.section = "output", .key = "checkpoint_interval", .kind = number, .field = FIELD(scene.output.checkpoint_interval),
      .dim = dim::time, .bounds = non_negative, .def = value(0),
      .meaning = "simulated time between checkpoints, rounded to whole output intervals; CVODE restarts at each, so a "

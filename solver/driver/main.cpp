@@ -193,11 +193,24 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
     spdlog::info("summary written to {}", summary_json);
   }
   if (const std::string note = solver::output_share_note(sum); !note.empty()) spdlog::info("{}", note);
+  for (const auto& [name, text] : sum.warnings) spdlog::warn("{}", text);  // the last lines of the run
   return 0;
 }
 
 /// `raceway report OUT.h5`: the Python report (io/report/raceway_report.py) of a planar or spatial run.
 int report_command(const io::ReportOptions& options) { return io::run_report(options); }
+
+/// `--inject-pause EVALUATION:SECONDS` (test only).
+void parse_pause(const std::string& spec, scheduler::MpiExecutorOptions& options) {
+  const auto colon = spec.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    options.inject_pause_evaluation = std::stol(spec.substr(0, colon));
+    options.inject_pause_seconds = std::stod(spec.substr(colon + 1));
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--inject-pause expects EVALUATION:SECONDS (e.g. 40:5), got '" + spec + "'");
+  }
+}
 
 /// `--inject-failure RANK:EVALUATION` (test only).
 void parse_injection(const std::string& spec, scheduler::MpiExecutorOptions& options) {
@@ -259,7 +272,7 @@ int command_line_error(const CLI::App& app, const CLI::ParseError& e, int rank, 
 struct CommandLine {
   std::string scene_path, output = "raceway.h5", summary_json, petsc_options;
   scheduler::MpiExecutorOptions exec_options;
-  std::string schedule = "adaptive", exchange = "shared", inject;
+  std::string schedule = "adaptive", exchange = "shared", inject, inject_pause;
   std::string method;  ///< --method: the scene's [solver] method, replaced
   std::vector<std::string> overrides;  ///< --set section.key=VALUE
   bool replan_every_evaluation = false, scheduler_log = false, resume = false, parallel_output = false;
@@ -315,7 +328,8 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
       ->check(CLI::IsMember({"shared", "messages"}))
       ->capture_default_str();
   run->add_option("--rank-timeout", cl.exec_options.rank_timeout,
-                  "seconds rank 0 waits for a worker's answer before it ends the job naming the rank")
+                  "seconds rank 0 waits for a worker's answer, and a worker for a sign of life of rank 0, before it "
+                  "ends the job naming the rank")
       ->check(number_at_least(0, true))
       ->capture_default_str();
   run->add_option("--schedule-sample-every", cl.exec_options.sample_every,
@@ -338,6 +352,8 @@ void add_run_command(CLI::App& app, CommandLine& cl) {
   run->add_flag("--replan-every-step", cl.replan_every_evaluation, "test only: a new plan before every evaluation")
       ->group("");
   run->add_option("--inject-failure", cl.inject, "test only: RANK:EVALUATION throws inside a task")->group("");
+  run->add_option("--inject-pause", cl.inject_pause, "test only: EVALUATION:SECONDS rank 0 works that long before it")
+      ->group("");
 }
 
 void add_check_command(CLI::App& app, CommandLine& cl) {
@@ -412,12 +428,14 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   cl.exec_options.shared_exchange = cl.exchange == "shared";
   try {
     if (!cl.inject.empty()) parse_injection(cl.inject, cl.exec_options);
+    if (!cl.inject_pause.empty()) parse_pause(cl.inject_pause, cl.exec_options);
   } catch (const std::exception& e) {
     if (rank == 0) spdlog::error("{}", e.what());
     return 2;
   }
   cl.exec_options.on_event = [](const std::string& line) { spdlog::info("{}", line); };
   scheduler::MpiExecutor executor(comm, cl.exec_options);
+  executor.watch_master();  // a stopped rank 0 ends the workers after --rank-timeout
   const driver::OutputThreadPlace output_thread = driver::place_output_thread(cl.output_thread, comm);
   if (rank != 0) {
     driver::serve_scene_tasks(source, executor, comm, cl.parallel_output);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -103,6 +104,7 @@ bool petsc_diagnostic_option(const std::string& name) {
   return false;
 }
 
+
 /// Names of options nobody read, apart from raceway's own defaults and PETSc's diagnostics.
 std::vector<std::string> unused_options(const std::vector<std::string>& ignore) {
   PetscInt n = 0;
@@ -128,6 +130,26 @@ std::string join(const std::vector<std::string>& v) {
 
 }  // namespace
 
+// PETSc's information flags: -help (-h) prints every option of every object the solver creates
+// (434 lines for the bordered solver) and PETSc then carries on; -version prints PETSc's version.
+// Neither is a solver option: they are refused with a short answer rather than passed on (the
+// options that matter are named in README.md, "PETSc options"; -ksp_view shows the solver built).
+std::string information_flag(const std::string& options) {
+  std::istringstream words(options);
+  for (std::string word; words >> word;)
+    if (word == "-help" || word == "-h" || word == "--help" || word == "-version" || word == "--version")
+      return word;
+  return "";
+}
+
+std::string information_flag_refusal(const std::string& flag) {
+  return fmt::format("'{}' is PETSc's information flag, not a solver option, and is not passed on (it prints "
+                     "hundreds of lines of every PETSc object's options); the bordered solver reads the KSP and PC "
+                     "options of its splits (-fieldsplit_0_..., -fieldsplit_1_...: README.md, \"PETSc options\"), "
+                     "and -ksp_view shows the solver it builds",
+                     flag);
+}
+
 std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const BorderedLayout& layout) {
   // PETSC_OPTIONS from the environment, as PETSc reads it: the lowest priority (the scene and the
   // command line override it). PetscOptionsClear below drops what PetscInitialize read, so it is
@@ -144,6 +166,7 @@ std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const Bo
   // One stage per source, so that an error names where the bad option came from.
   auto stage = [&](const std::string& options, auto&& fail) {
     clear_last_error();
+    if (const std::string flag = information_flag(options); !flag.empty()) fail(information_flag_refusal(flag));
     if (!options.empty() && PetscOptionsInsertString(nullptr, options.c_str()) != 0)
       fail(fmt::format("cannot parse the PETSc options \"{}\": {}", options, last_error_));
     for (const auto& [name, value] : kDefaultOptions) {

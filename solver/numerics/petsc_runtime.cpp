@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <petscsys.h>
 
+#include <cstdlib>
+
 namespace raceway::solver {
 
 PetscRuntime* PetscRuntime::live_ = nullptr;
@@ -25,6 +27,13 @@ struct PetscErrorRecorder {
 
 PetscRuntime::PetscRuntime(std::string command_line_options) {
   if (live_) throw std::logic_error("PetscRuntime: one per process");
+  // PETSc's information flags are refused before PetscInitialize, which would print its help for
+  // one in PETSC_OPTIONS (petsc_options.cpp, information_flag).
+  const char* env = std::getenv("PETSC_OPTIONS");
+  if (const std::string flag = information_flag(env ? env : ""); !flag.empty())
+    throw OptionsError("PETSC_OPTIONS (environment): " + information_flag_refusal(flag));
+  if (const std::string flag = information_flag(command_line_options); !flag.empty())
+    throw OptionsError("--petsc-options: " + information_flag_refusal(flag));
   // raceway keeps the default crash behaviour (core dumps, sanitizers): no PETSc signal handler.
   PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr);
   // The Newton systems live on the master rank alone (solver/driver/main.cpp creates the runtime

@@ -26,6 +26,12 @@ class OptionsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The first of PETSc's information flags (-help, -h, -version) among `options`, or "": they are not
+/// solver options and are refused (information_flag_refusal) rather than passed on to PETSc.
+std::string information_flag(const std::string& options);
+/// Why `flag` is refused and which options matter instead, for an OptionsError or a SceneError.
+std::string information_flag_refusal(const std::string& flag);
+
 struct PetscErrorRecorder;
 
 /// PETSc for the lifetime of the object. Create it after MPI_Init (PETSc then leaves MPI_Finalize to
@@ -34,6 +40,7 @@ struct PetscErrorRecorder;
 /// from `command_line_options` (raceway run --petsc-options "..."), which override the scene's.
 class PetscRuntime {
  public:
+  /// Throws OptionsError when PETSC_OPTIONS or `command_line_options` hold an information flag.
   explicit PetscRuntime(std::string command_line_options = "");
   ~PetscRuntime();
   PetscRuntime(const PetscRuntime&) = delete;

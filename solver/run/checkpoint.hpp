@@ -1,7 +1,9 @@
 // A run's checkpoint: what `raceway run SCENE -o OUT.h5 --resume` needs to continue OUT.h5.partial
 // (docs/output_layout.md, "Checkpoints and resume"). A small HDF5 file OUT.h5.checkpoint, written
 // atomically (OUT.h5.checkpoint.partial, fsync, rename) after the output file was flushed, so it
-// never names rows that are not on disk.
+// never names rows that are not on disk. Sealed (io::sealed_file_problem: the CRC-32 of all its
+// bytes, checked before HDF5 reads it), with a CRC-32 of its payload and of the .partial file's
+// rows up to it: a damaged checkpoint or .partial is refused, never resumed with other results.
 #pragma once
 
 #include <map>
@@ -42,6 +44,9 @@ struct Checkpoint {
   /// writer writes whole chunks only until the end), by series path, row-major.
   std::map<std::string, std::vector<double>> unwritten_rows;
   RunFingerprint fingerprint;
+  /// Per series of OUT.h5.partial, the CRC-32 of its rows appended so far, file and unwritten
+  /// (io::H5SeriesWriter::row_checksums): a resume checks the .partial file against them.
+  std::map<std::string, double> partial_crc;
 };
 
 /// The checkpoint file of an output path: OUT.h5 -> OUT.h5.checkpoint.
@@ -53,6 +58,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& cp);
 /// The checkpoint at `path`; nullopt when there is none. Throws ResumeRefused when the file exists
 /// but cannot be read as a checkpoint.
 std::optional<Checkpoint> read_checkpoint(const std::string& path);
+
+/// Throws ResumeRefused with the reason when `cp` cannot continue a run of `state_size` states and
+/// output samples 0..`samples` every `dt` seconds: a state of another size or not finite, a sample
+/// outside the run, a time that is not the sample's, restart times outside [0, time]. Checked
+/// after require_same_run, before anything is integrated or written.
+void require_fits(const Checkpoint& cp, std::size_t state_size, long samples, double dt, const std::string& path);
 
 /// Throws ResumeRefused with the reason (the first differing scene line, or the two builds or
 /// option sets) when `now` is not the fingerprint the checkpoint was written with.

@@ -1,6 +1,7 @@
 #include "solver/run/output_writer.hpp"
 
 #include <cmath>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "solver/bearing/element_traits.hpp"
 #include "solver/run/pocket_steps.hpp"
+#include "solver/run/schedule_output.hpp"
 
 namespace raceway::solver {
 
@@ -148,11 +150,51 @@ std::string bytes_text(double bytes) {
   return fmt::format("{:.0f} B", bytes);
 }
 
+// Upper bounds of the parts of a file beside its series' values, measured on this writer's files
+// (tests/cli/cli_test.sh output_size checks the whole file against the estimate): the superblock,
+// the root's fixed attributes (build, versions) and the summary's fixed keys; per dataset its
+// object header (shape, chunking, filters, units, description, the time scale's references) and
+// its first chunk-index node; per series byte the chunk index's growth and deflate's worst case.
+// Measured on the default scene (63 datasets): 455 kB on disk for 224 kB of stored chunks, 3.7 kB
+// per dataset beside its chunks, of which the summary (12 kB: the scene's parameters, 3.4 times the
+// scene text) and the root's attributes are a fifth.
+constexpr double kFileBaseBytes = 32e3;
+constexpr double kBytesPerDataset = 4e3;
+constexpr double kIndexShare = 0.01;
+
+/// The datasets the writer defines for `m` (OutputWriter's constructor and define_segment_groups).
+double dataset_count(const Model& m, bool segments) {
+  double n = 2 + static_cast<double>(m.first_element * static_cast<int>(border_series(m.kind).size())) +
+             static_cast<double>(element_series(m.kind).size()) + PocketSteps::quantities;
+  if (m.kind == io::ModelKind::spatial) n += 2;
+  if (!segments) return n;
+  std::set<std::pair<int, bool>> kinds;  // (kind, line family)
+  for (const Segment& s : m.segments)
+    kinds.emplace(static_cast<int>(s.kind), is_line_family(m.laws[static_cast<std::size_t>(s.law)]));
+  for (const auto& [kind, line] : kinds)
+    n += 2 + static_cast<double>(line ? contact::line_diagnostic_fields.size() : contact::point_diagnostic_fields.size());
+  return n;
+}
+
+/// Everything of a file but its series' values and the /scheduler log's arrays (OutputEstimate).
+double fixed_output_bytes(const Model& m, const io::Scene& scene, double series_bytes) {
+  // The scene text in scene_text and about four times in the summary's parameters; the model's description.
+  double text = 5 * static_cast<double>(scene.text.size()) + static_cast<double>(scene.source.size() + m.describe().size());
+  for (const std::string& o : scene.overrides) text += 2 * static_cast<double>(o.size());
+  double names = 0;  // variable-length strings: a 16-byte reference and the text in a heap
+  for (const std::string& n : m.state_name) names += 32 + static_cast<double>(n.size());
+  if (scene.output.segments)
+    for (const Segment& s : m.segments) names += 40 + static_cast<double>(s.name.size());
+  return kFileBaseBytes + text + names + kBytesPerDataset * dataset_count(m, scene.output.segments) +
+         kIndexShare * series_bytes + kScheduleLogFixedBytes;
+}
+
 }  // namespace
 
 std::string OutputEstimate::describe(double limit) const {
-  return fmt::format("output: {} samples x {} values = {} (limit {}, [output] max_size)", samples, values_per_sample,
-                     bytes_text(bytes), bytes_text(limit));
+  return fmt::format("output: {} samples x {} values = {} + {} of names, attributes and indexes (limit {}, [output] "
+                     "max_size)",
+                     samples, values_per_sample, bytes_text(bytes), bytes_text(fixed_bytes), bytes_text(limit));
 }
 
 OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
@@ -170,20 +212,22 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   e.values_per_sample = values;
   e.bytes = samples * static_cast<double>(values) * sizeof(double);
   e.samples = samples < 9e18 ? static_cast<long>(samples) : -1;
+  e.fixed_bytes = fixed_output_bytes(m, scene, e.bytes);
   return e;
 }
 
 void check_output_size(const OutputEstimate& e, const io::Scene& scene) {
   const double limit = scene.output.max_size;
-  if (e.bytes <= limit) return;
+  if (e.total() <= limit) return;
   const std::string key = "scene.output_interval";
   throw io::SceneError(
       scene.source, scene.line_of(key), key,
       fmt::format("the output would be {} ({:.4g} samples, one every {:g} s over end_time = {:g} s, x {} values x 8 "
-                  "bytes), more than [output] max_size = {}: raise output_interval, shorten end_time{}, or raise "
-                  "max_size",
-                  bytes_text(e.bytes), e.bytes / (8.0 * static_cast<double>(e.values_per_sample)),
-                  scene.scene.output_interval, scene.scene.end_time, e.values_per_sample, bytes_text(limit),
+                  "bytes, + {} of names, attributes and indexes), more than [output] max_size = {}: raise "
+                  "output_interval, shorten end_time{}, or raise max_size",
+                  bytes_text(e.total()), e.bytes / (8.0 * static_cast<double>(e.values_per_sample)),
+                  scene.scene.output_interval, scene.scene.end_time, e.values_per_sample, bytes_text(e.fixed_bytes),
+                  bytes_text(limit),
                   scene.output.segments ? ", set [output] segments = false" : ""));
 }
 

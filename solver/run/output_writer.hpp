@@ -22,14 +22,20 @@ struct BodySample {
   double force[6] = {0, 0, 0, 0, 0, 0};         ///< N x y z, N m about x y z: net, at the centre
 };
 
-/// The size of a run's output series (docs/output_layout.md), from the same tables the writer
-/// uses: `raceway check` prints it, and run_scene holds it against [output] max_size before it
-/// creates the file. Fixed parts (names, attributes, the bounded /scheduler log) are not counted.
+/// The size of a run's output file (docs/output_layout.md), from the same tables the writer uses:
+/// `raceway check` prints it, and run_scene holds it against [output] max_size before it creates
+/// the file. The series uncompressed (what they cannot exceed) and an upper bound of the rest:
+/// names, attributes, HDF5's object headers and chunk indexes, the summary and the fixed part of
+/// the /scheduler log; the /scheduler log's arrays get what max_size leaves over (they are thinned
+/// to fit: write_schedule_log).
 struct OutputEstimate {
   long samples = 0;            ///< output times, t = 0 included
   long values_per_sample = 0;  ///< doubles appended per output time
-  double bytes = 0;            ///< samples x values x 8
-  /// "output: 201 samples x 1234 values = 1.99 MB (limit 4 GB, [output] max_size)".
+  double bytes = 0;            ///< the series: samples x values x 8
+  double fixed_bytes = 0;      ///< everything else but the /scheduler log's arrays
+  double total() const { return bytes + fixed_bytes; }
+  /// "output: 201 samples x 1234 values = 1.99 MB + 120 kB of names, attributes and indexes
+  /// (limit 4 GB, [output] max_size)".
   std::string describe(double limit) const;
 };
 OutputEstimate estimate_output(const Model& m, const io::Scene& scene);

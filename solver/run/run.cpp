@@ -68,11 +68,30 @@ io::JsonObject RunSummary::to_json() const {
   j.add("output_write_time_s", output_write_seconds);
   j.add("output_thread_time_s", output_thread_seconds);
   if (!pocket_step_totals.empty()) j.add("pocket_step_totals", pocket_step_totals);
+  io::JsonObject named_warnings;
+  for (const auto& [name, text] : warnings) named_warnings.add(name, text);
+  j.add("warnings", std::move(named_warnings));
   j.add("scene_overrides", scene_overrides);
   j.add("scene_parameters", scene_parameters);
   return j;
 }
 
+std::vector<std::pair<std::string, std::string>> regime_warnings(const RunSummary& sum) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (std::fabs(sum.cage_slip) >= kCageSlipFarFromRolling && std::fabs(sum.driven_ring_revolutions) > 0)
+    out.emplace_back(
+        "cage_slip",
+        fmt::format("the cage slips {:.1f} % against its epicyclic speed (cage {:.4g} rpm, epicyclic {:.4g} rpm, "
+                    "second half of the run): the rolling elements hardly roll, far from a bearing's running "
+                    "regime; the run may have ended inside its transient or the drive may be unphysical (check the "
+                    "ring speed's ramp, the load and end_time)",
+                    100 * sum.cage_slip, sum.cage_speed_rpm, sum.epicyclic_cage_speed_rpm));
+  if (!std::isfinite(sum.energy_final_j) || !std::isfinite(sum.cage_speed_rpm))
+    out.emplace_back("energy", fmt::format("the run ended with a non-finite energy ({}) or cage speed ({}): its "
+                                           "state is not physical",
+                                           sum.energy_final_j, sum.cage_speed_rpm));
+  return out;
+}
 
 std::string output_share_note(const RunSummary& sum) {
   if (!(sum.wall_time_s > 0) || sum.output_seconds <= kOutputShareToMention * sum.wall_time_s) return "";
@@ -104,7 +123,7 @@ io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& opt
     storage.compressor_core = options.output_thread_core;  // beside the output thread, off the rank's core
   }
   auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
-                                                   resumed->unwritten_rows, storage)
+                                                   resumed->unwritten_rows, storage, resumed->partial_crc)
                       : io::H5SeriesWriter::create(options.output_path, storage);
   if (options.shared_output)  // the segment diagnostics: written by every rank together
     file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<io::SharedRows>& rows) {
@@ -154,6 +173,11 @@ std::optional<Checkpoint> checkpoint_to_resume(const RunOptions& options, const 
   return cp;
 }
 
+/// The last output sample of the run (samples 0..this).
+long run_samples(const io::Scene& scene) {
+  return std::lround(std::floor(scene.scene.end_time / scene.scene.output_interval + 1e-9));
+}
+
 /// When checkpoints are due: every `every` output samples (periodic, CVODE restarts), after
 /// `wall_interval` seconds of wall clock, and at a stop signal; never at the last sample (the run
 /// ends there and commits its output).
@@ -181,7 +205,7 @@ class RunLoop {
   RunLoop(const io::Scene& scene, const RunOptions& options, const Model& model, Equations& eq,
           scheduler::Executor& executor, const RunFingerprint& fingerprint)
       : scene_(scene), options_(options), model_(model), eq_(eq), executor_(executor), fingerprint_(fingerprint),
-        dt_(scene.scene.output_interval), samples_(std::lround(std::floor(scene.scene.end_time / dt_ + 1e-9))),
+        dt_(scene.scene.output_interval), samples_(run_samples(scene)),
         plan_{scene.output.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.output.checkpoint_interval / dt_))
                                                    : 0,
               scene.output.checkpoint_wall_interval, options.stop_signal},
@@ -272,7 +296,7 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
   drain_output();
   const double before = wall();
   file_->flush();  // first the rows, then the checkpoint that names them
-  Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_};
+  Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_, file_->row_checksums()};
   totals_.save(cp, integrator_->statistics(), eq_, executor_, wall());
   pockets_.save(cp);
   write_checkpoint(checkpoint_path(options_.output_path), cp);
@@ -301,9 +325,11 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   sum.pocket_step_totals = pockets_.totals_json();
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
+  sum.warnings = regime_warnings(sum);
   file_->set_attribute("/", "summary_json", sum.to_json().dump());
+  // The scheduler's arrays get what [output] max_size leaves after the rest of the file's estimate.
   if (const auto* log = executor_.schedule_log(); log && (log->ranks > 1 || options_.scheduler_log))
-    write_schedule_log(*file_, *log);
+    write_schedule_log(*file_, *log, scene_.output.max_size - estimate_output(model_, scene_).total());
   return sum;
 }
 
@@ -354,8 +380,16 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   }
   zdot_.resize(z_.size());
   double t_last = resumed ? resumed->time : t0;
-  file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
-  out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr);
+  try {
+    file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
+    out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr);
+  } catch (const std::runtime_error& e) {
+    if (!resumed || dynamic_cast<const io::SceneError*>(&e) || dynamic_cast<const OptionsError*>(&e)) throw;
+    // The .partial file does not continue (missing rows, a damaged chunk, rows whose checksum is
+    // not the checkpoint's): a refused resume, exit 2, nothing more written.
+    throw ResumeRefused(fmt::format("cannot resume from {}: {}; run without --resume to start again",
+                                    checkpoint_path(options_.output_path), e.what()));
+  }
   file_->set_attribute("/", "restart_times", restart_times_);
   // The layout in the file: from here on the .partial file is readable after the process is
   // killed. A fresh run does not wait for the disk here: a power loss now loses nothing a resume
@@ -435,6 +469,9 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   // The overrides are part of the scene: a resume with other ones is refused at their line.
   const RunFingerprint fingerprint{scene.text + io::overrides_as_comments(scene.overrides), build_fingerprint(options.mpi_library), options.result_options};
   const std::optional<Checkpoint> resumed = checkpoint_to_resume(options, fingerprint);
+  if (resumed)
+    require_fits(*resumed, static_cast<std::size_t>(model.state_size), run_samples(scene),
+                 scene.scene.output_interval, checkpoint_path(options.output_path));
   RunLoop loop(scene, options, model, eq, executor, fingerprint);
   return loop.run(resumed);
 }

@@ -111,8 +111,20 @@ struct RunSummary {
   io::JsonObject scene_overrides, scene_parameters;
   /// The step-resolved pocket statistics' run totals (solver/run/pocket_steps.hpp); empty without pockets.
   io::JsonObject pocket_step_totals;
+  /// Signs that the run ended far from any physical running regime (regime_warnings()), by name:
+  /// printed as warnings at the end and kept in the summary's "warnings".
+  std::vector<std::pair<std::string, std::string>> warnings;
   io::JsonObject to_json() const;
 };
+
+/// Cage slip (1 - cage / epicyclic speed, second half) at or beyond which a run is said to have
+/// ended far from a bearing's running regime: the cage hardly follows the rolling elements.
+inline constexpr double kCageSlipFarFromRolling = 0.8;
+
+/// The signs in `sum` that the run ended far from any physical regime ("cage_slip": |slip| at or
+/// above kCageSlipFarFromRolling with the ring turning; "energy": a non-finite energy), each with a
+/// sentence naming what to check; empty for a run in a plausible regime.
+std::vector<std::pair<std::string, std::string>> regime_warnings(const RunSummary& sum);
 
 /// The output's share of the run on the run's thread above which output_share_note() speaks.
 inline constexpr double kOutputShareToMention = 0.05;

@@ -1,9 +1,62 @@
 #include "solver/run/schedule_output.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
 namespace raceway::solver {
 
-void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& log) {
+namespace {
+
+constexpr std::size_t kPlanColumns = 11, kSampleColumns = 8;
+
+double task_array_bytes(const scheduler::ScheduleLog& log) {
+  double values = static_cast<double>(log.task_group.size() + log.task_parent.size() + log.rank_task_seconds.size());
+  for (std::size_t p = 0; p < 2; ++p)
+    values += static_cast<double>(log.task_record_size[p].size() + log.task_cost[p].size());
+  return values * sizeof(double);
+}
+
+double row_bytes(std::size_t rows, std::size_t columns) { return static_cast<double>(rows * columns * sizeof(double)); }
+
+}  // namespace
+
+double schedule_log_array_bytes(const scheduler::ScheduleLog& log) {
+  return task_array_bytes(log) + row_bytes(log.plans.size(), kPlanColumns) + row_bytes(log.samples.size(), kSampleColumns);
+}
+
+void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& full, double budget_bytes) {
+  // Within the budget: thin the samples first (every other one, as the executor does past its own
+  // bound), then keep only the first and last plans, then leave out the per-task arrays.
+  scheduler::ScheduleLog log = full;
+  std::string left_out;
+  while (schedule_log_array_bytes(log) > budget_bytes && !log.samples.empty()) {
+    if (log.sample_every >= (1 << 30)) {
+      log.samples.clear();
+      break;
+    }
+    log.sample_every *= 2;
+    std::erase_if(log.samples, [&](const scheduler::ImbalanceSample& x) { return x.evaluation % log.sample_every != 0; });
+  }
+  if (log.sample_every != full.sample_every || log.samples.size() != full.samples.size())
+    left_out = fmt::format("imbalance samples thinned to every {}th evaluation ({} of {} kept)", log.sample_every,
+                           log.samples.size(), full.samples.size());
+  if (schedule_log_array_bytes(log) > budget_bytes && log.plans.size() > 2) {
+    log.plans = {full.plans.front(), full.plans.back()};
+    left_out += fmt::format("{}plans: the first and the last of {} kept", left_out.empty() ? "" : "; ", full.plans.size());
+  }
+  if (schedule_log_array_bytes(log) > budget_bytes) {
+    log.task_group.clear(), log.task_parent.clear(), log.rank_task_seconds.clear();
+    for (std::size_t p = 0; p < 2; ++p) log.task_record_size[p].clear(), log.task_cost[p].clear();
+    log.plans.clear(), log.samples.clear();
+    left_out += fmt::format("{}the arrays (per task, plans, samples) left out", left_out.empty() ? "" : "; ");
+  }
   const std::string g = "/scheduler";
+  if (!left_out.empty())
+    file.set_attribute(g, "left_out_for_max_size",
+                       fmt::format("{} to keep the file within [output] max_size ({:.0f} bytes were left for these "
+                                   "arrays, {:.0f} needed)",
+                                   left_out, std::max(0.0, budget_bytes), schedule_log_array_bytes(full)));
   file.set_attribute(g, "ranks", log.ranks);
   file.set_attribute(g, "policy", log.policy);
   file.set_attribute(g, "master_share", log.master_share);
@@ -39,10 +92,11 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
     file.write_array(g + "/task_segment", {parent.size()}, parent, "-",
                      "contact segment of each task (a heavy segment's work is cut into several tasks)");
   }
-  file.write_array(g + "/rank_task_seconds", {log.rank_task_seconds.size()}, log.rank_task_seconds, "s",
-                   "task seconds per rank, all phases");
+  if (!log.rank_task_seconds.empty())
+    file.write_array(g + "/rank_task_seconds", {log.rank_task_seconds.size()}, log.rank_task_seconds, "s",
+                     "task seconds per rank, all phases");
   if (!log.plans.empty()) {
-    constexpr std::size_t columns = 11;
+    constexpr std::size_t columns = kPlanColumns;
     std::vector<double> rows;
     for (const auto& e : log.plans) {
       const double row[columns] = {static_cast<double>(e.evaluation), static_cast<double>(e.phase),
@@ -60,7 +114,7 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
                      "to make and send, split segments (cut into sub-tasks on several ranks)");
   }
   if (!log.samples.empty()) {
-    constexpr std::size_t columns = 8;
+    constexpr std::size_t columns = kSampleColumns;
     std::vector<double> rows;
     for (const auto& s : log.samples) {
       const double row[columns] = {static_cast<double>(s.evaluation), static_cast<double>(s.phase), s.time,

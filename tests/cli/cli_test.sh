@@ -226,7 +226,7 @@ output_size)
   sed 's/^end_time *=.*/end_time = "2 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/short.toml"
   run check "$work/short.toml"
   [[ $rc -eq 0 ]] || { fail "check: exit code $rc"; cat "$work/err" >&2; }
-  pattern='^output: ([0-9]+) samples x ([0-9]+) values = .* \(limit 4 GB, \[output\] max_size\)$'
+  pattern='^output: ([0-9]+) samples x ([0-9]+) values = .* \+ .* of names, attributes and indexes \(limit 4 GB, \[output\] max_size\)$'
   line=$(grep '^output: ' "$work/out")
   [[ "$line" =~ $pattern ]] || fail "check prints no output estimate: '$line'"
   samples=${BASH_REMATCH[1]:-0} values=${BASH_REMATCH[2]:-0}
@@ -249,7 +249,7 @@ PY
   for command in check run; do
     if [[ $command == run ]]; then run run "$work/huge.toml" -o "$work/huge.h5"; else run check "$work/huge.toml"; fi
     [[ $rc -eq 2 ]] || fail "$command of a 58 GB output: exit code $rc, expected 2"
-    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 58.6 GB \(2e\+07 samples.*x 366 values x 8 bytes\), more than \[output\] max_size = 4 GB" "$work/err" ||
+    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 58.[0-9] GB \(2e\+07 samples.*x 366 values x 8 bytes, \+ [0-9.]+ [kMG]?B of names, attributes and indexes\), more than \[output\] max_size = 4 GB" "$work/err" ||
       fail "$command: no size, key and limit in: $(cat "$work/err")"
   done
   [[ -e "$work/huge.h5" || -e "$work/huge.h5.partial" ]] && fail "a refused run created an output file"

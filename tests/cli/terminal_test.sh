@@ -8,7 +8,9 @@
 # progress_log   without a terminal: one progress line per 10 % at most, no carriage returns
 # log_levels     errors and warnings name their level: "[raceway] error: ..."
 # petsc_options  PETSC_OPTIONS from the environment reaches PETSc: -log_view prints PETSc's
-#                performance summary; a misspelt option in it is an error naming PETSC_OPTIONS (exit 2)
+#                performance summary; a misspelt option in it is an error naming PETSC_OPTIONS (exit 2);
+#                PETSc's information flags (-help, -h, -version) are refused in a line, exit 2, from
+#                the command line, the scene and the environment
 set -u
 
 case_name=${1:?case}
@@ -78,6 +80,26 @@ petsc_options)
   grep -q 'error: PETSC_OPTIONS (environment): .*-fieldsplit_1_pc_typo' "$work/err" ||
     fail "the error does not name PETSC_OPTIONS and the option: $(cat "$work/err")"
   [[ -e "$work/q.h5" ]] && fail "a refused run wrote its output"
+  # PETSc's information flags are refused in a line or two (not PETSc's 434-line help), exit 2,
+  # from the command line, the scene and the environment alike.
+  for flag in -help -h -version; do
+    "$raceway" run "$work/p.toml" -o "$work/h.h5" --petsc-options "$flag" >"$work/out" 2>"$work/err"
+    rc=$?
+    lines=$(cat "$work/out" "$work/err" | wc -l)
+    [[ $rc -eq 2 ]] || fail "--petsc-options $flag: exit code $rc, expected 2"
+    [[ $lines -le 3 ]] || fail "--petsc-options $flag: $lines lines printed"
+    grep -q -- "error: --petsc-options: '$flag' is PETSc's information flag" "$work/err" ||
+      fail "--petsc-options $flag: not named: $(cat "$work/err")"
+  done
+  PETSC_OPTIONS="-help" "$raceway" check "$work/p.toml" >"$work/out" 2>"$work/err"
+  rc=$?
+  [[ $rc -eq 2 ]] || fail "PETSC_OPTIONS=-help: exit code $rc, expected 2"
+  grep -q "PETSC_OPTIONS (environment): '-help'" "$work/err" || fail "PETSC_OPTIONS=-help: $(tail -3 "$work/err")"
+  "$raceway" check "$work/p.toml" --set 'solver.petsc_options="-ksp_view -help"' >"$work/out" 2>"$work/err"
+  rc=$?
+  [[ $rc -eq 2 ]] || fail "solver.petsc_options with -help: exit code $rc, expected 2"
+  grep -q "solver.petsc_options.*'-help'" "$work/err" || fail "scene -help: $(tail -3 "$work/err")"
+  [[ -e "$work/h.h5" || -e "$work/h.h5.partial" ]] && fail "a refused run wrote its output"
   ;;
 
 *)

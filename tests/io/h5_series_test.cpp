@@ -288,6 +288,28 @@ TEST_F(H5Series, RoundTripAttributes) {
   EXPECT_EQ(read_double_attr(f, "/", "replaced"), std::vector<double>{2.5});
 }
 
+// The root's attributes have no 64 KiB limit: 10000 state names (1000 balls of 9 states and the
+// border, 16 bytes each in an attribute) are written and read back, as is a 200 kB string.
+TEST_F(H5Series, LargeRootAttributes) {
+  const std::string file = path("large_attributes.h5");
+  std::vector<std::string> names;
+  for (int i = 0; i < 10000; ++i) names.push_back("ball[" + std::to_string(i / 9) + "].state" + std::to_string(i % 9));
+  const std::string model(200000, 'm');
+  {
+    auto w = H5SeriesWriter::create(file);
+    w.define_series("/time", {}, "s", "times");
+    w.set_attribute("/", "state_names", names);
+    w.set_attribute("/", "model", model);
+    w.set_attribute("/", "after", 1.5);
+    w.commit();
+  }
+  H5Id f{H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  ASSERT_GE(f.id, 0);
+  EXPECT_EQ(read_string_attr(f, "/", "state_names"), names);
+  EXPECT_EQ(read_string_attr(f, "/", "model"), std::vector<std::string>{model});
+  EXPECT_EQ(read_double_attr(f, "/", "after"), std::vector<double>{1.5});
+}
+
 TEST_F(H5Series, RoundTripFixedArrays) {
   const std::string file = path("arrays.h5");
   {

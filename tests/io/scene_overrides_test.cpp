@@ -93,6 +93,26 @@ TEST(SceneOverrides, ErrorsNameTheOverride) {
   EXPECT_EQ(other.file(), "default.toml") << other.what();
 }
 
+// A value that carries more TOML after a line break is refused naming the key, never cut to its
+// first value; one value over several lines (an array) is still one value.
+TEST(SceneOverrides, OneValuePerOverride) {
+  const SceneError more = error_of("inner_ring.speed=\"3000 rpm\"\n[scene]\nend_time = \"1 s\"");
+  EXPECT_EQ(more.key(), "inner_ring.speed") << more.what();
+  EXPECT_NE(more.reason().find("more than one TOML value"), std::string::npos) << more.what();
+  EXPECT_NE(more.reason().find("'scene'"), std::string::npos) << more.what();
+  const SceneError key = error_of("scene.end_time=\"1 s\"\nname = \"x\"");
+  EXPECT_EQ(key.key(), "scene.end_time") << key.what();
+  EXPECT_NE(key.reason().find("'name'"), std::string::npos) << key.what();
+  const SceneError bare = error_of("inner_ring.speed=3000 rpm\nend_time = 1");
+  EXPECT_EQ(bare.key(), "inner_ring.speed") << bare.what();
+  EXPECT_NE(bare.reason().find("line break"), std::string::npos) << bare.what();
+  EXPECT_NE(error_of("scene.name=abc\rdef").reason().find("line break"), std::string::npos);
+  const Scene array = parse_scene(default_scene_text(), "default.toml",
+                                  std::vector<std::string>{"inner_ring.speed={ time = [\"0 s\",\n\"1 s\"], value = "
+                                                           "[\"0 rpm\", \"600 rpm\"] }"});
+  EXPECT_DOUBLE_EQ(array.inner_ring.speed(1.0), 600 * 2 * pi / 60);
+}
+
 TEST(SceneParameters, EveryValueInSiWithItsUnit) {
   const Scene s = parse_scene(default_scene_text(), "default.toml");
   const auto params = scene_parameters(s);

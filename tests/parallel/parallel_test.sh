@@ -21,6 +21,13 @@
 #   stopped_worker: rank 1 is stopped (SIGSTOP) mid-run; rank 0's bounded waits (--rank-timeout 3)
 #     end the job naming rank 1 (exit 1) within seconds, and no rank is left behind.
 #   stopped_worker_messages: the same with commands and replies by message (--exchange messages).
+#   stopped_master: rank 0 is stopped (SIGSTOP) mid-run; rank 1, waiting for its next command, sees
+#     rank 0's heartbeat stop and ends the job (--rank-timeout 3) naming rank 0, non-zero, within
+#     seconds, and no rank is left behind (the stopped one included).
+#   stopped_master_messages: the same with commands by broadcast (--exchange messages).
+#   busy_master: rank 0 works 6 s between two commands (test-only --inject-pause) with
+#     --rank-timeout 2: a live rank 0 keeps beating, the workers wait, the run ends with exit 0.
+#   busy_master_messages: the same with commands by broadcast.
 #   bad_option: a non-finite option value (--master-share nan) at 2 ranks: exit 2, one message.
 #   output_disk_full: the parallel output (--parallel-output: each rank writes the segment diagnostics it evaluated,
 #     MPI-IO): rank 1, which evaluates every segment (--master-share 0), can write no more (its
@@ -179,7 +186,7 @@ output_disk_full() {
 # ARGS), rank 1 sent SIGNAL a second after the integration starts; waits for the job and sets
 # $rc, $elapsed (seconds from the signal to the end) and $victim (rank 1's pid; empty: not found).
 signal_worker() {
-  local signal=$1 out=$2
+  local signal=$1 out=$2 target=${target_rank:-1}
   shift 2
   sed -e 's/^end_time = .*/end_time = "10 s"/' "$source_dir/jobs/scenes/default.toml" >"$work/long.toml"
   timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/long.toml" -o "$out" "$@" >"$work/log" 2>&1 &
@@ -187,14 +194,49 @@ signal_worker() {
   # Wait for the integration to start (the linear solver is announced just before).
   for _ in $(seq 100); do grep -q "Newton linear solver" "$work/log" && break; sleep 0.2; done
   sleep 1
-  victim=$(rank_pid "$job" 1)
-  [[ -n "$victim" ]] || { fail "rank 1 not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
+  victim=$(rank_pid "$job" "$target")
+  [[ -n "$victim" ]] || { fail "rank $target not found under the mpirun of job $job"; kill "$job"; wait "$job"; return; }
   local start=$(date +%s)
   kill -"$signal" "$victim"
   wait "$job"
   rc=$?
   elapsed=$(($(date +%s) - start))
-  echo "rank 1 (pid $victim) sent SIG$signal: exit $rc after $elapsed s"
+  echo "rank $target (pid $victim) sent SIG$signal: exit $rc after $elapsed s"
+}
+
+# Rank 0 stopped: the workers' waits for it end the job (its heartbeat, scheduler/mpi_heartbeat.cpp).
+stopped_master() {
+  target_rank=0 signal_worker STOP "$work/m.h5" --rank-timeout 3 "$@"
+  [[ -n "$victim" ]] || return
+  [[ $rc -ne 0 && $rc -ne 124 ]] || fail "exit code $rc (0: a silent success; 124: the job hung): $(tail -5 "$work/log")"
+  grep -q "rank 1 of 2: error: rank 0 sent nothing for 3 s and its heartbeat stopped (--rank-timeout)" "$work/log" ||
+    fail "no message from rank 1 naming rank 0: $(tail -5 "$work/log")"
+  [[ $elapsed -le 30 ]] || fail "took $elapsed s to end: $(tail -5 "$work/log")"
+  # mpirun may return while the kill of the stopped rank is still under way: 5 s for it to go.
+  for _ in $(seq 50); do
+    [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null || break
+    sleep 0.1
+  done
+  if [[ -e /proc/$victim ]] && ! grep -q '^State:.*Z' "/proc/$victim/status" 2>/dev/null; then
+    fail "the stopped rank 0 ($victim) is still alive 5 s after the job ended"
+    kill -CONT "$victim"; kill -KILL "$victim"
+  fi
+  pgrep -f "$work/long.toml" >/dev/null && fail "a rank is left behind"
+  [[ -e "$work/m.h5" ]] && fail "m.h5 written by a failed job"
+}
+
+# A live rank 0 busy for longer than the timeout between two commands is not a stalled one.
+busy_master() {
+  sed -e 's/^end_time = .*/end_time = "20 ms"/' "$source_dir/jobs/scenes/default.toml" >"$work/busy.toml"
+  local start=$(date +%s)
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$work/busy.toml" -o "$work/b.h5" --rank-timeout 2 \
+    --inject-pause 40:6 "$@" >"$work/log" 2>&1
+  rc=$?
+  local elapsed=$(($(date +%s) - start))
+  echo "rank 0 paused 6 s before evaluation 40 (--rank-timeout 2): exit $rc after $elapsed s"
+  [[ $rc -eq 0 ]] || fail "exit code $rc: a busy rank 0 was taken for a stalled one: $(tail -5 "$work/log")"
+  [[ $elapsed -ge 6 ]] || fail "the pause did not happen ($elapsed s)"
+  [[ -e "$work/b.h5" ]] || fail "no output"
 }
 
 stopped_worker() {
@@ -223,6 +265,10 @@ killed_worker() {
 }
 
 case "$case_name" in
+stopped_master) stopped_master ;;
+stopped_master_messages) stopped_master --exchange messages ;;
+busy_master) busy_master ;;
+busy_master_messages) busy_master --exchange messages ;;
 output_disk_full) output_disk_full ;;
 killed_worker) killed_worker ;;
 bitwise_planar) bitwise "$work/planar.toml" ;;

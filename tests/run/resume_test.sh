@@ -201,8 +201,19 @@ refusals() {
   refused "another scene" "the scene differs from the checkpoint's: line" "$work/edited.toml" -o "$work/r.h5"
   refused "other PETSc options" "other options" "$work/scene.toml" -o "$work/r.h5" --petsc-options "-ksp_type gmres"
   cp "$work/r.h5.checkpoint" "$work/saved.checkpoint"
-  "$python" -c "import h5py, sys; h5py.File(sys.argv[1], 'r+').attrs['build'] = 'raceway 0.0 (another build)'" \
-    "$work/r.h5.checkpoint"
+  # The build edited, then the checkpoint's checksums made again (its payload's and its seal, as
+  # solver/run/checkpoint.cpp and io/h5/h5_checksums.cpp make them): only the build differs.
+  "$python" - "$work/r.h5.checkpoint" "$source_dir/tests/run" <<'PY'
+import sys
+import h5py
+import numpy as np
+sys.path.insert(0, sys.argv[2])
+from checkpoint_damage_test import payload_crc, reseal
+with h5py.File(sys.argv[1], "r+") as f:
+    f.attrs["build"] = "raceway 0.0 (another build)"
+    f.attrs["payload_crc32"] = np.int64(payload_crc(f))
+reseal(sys.argv[1])
+PY
   refused "another build" "another build of raceway" "$work/scene.toml" -o "$work/r.h5"
   cp "$work/saved.checkpoint" "$work/r.h5.checkpoint"
   mv "$work/r.h5.partial" "$work/saved.partial"
