@@ -166,11 +166,11 @@ constexpr double kIndexShare = 0.01;
 double dataset_count(const Model& m, bool segments) {
   double n = 2 + static_cast<double>(m.first_element * static_cast<int>(border_series(m.kind).size())) +
              static_cast<double>(element_series(m.kind).size()) + PocketSteps::quantities;
-  if (m.kind == io::ModelKind::spatial) n += 2;
+  n += 2;  // /cage/epicyclic_speed, /cage/rolling_speed (both kinds)
   if (!segments) return n;
   std::set<std::pair<int, bool>> kinds;  // (kind, line family)
   for (const Segment& s : m.segments)
-    kinds.emplace(static_cast<int>(s.kind), is_line_family(m.laws[static_cast<std::size_t>(s.law)]));
+    kinds.emplace(static_cast<int>(s.kind), is_planar_element(m.laws[static_cast<std::size_t>(s.law)]));
   for (const auto& [kind, line] : kinds)
     n += 2 + static_cast<double>(line ? contact::line_diagnostic_fields.size() : contact::point_diagnostic_fields.size());
   return n;
