@@ -92,7 +92,7 @@ LAST_SAMPLE = [
     ("cage.angular_velocity", ["cage/angular_velocity"], None, "speed"),
     ("elements.position", ["rollers/position", "balls/position"], None, "position"),
     ("elements.velocity", ["rollers/velocity", "balls/velocity"], None, "velocity"),
-    ("elements.spin", ["rollers/spin", "balls/angular_velocity"], None, "speed"),
+    ("elements.spin", ["rollers/angular_velocity", "rollers/spin", "balls/angular_velocity"], None, "speed"),
 ]
 
 

@@ -58,9 +58,9 @@ def one_bit_off(f):
 
 
 def one_nan(f):
-    values = f["rollers/spin"][...]
+    values = f["rollers/angular_velocity"][...]
     values[1, 3] = np.nan
-    f["rollers/spin"][...] = values
+    f["rollers/angular_velocity"][...] = values
 
 
 def legitimate_differences(f):
@@ -82,7 +82,7 @@ with tempfile.TemporaryDirectory(prefix="compare_outputs.") as work:
         last = f["time"].shape[0] - 1
     expect("one bit of one value", [run, changed_copy(work, "bit", one_bit_off)], 1,
            "/rollers/position: 1 of", f"[{last}, 2, 0]")
-    expect("a NaN", [run, changed_copy(work, "nan", one_nan)], 1, "/rollers/spin", "NaN in one file only")
+    expect("a NaN", [run, changed_copy(work, "nan", one_nan)], 1, "/rollers/angular_velocity", "NaN in one file only")
     expect("an attribute", [run, changed_copy(work, "units", lambda f: f["energy"].attrs.modify("units", "kJ"))],
            1, "/energy@units: J against kJ")
     expect("a dataset gone", [run, changed_copy(work, "gone", lambda f: f.__delitem__("cage/velocity"))], 1,
@@ -91,9 +91,9 @@ with tempfile.TemporaryDirectory(prefix="compare_outputs.") as work:
            "identical")
     expect("a counter in the summary attribute", [run, changed_copy(work, "steps", lambda f: f.attrs.modify(
         "summary_json", f.attrs["summary_json"].replace('"steps": ', '"steps": 1'))), ], 1, "summary_json.steps")
-    renamed = changed_copy(work, "renamed", lambda f: f.move("cage/angle", "cage/angles"))
-    expect("a renamed dataset without --map", [run, renamed], 1, "/cage/angle: only in A")
-    expect("a renamed dataset with --map", [run, renamed, "--map", "/cage/angle=/cage/angles"], 0, "identical")
+    renamed = changed_copy(work, "renamed", lambda f: f.move("cage/angles", "cage/angles_renamed"))
+    expect("a renamed dataset without --map", [run, renamed], 1, "/cage/angles: only in A")
+    expect("a renamed dataset with --map", [run, renamed, "--map", "/cage/angles=/cage/angles_renamed"], 0, "identical")
     other_summary = os.path.join(work, "other.json")
     with open(summary) as f:
         values = json.load(f)
