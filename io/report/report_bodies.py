@@ -96,13 +96,18 @@ def _pose(f, name, rows):
     (spatial runs) and its angle about z (the cage's state; a ring's integrated speed)."""
     centre = _xyz(np.asarray(f[f"{name}/position"][rows], dtype=float))
     angles = np.zeros((len(rows), 3))
-    if f"{name}/angles" in f:
-        angles[:, :2] = np.asarray(f[f"{name}/angles"][rows], dtype=float)[:, :2]
-    if name == "cage" and "cage/angles" in f:
-        angles[:, 2] = np.asarray(f["cage/angles"][rows], dtype=float)[:, 2]
-    elif name == "cage" and "cage/angle" in f:
-        angles[:, 2] = np.asarray(f["cage/angle"][rows], dtype=float)
-    elif name != "cage":
+    # Layout 3 writes /X/angles in both kinds: [S x 3] (tilts, about z) spatial, [S] (about z)
+    # planar; layout 2 wrote the planar cage's /cage/angle.
+    tilts = np.asarray(f[f"{name}/angles"][rows], dtype=float) if f"{name}/angles" in f else None
+    if tilts is not None and tilts.ndim == 2:
+        angles[:, :2] = tilts[:, :2]
+    if name == "cage":
+        for path in ("cage/angles", "cage/angle"):
+            if path in f:
+                a = np.asarray(f[path][rows], dtype=float)
+                angles[:, 2] = a[:, 2] if a.ndim == 2 else a
+                break
+    else:
         angles[:, 2] = _turned(f, name, rows)
     return centre, cardan_rotation(angles)
 
@@ -136,8 +141,8 @@ def _element_loads(f, elements, count, rows):
     group = f.get(f"segments/{kind}")
     if group is None or "normal_force" not in group:
         return load
-    if "ball" in group:
-        owner = np.asarray(group["ball"][()], dtype=int)
+    if "element" in group or "ball" in group:  # layout 3 / 2
+        owner = np.asarray(group["element" if "element" in group else "ball"][()], dtype=int)
     else:
         names = [_text(n) for n in group["names"][()]]
         owner = np.array([int(m.group(1)) if (m := re.match(r"roller\[(\d+)\]", n)) else -1 for n in names])
@@ -155,8 +160,15 @@ def _check(f, h5_path):
     for path in (f"{elements}/position", "cage/position", "inner_ring/position", "outer_ring/position", "time"):
         if path not in f:
             raise ExportInputError(f"{h5_path}: dataset '/{path}' is missing")
+    spatial = _text(f.attrs.get("model_kind", "planar")) == "spatial"
+    if "element_radius" in f.attrs and "pitch_radius" in f.attrs:  # layout 3: the bearing attributes
+        element, pitch = float(f.attrs["element_radius"]), float(f.attrs["pitch_radius"])
+        if spatial:
+            return elements, (element, pitch, pitch - element, pitch + element)
+        return elements, (element, pitch, float(f.attrs["inner_race_radius"]), float(f.attrs["outer_race_radius"]))
+    # Earlier layouts: from the model's description.
     model = _text(f.attrs.get("model", ""))
-    if _text(f.attrs.get("model_kind", "planar")) == "spatial":
+    if spatial:
         element = 0.5e-3 * _float(r"D = ([0-9.eE+-]+) mm", model, "the ball diameter ('D = ... mm')", h5_path)
         pitch = float(f.attrs["pitch_radius"]) if "pitch_radius" in f.attrs else 0.5e-3 * _float(
             r"pitch diameter ([0-9.eE+-]+) mm", model, "the pitch diameter", h5_path)

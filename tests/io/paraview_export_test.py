@@ -82,7 +82,12 @@ class Expected:
         self.times = self.f["time"][()]
         model = self.f.attrs["model"]
         model = model.decode() if isinstance(model, bytes) else model
-        if "balls" == self.elements:
+        a = self.f.attrs
+        if "element_radius" in a:  # layout 3: the bearing attributes, exact
+            self.radius, self.pitch = float(a["element_radius"]), float(a["pitch_radius"])
+            self.races = ((self.pitch - self.radius, self.pitch + self.radius) if "balls" == self.elements
+                          else (float(a["inner_race_radius"]), float(a["outer_race_radius"])))
+        elif "balls" == self.elements:
             self.radius = 0.5e-3 * float(re.search(r"D = ([0-9.eE+-]+) mm", model).group(1))
             self.pitch = float(self.f.attrs["pitch_radius"])
             self.races = (self.pitch - self.radius, self.pitch + self.radius)
@@ -112,12 +117,16 @@ class Expected:
         return float(np.sum(0.5 * (w[1:] + w[:-1]) * np.diff(self.times[:k + 1])))
 
     def cage_angle(self, k):
-        return float(self.f["cage/angles"][k, 2] if "cage/angles" in self.f else self.f["cage/angle"][k])
+        if "cage/angles" in self.f:  # layout 3: [T x 3] spatial, [T] planar
+            a = self.f["cage/angles"]
+            return float(a[k, 2] if a.ndim == 2 else a[k])
+        return float(self.f["cage/angle"][k])
 
     def load(self, k):
         kind = "ball_inner_groove" if self.elements == "balls" else "roller_inner_race"
         g = self.f[f"segments/{kind}"]
-        owner = g["ball"][()] if "ball" in g else [int(re.match(r"roller\[(\d+)\]", n).group(1))
+        key = "element" if "element" in g else "ball"  # layout 3 / 2
+        owner = g[key][()] if key in g else [int(re.match(r"roller\[(\d+)\]", n).group(1))
                                                     for n in g["names"].asstr()[()]]
         load = np.zeros(self.count)
         for column, e in enumerate(owner):

@@ -187,12 +187,14 @@ def check_vtk(pvd, h5):
 
 
 def check_export_refusal(h5, raceway, work):
-    """A file the exports cannot draw (no 'model' attribute to take the radii from): exit 2 naming
-    the file and the attribute, before anything is written."""
+    """A file the exports cannot draw (neither the bearing attributes nor the 'model' description to
+    take the radii from): exit 2 naming the file and the attribute, before anything is written."""
     bad = os.path.join(work, "no_model.h5")
     shutil.copy(h5, bad)
     with h5py.File(bad, "a") as f:
-        del f.attrs["model"]
+        for name in ("model", "element_radius"):
+            if name in f.attrs:
+                del f.attrs[name]
     r = subprocess.run([raceway, "report", bad, "--xdmf", "--vtk", "--no-plots"], capture_output=True, text=True,
                        timeout=600)
     written = [n for n in os.listdir(work) if n.startswith("no_model") and n != "no_model.h5"]
