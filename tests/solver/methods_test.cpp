@@ -201,9 +201,15 @@ struct Bearing {
   std::vector<double> run(IntegrationMethod m, double rtol, double t_end, long* steps = nullptr) {
     io::SolverSpec spec = spec_for(m, rtol);
     spec.linear_solver = scene.solver.linear_solver;
-    // The scene's tolerances are relative to rtol; the absolute ones follow it (Model::absolute_tolerance).
-    scene.solver.rtol = rtol;
-    Integrator integrator(eq, spec, 0.0, start);
+    // The scene's tolerances are relative to rtol; the absolute ones follow it
+    // (Model::absolute_tolerance). The model copies the scene's solver section when it is built:
+    // a model of the scene at this rtol.
+    io::Scene at_rtol = scene;
+    at_rtol.solver.rtol = rtol;
+    const Model model_at_rtol = build_model(at_rtol);
+    scheduler::SerialExecutor serial;
+    Equations equations(model_at_rtol, serial);
+    Integrator integrator(equations, spec, 0.0, start);
     std::vector<double> z;
     integrator.advance_to(t_end, z);
     if (steps) *steps = integrator.statistics().steps;
