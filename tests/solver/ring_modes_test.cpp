@@ -249,7 +249,7 @@ TEST(RingModes, FreeVibrationConservesEnergy) {
   const Mode mode2 = mode(m, 0);
   z[mode2.a] = -20e-6 * std::cos(2 * theta), z[mode2.b] = -20e-6 * std::sin(2 * theta);
   const std::size_t n = z.size();
-  std::vector<double> k1(n), k2(n), k3(n), k4(n), tmp(n);
+  std::vector<double> k1(n);
   auto f = [&](double t, const std::vector<double>& y, std::vector<double>& out) {
     ASSERT_EQ(eq.rhs(t, y.data(), out.data()), 0);
   };
@@ -268,14 +268,7 @@ TEST(RingModes, FreeVibrationConservesEnergy) {
   const double dt = 5e-8;
   double t = 0;
   for (int step = 0; step < 10000; ++step) {  // 0.5 ms: half a period of mode 2
-    f(t, z, k1);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k1[i];
-    f(t + 0.5 * dt, tmp, k2);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k2[i];
-    f(t + 0.5 * dt, tmp, k3);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + dt * k3[i];
-    f(t + dt, tmp, k4);
-    for (std::size_t i = 0; i < n; ++i) z[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    test::runge_kutta_step(f, t, dt, z);
     t += dt;
     if (step % 100 == 99) {
       f(t, z, k1);

@@ -162,6 +162,23 @@ inline double central_step(const Model& m, VariableClass c) {
   return 0;
 }
 
+/// One step of the classic fourth-order Runge-Kutta method for dz/dt = f(t, z), in place; f(t, y, out)
+/// writes the rates of y into out. The free-vibration tests integrate with it (explicit, with no
+/// error control to hide an energy leak).
+template <class Rates>
+void runge_kutta_step(Rates&& f, double t, double dt, std::vector<double>& z) {
+  const std::size_t n = z.size();
+  std::vector<double> k1(n), k2(n), k3(n), k4(n), tmp(n);
+  f(t, z, k1);
+  for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k1[i];
+  f(t + 0.5 * dt, tmp, k2);
+  for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k2[i];
+  f(t + 0.5 * dt, tmp, k3);
+  for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + dt * k3[i];
+  f(t + dt, tmp, k4);
+  for (std::size_t i = 0; i < n; ++i) z[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+}
+
 /// The Jacobian of eq.rhs at (t, z) by central differences over ALL states (steps: central_step),
 /// independent of Equations::jacobian and of its segment-by-segment assembly.
 inline Eigen::MatrixXd central_difference_jacobian(Equations& eq, const Model& m, double t,

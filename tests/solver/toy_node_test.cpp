@@ -286,7 +286,7 @@ TEST(ToyNode, FreeVibrationConservesEnergy) {
   for (std::size_t i = 0; i < z.size(); ++i)  // at rest: the rollers and the cage still, the sleeve released
     if (m.state_class[i] == VariableClass::velocity || m.state_class[i] == VariableClass::angular_velocity) z[i] = 0;
   const std::size_t n = z.size();
-  std::vector<double> k1(n), k2(n), k3(n), k4(n), tmp(n);
+  std::vector<double> k1(n);
   auto f = [&](double t, const std::vector<double>& y, std::vector<double>& out) {
     ASSERT_EQ(eq.rhs(t, y.data(), out.data()), 0);
   };
@@ -301,14 +301,7 @@ TEST(ToyNode, FreeVibrationConservesEnergy) {
   double drift = 0, exchanged = 0, t = 0;
   const double dt = 2e-8;
   for (int step = 0; step < 5000; ++step) {  // 0.1 ms: several periods of the sleeve (about 10 kHz)
-    f(t, z, k1);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k1[i];
-    f(t + 0.5 * dt, tmp, k2);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + 0.5 * dt * k2[i];
-    f(t + 0.5 * dt, tmp, k3);
-    for (std::size_t i = 0; i < n; ++i) tmp[i] = z[i] + dt * k3[i];
-    f(t + dt, tmp, k4);
-    for (std::size_t i = 0; i < n; ++i) z[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    test::runge_kutta_step(f, t, dt, z);
     t += dt;
     if (step % 50 == 49) {
       f(t, z, k1);
