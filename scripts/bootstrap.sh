@@ -33,6 +33,7 @@ test_packages=(
   chromium           # io.report_page_screenshot: the report page in headless chromium
   ffmpeg             # io.report_run.6309_R3: the animation as MP4 (GIF without it)
   slurm-wlm munge    # campaign.real_slurm_*: a one-node Slurm on localhost for the Slurm recipes
+  python3-pandas     # run.output_layout_package: the reader's pandas view (the test also runs without it)
 )
 
 tests=0 list=0
