@@ -1,4 +1,4 @@
-"""Cage bridge forces of a planar roller bearing run (seed 003): metrics and figures.
+"""Cage bridge forces of a planar roller bearing run (seed 003): their metrics.
 
 A bridge is the bar between two pockets: bridge k lies between pocket k (whose front bar it is) and
 pocket k + 1 (whose rear bar it is), at the cage-frame angle 2 pi (k + 1/2) / Z. Its force is
@@ -8,8 +8,8 @@ signed, positive in the +z sense of rotation:
   - rigid bridges: the pocket forces on the bar, front[k] - rear[k + 1] (the file's front and rear,
     ahead and behind in +z).
 The summary gives the peak |force| (time, bridge, azimuth), the median over the window of the
-largest |force| of each 1 ms, and per-azimuth bins of |force|; the figures show the forces against
-time and against the bridge's azimuth in the bearing frame.
+largest |force| of each 1 ms, and per-azimuth bins of |force|; the figures (report_plots.py) show the
+forces against time and against the bridge's azimuth in the bearing frame.
 """
 import math
 
@@ -65,35 +65,3 @@ def summarize_bridges(run, window, bin_width):
             "abs_force_max_n": list(bins["max"]),
             "note": "|force| of the bridge spring (flexible) or of the pocket forces on the bar (rigid)"}
 
-
-def bridge_force_time(run, s, folder):
-    import report_plots as rp
-    b = s["cage_bridges"]
-    f = run.bridge_force
-    fig, ax = rp.figure(run, f"cage bridge forces against time ({b['model']} bridges)")
-    rp.shade_window(ax, s)
-    ax.plot(run.time, np.max(np.abs(f), axis=1), lw=0.6, color="0.4", label="largest |force| over the bridges")
-    ax.plot(run.time, f[:, 0], lw=0.8, color="tab:green", label="bridge 0 (+: pushed in +z)")
-    rp.scale_to_window(ax, run, s, np.max(np.abs(f), axis=1), f[:, 0])
-    ax.axhline(b["median_1ms_max_n"], color="k", ls="--", lw=1,
-               label=f"median of the 1 ms maxima in the window, {b['median_1ms_max_n']:.4g} N (peak {b['peak_n']:.4g} N)")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("bridge force [N]")
-    ax.legend(loc="upper right", fontsize=9)
-    return rp.save(fig, folder, "bridge_force_time.png")
-
-
-def bridge_force_azimuth(run, s, folder):
-    import report_plots as rp
-    b = s["cage_bridges"]
-    fig, ax = rp.figure(run, f"cage bridge |force| against the bridge's azimuth, window ({b['model']} bridges)")
-    centre = np.asarray(b["bin_centre_deg"], dtype=float)
-    arr = lambda key: np.asarray([math.nan if v is None else v for v in b[key]], dtype=float)
-    ax.plot(centre, arr("abs_force_mean_n"), "o-", ms=3, color="tab:green", label="time mean per bin")
-    ax.plot(centre, arr("abs_force_max_n"), "--", lw=1, color="tab:green", label="peak per bin")
-    ax.set_xlim(0, 360)
-    ax.set_xticks(range(0, 361, 30))
-    ax.set_xlabel("azimuth of the bridge [deg] (bearing frame, 0 = +x, counter-clockwise)")
-    ax.set_ylabel("|bridge force| [N]")
-    ax.legend(loc="upper right")
-    return rp.save(fig, folder, "bridge_force_azimuth.png")

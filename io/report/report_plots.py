@@ -17,7 +17,6 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import report_bridges  # noqa: E402
 import report_metrics as rm  # noqa: E402
 
 WIDTH_IN, HEIGHT_IN, DPI = 16.0, 6.5, 100  # 1600 x 650 px
@@ -288,6 +287,37 @@ def friction(run, s, folder):
     return save(fig, folder, "friction.png")
 
 
+def bridge_force_time(run, s, folder):
+    b = s["cage_bridges"]
+    f = run.bridge_force
+    fig, ax = figure(run, f"cage bridge forces against time ({b['model']} bridges)")
+    shade_window(ax, s)
+    ax.plot(run.time, np.max(np.abs(f), axis=1), lw=0.6, color="0.4", label="largest |force| over the bridges")
+    ax.plot(run.time, f[:, 0], lw=0.8, color="tab:green", label="bridge 0 (+: pushed in +z)")
+    scale_to_window(ax, run, s, np.max(np.abs(f), axis=1), f[:, 0])
+    ax.axhline(b["median_1ms_max_n"], color="k", ls="--", lw=1,
+               label=f"median of the 1 ms maxima in the window, {b['median_1ms_max_n']:.4g} N (peak {b['peak_n']:.4g} N)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("bridge force [N]")
+    ax.legend(loc="upper right", fontsize=9)
+    return save(fig, folder, "bridge_force_time.png")
+
+
+def bridge_force_azimuth(run, s, folder):
+    b = s["cage_bridges"]
+    fig, ax = figure(run, f"cage bridge |force| against the bridge's azimuth, window ({b['model']} bridges)")
+    centre = np.asarray(b["bin_centre_deg"], dtype=float)
+    arr = lambda key: np.asarray([math.nan if v is None else v for v in b[key]], dtype=float)
+    ax.plot(centre, arr("abs_force_mean_n"), "o-", ms=3, color="tab:green", label="time mean per bin")
+    ax.plot(centre, arr("abs_force_max_n"), "--", lw=1, color="tab:green", label="peak per bin")
+    ax.set_xlim(0, 360)
+    ax.set_xticks(range(0, 361, 30))
+    ax.set_xlabel("azimuth of the bridge [deg] (bearing frame, 0 = +x, counter-clockwise)")
+    ax.set_ylabel("|bridge force| [N]")
+    ax.legend(loc="upper right")
+    return save(fig, folder, "bridge_force_azimuth.png")
+
+
 def draw_all(run, summary, folder):
     """Every figure the run has data for; returns (names written, failure texts)."""
     plots = [cage_speed, cage_centroid, element_load]
@@ -296,7 +326,7 @@ def draw_all(run, summary, folder):
     if run.contact:
         plots += [contact_angle, contact_pressure, film_thickness]
     if "cage_bridges" in summary:
-        plots += [report_bridges.bridge_force_time, report_bridges.bridge_force_azimuth]
+        plots += [bridge_force_time, bridge_force_azimuth]
     if "cage_land" in summary:
         plots.append(cage_land)
     if "friction" in summary:

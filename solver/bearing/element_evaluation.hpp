@@ -82,6 +82,14 @@ template <class Law>
 void write_element_result(const Model& m, const Law& law, const Segment& seg, double t, const double* z,
                           std::span<double> rec) {
   if constexpr (PlanarElementLaw<Law>) {
+    const Marker& ma = m.markers[static_cast<std::size_t>(seg.marker_a)];
+    const Marker& mb = m.markers[static_cast<std::size_t>(seg.marker_b)];
+    const auto* ca = std::get_if<BodyCentre>(&ma);
+    const auto* cb = std::get_if<BodyCentre>(&mb);
+    if (ca && cb) {  // two body centres, nearly every element: the law on the bodies' kinematics, no scratch
+      write_result(evaluate(law, m.planar_kinematics(ca->body, t, z), m.planar_kinematics(cb->body, t, z)), rec);
+      return;
+    }
     const auto p = element_detail::planar_pair(m, seg, t, z, nullptr, nullptr);
     write_result(element_detail::evaluate_planar(m, law, seg, p), rec);
   } else {
