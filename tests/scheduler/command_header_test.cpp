@@ -71,5 +71,6 @@ TEST(CommandHeader, WhatNoRankZeroSendsIsAProtocolError) {
   bad[1] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(read_header(bad, 3), CommandError);
   EXPECT_THROW(read_header(std::vector<double>(command_header_size - 1, 0.0), 3), CommandError);
-  EXPECT_THROW(write_header({}, std::vector<double>(3)), std::invalid_argument);
+  std::vector<double> short_buffer(3);
+  EXPECT_THROW(write_header({}, short_buffer), std::invalid_argument);
 }
