@@ -11,9 +11,10 @@
 #
 # In the archive (raceway-bundle/):
 #   bin/mpirun, bin/raceway, bin/orted   launchers: each sets the environment below from its own
-#                                        folder and runs the real program in libexec/
+#                                        folder and runs the real program in libexec/ (and
+#                                        bin/pingpong, the MPI ping-pong, when perf/bench is built)
 #   bin/raceway-env.sh                   the same environment for a shell: . raceway-bundle/bin/raceway-env.sh
-#   libexec/                             raceway, Open MPI's orterun (mpirun) and orted
+#   libexec/                             raceway, Open MPI's orterun (mpirun) and orted, pingpong
 #   lib/                                 the shared libraries (all but the C library and loader
 #                                        family, which every Linux has and which must match its kernel)
 #   lib/openmpi, share/openmpi, etc/openmpi   Open MPI's components, help texts, MCA settings
@@ -60,6 +61,8 @@ mkdir -p "$B/libexec" "$B/lib/openmpi" "$B/share" "$B/etc"
 mv "$B/bin/raceway" "$B/libexec/raceway"
 cp -L "$orterun" "$B/libexec/orterun"
 cp -L "$orted" "$B/libexec/orted"
+# The MPI ping-pong benchmark, when built (perf/calibration/run_node_scaling.sh measures the network).
+[[ -x $build/perf/bench/pingpong ]] && cp -L "$build/perf/bench/pingpong" "$B/libexec/pingpong"
 cp -L "$ompi_pkglibdir"/*.so "$B/lib/openmpi/"
 cp -rL "$ompi_pkgdatadir" "$B/share/openmpi"
 cp -rL "$ompi_sysconfdir" "$B/etc/openmpi"
@@ -79,7 +82,7 @@ is_system_core() {
   [[ $(basename "$1") =~ ^(ld-linux.*|libc|libm|libmvec|libdl|libpthread|librt|libresolv|libutil|libanl|libnsl|libthread_db|libBrokenLocale|libc_malloc_debug|libnss_[a-z0-9]+)\.so ]]
 }
 # Every library the programs and components need, transitively (ldd resolves the whole tree).
-objects=("$B/libexec/raceway" "$B/libexec/orterun" "$B/libexec/orted" "$B"/lib/openmpi/*.so "$B"/lib/libmca_common_*.so*)
+objects=("$B"/libexec/* "$B"/lib/openmpi/*.so "$B"/lib/libmca_common_*.so*)
 [[ -d $B/lib/pmix ]] && objects+=("$B"/lib/pmix/*.so)
 copy_dependencies() {
   local path
@@ -135,7 +138,9 @@ fi
 # hwloc (Open MPI's view of the cores) loads its plugins from here.
 export HWLOC_PLUGINS_PATH="$RACEWAY_BUNDLE/lib/hwloc"
 ENV
-for program in raceway orterun orted; do
+programs=(raceway orterun orted)
+[[ -x $B/libexec/pingpong ]] && programs+=(pingpong)
+for program in "${programs[@]}"; do
   launcher=$program
   [[ $program == orterun ]] && launcher=mpirun
   cat >"$B/bin/$launcher" <<LAUNCH
