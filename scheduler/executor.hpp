@@ -23,6 +23,8 @@ namespace raceway::scheduler {
 /// Kinds of work a command carries (they are costed and planned separately).
 enum class Phase { rhs = 0, jacobian = 1, output = 2 };
 inline constexpr int phase_count = 3;
+/// "rhs", "jacobian", "output" (Phase as int).
+const char* phase_name(int phase);
 
 /// Evaluates task `task` with the broadcast `context` and writes the phase's record size of
 /// doubles to `record`. Must not depend on anything but the context and data every rank builds

@@ -65,7 +65,7 @@ Plan make_plan(std::span<const double> cost, const TaskCatalogue& catalogue, std
                const PlanOptions& options = {});
 
 /// Owner of a task handed out on demand during an evaluation (the plan's tail, mark_tail): the
-/// rank that is free first evaluates it (scheduler/mpi_tail.cpp).
+/// rank that is free first evaluates it (scheduler/tail_claims.hpp).
 inline constexpr int shared_task = -1;
 
 /// Takes the plan's tail out of `owner`: of each rank's tasks that cost at least tail_floor times

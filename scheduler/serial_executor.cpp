@@ -4,6 +4,8 @@
 
 namespace raceway::scheduler {
 
+const char* phase_name(int p) { return p == 0 ? "rhs" : p == 1 ? "jacobian" : "output"; }
+
 void SerialExecutor::run(Phase phase, std::span<const double> context, int task_count, int record_size,
                          const TaskFunction& task, std::vector<double>& records) {
   const int p = static_cast<int>(phase);

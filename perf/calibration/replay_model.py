@@ -18,7 +18,7 @@ time) and a latency/bandwidth model of the network:
                per-task costs (smoothed costs at the end of the run, scaled to the run's
                total task seconds)
   makespan + t_gather = when rank 0 has every reply: the replies travel a binomial tree to rank 0
-               (scheduler/mpi_replies.cpp; Open MPI's tuned MPI_Gather uses the same tree for
+               (scheduler/replies.cpp; Open MPI's tuned MPI_Gather uses the same tree for
                small blocks): rank r, done with its own tasks at load_r, receives its children's
                messages one after the other in the order they are ready, each taking L + m / B
                (m: the bytes of the child's subtree), then sends its own with its subtree's. m_w =
@@ -29,7 +29,7 @@ time) and a latency/bandwidth model of the network:
                m / B) after the makespan, the tree ceil(log2 P) L + about (P - 1) m / B.
                The breakdown splits it as: gather latency = (messages on the longest path) x L,
                gather bytes = the rest of (that time - makespan).
-  tail       = with --tail-share S > 0 (the executor's --tail-share; scheduler/mpi_tail.cpp): the
+  tail       = with --tail-share S > 0 (the executor's --tail-share; scheduler/tail_claims.hpp): the
                plan's tail (mark_tail, ported below) is taken out of the ranks' loads; the rank free
                first takes the front of its own part of it (largest first), or when that is gone
                the back of the part with the most left; each claim costs --claim-us (a compare-and-
@@ -168,7 +168,7 @@ def mark_tail(owner, cost, share, ranks, floor=0.1):
 
 
 def claim_tail(load, owner, cost, tail, claim):
-    """Ranks' finish times: their fixed lists, then the tail as mpi_tail.cpp claims it: the rank
+    """Ranks' finish times: their fixed lists, then the tail as scheduler/tail_claims.hpp claims it: the rank
     free first takes its own part's front, else the back of the fullest part; each claim costs
     `claim` (and one failing claim per rank at the end)."""
     ready = list(load)

@@ -84,7 +84,7 @@ PY
   # Rank 0 writing the whole file (the default, no MPI-IO).
   mpi 2 run "$scene" -o "$work/serial2.h5"
   [[ $rc -eq 0 ]] && files+=("$work/serial2.h5") || fail "np 2, rank 0 writing: exit code $rc: $(tail -3 "$work/log")"
-  # Tasks claimed on demand (--tail-share, scheduler/mpi_tail.cpp): every task (share 1) at np 2,
+  # Tasks claimed on demand (--tail-share, scheduler/tail_claims.hpp): every task (share 1) at np 2,
   # with --parallel-output (a tail task's record is written by rank 0); 30 % of each rank's work
   # with a new plan (and tail) before every evaluation at np 3; every task claimed by the workers
   # alone (--master-share 0) at np 3.
@@ -204,7 +204,7 @@ signal_worker() {
   echo "rank $target (pid $victim) sent SIG$signal: exit $rc after $elapsed s"
 }
 
-# Rank 0 stopped: the workers' waits for it end the job (its heartbeat, scheduler/mpi_heartbeat.cpp).
+# Rank 0 stopped: the workers' waits for it end the job (its heartbeat, scheduler/rank_watch.cpp).
 stopped_master() {
   target_rank=0 signal_worker STOP "$work/m.h5" --rank-timeout 3 "$@"
   [[ -n "$victim" ]] || return
