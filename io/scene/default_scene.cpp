@@ -90,10 +90,6 @@ slip_velocity_scale = "0.05 m/s"
 # [solver]: CVODE settings.
 [solver]
 method = "bdf"                 # "bdf" | "adams"
-# BDF of order at most 2: the light rollers' contact vibrations (44-90 kHz, nearly undamped) sit
-# where orders 3-5 are unstable and hold their step there (31,000 steps a revolution); order 2 is
-# A-stable and takes about 540, with 8 times smaller errors (docs/integration_methods.md).
-max_order = 2
 rtol = 1e-6
 # atol = { position = "1e-9 m", angle = "1e-6 rad", velocity = "1e-6 m/s", angular_velocity = "1e-3 rad/s" }
 #   (unset: chosen from the physical scales)
