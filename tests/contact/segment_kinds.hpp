@@ -1,6 +1,7 @@
-// The six segment kinds of the typed contact conformance suite (test_segment_conformance.cpp,
+// The eight segment kinds of the typed contact conformance suite (test_segment_conformance.cpp,
 // test_segment_jacobian.cpp): roller-race, cage-bar and cage-land (planar, PlanarKinematics) and
-// ball-groove, ball-pocket and cage-land (spatial, SpatialKinematics).
+// ball-groove, ball-pocket and cage-land, roller-end/flange and roller-race slice (spatial,
+// SpatialKinematics).
 //
 // A kind is a small traits struct: the segment type, its configurations (roller_cases.hpp,
 // ball_cases.hpp), how to build one with a chosen law and how to place its two bodies at a chosen
@@ -25,6 +26,8 @@
 #include <vector>
 
 #include "ball_cases.hpp"
+#include "flange_cases.hpp"
+#include "slice_cases.hpp"
 #include "contact/segments/diagnostic_fields.hpp"
 #include "contact/segments/segment_jacobian.hpp"
 #include "roller_cases.hpp"
@@ -343,7 +346,60 @@ struct BallKind : KindOf<SpatialFamily, SegmentType, ball::SpatialCase, &ball::a
   static void stop_approach(const Case& c, Placement& p) { ball::stop_approach(c, p); }
 };
 
-// ---- the six kinds ------------------------------------------------------------------------------
+/// The roller-end/flange segment: a spatial point contact whose B, the roller, is not round about
+/// every axis (its orientation places the end).
+struct RollerFlange : SpatialFamily {
+  using Segment = RollerFlangeSegment;
+  using Case = flange::FlangeCase;
+  static std::vector<Case> cases() { return flange::all_cases(); }
+  static Segment make(const Case& c, const Law& law) { return flange::make(c, law.damping, law.traction); }
+  static std::vector<Motion> motions() { return ball::motions(); }
+  static Placement placed(const Case& c, const Segment&, double approach, double dir, const Motion& m,
+                          double = 0) {
+    return flange::placed(c, approach, dir, m);
+  }
+  static double stiffness(const Case& c, const Placement&) { return flange::expected_hertz(c).stiffness; }
+  static double exponent(const Case&) { return 1.5; }
+  static double stiffness_tolerance(const Case&) { return 1e-9; }
+  static double approach_limit(const Case&) { return flange::max_approach; }
+  static constexpr double damping_factor = ball::damping_factor;
+  static constexpr double friction = ball::friction;
+  static constexpr double slip_scale = ball::slip_scale;
+  static constexpr bool b_orientation_free = false;
+  static constexpr bool energy_is_potential = true;
+  /// The approach is a difference of coordinates of the rib's size (3 cm) through a sphere centre
+  /// 35 mm behind the roller's end: its round-off, some 1e-17 m, is 3e-12 of the force at 5 um.
+  static constexpr double jacobian_roundoff = 3e-12;
+  static void stop_approach(const Case&, Placement& p) { flange::stop_approach(p); }
+};
+
+/// One slice of a roller on a raceway, spatial: B, the roller, is not round about every axis.
+struct RollerSlice : SpatialFamily {
+  using Segment = RollerSliceSegment;
+  using Case = slice::SliceCase;
+  static std::vector<Case> cases() { return slice::all_cases(); }
+  static Segment make(const Case& c, const Law& law) { return slice::make(c, law.damping, law.traction); }
+  static std::vector<Motion> motions() { return ball::motions(); }
+  static Placement placed(const Case& c, const Segment&, double approach, double dir, const Motion& m,
+                          double = 0) {
+    return slice::placed(c, approach, dir, m);
+  }
+  static double stiffness(const Case&, const Placement&) { return slice::expected_stiffness(); }
+  static double exponent(const Case&) { return palmgren_exponent; }
+  static double stiffness_tolerance(const Case&) { return 1e-10; }
+  static double approach_limit(const Case&) { return slice::max_approach; }
+  static constexpr double damping_factor = ball::damping_factor;
+  static constexpr double friction = ball::friction;
+  static constexpr double slip_scale = ball::slip_scale;
+  static constexpr bool b_orientation_free = false;
+  static constexpr bool energy_is_potential = true;
+  /// The approach is a difference of coordinates of 3-4 cm: its round-off, about 1e-17 m, is 2e-12
+  /// of a 5 um approach; a forward difference of the force sees twice that.
+  static constexpr double jacobian_roundoff = 5e-12;
+  static void stop_approach(const Case&, Placement& p) { flange::stop_approach(p); }
+};
+
+// ---- the eight kinds ------------------------------------------------------------------------------
 
 struct RollerRace : RollerKind<RollerRaceSegment, roller::Kind::race> {};
 struct CageBar : RollerKind<CageBarSegment, roller::Kind::bar> {};
@@ -352,7 +408,9 @@ struct BallGroove : BallKind<BallGrooveSegment, ball::Kind::groove> {};
 struct BallPocket : BallKind<BallPocketSegment, ball::Kind::pocket> {};
 struct CageLand3 : BallKind<CageLandSegment3, ball::Kind::land> {};
 
-using AllSegmentKinds = ::testing::Types<RollerRace, CageBar, CageLand, BallGroove, BallPocket, CageLand3>;
+using AllSegmentKinds =
+    ::testing::Types<RollerRace, CageBar, CageLand, BallGroove, BallPocket, CageLand3, RollerFlange,
+                     RollerSlice>;
 
 /// Names of the typed instances: the kind's name.
 struct KindName {
@@ -363,7 +421,9 @@ struct KindName {
     else if constexpr (std::is_same_v<T, CageLand>) return "CageLand";
     else if constexpr (std::is_same_v<T, BallGroove>) return "BallGroove";
     else if constexpr (std::is_same_v<T, BallPocket>) return "BallPocket";
-    else return "CageLand3";
+    else if constexpr (std::is_same_v<T, CageLand3>) return "CageLand3";
+    else if constexpr (std::is_same_v<T, RollerFlange>) return "RollerFlange";
+    else return "RollerSlice";
   }
 };
 

@@ -1,0 +1,92 @@
+#include "contact/segments/roller_slice_segment.hpp"
+
+#include <cmath>
+
+#include "contact/laws/damping.hpp"
+
+namespace raceway::contact {
+
+namespace {
+
+bool finite(const SpatialKinematics& k) {
+  return k.position.allFinite() && k.rotation.allFinite() && k.velocity.allFinite() &&
+         k.angular_velocity.allFinite();
+}
+
+// tanh(x) / x, smooth through 0 (its series below 1e-4: error under 1e-17).
+double tanh_ratio(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 3.0 : std::tanh(x) / x; }
+
+}  // namespace
+
+RollerSliceSegment make_roller_slice_segment(const SlicedLineContact& c, std::size_t j, double race_radius,
+                                             double roller_radius, bool outer, const TractionCurve& traction) {
+  RollerSliceSegment s;
+  s.race_radius = race_radius;
+  s.roller_radius = roller_radius;
+  s.outer = outer;
+  s.position = c.slice_centre.at(j);
+  s.drop = c.law.slice_drop.at(j);
+  s.stiffness = c.law.slice_stiffness.at(j);
+  s.damping_factor = c.law.damping_factor;
+  s.max_approach = c.law.max_approach;
+  s.traction = traction;
+  return s;
+}
+
+SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinematics& ring,
+                              const SpatialKinematics& roller) {
+  SpatialSegmentResult out;
+  if (!finite(ring) || !finite(roller)) {
+    out.valid = false;
+    return out;
+  }
+  const Vec3 centre = roller.position + s.position * roller.rotation.col(2);
+  const Vec3 local = ring.rotation.transpose() * (centre - ring.position);
+  const double rho = std::hypot(local.x(), local.y());
+  if (!(rho > 0)) {
+    out.valid = false;
+    return out;
+  }
+  const Vec3 radial_local(local.x() / rho, local.y() / rho, 0.0);
+  const double reach = s.roller_radius - s.drop;
+  const double approach = s.outer ? rho - (s.race_radius - reach) : s.race_radius + reach - rho;
+  out.diagnostics.approach = approach;
+  if (!(approach > 0)) return out;
+  if (approach > s.max_approach) out.valid = false;
+
+  const Vec3 radial = ring.rotation * radial_local;
+  const Vec3 n = s.outer ? Vec3(-radial) : radial;  // on the roller
+  const Vec3 point = ring.position + ring.rotation * Vec3(s.race_radius * radial_local + local.z() * Vec3::UnitZ());
+  const Vec3 v_ring = ring.velocity + ring.angular_velocity.cross(point - ring.position);
+  const Vec3 v_roller = roller.velocity + roller.angular_velocity.cross(point - roller.position);
+  const Vec3 relative = v_roller - v_ring;
+  const double approach_rate = -n.dot(relative);
+
+  const double elastic = s.stiffness * std::pow(approach, palmgren_exponent);
+  const DampedForce q = hunt_crossley(elastic, s.damping_factor, approach_rate);
+  const Vec3 slip = relative - n.dot(relative) * n;
+  const double speed = slip.norm();
+  const double mu = s.traction.friction_coefficient;
+  const double scale = s.traction.slip_velocity_scale;
+  // Force -mu tanh(|s|/u) Q s/|s| = -(mu / u) tanh_ratio(|s|/u) Q s: smooth through zero slip.
+  const Vec3 traction = mu == 0 ? Vec3::Zero() : Vec3(-(mu / scale) * tanh_ratio(speed / scale) * q.force * slip);
+  const Vec3 force = q.force * n + traction;
+  out.on_b.force = force;
+  out.on_b.moment = (point - roller.position).cross(force);
+  out.on_a.force = -force;
+  out.on_a.moment = (point - ring.position).cross(-force);
+
+  PointDiagnostics& d = out.diagnostics;
+  d.normal_force = q.force;
+  d.slip_velocity = speed;
+  d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
+  d.traction_force = traction.norm();
+  const Vec3 e_r(roller.position.x(), roller.position.y(), 0.0);
+  const double r = e_r.norm();
+  d.circumferential_force = r > 0 ? force.dot(Vec3::UnitZ().cross(e_r / r)) : 0.0;
+  d.elastic_energy = elastic * approach / (palmgren_exponent + 1.0);
+  d.power_loss = -traction.dot(slip) + q.damping_power;
+  return out;
+}
+
+}  // namespace raceway::contact

@@ -1,0 +1,46 @@
+// One slice of a roller on a cylindrical raceway, spatial kinematics: the element a spatial
+// cylindrical roller bearing cuts each roller-race line contact into (one segment per slice, the
+// slices of a roller summed in the model's fixed segment order). A = ring, B = roller; the roller's
+// axis is its body z.
+//
+// The slice's centre S lies on the roller's axis at `position` from the roller's centre. With rho
+// S's distance from the ring axis (ring frame), the approach is race_radius + (roller_radius - drop)
+// - rho on an inner race (the roller outside the race) and rho - (race_radius - roller_radius +
+// drop) on an outer one: a function of S alone, so a tilted roller loads its slices by their
+// distance from the race (tilt and edge loading follow), and skew (a turn about the radial line)
+// moves the slice's rolling direction, not its approach, to first order. The normal force, the
+// slice's Palmgren law with Hunt-Crossley damping (sliced_line_contact.hpp: K_j and drop_j of its
+// slice), acts along the ring's radial line through S (outwards on the roller on an inner race), at
+// the race's surface; the traction, mu_max tanh(|s| / s_scale) times the normal force against the
+// roller's sliding s relative to the race there (its components in the race's tangent plane), acts
+// at the same point: action equals reaction. Approach rate: -n . (v_B - v_A) at that point.
+// Validity: approach above max_approach flagged (forces still computed); a non-finite input, or S
+// on the ring axis, gives valid = false and no force.
+#pragma once
+
+#include "contact/laws/sliced_line_contact.hpp"
+#include "contact/segments/ball_segments.hpp"
+
+namespace raceway::contact {
+
+struct RollerSliceSegment {
+  double race_radius = 0;     ///< m
+  double roller_radius = 0;   ///< m
+  bool outer = false;         ///< the outer race (roller inside its bore)
+  double position = 0;        ///< m, the slice centre along the roller's axis from its centre
+  double drop = 0;            ///< m, the profile drop at the slice centre
+  double stiffness = 0;       ///< K_j [N/m^(10/9)]
+  double damping_factor = 0;  ///< s/m
+  double max_approach = 0;    ///< m
+  TractionCurve traction;
+};
+
+/// Slice j of a sliced roller-race contact.
+RollerSliceSegment make_roller_slice_segment(const SlicedLineContact& contact, std::size_t slice,
+                                             double race_radius, double roller_radius, bool outer,
+                                             const TractionCurve& traction);
+
+SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinematics& ring,
+                              const SpatialKinematics& roller);
+
+}  // namespace raceway::contact
