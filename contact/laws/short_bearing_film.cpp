@@ -5,6 +5,10 @@
 
 namespace raceway::contact {
 
+double strip_pressure_width_cubed(double land_width, double z1, double z2) {
+  return 6.0 * (0.25 * land_width * land_width * (z2 - z1) - (z2 * z2 * z2 - z1 * z1 * z1) / 3.0);
+}
+
 ShortBearingForce evaluate_short_bearing(const ShortBearingFilm& f, std::array<double, 2> e,
                                          std::array<double, 2> e_rate, double journal_speed, double bore_speed) {
   ShortBearingForce out;
@@ -24,6 +28,7 @@ ShortBearingForce evaluate_short_bearing(const ShortBearingFilm& f, std::array<d
   const double eps = std::max(0.0, 1.0 - h_floor / f.clearance);
   if (!(eps < 1.0)) return out;  // no floor and the film closed: the dry contact alone
   const double c = f.clearance, mu = f.viscosity, R = f.radius, L = f.width;
+  const double l_cubed = f.pressure_width_cubed > 0 ? f.pressure_width_cubed : L * L * L;
   const double rolling = 6.0 * mu * (journal_speed + bore_speed) * eps * c;  // times sin(phi)
   const double ratio = std::sqrt((1.0 - eps) / (1.0 + eps)), root = std::sqrt(1.0 - eps * eps);
   const double dpsi = 2.0 * std::numbers::pi / f.points;
@@ -37,7 +42,7 @@ ShortBearingForce evaluate_short_bearing(const ShortBearingFilm& f, std::array<d
     const double g = rolling * sp - 12.0 * mu * (rate_x * cp + rate_y * sp);
     inverse_film += weight / h;
     if (g >= 0) continue;  // cavitated
-    const double w = -g * L * L * L / (12.0 * h * h * h);
+    const double w = -g * l_cubed / (12.0 * h * h * h);
     fx -= w * R * cp * weight;
     fy -= w * R * sp * weight;
   }

@@ -39,7 +39,14 @@ struct ShortBearingFilm {
   double clearance = 0;   ///< c [m], radial, centred
   double film_floor = 0;  ///< m: the smallest minimum film the film force sees (of the order of the roughness)
   int points = 64;        ///< quadrature points around the circumference
+  /// L^3 of the pressure term [m^3]; 0: width^3. A strip [z1, z2] of a land of width L (the cage's
+  /// stations) carries 6 int (L^2/4 - z^2) dz = 6 (L^2 (z2 - z1) / 4 - (z2^3 - z1^3) / 3) of it
+  /// (strip_pressure_width_cubed): the strips of a land sum to L^3, its pressure profile being
+  /// parabolic across the width; the Couette shear takes `width`, the strip's own.
+  double pressure_width_cubed = 0;
 };
+/// The pressure's L^3 of the strip [z1, z2] (z from the land's centre) of a land of width L.
+double strip_pressure_width_cubed(double land_width, double z1, double z2);
 
 struct ShortBearingForce {
   std::array<double, 2> on_journal{};  ///< N, in the frame of e
