@@ -22,7 +22,7 @@ set -uo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 compare_outputs=(/usr/bin/python3 "$root/scripts/compare_outputs.py")
 
-# scene:window. The windows are those of the scene answer files (tests/scenes/answers): 1-5 s of
+# scene:window. The windows are those of the scene answer files (tests/system/scenes/answers): 1-5 s of
 # one rank each on a 2-core machine, long enough to reach loaded contacts and the cage's motion.
 BASELINE_SCENES=(
   "default:40 ms"

@@ -15,7 +15,7 @@ Options: --set KEY=VALUE (repeatable) adds scene overrides to the run, not to th
 suite uses it to show that a changed parameter fails); --keep DIR keeps the runs' files there;
 --verbose prints every quantity, not only the ones outside their tolerance.
 
-An answer file (tests/scenes/answers/<scene>.json) holds the window (the `--set` overrides that
+An answer file (tests/system/scenes/answers/<scene>.json) holds the window (the `--set` overrides that
 shorten the run: scene.end_time), the build that wrote it, and one line per quantity: its value (a
 number or a nested list), class, measured noise and tolerance (rel, abs). A value a agrees with
 the answer e when |a - e| <= abs + rel * scale, where scale is |e| for a number and max |e| over
@@ -345,7 +345,7 @@ def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scenes", nargs="+", metavar="SCENE.toml")
     parser.add_argument("--raceway", default=os.path.join(ROOT, "build", "raceway"))
-    parser.add_argument("--answers", default=os.path.join(ROOT, "tests", "scenes", "answers"))
+    parser.add_argument("--answers", default=os.path.join(ROOT, "tests", "system", "scenes", "answers"))
     parser.add_argument("--update", action="store_true")
     parser.add_argument("--end-time", help="the window of a new answer file, e.g. '5 ms' (with --update)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 namespace {
 
@@ -112,4 +112,4 @@ void ChunkCompressor::work() {
   }
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

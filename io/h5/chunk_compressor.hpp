@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// One chunk as stored: bytes after the filters, and the filter mask H5Dwrite_chunk takes
 /// (0: every filter of the dataset applied).
@@ -56,4 +56,4 @@ class ChunkCompressor {
   std::thread thread_;  // last: started after the members it uses
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

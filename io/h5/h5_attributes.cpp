@@ -8,7 +8,7 @@
 #include "io/h5/h5_series.hpp"
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 using h5::ErrorSilencer;
 using h5::Handle;
@@ -162,4 +162,4 @@ void H5SeriesWriter::set_time_scale(const std::string& scale_path, const std::st
   }
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

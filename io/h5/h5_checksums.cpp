@@ -24,7 +24,7 @@
 #include "io/h5/h5_series.hpp"
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 using h5::Handle;
 
@@ -139,4 +139,4 @@ std::string sealed_file_problem(const std::string& path) {
   return "";
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

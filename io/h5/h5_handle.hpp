@@ -5,7 +5,7 @@
 
 #include <utility>
 
-namespace raceway::io::h5 {
+namespace raceway::h5 {
 
 /// Owns one HDF5 identifier; closes it with the matching H5?close.
 class Handle {
@@ -44,4 +44,4 @@ class QuietErrors {
   void* data_ = nullptr;
 };
 
-}  // namespace raceway::io::h5
+}  // namespace raceway::h5

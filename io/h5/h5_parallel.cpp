@@ -14,7 +14,7 @@
 
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 namespace {
 
@@ -167,4 +167,4 @@ std::string write_shared_rows(MPI_Comm comm, std::string& file, std::vector<Shar
   return agree_on_error(comm, rank, local);
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -13,7 +13,7 @@
 
 #include "io/h5/shared_rows.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// Collective over `comm`: every rank calls it at the same point. Rank 0's `file` and list (paths,
 /// row sizes, first rows, row counts, in its order) are broadcast; on the other ranks `file` and
@@ -28,4 +28,4 @@ namespace raceway::io {
 std::string write_shared_rows(MPI_Comm comm, std::string& file, std::vector<SharedRows>& rows,
                               const std::function<void(SharedRows&)>& fill);
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

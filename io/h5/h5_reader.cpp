@@ -8,7 +8,7 @@
 
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 using h5::Handle;
 
@@ -100,4 +100,4 @@ std::vector<std::string> H5Reader::attribute_names(const std::string& object) co
   return names;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 class H5Reader {
  public:
@@ -36,4 +36,4 @@ class H5Reader {
   std::int64_t file_ = -1;
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -21,7 +21,7 @@
 
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "raceway needs HDF5 >= 1.10 (64-bit hid_t)");
 static_assert(std::is_same_v<hsize_t, unsigned long long>, "unexpected hsize_t");
@@ -582,4 +582,4 @@ void H5SeriesWriter::commit() {
   fsync_file(folder.empty() ? "." : folder.string());  // the rename itself on disk
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -45,7 +45,7 @@
 // share_series_with()) are written by several ranks together: each appended row says which of its
 // cells are this process's (the others' ranks hold the rest), and at a flush the writer closes its
 // own (sec2) handle, hands the rows of every shared series to the shared writer (a collective write
-// of all ranks through the MPI-IO driver, io::write_shared_rows in io/h5/h5_parallel.hpp) and opens the file again. The
+// of all ranks through the MPI-IO driver, h5::write_shared_rows in io/h5/h5_parallel.hpp) and opens the file again. The
 // other series, attributes and fixed arrays stay this process's alone, as in a serial run.
 #pragma once
 
@@ -65,7 +65,7 @@
 #include "io/h5/chunk_compressor.hpp"
 #include "io/h5/shared_rows.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// Call once at the start of main(), before MPI_Init: initialises HDF5 without its exit-time cleanup
 /// (H5dont_atexit) and before MPI, so that it installs no MPI_Finalize hook either. HDF5 1.10 crashes
@@ -136,7 +136,7 @@ class H5SeriesWriter {
   void define_series(const std::string& path, std::vector<std::size_t> row_shape,
                      const std::string& units, const std::string& description, bool shared = false);
 
-  /// The collective write of the shared series' rows (io::write_shared_rows on every rank): it
+  /// The collective write of the shared series' rows (h5::write_shared_rows on every rank): it
   /// must write them or throw std::runtime_error. Set before the first shared series is defined.
   using SharedWriter = std::function<void(std::vector<SharedRows>&)>;
   void share_series_with(SharedWriter writer) { shared_writer_ = std::move(writer); }
@@ -294,4 +294,4 @@ class H5SeriesWriter {
   SharedWriter shared_writer_;
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -7,7 +7,7 @@
 #include "io/h5/h5_series.hpp"
 #include "io/h5/h5_support.hpp"
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 void H5SeriesWriter::close_handles() noexcept {
   for (auto& [path, s] : series_) {
@@ -55,4 +55,4 @@ void H5SeriesWriter::write_shared(bool whole_chunks_only) {
   }
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

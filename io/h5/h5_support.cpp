@@ -15,7 +15,7 @@
 
 #include <algorithm>
 
-namespace raceway::io::h5 {
+namespace raceway::h5 {
 
 std::string error_text() {
   struct Collected {
@@ -165,4 +165,4 @@ std::string reserve_disk(const std::string& path, std::size_t bytes) {
   return error;
 }
 
-}  // namespace raceway::io::h5
+}  // namespace raceway::h5

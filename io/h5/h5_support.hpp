@@ -9,7 +9,7 @@
 
 #include "io/h5/h5_handle.hpp"
 
-namespace raceway::io::h5 {
+namespace raceway::h5 {
 
 /// The first (API-level) and the last (innermost) message of the current HDF5 error stack.
 std::string error_text();
@@ -57,4 +57,4 @@ int link_exists(hid_t file, const std::string& path);
 /// writes anything. "" when reserved or when the file system cannot reserve; else the system's reason.
 std::string reserve_disk(const std::string& path, std::size_t bytes);
 
-}  // namespace raceway::io::h5
+}  // namespace raceway::h5

@@ -12,7 +12,7 @@
 
 #include <fmt/format.h>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 namespace fs = std::filesystem;
 
@@ -121,4 +121,4 @@ OutputLock::~OutputLock() {
   ::close(fd_);
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// An output path that cannot be written (a directory, "", a missing folder, no permission, held by
 /// another run). Bad input: the driver exits with 2 before any work is done.
@@ -44,4 +44,4 @@ class OutputLock {
   int fd_ = -1;
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

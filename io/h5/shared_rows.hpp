@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// One shared series' rows of one collective write, as one rank gives them.
 struct SharedRows {
@@ -18,4 +18,4 @@ struct SharedRows {
   std::vector<double> values;     ///< their values, one per cell
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -3,7 +3,7 @@
 #include <pthread.h>
 #include <sched.h>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 std::string bind_thread_to_core(std::thread& thread, int core) {
   if (core < 0 || core >= CPU_SETSIZE) return "";
@@ -16,4 +16,4 @@ std::string bind_thread_to_core(std::thread& thread, int core) {
   return cpu_list(CPU_SETSIZE, [&](int cpu) { return CPU_ISSET(cpu, &set) != 0; });
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

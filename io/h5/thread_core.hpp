@@ -6,7 +6,7 @@
 #include <string>
 #include <thread>
 
-namespace raceway::io {
+namespace raceway::h5 {
 
 /// Binds `thread` alone to the logical CPU `core` (pthread_setaffinity_np: the C++ library has no
 /// affinity call, and for one thread of our own the system call is all there is to it). Returns
@@ -30,4 +30,4 @@ std::string cpu_list(int count, IsSet is_set) {
   return list;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::h5

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-namespace raceway::io {
+namespace raceway::json {
 
 struct JsonObject::Entry {
   std::string key;
@@ -152,4 +152,4 @@ void write_json_file(const std::string& path, const JsonObject& obj) {
   if (ec) throw std::runtime_error(fmt::format("write_json_file: renaming '{}' to '{}' failed: {}", tmp, path, ec.message()));
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::json

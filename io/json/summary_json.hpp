@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::json {
 
 class JsonObject {
  public:
@@ -60,4 +60,4 @@ class JsonObject {
 /// either the old or the new complete file. Throws std::runtime_error naming the file on failure.
 void write_json_file(const std::string& path, const JsonObject& obj);
 
-}  // namespace raceway::io
+}  // namespace raceway::json

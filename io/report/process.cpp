@@ -11,7 +11,7 @@
 
 extern char** environ;  // NOLINT: POSIX, for posix_spawn
 
-namespace raceway::io {
+namespace raceway::report {
 
 int run_process(const std::vector<std::string>& args, std::string& error) {
   std::vector<char*> argv;
@@ -42,4 +42,4 @@ int run_process(const std::vector<std::string>& args, std::string& error) {
   return -1;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::report

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::report {
 
 /// Runs args[0] with args (no shell; args[0] looked up in PATH unless it has a slash) and waits
 /// for it: its exit status, or -1 with `error` saying why (could not start, killed by a signal).
@@ -14,4 +14,4 @@ namespace raceway::io {
 /// would ignore Ctrl-C.
 int run_process(const std::vector<std::string>& args, std::string& error);
 
-}  // namespace raceway::io
+}  // namespace raceway::report

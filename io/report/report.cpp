@@ -11,7 +11,7 @@
 
 #include "io/report/process.hpp"
 
-namespace raceway::io {
+namespace raceway::report {
 
 namespace {
 
@@ -76,4 +76,4 @@ int run_report(const ReportOptions& options) {
   return status;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::report

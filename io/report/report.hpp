@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::report {
 
 struct ReportOptions {
   std::string input;                         ///< the run's HDF5 file
@@ -41,4 +41,4 @@ std::string report_script_path();
 /// script (exit code 1).
 int run_report(const ReportOptions& options);
 
-}  // namespace raceway::io
+}  // namespace raceway::report

@@ -23,7 +23,7 @@ python3-xdmf does not import (undefined symbol XdmfUnstructuredGridCast); meshio
 keeps one mesh for all steps, and these bodies move. The XML below follows what vtkXdmf3Writer
 writes (Mixed topology, XYZ geometry, a Time on every grid, one heavy dataset per step and array:
 the Xdmf3 reader of ParaView 5.11 reads hyperslabs of one big dataset as 0 points), and
-tests/io/paraview_export_test.py reads every step back with ParaView's default reader.
+tests/io/report/paraview_export_test.py reads every step back with ParaView's default reader.
 """
 import os
 import xml.etree.ElementTree as ET

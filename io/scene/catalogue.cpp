@@ -17,7 +17,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "io/scene/scene_section.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 
@@ -353,4 +353,4 @@ std::string describe_catalogue_values(const Scene& scene) {
   return out;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -14,7 +14,7 @@
 
 #include "io/scene/scene.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 /// Every designation of the catalogue ("6000" .. "NU210"), in the catalogue's order.
 std::vector<std::string> catalogue_designations();
@@ -24,4 +24,4 @@ std::vector<std::string> catalogue_designations();
 /// without a designation.
 std::string describe_catalogue_values(const Scene& scene);
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -1,7 +1,7 @@
 // raceway default scene: the built-in scene text (identical to jobs/scenes/default.toml).
 #include "io/scene/scene_parser.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 constexpr const char* kDefaultScene = R"TOML(# raceway default scene: a small cylindrical roller bearing that runs in seconds.
@@ -104,4 +104,4 @@ segments = true                # per-segment diagnostics
 
 std::string default_scene_text() { return kDefaultScene; }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -1,6 +1,6 @@
 // raceway scene: the validated, SI-unit description of one simulation.
 //
-// Produced by io::load_scene (TOML file) or io::default_scene(); consumed by the model builder in
+// Produced by scene::load_scene (TOML file) or scene::default_scene(); consumed by the model builder in
 // solver/. Every quantity here is in SI units (m, kg, s, N, Pa, rad, rad/s); units are converted at
 // the io boundary only. Every field has been validated when a Scene is returned.
 #pragma once
@@ -13,7 +13,7 @@
 
 #include "contact/laws/law_registry.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 /// A scalar function of time: constant, or piecewise linear through (time, value) points and held
 /// constant outside them. SI units of whatever it describes.
@@ -301,4 +301,4 @@ struct Scene {
   }
 };
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -7,7 +7,7 @@
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
 
-namespace raceway::io::schema {
+namespace raceway::scene::schema {
 
 namespace {
 
@@ -186,4 +186,4 @@ std::string scene_keys_markdown() {
   return out;
 }
 
-}  // namespace raceway::io::schema
+}  // namespace raceway::scene::schema

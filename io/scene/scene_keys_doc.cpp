@@ -9,7 +9,7 @@
 #include "io/scene/scene_schema.hpp"
 
 int main(int argc, char** argv) {
-  const std::string doc = raceway::io::schema::scene_keys_markdown();
+  const std::string doc = raceway::scene::schema::scene_keys_markdown();
   if (argc == 1) {
     std::cout << doc;
     return 0;

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 
@@ -59,4 +59,4 @@ std::string override_scene_key(std::string_view text, std::string_view section, 
   return joined(lines) + fmt::format("\n[{}]\n{}\n", section, assignment);
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-namespace raceway::io {
+namespace raceway::scene {
 
 /// `text` with `key = value` in [section] (a top-level section): the key's line replaced if it is
 /// there, added under the section's header if the section is, else the section added at the end.
@@ -14,4 +14,4 @@ namespace raceway::io {
 std::string override_scene_key(std::string_view text, std::string_view section, std::string_view key,
                                std::string_view value);
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

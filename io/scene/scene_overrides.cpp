@@ -5,7 +5,7 @@
 
 #include "io/scene/scene_parser.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 
@@ -115,4 +115,4 @@ std::string overrides_as_comments(std::span<const std::string> overrides) {
   return out;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -15,7 +15,7 @@
 
 #include <toml++/toml.h>
 
-namespace raceway::io {
+namespace raceway::scene {
 
 class SceneError;
 
@@ -43,4 +43,4 @@ SceneError error_of_override(const SceneError& error, std::span<const std::strin
 /// checkpoint's fingerprint so that a resume with other overrides is refused; "" when none.
 std::string overrides_as_comments(std::span<const std::string> overrides);
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

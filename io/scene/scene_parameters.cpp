@@ -4,7 +4,7 @@
 
 #include "io/scene/scene_schema.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 
@@ -103,4 +103,4 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
   return out;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -9,7 +9,7 @@
 
 #include "io/scene/scene.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 struct SceneParameter {
   std::string key;                ///< dotted: "inner_ring.speed", "contact.ball_race.normal_law"
@@ -23,4 +23,4 @@ struct SceneParameter {
 /// every material, built-in or given).
 std::vector<SceneParameter> scene_parameters(const Scene& scene);
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

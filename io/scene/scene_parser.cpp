@@ -1,4 +1,4 @@
-// raceway scene parser: TOML (toml++) -> validated io::Scene in SI units.
+// raceway scene parser: TOML (toml++) -> validated scene::Scene in SI units.
 //
 // One generic reader walks the schema table (scene_schema.cpp) section by section: it rejects keys
 // the section does not know (with a suggestion) and keys of the other kind of bearing or contact
@@ -27,7 +27,7 @@
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 namespace {
 
@@ -418,4 +418,4 @@ std::string keys_with_lines(const Scene& scene, std::span<const std::string_view
   return out;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

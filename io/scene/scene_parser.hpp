@@ -1,4 +1,4 @@
-// raceway scene parser: TOML scene file -> validated, SI-unit io::Scene.
+// raceway scene parser: TOML scene file -> validated, SI-unit scene::Scene.
 //
 // The schema (sections, keys, units, bounds, defaults) is the table in io/scene/scene_schema.cpp,
 // printed as docs/scene_keys.md; the rules that tie keys together are io/scene/scene_rules.cpp.
@@ -14,7 +14,7 @@
 
 #include "io/scene/scene.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 /// A scene that cannot be read, parsed or validated.
 /// what() is "FILE:LINE: key 'section.key': reason", or "FILE:LINE: reason" when no key applies
@@ -60,4 +60,4 @@ std::string default_scene_text();
 /// is in it. For errors found after parsing (start-up) that name the keys involved.
 std::string keys_with_lines(const Scene& scene, std::span<const std::string_view> keys);
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-namespace raceway::io::schema::rules {
+namespace raceway::scene::schema::rules {
 
 namespace {
 
@@ -562,4 +562,4 @@ void check_cage_held(const Section& cage, const Scene& scene) {
             "with radial_stiffness (a cage on a spindle)");
 }
 
-}  // namespace raceway::io::schema::rules
+}  // namespace raceway::scene::schema::rules

@@ -16,7 +16,7 @@
 #include "io/scene/scene_schema.hpp"
 #include "io/scene/scene_section.hpp"
 
-namespace raceway::io::schema::rules {
+namespace raceway::scene::schema::rules {
 
 // ---- defaults that follow from other keys (nullopt: the key is required here) ------------------
 std::optional<double> inner_bore_default(const Bind& b);
@@ -97,4 +97,4 @@ void check_scene(const Section& bearing, const Section& outer_ring, const Scene&
 /// bunch the cage drifts through the rings. Errors name [cage] keys; checked after every section.
 void check_cage_held(const Section& cage, const Scene& scene);
 
-}  // namespace raceway::io::schema::rules
+}  // namespace raceway::scene::schema::rules

@@ -6,7 +6,7 @@
 
 #include "io/scene/scene_rules.hpp"
 
-namespace raceway::io::schema {
+namespace raceway::scene::schema {
 
 namespace {
 
@@ -535,4 +535,4 @@ std::span<const Row> rows_of(std::string_view section) {
 
 std::span<const std::string_view> top_sections() { return kTopSections; }
 
-}  // namespace raceway::io::schema
+}  // namespace raceway::scene::schema

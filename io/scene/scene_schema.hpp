@@ -1,6 +1,6 @@
 // The scene schema as a table: one row per key of a scene file (section, key, kind of value,
 // dimension, bounds, default, the bearings and contacts that take it, one line of meaning, and
-// where the value goes in io::Scene). One generic reader (scene_parser.cpp) reads every section
+// where the value goes in scene::Scene). One generic reader (scene_parser.cpp) reads every section
 // from its rows; docs/scene_keys.md is printed from them (scene_keys_doc). The rules that tie keys
 // together (rollers that fit, clearances, ring motions, laws that need a lubricant) are code, in
 // scene_rules.cpp, named by the rows that trigger them.
@@ -19,7 +19,7 @@
 #include "io/scene/scene.hpp"
 #include "io/scene/units.hpp"
 
-namespace raceway::io::schema {
+namespace raceway::scene::schema {
 
 class Section;  // scene_section.hpp: one TOML table of the scene file
 
@@ -166,4 +166,4 @@ std::span<const std::string_view> top_sections();
 /// docs/scene_keys.md: every row and the contact laws of every contact (scene_doc.cpp).
 std::string scene_keys_markdown();
 
-}  // namespace raceway::io::schema
+}  // namespace raceway::scene::schema

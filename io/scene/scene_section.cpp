@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace raceway::io::schema {
+namespace raceway::scene::schema {
 
 std::string join(const Names& names) {
   std::string s;
@@ -280,4 +280,4 @@ Section top(const std::string& file, const toml::table& root, std::string_view n
   return Section(file, t, std::string(name), line_of(*n));
 }
 
-}  // namespace raceway::io::schema
+}  // namespace raceway::scene::schema

@@ -14,7 +14,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "io/scene/scene_schema.hpp"
 
-namespace raceway::io::schema {
+namespace raceway::scene::schema {
 
 using Names = std::vector<std::string_view>;
 
@@ -103,4 +103,4 @@ class Section {
 /// A top-level section; a missing required one is an error at line 1.
 Section top(const std::string& file, const toml::table& root, std::string_view name, bool must_exist);
 
-}  // namespace raceway::io::schema
+}  // namespace raceway::scene::schema

@@ -3,7 +3,7 @@
 
 #include "io/scene/scene.hpp"
 
-namespace raceway::io {
+namespace raceway::scene {
 
 double TimeFunction::operator()(double t) const {
   if (values.empty()) return 0.0;
@@ -26,4 +26,4 @@ bool TimeFunction::is_zero() const {
   return std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

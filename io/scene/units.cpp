@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-namespace raceway::io {
+namespace raceway::scene {
 namespace {
 
 constexpr double pi = std::numbers::pi;
@@ -345,4 +345,4 @@ std::vector<std::string_view> unit_symbols() {
   return v;
 }
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

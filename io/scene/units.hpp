@@ -25,7 +25,7 @@
 
 #include <toml++/toml.h>
 
-namespace raceway::io {
+namespace raceway::scene {
 
 /// Exponents of mass, length, time, angle and information. Unit expressions keep them small
 /// (exponents -9 to 9 per term, at most max_exponent in all).
@@ -127,4 +127,4 @@ std::string si_unit(Dimension d);
 /// All unit symbols understood, in table order.
 std::vector<std::string_view> unit_symbols();
 
-}  // namespace raceway::io
+}  // namespace raceway::scene

@@ -34,7 +34,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/bearing/startup.hpp"
-#include "tests/solver/spatial_scene_builder.hpp"
+#include "tests/support/spatial_scene_builder.hpp"
 
 namespace {
 
@@ -64,10 +64,10 @@ Timing time_it(F&& f, double budget, int min_reps = 3) {
 /// The 6309 ball bearing of the tests with N balls: pitch circle grown so that the balls keep the
 /// 6309's spacing (8 balls on 72.5 mm) once N exceeds what fits, rings and cage grown with it; a
 /// radial and axial load so that the balls are loaded unevenly, as in a real run.
-io::Scene synthetic_scene(int balls) {
-  solver::test::BallSceneOptions o;
+scene::Scene synthetic_scene(int balls) {
+  test::BallSceneOptions o;
   o.fx = 300.0 * balls / 8, o.fy = -1000.0 * balls / 8, o.fz = 500.0 * balls / 8;
-  io::Scene s = solver::test::deep_groove_scene(o);
+  scene::Scene s = test::deep_groove_scene(o);
   const double pitch = std::max(72.5e-3, 72.5e-3 * balls / 8.0 * 0.75);
   const double grow = pitch - s.bearing.pitch_diameter;
   s.bearing.rolling_elements = balls;
@@ -80,16 +80,16 @@ io::Scene synthetic_scene(int balls) {
 
 struct Problem {
   std::string name;
-  solver::BorderedLayout layout;
-  std::function<int(solver::BorderedMatrix&)> jacobian;
+  numerics::BorderedLayout layout;
+  std::function<int(numerics::BorderedMatrix&)> jacobian;
 };
 
 void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
   const auto& l = p.layout;
-  solver::BorderedMatrix j(l.border, l.blocks, l.block_size);
+  numerics::BorderedMatrix j(l.border, l.blocks, l.block_size);
   const Timing tj = time_it([&] { p.jacobian(j); }, budget);
   const double gamma = 1e-6;  // a typical CVODE step (h / l_0) of these runs
-  solver::BorderedMatrix m = j;
+  numerics::BorderedMatrix m = j;
   m.scale_add_identity(-gamma);
   SUNContext ctx = nullptr;
   SUNContext_Create(nullptr, &ctx);
@@ -98,12 +98,12 @@ void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (int i = 0; i < l.size(); ++i) NV_Ith_S(b, i) = u(rng);
   std::vector<double> reference;
-  for (auto kind : {io::LinearSolverKind::petsc_bordered, io::LinearSolverKind::block_elimination,
-                    io::LinearSolverKind::sundials_dense}) {
-    if (kind == io::LinearSolverKind::sundials_dense && l.blocks > max_dense_blocks) continue;
-    solver::NewtonLinearSystem sys(kind, ctx, b, l);
+  for (auto kind : {scene::LinearSolverKind::petsc_bordered, scene::LinearSolverKind::block_elimination,
+                    scene::LinearSolverKind::sundials_dense}) {
+    if (kind == scene::LinearSolverKind::sundials_dense && l.blocks > max_dense_blocks) continue;
+    numerics::NewtonLinearSystem sys(kind, ctx, b, l);
     auto setup = [&] {
-      solver::NewtonLinearSystem::load_jacobian(j, sys.matrix());
+      numerics::NewtonLinearSystem::load_jacobian(j, sys.matrix());
       SUNMatScaleAddI(-gamma, sys.matrix());
       if (SUNLinSolSetup(sys.solver(), sys.matrix()) != 0) {
         std::fprintf(stderr, "setup failed: %s\n", sys.last_error().c_str());
@@ -111,7 +111,7 @@ void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
       }
     };
     // Dense at large N takes seconds per setup: fewer repetitions there.
-    const int min_reps = kind == io::LinearSolverKind::sundials_dense && l.blocks >= 128 ? 1 : 3;
+    const int min_reps = kind == scene::LinearSolverKind::sundials_dense && l.blocks >= 128 ? 1 : 3;
     // Setup and one solve together: a library may defer work from the setup to the first solve.
     const Timing ts = time_it([&] {
       setup();
@@ -136,7 +136,7 @@ void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
       diff = std::sqrt(num / den);
     }
     std::printf("%s,%d,%d,%s,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%d,%d,%.2e,%.2e\n", p.name.c_str(), balls, l.size(),
-                solver::linear_solver_name(kind), tj.min, tj.median, ts.min, ts.median, tv.min, tv.median, ts.reps,
+                numerics::linear_solver_name(kind), tj.min, tj.median, ts.min, ts.median, tv.min, tv.median, ts.reps,
                 tv.reps, diff, residual);
     std::fflush(stdout);
   }
@@ -147,14 +147,14 @@ void measure(const Problem& p, int balls, double budget, int max_dense_blocks) {
 
 /// measure() on a ball bearing's Jacobian at its start-up state, with raceway's default PETSc options.
 /// Every backend on the Newton systems of a bearing scene (its Jacobian at the start-up state).
-void measure_bearing(const char* name, const io::Scene& scene, double budget, int max_dense) {
-  const solver::Model model = solver::build_model(scene);
+void measure_bearing(const char* name, const scene::Scene& scene, double budget, int max_dense) {
+  const bearing::Model model = bearing::build_model(scene);
   scheduler::SerialExecutor executor;
-  solver::Equations eq(model, executor);
-  const std::vector<double> z = solver::initial_state(model, 0.0).state;
-  const solver::BorderedLayout l{model.border_size, model.element_count, model.block_size};
-  solver::configure_petsc_options(io::SolverSpec{}, l);
-  measure({name, l, [&](solver::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.element_count,
+  bearing::Equations eq(model, executor);
+  const std::vector<double> z = bearing::initial_state(model, 0.0).state;
+  const numerics::BorderedLayout l{model.border_size, model.element_count, model.block_size};
+  numerics::configure_petsc_options(scene::SolverSpec{}, l);
+  measure({name, l, [&](numerics::BorderedMatrix& j) { return eq.jacobian(0.0, z.data(), j); }}, model.element_count,
           budget, max_dense);
 }
 
@@ -164,23 +164,23 @@ int main(int argc, char** argv) {
   const scheduler::MpiSession mpi(argc, argv);
   {
     // Optional third argument: PETSc options for petsc-bordered (as raceway run --petsc-options).
-    solver::PetscRuntime petsc(argc > 3 ? argv[3] : "");
+    numerics::PetscRuntime petsc(argc > 3 ? argv[3] : "");
     const double budget = argc > 1 ? std::atof(argv[1]) : 0.5;   // s per measurement
     const int max_dense = argc > 2 ? std::atoi(argv[2]) : 512;  // largest N for the dense baseline
     std::printf("scene,N,states,backend,jacobian_min_s,jacobian_median_s,setup_solve_min_s,setup_solve_median_s,solve_min_s,"
                 "solve_median_s,setup_reps,solve_reps,difference_to_petsc,residual\n");
     if (argc > 4) {  // only the named scenes of jobs/scenes (e.g. a larger border: seed003_flexible_bridges.toml)
       for (int a = 4; a < argc; ++a)
-        measure_bearing(argv[a], io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + argv[a]), budget,
+        measure_bearing(argv[a], scene::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + argv[a]), budget,
                         max_dense);
       return 0;
     }
     for (int n : {8, 16, 32, 64, 128, 256, 512}) measure_bearing("synthetic", synthetic_scene(n), budget, max_dense);
     // The real bearings: N = 8..16.
     for (const char* file : {"6309_R3.toml", "qj215_validation.toml"})
-      measure_bearing(file, io::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + file), budget,
+      measure_bearing(file, scene::load_scene(std::string(RACEWAY_SOURCE_DIR "/jobs/scenes/") + file), budget,
                            max_dense);
-    measure_bearing("seed002_40hz.toml", io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml"), budget,
+    measure_bearing("seed002_40hz.toml", scene::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml"), budget,
                     max_dense);
   }
   return 0;

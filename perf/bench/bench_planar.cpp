@@ -13,11 +13,11 @@ namespace {
 using namespace raceway;
 
 struct Fixture {
-  io::Scene scene = io::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
-  solver::Model model = solver::build_model(scene);
+  scene::Scene scene = scene::load_scene(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  bearing::Model model = bearing::build_model(scene);
   scheduler::SerialExecutor executor;
-  solver::Equations eq{model, executor};
-  std::vector<double> z = solver::initial_state(model, 0.0).state;
+  bearing::Equations eq{model, executor};
+  std::vector<double> z = bearing::initial_state(model, 0.0).state;
   std::vector<double> zdot = std::vector<double>(z.size());
 };
 Fixture& fixture() {
@@ -26,14 +26,14 @@ Fixture& fixture() {
 }
 
 /// An empty Jacobian of the fixture's model: the rings' and cage's border, one block per roller.
-solver::BorderedMatrix empty_jacobian(const Fixture& f) {
+numerics::BorderedMatrix empty_jacobian(const Fixture& f) {
   const int nb = f.model.border_size, n = f.model.element_count;
-  return solver::BorderedMatrix(nb, n, (f.model.state_size - nb) / n);
+  return numerics::BorderedMatrix(nb, n, (f.model.state_size - nb) / n);
 }
 
 /// The Newton matrix I - gamma J at the start-up state, gamma = 1e-6 s (the order of a CVODE step).
-solver::BorderedMatrix newton_matrix(Fixture& f) {
-  solver::BorderedMatrix j = empty_jacobian(f);
+numerics::BorderedMatrix newton_matrix(Fixture& f) {
+  numerics::BorderedMatrix j = empty_jacobian(f);
   f.eq.jacobian(0.0, f.z.data(), j);
   j.scale_add_identity(-1e-6);
   return j;
@@ -58,14 +58,14 @@ BENCHMARK(BM_RightHandSide);
 
 void BM_Jacobian(benchmark::State& state) {
   auto& f = fixture();
-  solver::BorderedMatrix j = empty_jacobian(f);
+  numerics::BorderedMatrix j = empty_jacobian(f);
   for (auto _ : state) benchmark::DoNotOptimize(f.eq.jacobian(0.0, f.z.data(), j));
 }
 BENCHMARK(BM_Jacobian);
 
 void BM_BorderedFactorSolve(benchmark::State& state) {
-  const solver::BorderedMatrix j = newton_matrix(fixture());
-  solver::BorderedFactorization lu;
+  const numerics::BorderedMatrix j = newton_matrix(fixture());
+  numerics::BorderedFactorization lu;
   std::vector<double> b(j.size(), 1.0), x(j.size());
   for (auto _ : state) {
     lu.factor(j);

@@ -1,5 +1,5 @@
 // The cost and size of the output writer's storage settings: every time series of a real output file
-// (docs/output_layout.md) written again through io::H5SeriesWriter, row by row as a run appends
+// (docs/output_layout.md) written again through h5::H5SeriesWriter, row by row as a run appends
 // them, flushed every `flush_every` rows (as checkpoints do), for chunks of 16 and 64 KiB, gzip
 // levels 0..9, with and without the byte shuffle. Prints one line per setting: seconds to append and
 // write (wall, and CPU time of the calling thread: the run's, robust against other processes'
@@ -57,12 +57,12 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-Cost write_all(const std::vector<Series>& all, const std::string& path, raceway::io::H5WriterOptions options,
+Cost write_all(const std::vector<Series>& all, const std::string& path, raceway::h5::H5WriterOptions options,
                std::size_t flush_every) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = thread_cpu_seconds();
-  auto w = raceway::io::H5SeriesWriter::create(path, options);
-  std::vector<raceway::io::H5SeriesWriter::SeriesId> ids;
+  auto w = raceway::h5::H5SeriesWriter::create(path, options);
+  std::vector<raceway::h5::H5SeriesWriter::SeriesId> ids;
   for (const Series& s : all) w.define_series(s.path, s.row_shape, "-", "benchmark"), ids.push_back(w.series_id(s.path));
   w.flush();
   const std::size_t rows = all.front().rows;
@@ -78,7 +78,7 @@ Cost write_all(const std::vector<Series>& all, const std::string& path, raceway:
           thread_cpu_seconds() - cpu_start};
 }
 
-Cost best_of(const std::vector<Series>& all, const std::string& path, const raceway::io::H5WriterOptions& options,
+Cost best_of(const std::vector<Series>& all, const std::string& path, const raceway::h5::H5WriterOptions& options,
              std::size_t flush_every, int repeats) {
   Cost best{1e300, 1e300};
   for (int i = 0; i < repeats; ++i) {
@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
     for (const bool shuffle : {false, true})
       for (const int level : {0, 1, 2, 4, 6, 9}) {
         if (level == 0 && shuffle) continue;
-        const raceway::io::H5WriterOptions options{.gzip_level = level, .shuffle = shuffle, .chunk_bytes = chunk};
+        const raceway::h5::H5WriterOptions options{.gzip_level = level, .shuffle = shuffle, .chunk_bytes = chunk};
         const Cost best = best_of(all, out, options, flush_every, repeats);
         const auto bytes = static_cast<double>(std::filesystem::file_size(out));
         std::printf("%-8zu %-8d %-8s %10.4f %12.4f %12.0f %8.2f\n", chunk >> 10, level, shuffle ? "yes" : "no", best.wall,
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
   // The default storage, chunks filtered by HDF5's pipeline in the flushes (the writer before) and on
   // the writer's background thread: the caller's wall and CPU time.
   for (const bool background : {false, true}) {
-    const raceway::io::H5WriterOptions options{.background_compression = background};
+    const raceway::h5::H5WriterOptions options{.background_compression = background};
     const Cost best = best_of(all, out, options, flush_every, repeats);
     std::printf("default storage, filtering %-26s %10.4f s wall %10.4f s caller's CPU\n",
                 background ? "on the background thread:" : "in HDF5's pipeline:", best.wall, best.thread_cpu);

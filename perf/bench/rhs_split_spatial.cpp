@@ -16,15 +16,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s SCENE.toml [EVALUATIONS]\n", argv[0]);
     return 2;
   }
-  const io::Scene scene = io::load_scene(argv[1]);
+  const scene::Scene scene = scene::load_scene(argv[1]);
   const int evaluations = argc > 2 ? std::atoi(argv[2]) : 20000;
-  const solver::Model model = solver::build_model(scene);
-  const auto start = solver::initial_state(model, 0.0);
+  const bearing::Model model = bearing::build_model(scene);
+  const auto start = bearing::initial_state(model, 0.0);
   scheduler::SerialExecutor executor;
-  solver::Equations eq(model, executor);
+  bearing::Equations eq(model, executor);
   std::vector<double> zdot(start.state.size());
-  double per_kind[solver::segment_kind_count] = {};
-  int count[solver::segment_kind_count] = {};
+  double per_kind[bearing::segment_kind_count] = {};
+  int count[bearing::segment_kind_count] = {};
   for (const auto& s : model.segments) ++count[static_cast<int>(s.kind)];
   const std::vector<int> task_segment = eq.task_catalogue().parent;  // a cut segment has several tasks
   const auto t0 = std::chrono::steady_clock::now();
@@ -38,11 +38,11 @@ int main(int argc, char** argv) {
   std::printf("scene %s: %d right-hand sides at the start-up state\n", argv[1], evaluations);
   std::printf("wall time per rhs: %.3f us (all segments, summation, body equations, timers)\n", 1e6 * wall / evaluations);
   double tasks = 0;
-  for (int k = 0; k < solver::segment_kind_count; ++k) tasks += per_kind[k];
-  for (int k = 0; k < solver::segment_kind_count; ++k)
+  for (int k = 0; k < bearing::segment_kind_count; ++k) tasks += per_kind[k];
+  for (int k = 0; k < bearing::segment_kind_count; ++k)
     if (count[k] > 0)
       std::printf("  %-18s %3d segments: %8.3f us per rhs (%5.1f %%), %.3f us per segment\n",
-                  solver::segment_kind_name(static_cast<solver::SegmentKind>(k)), count[k],
+                  bearing::segment_kind_name(static_cast<bearing::SegmentKind>(k)), count[k],
                   1e6 * per_kind[k] / evaluations, 100 * per_kind[k] / tasks, 1e6 * per_kind[k] / evaluations / count[k]);
   // Rank 0's serial work per rhs: the sum over segments, combining cut segments' parts, the bodies.
   std::printf("  outside the segment tasks: %.3f us per rhs\n", 1e6 * (wall - tasks) / evaluations);

@@ -25,14 +25,15 @@
 #include "solver/numerics/integrator.hpp"
 
 using namespace raceway;
-using namespace raceway::solver;
+using namespace raceway::bearing;
+using namespace raceway::numerics;
 
 namespace {
 
 /// "loaded" (inner and outer race), "outer only" (centrifugal), "inner only", "free", plus "+bar"
 /// when a cage bar (pocket) presses on it.
 std::vector<std::string> contact_states(const Model& m, const Equations& eq) {
-  const bool planar = m.kind == io::ModelKind::planar;
+  const bool planar = m.kind == scene::ModelKind::planar;
   const int force = planar ? contact::field_index(contact::line_diagnostic_fields, "normal_force")
                            : contact::field_index(contact::point_diagnostic_fields, "normal_force");
   std::vector<double> inner(static_cast<std::size_t>(m.element_count)), outer(inner.size()), bar(inner.size());
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: step_limits SCENE.toml [END_TIME_S] [INTERVAL_S]\n");
     return 2;
   }
-  io::Scene scene = io::load_scene(argv[1]);
+  scene::Scene scene = scene::load_scene(argv[1]);
   const double end = argc > 2 ? std::atof(argv[2]) : scene.scene.end_time;
   const double dt = argc > 3 ? std::atof(argv[3]) : scene.scene.output_interval;
   const Model model = build_model(scene);

@@ -88,7 +88,7 @@ PY
 for np in 3 4; do
   mpirun --oversubscribe -np "$np" "$raceway" run "$fine" -o "$tmp/fine$np.h5" >/dev/null 2>&1
 done
-"$py" "$root/tests/parallel/compare_outputs.py" "$tmp/fine1.h5" "$tmp/fine2.h5" "$tmp/fine3.h5" "$tmp/fine4.h5" |
+"$py" "$root/tests/system/parallel/compare_outputs.py" "$tmp/fine1.h5" "$tmp/fine2.h5" "$tmp/fine3.h5" "$tmp/fine4.h5" |
   sed 's|^|# np=2, 3, 4 against np=1: |' | sed "s|$tmp/||g" >>"$out/scaling_speedup.txt"
 # This machine's network for the replay ("here"), measured now: a recording from another host
 # would model another machine (the VM moved hosts between two sessions: 0.38 -> 0.15 us, 2.9 -> 13

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using contact::Mat3;
 using contact::Vec3;
@@ -23,7 +23,7 @@ double annulus_transverse_inertia(double mass, double r_in, double r_out, double
 }
 
 /// Ring states: positions (x, y, z, tilts) then velocities (vx, vy, vz, tilt rates, spin).
-void add_ring(Model& m, BodyKind kind, const char* name, const io::RingSpec& spec, double r_in,
+void add_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& spec, double r_in,
               double r_out, double width, double density) {
   Body b;
   b.name = name;
@@ -33,10 +33,10 @@ void add_ring(Model& m, BodyKind kind, const char* name, const io::RingSpec& spe
   b.axial_inertia = spec.inertia > 0 ? spec.inertia : annulus_axial_inertia(b.mass, r_in, r_out);
   b.transverse_inertia =
       spec.transverse_inertia > 0 ? spec.transverse_inertia : annulus_transverse_inertia(b.mass, r_in, r_out, width);
-  const bool moves = spec.motion != io::RingMotion::fixed;
+  const bool moves = spec.motion != scene::RingMotion::fixed;
   const bool radial = moves && spec.translation_free, axial = moves && spec.axial_free;
-  const bool tilt = moves && spec.tilt == io::RingTilt::free;
-  const bool spin = spec.motion == io::RingMotion::free;
+  const bool tilt = moves && spec.tilt == scene::RingTilt::free;
+  const bool spin = spec.motion == scene::RingMotion::free;
   b.offset = m.state_size;
   auto add = [&](Coordinate c, VariableClass cls, const char* what) { add_state(m, b, c, cls, what); };
   if (radial) add(sx, VariableClass::position, "x"), add(sy, VariableClass::position, "y");
@@ -56,7 +56,7 @@ struct CageGeometry {
 };
 
 /// Cage: an annulus with one radial hole per pocket; full pose and body-frame angular velocity.
-void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
+void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   const auto& cs = scene.cage;
   const auto& cage_mat = scene.material(cs.material);
   const double D = scene.bearing.ball.ball_diameter;
@@ -82,7 +82,7 @@ void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
 }
 
 /// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation.
-void add_balls(Model& m, const io::Scene& scene) {
+void add_balls(Model& m, const scene::Scene& scene) {
   const double rb = m.element_radius;
   const double ball_mass = scene.material(scene.bearing.roller_material).density * 4.0 / 3.0 * pi * rb * rb * rb;
   const double inertia = 0.4 * ball_mass * rb * rb;
@@ -93,10 +93,10 @@ void add_balls(Model& m, const io::Scene& scene) {
   });
 }
 
-double e_star(const io::Material& a, const io::Material& b) {
+double e_star(const scene::Material& a, const scene::Material& b) {
   return contact::reduced_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
 }
-double damping_of(const io::ContactSpec& spec) { return spec.damping.id == contact::LawId::no_damping ? 0.0 : spec.damping.factor; }
+double damping_of(const scene::ContactSpec& spec) { return spec.damping.id == contact::LawId::no_damping ? 0.0 : spec.damping.factor; }
 /// Validity: an approach of 2 % of the ball radius is far beyond any elastic deflection.
 double max_approach(const Model& m) { return 0.02 * m.element_radius; }
 
@@ -113,10 +113,10 @@ struct Arc {
 /// contact bearing's design contact points lie on one line through the ball centre at its free
 /// contact angle (outer at +z, inner at -z), touching without load: its free contact angle is its
 /// play, so no clearance shift.
-std::vector<Arc> groove_arcs(const Model& m, const io::Scene& scene) {
+std::vector<Arc> groove_arcs(const Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
-  const bool four_point = g.type == io::BearingType::four_point_contact_ball;
-  const bool angular = g.type == io::BearingType::angular_contact_ball;
+  const bool four_point = g.type == scene::BearingType::four_point_contact_ball;
+  const bool angular = g.type == scene::BearingType::angular_contact_ball;
   const double D = g.ball.ball_diameter, rb = m.element_radius, rp = m.pitch_radius, a0 = m.nominal_contact_angle;
   std::vector<Arc> arcs;
   for (int ring = 0; ring < 2; ++ring) {
@@ -133,7 +133,7 @@ std::vector<Arc> groove_arcs(const Model& m, const io::Scene& scene) {
   return arcs;
 }
 
-contact::PointTraction race_traction(const io::Scene& scene) {
+contact::PointTraction race_traction(const scene::Scene& scene) {
   contact::PointTraction t;
   const auto& rt = scene.ball_race.traction;
   t.model = rt.id == contact::LawId::no_traction      ? contact::TractionModel::none
@@ -146,7 +146,7 @@ contact::PointTraction race_traction(const io::Scene& scene) {
   return t;
 }
 
-contact::PointLubricant lubricant(const io::Scene& scene) {
+contact::PointLubricant lubricant(const scene::Scene& scene) {
   contact::PointLubricant lube;
   lube.viscosity = scene.lubricant.viscosity;
   lube.pressure_viscosity = scene.lubricant.pressure_viscosity;
@@ -157,7 +157,7 @@ contact::PointLubricant lubricant(const io::Scene& scene) {
 
 /// The ball-groove law of one arc: Hertz constants over cos(contact angle) in [0.2, 1]: ball 1/R_b
 /// both ways; groove -1/r_g across; race +-cos(a)/rho along the rolling direction, rho = r_p -+ R_b cos(a).
-contact::BallGrooveSegment groove_law(const Model& m, const io::Scene& scene, const Arc& arc) {
+contact::BallGrooveSegment groove_law(const Model& m, const scene::Scene& scene, const Arc& arc) {
   const double rb = m.element_radius, rp = m.pitch_radius;
   const double e_race = e_star(scene.material(scene.bearing.roller_material), scene.material(scene.bearing.ring_material));
   contact::BallGrooveSegment s;
@@ -181,17 +181,17 @@ contact::BallGrooveSegment groove_law(const Model& m, const io::Scene& scene, co
   s.traction = race_traction(scene);
   s.lubricant = lubricant(scene);
   s.rolling_resistance = scene.ball_race.traction.rolling_resistance && s.lubricant.viscosity > 0;
-  if (scene.bearing.type == io::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
+  if (scene.bearing.type == scene::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
   return s;
 }
 
 /// The ball-pocket law (the same for every pocket but its angle).
-contact::BallPocketSegment pocket_law(const Model& m, const io::Scene& scene) {
+contact::BallPocketSegment pocket_law(const Model& m, const scene::Scene& scene) {
   const auto& cs = scene.cage;
   const double rb = m.element_radius;
   const double e_pocket = e_star(scene.material(scene.bearing.roller_material), scene.material(cs.material));
   const double pocket_r = rb + 0.5 * cs.pocket_clearance;
-  const bool spherical = cs.pocket_shape == io::PocketShape::spherical;
+  const bool spherical = cs.pocket_shape == scene::PocketShape::spherical;
   const double conformal = 1.0 / rb - 1.0 / pocket_r;
   contact::BallPocketSegment p;
   p.normal.hertz = contact::HertzTable(contact::hertz_point_contact(spherical ? conformal : 1.0 / rb, conformal, e_pocket));
@@ -210,7 +210,7 @@ contact::BallPocketSegment pocket_law(const Model& m, const io::Scene& scene) {
   return p;
 }
 
-void add_ball_segments(Model& m, const io::Scene& scene) {
+void add_ball_segments(Model& m, const scene::Scene& scene) {
   const std::vector<Arc> arcs = groove_arcs(m, scene);
   std::vector<int> arc_law;
   for (const Arc& arc : arcs) {
@@ -234,10 +234,10 @@ void add_ball_segments(Model& m, const io::Scene& scene) {
   }
 }
 
-void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo) {
+void add_land_segment(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   const auto& cs = scene.cage;
-  if (cs.guidance == io::CageGuidance::rolling_element) return;
-  const bool outer = cs.guidance == io::CageGuidance::outer_land;
+  if (cs.guidance == scene::CageGuidance::rolling_element) return;
+  const bool outer = cs.guidance == scene::CageGuidance::outer_land;
   contact::CageLandSegment3 l;
   l.outer_land = outer;
   l.clearance = cs.land_clearance;
@@ -257,32 +257,32 @@ void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo)
                         static_cast<int>(m.laws.size()) - 1, -1, outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
-void check_scene(const io::Scene& scene) {
-  if (scene.scene.model != io::ModelKind::spatial || !scene.bearing.is_ball_bearing())
+void check_scene(const scene::Scene& scene) {
+  if (scene.scene.model != scene::ModelKind::spatial || !scene.bearing.is_ball_bearing())
     throw std::runtime_error("scene.model: the spatial model needs a ball bearing (bearing.type)");
 }
 
-void set_geometry(Model& m, const io::Scene& scene) {
+void set_geometry(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
-  const bool four_point = g.type == io::BearingType::four_point_contact_ball;
-  m.kind = io::ModelKind::spatial;
+  const bool four_point = g.type == scene::BearingType::four_point_contact_ball;
+  m.kind = scene::ModelKind::spatial;
   m.element_group = "balls";
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.ball.ball_diameter;
   m.nominal_contact_angle = four_point                                    ? g.ball.arc_contact_angle
-                            : g.type == io::BearingType::angular_contact_ball ? g.ball.free_contact_angle
+                            : g.type == scene::BearingType::angular_contact_ball ? g.ball.free_contact_angle
                                                                               : 0.0;
   m.arcs_per_ring = four_point ? 2 : 1;
 }
 
-double ring_width(const io::Scene& scene) {
+double ring_width(const scene::Scene& scene) {
   const auto& g = scene.bearing;
   return g.ring_width > 0 ? g.ring_width : 1.5 * g.ball.ball_diameter;
 }
 
 /// Rings: the groove side of each ring is taken as a quarter ball diameter deep on average.
-void add_rings(Model& m, const io::Scene& scene) {
+void add_rings(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double D = g.ball.ball_diameter, width = ring_width(scene);
   const double density = scene.material(g.ring_material).density;
@@ -292,7 +292,7 @@ void add_rings(Model& m, const io::Scene& scene) {
            0.5 * g.outer_outside_diameter, width, density);
 }
 
-CageGeometry cage_geometry(const Model& m, const io::Scene& scene) {
+CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
   const auto& cs = scene.cage;
   const double rp = m.pitch_radius, rb = m.element_radius;
   return {cs.inner_diameter > 0 ? 0.5 * cs.inner_diameter : rp - 0.6 * rb,
@@ -300,7 +300,7 @@ CageGeometry cage_geometry(const Model& m, const io::Scene& scene) {
           cs.width > 0 ? cs.width : 0.8 * ring_width(scene)};
 }
 
-void add_segments(Model& m, const io::Scene& scene) {
+void add_segments(Model& m, const scene::Scene& scene) {
   add_ball_segments(m, scene);
   add_land_segment(m, scene, cage_geometry(m, scene));
 }
@@ -312,7 +312,7 @@ std::string describe_ball_model(const Model& m);
 const ModelBuilder& ball_model_builder() {
   static const ModelBuilder builder{
       check_scene, set_geometry, add_rings,
-      [](Model& m, const io::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene)); }, add_balls, add_segments,
+      [](Model& m, const scene::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene)); }, add_balls, add_segments,
       describe_ball_model};
   return builder;
 }
@@ -325,7 +325,7 @@ std::string describe_ball_model(const Model& m) {
   out += fmt::format("  {} {} balls, D = {:.4g} mm, pitch diameter {:.5g} mm, nominal contact angle {:.3g} deg\n",
                      m.element_count,
                      m.arcs_per_ring == 2                                           ? "four-point contact"
-                     : sc.bearing.type == io::BearingType::angular_contact_ball ? "angular contact"
+                     : sc.bearing.type == scene::BearingType::angular_contact_ball ? "angular contact"
                                                                                     : "deep groove",
                      2e3 * m.element_radius,
                      2e3 * m.pitch_radius, m.nominal_contact_angle * 180 / std::numbers::pi);
@@ -337,8 +337,8 @@ std::string describe_ball_model(const Model& m) {
       case BodyKind::inner_ring:
       case BodyKind::outer_ring: {
         const auto& r = *b.ring;
-        const char* motion = r.motion == io::RingMotion::fixed ? "fixed" : r.motion == io::RingMotion::driven ? "driven" : "free";
-        const char* tilt = r.tilt == io::RingTilt::free ? "tilt free" : r.tilt == io::RingTilt::prescribed ? "misalignment prescribed" : "tilt held";
+        const char* motion = r.motion == scene::RingMotion::fixed ? "fixed" : r.motion == scene::RingMotion::driven ? "driven" : "free";
+        const char* tilt = r.tilt == scene::RingTilt::free ? "tilt free" : r.tilt == scene::RingTilt::prescribed ? "misalignment prescribed" : "tilt held";
         why = fmt::format("{}, {}; its angle about its own axis is not a state (grooves are surfaces of revolution)", motion, tilt);
         break;
       }
@@ -362,7 +362,7 @@ std::string describe_ball_model(const Model& m) {
                      sc.ball_race.damping.name(), sc.ball_race.traction.name(), sc.ball_race.traction.grid_x,
                      sc.ball_race.traction.grid_y, groove && m.law<contact::BallGrooveSegment>(*groove).rolling_resistance ? "on" : "off");
   out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}\n",
-                     sc.cage.pocket_shape == io::PocketShape::spherical ? "spherical" : "cylindrical",
+                     sc.cage.pocket_shape == scene::PocketShape::spherical ? "spherical" : "cylindrical",
                      1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name());
   if (!land)
     out += "  cage-land: none (the cage is guided by the balls" + std::string(sc.cage.support.any() ? " and its spindle support)\n" : ")\n");
@@ -375,4 +375,4 @@ std::string describe_ball_model(const Model& m) {
   return out;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using contact::Mat3;
 using contact::SpatialKinematics;
@@ -387,7 +387,7 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
         "the keys involved: bearing.radial_clearance ({:.4g} um){}, inner_ring.load, outer_ring.load, the rings' "
         "support, axial and tilt, scene.gravity",
         iterations, rep.residual, 1e6 * m.params().bearing.radial_clearance,
-        m.params().bearing.type == io::BearingType::angular_contact_ball ? " or bearing.contact_angle" : ""));
+        m.params().bearing.type == scene::BearingType::angular_contact_ball ? " or bearing.contact_angle" : ""));
   std::vector<double> z = seat.state(u);
   z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.cage)].slot[saz])] = azimuth_offset;
   rep.pocket_force = place_cage(m, z);
@@ -415,4 +415,4 @@ StartupReport seat_ball_bearing(const Model& m, double t0, double azimuth_offset
   return rep;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

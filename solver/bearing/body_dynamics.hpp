@@ -17,7 +17,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using Wrench = contact::SpatialWrench;
 
@@ -49,7 +49,7 @@ class BodyDynamics {
                                        double rates[coordinate_count]) const = 0;
   /// Each body's own Jacobian terms (kinematic rows, supports, gyroscopic terms), contacts frozen.
   virtual void add_body_jacobian(double t, const double* z, const std::vector<Wrench>& contacts,
-                                 const FiniteDifferenceSteps& step, BorderedMatrix& jac) const = 0;
+                                 const FiniteDifferenceSteps& step, numerics::BorderedMatrix& jac) const = 0;
   /// Kinetic energy + support springs + potential of the current loads and gravity [J] (the
   /// contacts' elastic energy comes from the segment records).
   virtual double body_energy(double t, const double* z) const = 0;
@@ -58,4 +58,4 @@ class BodyDynamics {
 /// The dynamics of the model's kind.
 std::unique_ptr<BodyDynamics> make_body_dynamics(const Model& model);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

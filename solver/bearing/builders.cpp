@@ -5,16 +5,16 @@
 
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
-const ModelBuilder& builder_for(io::BearingType type) {
+const ModelBuilder& builder_for(scene::BearingType type) {
   switch (type) {
-    case io::BearingType::cylindrical_roller: return roller_model_builder();
-    case io::BearingType::deep_groove_ball:
-    case io::BearingType::four_point_contact_ball:
-    case io::BearingType::angular_contact_ball: return ball_model_builder();
+    case scene::BearingType::cylindrical_roller: return roller_model_builder();
+    case scene::BearingType::deep_groove_ball:
+    case scene::BearingType::four_point_contact_ball:
+    case scene::BearingType::angular_contact_ball: return ball_model_builder();
   }
   throw std::logic_error("builder_for: a bearing type without a builder");
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
-BridgeBeam bridge_beam(const io::Scene& scene, double cage_height) {
+BridgeBeam bridge_beam(const scene::Scene& scene, double cage_height) {
   const auto& g = scene.bearing;
   const auto& cs = scene.cage;
   const auto& material = scene.material(cs.material);
@@ -66,12 +66,12 @@ void CageBridge::rates(const Model& m, double t, const double* z, const double* 
   zdot[rate_] = mz / inertia_ - zdot[carrier_rate];
 }
 
-void CageBridge::add_moment_derivative(int state, double dm, BorderedMatrix& jac) const {
+void CageBridge::add_moment_derivative(int state, double dm, numerics::BorderedMatrix& jac) const {
   const double rate = dm * (1.0 / inertia_);
   if (rate != 0.0) jac.add(rate_, state, rate);
 }
 
-void CageBridge::add_own_jacobian(const Model&, double, BorderedMatrix& jac) const { jac.add(angle_, rate_, 1.0); }
+void CageBridge::add_own_jacobian(const Model&, double, numerics::BorderedMatrix& jac) const { jac.add(angle_, rate_, 1.0); }
 
 void CageBridge::add_energy(const Model& m, double, const double* z, double& e) const {
   const double w = z[rate_] + z[m.bodies[static_cast<std::size_t>(cage_)].slot[swz]];
@@ -162,8 +162,8 @@ BridgeParts bridge_parts(const Model& m) {
 
 }  // namespace
 
-void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
-  if (scene.cage.bridges != io::CageBridges::flexible) return;
+void add_cage_bridges(Model& m, const scene::Scene& scene, double cage_height) {
+  if (scene.cage.bridges != scene::CageBridges::flexible) return;
   const BridgeBeam beam = bridge_beam(scene, cage_height);
   Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
   // The bridge's modal inertia moves with it: the cage keeps the rest of its inertia.
@@ -178,7 +178,7 @@ void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
   // gets rtol F / (k R), F the largest ring load (at least 1 N), so the bridge force is resolved to
   // rtol F; its rate that times the bending frequency.
   double load = 1.0;
-  for (const io::RingSpec* r : {&scene.inner_ring, &scene.outer_ring})
+  for (const scene::RingSpec* r : {&scene.inner_ring, &scene.outer_ring})
     load = std::max({load, max_abs(r->load.fx), max_abs(r->load.fy)});
   const double angle_tolerance = scene.solver.rtol * load / (beam.stiffness * m.pitch_radius);
   for (int k = 0; k < m.element_count; ++k) {
@@ -192,7 +192,7 @@ void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height) {
   }
 }
 
-void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_height) {
+void add_cage_bridge_segments(Model& m, const scene::Scene& scene, double cage_height) {
   const BridgeParts parts = bridge_parts(m);
   if (parts.node.empty()) return;
   const BridgeBeam beam = bridge_beam(scene, cage_height);
@@ -230,4 +230,4 @@ std::string describe_bridge_segments(const Model& m) {
                      count, b.stiffness, b.damping, 1e3 * b.radius);
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

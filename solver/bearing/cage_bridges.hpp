@@ -14,7 +14,7 @@
 #include "io/scene/scene.hpp"
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// A bridge as a beam: section, span, material and what follows from them.
 struct BridgeBeam {
@@ -35,7 +35,7 @@ struct BridgeBeam {
 /// the scene's bridge_stiffness). With that static shape as the mode, the mass for u is 10/7 of
 /// the bar's (Rayleigh), which puts the first bending frequency 0.4 % above the exact
 /// 22.37 sqrt(E I / (m L^3)). `cage_height`: the cage's radial section.
-BridgeBeam bridge_beam(const io::Scene& scene, double cage_height);
+BridgeBeam bridge_beam(const scene::Scene& scene, double cage_height);
 
 /// A bridge's bending: its angle and rate relative to the cage (two border states), the moment on it
 /// as its generalized force. Its marker (the pocket bars riding on it) translates with the cage and
@@ -49,12 +49,12 @@ class CageBridge final : public Node {
   int cage() const { return cage_; }
   double inertia() const { return inertia_; }
   /// Adds d(bending acceleration)/d(state) from a derivative dm of the moment on the bridge.
-  void add_moment_derivative(int state, double dm, BorderedMatrix& jac) const;
+  void add_moment_derivative(int state, double dm, numerics::BorderedMatrix& jac) const;
 
   std::string name() const override;
   int force_count() const override { return 1; }
   void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const override;
-  void add_own_jacobian(const Model& m, double t, BorderedMatrix& jac) const override;
+  void add_own_jacobian(const Model& m, double t, numerics::BorderedMatrix& jac) const override;
   void add_energy(const Model& m, double t, const double* z, double& e) const override;
   void set_tolerances(std::vector<double>& atol) const override;
   void initial_state(std::vector<double>& z) const override;
@@ -68,10 +68,10 @@ class CageBridge final : public Node {
 /// With [cage] bridges = "flexible": one node per bridge (bridge k lies between pockets k and k + 1)
 /// with its marker; the cage keeps its inertia less the bridges' modal inertia. Call right after the
 /// cage's states.
-void add_cage_bridges(Model& m, const io::Scene& scene, double cage_height);
+void add_cage_bridges(Model& m, const scene::Scene& scene, double cage_height);
 
 /// The bridge springs (one cage_bridge element per bridge), after the pocket elements.
-void add_cage_bridge_segments(Model& m, const io::Scene& scene, double cage_height);
+void add_cage_bridge_segments(Model& m, const scene::Scene& scene, double cage_height);
 
 /// The marker of the bar ahead of (side +1) or behind (side -1) pocket k: a bridge's, or -1 (the
 /// cage's centre) when the bridges are rigid.
@@ -82,4 +82,4 @@ std::vector<const CageBridge*> cage_bridges_of(const Model& m);
 /// The model description's line for the bridge springs.
 std::string describe_bridge_segments(const Model& m);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

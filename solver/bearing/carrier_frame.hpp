@@ -16,7 +16,7 @@
 
 #include "io/scene/scene.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 struct CarrierFrame {
   double radius = 0;        ///< m, R_c
@@ -45,9 +45,9 @@ struct CarrierFrame {
 };
 
 /// The carrier frame at time t, or nullopt when the bearing frame is inertial.
-inline std::optional<CarrierFrame> carrier_frame(const io::CarrierSpec& carrier, double t) {
+inline std::optional<CarrierFrame> carrier_frame(const scene::CarrierSpec& carrier, double t) {
   if (!carrier.present) return std::nullopt;
   return CarrierFrame{carrier.radius, carrier.speed(t), carrier.speed.derivative(t)};
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -15,7 +15,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/segment_record.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// How an element's Jacobian is formed.
 struct ElementShape {
@@ -165,4 +165,4 @@ void write_element_jacobian(const Model& m, const FiniteDifferenceSteps& step, c
   rec[SegmentRecord::valid] = ok ? 1.0 : 0.0;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

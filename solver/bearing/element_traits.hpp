@@ -12,7 +12,7 @@
 #include "contact/segments/diagnostic_fields.hpp"
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// A law of the line family: evaluated on planar kinematics.
 template <class Law>
@@ -43,4 +43,4 @@ constexpr int diagnostic_index(const char* name) {
   return contact::field_index(diagnostic_fields_of<Law>(), name);
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

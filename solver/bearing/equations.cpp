@@ -7,14 +7,14 @@
 
 #include "solver/bearing/element_evaluation.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model);
 std::unique_ptr<BodyDynamics> make_spatial_dynamics(const Model& model);
 int segment_part_count(const SegmentLaw& law);  // segment_parts.cpp
 
 std::unique_ptr<BodyDynamics> make_body_dynamics(const Model& model) {
-  return model.kind == io::ModelKind::spatial ? make_spatial_dynamics(model) : make_planar_dynamics(model);
+  return model.kind == scene::ModelKind::spatial ? make_spatial_dynamics(model) : make_planar_dynamics(model);
 }
 
 FiniteDifferenceSteps::FiniteDifferenceSteps(const Model& model)
@@ -210,7 +210,7 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   return status;
 }
 
-void Equations::add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const {
+void Equations::add_rate_derivative(int b, int state, const double* z, const Wrench& dw, numerics::BorderedMatrix& jac) const {
   const Body& body = model_.bodies[static_cast<std::size_t>(b)];
   double rates[coordinate_count];
   dynamics_->contact_rate_derivative(b, z, dw, rates);
@@ -260,7 +260,7 @@ void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAss
     if (const MarkerKind* kind = element_detail::kind_of(*marker)) kind->add_jacobian_terms(assembly, seg, columns, rec);
 }
 
-int Equations::jacobian(double t, const double* z, BorderedMatrix& jac) {
+int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac) {
   ++jac_count_;
   const int nseg = static_cast<int>(model_.segments.size());
   segment_count_ += jacobian_segment_evaluations_;
@@ -318,4 +318,4 @@ std::string Equations::explain_state(int index) const {
   return out;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -17,7 +17,7 @@
 #include "solver/numerics/bordered_matrix.hpp"
 #include "solver/numerics/dynamic_system.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// The seating's contacts (solver/bearing/ball_startup.cpp): a ball-groove segment, evaluated with
 /// its ring (A) held at rest.
@@ -28,7 +28,7 @@ std::pair<contact::SpatialKinematics, contact::SpatialKinematics> groove_kinemat
                                                                                            const Segment& seg,
                                                                                            double t, const double* z);
 
-class Equations final : public DynamicSystem {
+class Equations final : public numerics::DynamicSystem {
  public:
   Equations(const Model& model, scheduler::Executor& executor);
   // The task functions capture `this` (they are handed to executors): no copies, no moves.
@@ -43,7 +43,7 @@ class Equations final : public DynamicSystem {
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   int rhs(double t, const double* z, double* zdot) override;
   /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).
-  int jacobian(double t, const double* z, BorderedMatrix& jac) override;
+  int jacobian(double t, const double* z, numerics::BorderedMatrix& jac) override;
   std::string explain_state(int index) const override;
 
   /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
@@ -63,7 +63,7 @@ class Equations final : public DynamicSystem {
   const std::vector<Wrench>& contact_loads() const { return contact_.body; }
   /// d(rates of body b) / d(state) from a wrench derivative dw on b, into the Jacobian (with the
   /// rows that follow b's rates: relative coordinates).
-  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, BorderedMatrix& jac) const;
+  void add_rate_derivative(int b, int state, const double* z, const Wrench& dw, numerics::BorderedMatrix& jac) const;
   /// Adds the wrenches of the ball-groove segments with their rings at rest (the seating's force
   /// balance) to `sums` (per body), in segment order: evaluated as tasks through the executor like
   /// a right-hand side (spread over the ranks; a cut contact's parts combined as in rhs()), the
@@ -135,4 +135,4 @@ class Equations final : public DynamicSystem {
   long jacobian_segment_evaluations_ = 0;  ///< per Jacobian: base point and one per state of each segment's bodies
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

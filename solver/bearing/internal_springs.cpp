@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 contact::SegmentResult evaluate(const CageBridgeSpring& s, const contact::PlanarKinematics& cage,
                                 const contact::PlanarKinematics& bridge) {
@@ -35,4 +35,4 @@ contact::SegmentResult evaluate(const RingModeSpring& s, const contact::PlanarKi
   return r;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -6,7 +6,7 @@
 
 #include "contact/segments/roller_segments.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// A flexible cage bridge's bending (the bar between two pockets): A = the cage's centre, B = the
 /// bridge's marker, which translates with the cage and turns on its own: its angle less the cage's
@@ -37,4 +37,4 @@ struct RingModeSpring {
 contact::SegmentResult evaluate(const RingModeSpring& s, const contact::PlanarKinematics& ring,
                                 const contact::PlanarKinematics& mode);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -3,7 +3,7 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 contact::PlanarKinematics marker_planar(const Model& m, const Marker& marker, double t, const double* z) {
   if (const auto* centre = std::get_if<BodyCentre>(&marker)) return m.planar_kinematics(centre->body, t, z);
@@ -34,4 +34,4 @@ void JacobianAssembly::add_body_rate_derivative(int b, int state, const Wrench& 
   equations.add_rate_derivative(b, state, z, dw, jac);
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

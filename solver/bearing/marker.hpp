@@ -18,7 +18,7 @@
 #include "contact/segments/roller_segments.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 struct Model;
 struct Segment;
@@ -40,7 +40,7 @@ struct JacobianAssembly {
   const Equations& equations;
   double t;
   const double* z;
-  BorderedMatrix& jac;
+  numerics::BorderedMatrix& jac;
   /// d(rates of body b)/d(state) from a wrench derivative dw on b (with its rate followers).
   void add_body_rate_derivative(int b, int state, const Wrench& dw) const;
 };
@@ -91,9 +91,9 @@ struct BodyCentre {
 
 using Marker = std::variant<BodyCentre, std::shared_ptr<const MarkerKind>>;
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// Body b's state columns in coordinate order (a body-centre marker's).
 void add_body_columns(const Model& m, int b, bool on_a, std::vector<SegmentColumn>& out);
@@ -107,4 +107,4 @@ void marker_add_rate_derivative(const Model& m, const Marker& marker, const Jaco
 /// The rigid body a marker moves with, or -1.
 int marker_body(const Marker& marker);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

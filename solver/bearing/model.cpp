@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using contact::Mat3;
 using contact::Vec3;
@@ -32,7 +32,7 @@ const char* segment_kind_name(SegmentKind k) {
 
 namespace {
 
-std::shared_ptr<const ModelParameters> copy_parameters(const io::Scene& scene) {
+std::shared_ptr<const ModelParameters> copy_parameters(const scene::Scene& scene) {
   auto p = std::make_shared<ModelParameters>();
   p->scene_name = scene.scene.name;
   p->source = scene.source;
@@ -49,9 +49,9 @@ std::shared_ptr<const ModelParameters> copy_parameters(const io::Scene& scene) {
 
 }  // namespace
 
-Model build_model(const io::Scene& scene) { return build_model(scene, builder_for(scene.bearing.type)); }
+Model build_model(const scene::Scene& scene) { return build_model(scene, builder_for(scene.bearing.type)); }
 
-Model build_model(const io::Scene& scene, const ModelBuilder& builder) {
+Model build_model(const scene::Scene& scene, const ModelBuilder& builder) {
   builder.check(scene);
   Model m;
   m.describer = builder.describe;
@@ -155,14 +155,14 @@ contact::PlanarKinematics Model::planar_kinematics(int b, double t, const double
   const Body& body = bodies[static_cast<std::size_t>(b)];
   auto state = [&](Coordinate c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
   double omega = state(swz);
-  if (body.ring && body.ring->motion == io::RingMotion::driven) omega = body.ring->speed(t);
+  if (body.ring && body.ring->motion == scene::RingMotion::driven) omega = body.ring->speed(t);
   return {state(sx), state(sy), state(saz), state(svx), state(svy), omega};
 }
 
 double Model::ring_spin(int b, double t, const double* z) const {
   const Body& body = bodies[static_cast<std::size_t>(b)];
   if (body.slot[swz] >= 0) return z[body.slot[swz]];
-  return body.ring && body.ring->motion == io::RingMotion::driven ? body.ring->speed(t) : 0.0;
+  return body.ring && body.ring->motion == scene::RingMotion::driven ? body.ring->speed(t) : 0.0;
 }
 
 contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) const {
@@ -184,7 +184,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       break;
     case BodyKind::inner_ring:
     case BodyKind::outer_ring: {
-      if (body.ring->tilt == io::RingTilt::prescribed) {
+      if (body.ring->tilt == scene::RingTilt::prescribed) {
         v[sax] = body.ring->misalignment_x(t), v[say] = body.ring->misalignment_y(t);
         v[swx] = body.ring->misalignment_x.derivative(t), v[swy] = body.ring->misalignment_y.derivative(t);
       }
@@ -198,10 +198,10 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
 }
 
 double Model::epicyclic_cage_speed(double t) const {
-  if (kind == io::ModelKind::spatial) return epicyclic_cage_speed(t, nominal_contact_angle);
+  if (kind == scene::ModelKind::spatial) return epicyclic_cage_speed(t, nominal_contact_angle);
   auto speed = [&](int b) {
     const auto* r = bodies[static_cast<std::size_t>(b)].ring;
-    return r->motion == io::RingMotion::driven ? r->speed(t) : 0.0;
+    return r->motion == scene::RingMotion::driven ? r->speed(t) : 0.0;
   };
   const double ri = inner_race_radius, ro = outer_race_radius;
   return (speed(inner_ring) * ri + speed(outer_ring) * ro) / (ri + ro);
@@ -210,13 +210,13 @@ double Model::epicyclic_cage_speed(double t) const {
 double Model::epicyclic_cage_speed(double t, double contact_angle) const {
   auto speed = [&](int b) {
     const auto* r = bodies[static_cast<std::size_t>(b)].ring;
-    return r->motion == io::RingMotion::driven ? r->speed(t) : 0.0;
+    return r->motion == scene::RingMotion::driven ? r->speed(t) : 0.0;
   };
   const double gamma = 2.0 * element_radius * std::cos(contact_angle) / (2.0 * pitch_radius);
   return 0.5 * (speed(inner_ring) * (1.0 - gamma) + speed(outer_ring) * (1.0 + gamma));
 }
 
-double max_abs(const io::TimeFunction& f) {
+double max_abs(const scene::TimeFunction& f) {
   double v = 0;
   for (double x : f.values) v = std::max(v, std::abs(x));
   return v;
@@ -271,4 +271,4 @@ void Loads::clear() {
   for (double& f : node) f = 0.0;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

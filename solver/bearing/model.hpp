@@ -30,7 +30,7 @@
 #include "solver/bearing/marker.hpp"
 #include "solver/bearing/nodes.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// Generalized coordinates of a body: the full spatial set; Body::slot[c] is the state index of
 /// coordinate c or -1 (not a state). Angles: ring tilts (sax, say) or the cage's Cardan angles.
@@ -53,7 +53,7 @@ struct Body {
   std::array<int, coordinate_count> slot{-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   int offset = 0, size = 0;       ///< contiguous block of this body's states
   /// Rings: motion, drive, loads, support (in the model's own parameters, never the scene's).
-  const io::RingSpec* ring = nullptr;
+  const scene::RingSpec* ring = nullptr;
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };
@@ -88,20 +88,20 @@ struct Segment {
 /// What the model copies from the scene at build time: the model holds no scene.
 struct ModelParameters {
   std::string scene_name, source;
-  io::BearingGeometry bearing;
-  io::CageSpec cage;
-  io::RingSpec inner_ring, outer_ring;
-  io::CarrierSpec carrier;
-  io::SolverSpec solver;
-  io::ContactSpec ball_race, ball_cage;  ///< for the model's description
+  scene::BearingGeometry bearing;
+  scene::CageSpec cage;
+  scene::RingSpec inner_ring, outer_ring;
+  scene::CarrierSpec carrier;
+  scene::SolverSpec solver;
+  scene::ContactSpec ball_race, ball_cage;  ///< for the model's description
 };
 
 struct Model {
   /// The scene's values the model and its dynamics read after the build. Shared and immutable, so
   /// Body::ring stays valid when a model is moved or copied.
   std::shared_ptr<const ModelParameters> parameters;
-  io::ModelKind kind = io::ModelKind::planar;  ///< the space: planar or spatial dynamics
-  io::BearingType bearing_type = io::BearingType::cylindrical_roller;
+  scene::ModelKind kind = scene::ModelKind::planar;  ///< the space: planar or spatial dynamics
+  scene::BearingType bearing_type = scene::BearingType::cylindrical_roller;
   /// Rigid bodies: inner ring, outer ring, cage, rolling elements (in that order, always).
   std::vector<Body> bodies;
   int inner_ring = 0, outer_ring = 1, cage = 2, first_element = 3;
@@ -183,10 +183,10 @@ std::vector<SegmentColumn> segment_columns(const Model& m, const Segment& seg);
 
 /// Builds the model of the scene's bearing type (the builder registry, builders.cpp). Throws
 /// std::runtime_error naming the scene key when something cannot be built.
-Model build_model(const io::Scene& scene);
+Model build_model(const scene::Scene& scene);
 struct ModelBuilder;
 /// The same with a given builder (a variant of a bearing type, or a test's).
-Model build_model(const io::Scene& scene, const ModelBuilder& builder);
+Model build_model(const scene::Scene& scene, const ModelBuilder& builder);
 
 /// Absolute tolerances per state from physical scales, where the scene's [solver] section gives
 /// none: positions rtol times the pitch radius, angles rtol, velocities rtol times the driven ring's
@@ -205,21 +205,21 @@ contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angul
 /// (equal blocks), elements. The builder is chosen by the bearing type (builders.cpp), the
 /// dynamics by the space (planar or spatial), separately.
 struct ModelBuilder {
-  void (*check)(const io::Scene&);          ///< throws when the builder cannot build this scene (its space)
-  void (*geometry)(Model&, const io::Scene&);  ///< kind, element count, radii
-  void (*rings)(Model&, const io::Scene&);
-  void (*cage)(Model&, const io::Scene&);
-  void (*rolling_elements)(Model&, const io::Scene&);
-  void (*segments)(Model&, const io::Scene&);  ///< laws (derived constants once, here) and segments
+  void (*check)(const scene::Scene&);          ///< throws when the builder cannot build this scene (its space)
+  void (*geometry)(Model&, const scene::Scene&);  ///< kind, element count, radii
+  void (*rings)(Model&, const scene::Scene&);
+  void (*cage)(Model&, const scene::Scene&);
+  void (*rolling_elements)(Model&, const scene::Scene&);
+  void (*segments)(Model&, const scene::Scene&);  ///< laws (derived constants once, here) and segments
   std::string (*describe)(const Model&);       ///< Model::describe
 };
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
 /// The builder of a bearing type (the registry: builders.cpp).
-const ModelBuilder& builder_for(io::BearingType type);
+const ModelBuilder& builder_for(scene::BearingType type);
 
 /// The largest magnitude a time function takes (its table's values; it interpolates linearly).
-double max_abs(const io::TimeFunction& f);
+double max_abs(const scene::TimeFunction& f);
 /// Mass of a ring-shaped body (hollow cylinder) [kg].
 double annulus_mass(double density, double r_in, double r_out, double width);
 /// A new state of body b for coordinate c (named "<body>.<what>", class cls); used by the builders.
@@ -233,4 +233,4 @@ void add_states(Model& m, Body& b, Coordinate first, VariableClass cls, const st
 void add_rolling_elements(Model& m, const char* name, double mass, double axial_inertia, double transverse_inertia,
                           void (*add_states)(Model&, Body&));
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -15,7 +15,7 @@
 #include "contact/segments/ball_segments.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 struct Model;
 
@@ -30,7 +30,7 @@ class Node {
   /// rates are in zdot already (a relative coordinate may read its carrier's).
   virtual void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const = 0;
   /// Its own Jacobian terms (kinematic rows), the contacts' parts come through its markers.
-  virtual void add_own_jacobian(const Model& m, double t, BorderedMatrix& jac) const = 0;
+  virtual void add_own_jacobian(const Model& m, double t, numerics::BorderedMatrix& jac) const = 0;
   /// Adds its kinetic (and field) energy to e term by term [J] (the order of the sum is part of the
   /// output's bits); its springs' elastic energy comes from their element records.
   virtual void add_energy(const Model& m, double t, const double* z, double& e) const = 0;
@@ -44,4 +44,4 @@ class Node {
   int force_offset = 0;
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -6,7 +6,7 @@
 #include "solver/bearing/body_dynamics.hpp"
 #include "solver/bearing/carrier_frame.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 namespace {
 
@@ -60,7 +60,7 @@ class PlanarDynamics final : public BodyDynamics {
 
   /// Kinematic rows (dq/dt = v), ring supports and the carrier frame's forces, analytically.
   void add_body_jacobian(double t, const double*, const std::vector<Wrench>&, const FiniteDifferenceSteps&,
-                         BorderedMatrix& jac) const override {
+                         numerics::BorderedMatrix& jac) const override {
     const auto frame = carrier_frame(m_.params().carrier, t);
     for (const Body& body : m_.bodies) {
       const auto& sl = body.slot;
@@ -117,4 +117,4 @@ class PlanarDynamics final : public BodyDynamics {
 
 std::unique_ptr<BodyDynamics> make_planar_dynamics(const Model& model) { return std::make_unique<PlanarDynamics>(model); }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

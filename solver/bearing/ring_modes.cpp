@@ -11,7 +11,7 @@
 #include "solver/bearing/segment_record.hpp"
 #include "solver/bearing/equations.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 namespace {
 constexpr double pi = std::numbers::pi;
@@ -22,8 +22,8 @@ double RimRing::frequency(int n) const {
   return std::sqrt(stiffness[i] / mass[i]);
 }
 
-RimRing rim_ring(const io::Scene& scene, double race_radius, double ring_mass) {
-  const io::RingSpec& spec = scene.outer_ring;
+RimRing rim_ring(const scene::Scene& scene, double race_radius, double ring_mass) {
+  const scene::RingSpec& spec = scene.outer_ring;
   const auto& g = scene.bearing;
   RimRing r;
   r.thickness = spec.rim_thickness > 0 ? spec.rim_thickness : 0.5 * g.outer_outside_diameter - race_radius;
@@ -66,14 +66,14 @@ void RingModes::rates(const Model&, double, const double* z, const double* force
   }
 }
 
-void RingModes::add_force_derivative(int k, int state_index, double dq_a, double dq_b, BorderedMatrix& jac) const {
+void RingModes::add_force_derivative(int k, int state_index, double dq_a, double dq_b, numerics::BorderedMatrix& jac) const {
   const double inv_mass = 1.0 / rim_.mass[static_cast<std::size_t>(k)];
   const double ra = dq_a * inv_mass, rb = dq_b * inv_mass;
   if (ra != 0.0) jac.add(state(k, 2), state_index, ra);
   if (rb != 0.0) jac.add(state(k, 3), state_index, rb);
 }
 
-void RingModes::add_own_jacobian(const Model&, double, BorderedMatrix& jac) const {
+void RingModes::add_own_jacobian(const Model&, double, numerics::BorderedMatrix& jac) const {
   for (int k = 0; k < count(); ++k) {
     jac.add(state(k, 0), state(k, 2), 1.0);
     jac.add(state(k, 1), state(k, 3), 1.0);
@@ -242,8 +242,8 @@ void RimPointMarker::add_jacobian_terms(const JacobianAssembly& a, const Segment
 
 }  // namespace
 
-void add_ring_modes(Model& m, const io::Scene& scene) {
-  if (scene.outer_ring.flexibility != io::RingFlexibility::ring_modes) return;
+void add_ring_modes(Model& m, const scene::Scene& scene) {
+  if (scene.outer_ring.flexibility != scene::RingFlexibility::ring_modes) return;
   const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
   RimRing rim = rim_ring(scene, m.outer_race_radius, ring.mass);
   const int first = m.state_size;
@@ -354,4 +354,4 @@ void add_modal_forces(const RingModes& modes, const RimPoint& p, const double* o
   }
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -53,7 +53,7 @@
 #include "solver/bearing/body_dynamics.hpp"
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 /// The rim as a thin ring: section, what follows from it, and its modes n = 2..highest_mode.
 struct RimRing {
@@ -68,7 +68,7 @@ struct RimRing {
 };
 
 /// The rim of the scene's outer ring (flexibility = "ring_modes"); `ring_mass` its body's mass.
-RimRing rim_ring(const io::Scene& scene, double race_radius, double ring_mass);
+RimRing rim_ring(const scene::Scene& scene, double race_radius, double ring_mass);
 
 /// The node of a flexible ring's bending modes n = 2..N: per mode the amplitudes a_n, b_n and their
 /// rates (four border states, in that order); per mode two generalized forces (Q_a, Q_b).
@@ -81,12 +81,12 @@ class RingModes final : public Node {
   const RimRing& rim() const { return rim_; }
   int ring_body() const { return ring_body_; }
   /// Adds d(rates of mode k)/d(state) from a derivative (dq_a, dq_b) of its generalized forces.
-  void add_force_derivative(int k, int state, double dq_a, double dq_b, BorderedMatrix& jac) const;
+  void add_force_derivative(int k, int state, double dq_a, double dq_b, numerics::BorderedMatrix& jac) const;
 
   std::string name() const override { return "outer_ring_modes"; }
   int force_count() const override { return 2 * count(); }
   void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const override;
-  void add_own_jacobian(const Model& m, double t, BorderedMatrix& jac) const override;
+  void add_own_jacobian(const Model& m, double t, numerics::BorderedMatrix& jac) const override;
   void add_energy(const Model& m, double t, const double* z, double& e) const override;
   void initial_state(std::vector<double>& z) const override;
   std::string describe(const Model& m) const override;
@@ -98,7 +98,7 @@ class RingModes final : public Node {
 
 /// With [outer_ring] flexibility = "ring_modes": the node of the outer ring's bending modes (four
 /// border states per mode). Call right after the outer ring's states.
-void add_ring_modes(Model& m, const io::Scene& scene);
+void add_ring_modes(Model& m, const scene::Scene& scene);
 /// The modes' elasticity (one outer_ring_mode element per mode, on the mode's marker), after the
 /// contact elements.
 void add_ring_mode_segments(Model& m);
@@ -131,4 +131,4 @@ RimPoint rim_point(const RingModes& modes, const contact::PlanarKinematics& ring
 /// adds (Q_a, Q_b) of mode k to forces[2 k], forces[2 k + 1].
 void add_modal_forces(const RingModes& modes, const RimPoint& p, const double* on_ring, double* forces);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -14,7 +14,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/ring_modes.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 namespace {
 
@@ -31,7 +31,7 @@ void add_planar_states(Model& m, Body& b, bool translation, bool angle, bool spi
   b.size = m.state_size - b.offset;
 }
 
-void add_ring(Model& m, BodyKind kind, const char* name, const io::RingSpec& spec, double r_in, double r_out,
+void add_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& spec, double r_in, double r_out,
               double width, double density) {
   Body b;
   b.name = name;
@@ -39,8 +39,8 @@ void add_ring(Model& m, BodyKind kind, const char* name, const io::RingSpec& spe
   b.ring = &spec;
   b.mass = spec.mass > 0 ? spec.mass : annulus_mass(density, r_in, r_out, width);
   b.axial_inertia = spec.inertia > 0 ? spec.inertia : 0.5 * b.mass * (r_in * r_in + r_out * r_out);
-  const bool moves = spec.motion != io::RingMotion::fixed;
-  add_planar_states(m, b, moves && spec.translation_free, false, spec.motion == io::RingMotion::free);
+  const bool moves = spec.motion != scene::RingMotion::fixed;
+  add_planar_states(m, b, moves && spec.translation_free, false, spec.motion == scene::RingMotion::free);
   m.bodies.push_back(b);
 }
 
@@ -49,21 +49,21 @@ struct CageGeometry {
 };
 
 /// Land radii: a rib half a roller radius high on the guiding ring.
-CageGeometry cage_geometry(const Model& m, const io::CageSpec& cs) {
+CageGeometry cage_geometry(const Model& m, const scene::CageSpec& cs) {
   CageGeometry c;
   const double rr = m.element_radius;
   switch (cs.guidance) {
-    case io::CageGuidance::inner_land:
+    case scene::CageGuidance::inner_land:
       c.land_radius = m.inner_race_radius + 0.5 * rr;
       c.r_in = c.land_radius + cs.land_clearance;
       c.r_out = m.pitch_radius + 0.6 * rr;
       break;
-    case io::CageGuidance::outer_land:
+    case scene::CageGuidance::outer_land:
       c.land_radius = m.outer_race_radius - 0.5 * rr;
       c.r_out = c.land_radius - cs.land_clearance;
       c.r_in = m.pitch_radius - 0.6 * rr;
       break;
-    case io::CageGuidance::rolling_element:
+    case scene::CageGuidance::rolling_element:
       c.r_in = m.pitch_radius - 0.6 * rr;
       c.r_out = m.pitch_radius + 0.6 * rr;
       break;
@@ -72,7 +72,7 @@ CageGeometry cage_geometry(const Model& m, const io::CageSpec& cs) {
 }
 
 /// Cage: two side rings (together 30 % of the roller length wide) and n bars between the pockets.
-void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
+void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   const auto& g = scene.bearing;
   const auto& cs = scene.cage;
   const auto& cage_mat = scene.material(cs.material);
@@ -90,7 +90,7 @@ void add_cage(Model& m, const io::Scene& scene, const CageGeometry& geo) {
   add_cage_bridges(m, scene, geo.r_out - geo.r_in);
 }
 
-void add_rollers(Model& m, const io::Scene& scene) {
+void add_rollers(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double rr = m.element_radius;
   const double roller_mass = scene.material(g.roller_material).density * pi * rr * rr * g.roller_length;
@@ -101,7 +101,7 @@ void add_rollers(Model& m, const io::Scene& scene) {
 /// Line-contact law and traction of one contact: derived constants once, here.
 struct LineLaws {
   const Model& m;
-  contact::LineContactLaw law(const io::ContactSpec& spec, const io::Material& a, const io::Material& b,
+  contact::LineContactLaw law(const scene::ContactSpec& spec, const scene::Material& a, const scene::Material& b,
                               double length) const {
     const double e = contact::reduced_modulus(a.youngs_modulus, a.poisson_ratio, b.youngs_modulus, b.poisson_ratio);
     const double damping = spec.damping.id == contact::LawId::no_damping ? 0.0 : spec.damping.factor;
@@ -109,7 +109,7 @@ struct LineLaws {
     return contact::make_line_contact_law(e, length, spec.normal.slices, spec.normal.crown_drop, damping,
                                           0.02 * m.element_radius);
   }
-  static contact::TractionCurve traction(const io::ContactSpec& spec) {
+  static contact::TractionCurve traction(const scene::ContactSpec& spec) {
     contact::TractionCurve t;
     if (spec.traction.id != contact::LawId::no_traction) {
       t.friction_coefficient = spec.traction.friction_coefficient;
@@ -124,7 +124,7 @@ struct LineLaws {
 /// flooded up to a gap of 2 % of the roller radius (the films' load there is below 1e-3 of a
 /// loaded contact's); the cage film collapses to the dry contact at 0.2 um, the combined roughness
 /// of ground surfaces.
-contact::LineFilm line_film(const io::Scene& scene, double e_star, double reduced_radius, double length,
+contact::LineFilm line_film(const scene::Scene& scene, double e_star, double reduced_radius, double length,
                             double roller_radius) {
   contact::LineFilm f;
   f.viscosity = scene.lubricant.viscosity;
@@ -136,8 +136,8 @@ contact::LineFilm line_film(const io::Scene& scene, double e_star, double reduce
   return f;
 }
 
-void add_race_film(contact::RollerRaceSegment& seg, const io::Scene& scene) {
-  const io::ContactSpec& spec = scene.roller_race;
+void add_race_film(contact::RollerRaceSegment& seg, const scene::Scene& scene) {
+  const scene::ContactSpec& spec = scene.roller_race;
   if (spec.normal.id != contact::LawId::moes_ehd) return;
   const double length = scene.bearing.roller_length;
   const double e_star = seg.law.stiffness / contact::palmgren_stiffness(1.0, length);  // K = c_P E* l^(8/9)
@@ -152,7 +152,7 @@ void add_race_film(contact::RollerRaceSegment& seg, const io::Scene& scene) {
   seg.ehd = film;
 }
 
-void add_bar_film(contact::CageBarSegment& seg, const io::Scene& scene, double length) {
+void add_bar_film(contact::CageBarSegment& seg, const scene::Scene& scene, double length) {
   if (scene.roller_cage.normal.id != contact::LawId::hydrodynamic) return;
   const double e_star = seg.law.stiffness / contact::palmgren_stiffness(1.0, length);
   contact::HydrodynamicLineLaw film;
@@ -167,7 +167,7 @@ int add_law(Model& m, SegmentLaw law) {
   return static_cast<int>(m.laws.size()) - 1;
 }
 
-void add_roller_segments(Model& m, const io::Scene& scene) {
+void add_roller_segments(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const auto& cs = scene.cage;
   const auto& steel = scene.material(g.roller_material);
@@ -207,10 +207,10 @@ void add_roller_segments(Model& m, const io::Scene& scene) {
   }
 }
 
-void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo) {
+void add_land_segment(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   const auto& cs = scene.cage;
-  if (cs.guidance == io::CageGuidance::rolling_element) return;
-  const bool outer = cs.guidance == io::CageGuidance::outer_land;
+  if (cs.guidance == scene::CageGuidance::rolling_element) return;
+  const bool outer = cs.guidance == scene::CageGuidance::outer_land;
   const double land_width = cs.land_width > 0 ? cs.land_width : 0.5 * scene.bearing.roller_length;
   const LineLaws laws{m};
   const auto law = laws.law(scene.cage_land, scene.material(cs.material), scene.material(scene.bearing.ring_material),
@@ -221,14 +221,14 @@ void add_land_segment(Model& m, const io::Scene& scene, const CageGeometry& geo)
                         outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
-void check_scene(const io::Scene& scene) {
-  if (scene.scene.model != io::ModelKind::planar || scene.bearing.is_ball_bearing())
+void check_scene(const scene::Scene& scene) {
+  if (scene.scene.model != scene::ModelKind::planar || scene.bearing.is_ball_bearing())
     throw std::runtime_error("scene.model: the planar model needs a cylindrical roller bearing (bearing.type)");
 }
 
-void set_geometry(Model& m, const io::Scene& scene) {
+void set_geometry(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
-  m.kind = io::ModelKind::planar;
+  m.kind = scene::ModelKind::planar;
   m.element_group = "rollers";
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
@@ -237,7 +237,7 @@ void set_geometry(Model& m, const io::Scene& scene) {
   m.outer_race_radius = 0.5 * g.outer_race_diameter();
 }
 
-void add_rings(Model& m, const io::Scene& scene) {
+void add_rings(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double density = scene.material(g.ring_material).density;
   const double width = g.ring_width > 0 ? g.ring_width : g.roller_length;
@@ -248,7 +248,7 @@ void add_rings(Model& m, const io::Scene& scene) {
   add_ring_modes(m, scene);
 }
 
-void add_segments(Model& m, const io::Scene& scene) {
+void add_segments(Model& m, const scene::Scene& scene) {
   add_roller_segments(m, scene);
   const CageGeometry geo = cage_geometry(m, scene.cage);
   add_land_segment(m, scene, geo);
@@ -263,7 +263,7 @@ std::string describe_roller_model(const Model& m);
 const ModelBuilder& roller_model_builder() {
   static const ModelBuilder builder{
       check_scene, set_geometry, add_rings,
-      [](Model& m, const io::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene.cage)); }, add_rollers,
+      [](Model& m, const scene::Scene& scene) { add_cage(m, scene, cage_geometry(m, scene.cage)); }, add_rollers,
       add_segments, describe_roller_model};
   return builder;
 }
@@ -281,8 +281,8 @@ std::string describe_roller_model(const Model& m) {
       case BodyKind::inner_ring:
       case BodyKind::outer_ring: {
         const auto motion = b.ring->motion;
-        why = motion == io::RingMotion::fixed ? "fixed: no states"
-              : motion == io::RingMotion::driven
+        why = motion == scene::RingMotion::fixed ? "fixed: no states"
+              : motion == scene::RingMotion::driven
                   ? (b.ring->translation_free ? "driven: speed prescribed, centre free under its load"
                                               : "driven, centre held: no states")
                   : "free: centre and spin integrated";
@@ -333,4 +333,4 @@ std::string describe_roller_model(const Model& m) {
   return out;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

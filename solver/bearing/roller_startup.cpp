@@ -10,7 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using contact::PlanarKinematics;
 
@@ -264,7 +264,7 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   {
     auto speed = [&](int b) {
       const auto* spec = m.bodies[b].ring;
-      return spec->motion == io::RingMotion::driven ? spec->speed(t0) : 0.0;
+      return spec->motion == scene::RingMotion::driven ? spec->speed(t0) : 0.0;
     };
     s.ring_speed[0] = speed(m.inner_ring);
     s.ring_speed[1] = speed(m.outer_ring);
@@ -320,8 +320,8 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
 }
 
 StartupReport initial_state(const Model& model, double t0, double azimuth_offset, Equations* equations) {
-  if (model.kind == io::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);
+  if (model.kind == scene::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);
   return seat_roller_bearing(model, t0);
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

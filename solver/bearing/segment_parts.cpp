@@ -28,7 +28,7 @@
 
 #include "solver/bearing/equations.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 namespace {
 
@@ -186,4 +186,4 @@ void Equations::combine_jacobian_parts(const double* z) {
   });
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

@@ -16,7 +16,7 @@
 
 #include "contact/segments/diagnostic_fields.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 struct SegmentRecord {
   static constexpr int on_a = 0;
@@ -91,4 +91,4 @@ inline void add_wrench(contact::SpatialWrench& w, const double* rec) {
   for (int i = 0; i < 3; ++i) w.force[i] += rec[i], w.moment[i] += rec[3 + i];
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

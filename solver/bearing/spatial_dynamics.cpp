@@ -7,7 +7,7 @@
 
 #include "solver/bearing/body_dynamics.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 using contact::Mat3;
 using contact::Vec3;
@@ -68,7 +68,7 @@ class SpatialDynamics final : public BodyDynamics {
   /// Kinematic rows, gyroscopic terms, supports and the rotation of the cage's contact moment into
   /// its frame: finite differences of rates() with the body's contact wrench frozen.
   void add_body_jacobian(double t, const double* z, const std::vector<Wrench>& contacts,
-                         const FiniteDifferenceSteps& step, BorderedMatrix& jac) const override {
+                         const FiniteDifferenceSteps& step, numerics::BorderedMatrix& jac) const override {
     const auto n = static_cast<std::size_t>(m_.state_size);
     std::vector<double> zp(z, z + n), f0(n), f1(n);
     Wrench net;
@@ -235,4 +235,4 @@ class SpatialDynamics final : public BodyDynamics {
 
 std::unique_ptr<BodyDynamics> make_spatial_dynamics(const Model& model) { return std::make_unique<SpatialDynamics>(model); }
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

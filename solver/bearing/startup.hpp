@@ -8,7 +8,7 @@
 
 #include "solver/bearing/model.hpp"
 
-namespace raceway::solver {
+namespace raceway::bearing {
 
 class Equations;
 
@@ -42,4 +42,4 @@ StartupReport seat_roller_bearing(const Model& model, double t0);
 /// pockets' play requires), turning at the load-weighted mean of the balls' orbits. Ball spin: least-squares rolling without sliding at its loaded contacts.
 StartupReport seat_ball_bearing(const Model& model, double t0, double azimuth_offset, Equations* equations = nullptr);
 
-}  // namespace raceway::solver
+}  // namespace raceway::bearing

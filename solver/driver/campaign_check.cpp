@@ -21,18 +21,18 @@ std::string values_of(const Campaign& c, const CampaignScene& s) {
 
 void check_campaign_outputs(Campaign& c) {
   for (CampaignScene& s : c.scenes) {
-    const io::Scene scene = campaign_scene(c, s);
-    solver::OutputEstimate estimate;
+    const scene::Scene scene = campaign_scene(c, s);
+    run::OutputEstimate estimate;
     try {
-      estimate = solver::estimate_output(solver::build_model(scene), scene);
-    } catch (const io::SceneError& e) {
-      throw io::SceneError(c.file, c.key_lines.at("campaign"), "campaign",
+      estimate = run::estimate_output(bearing::build_model(scene), scene);
+    } catch (const scene::SceneError& e) {
+      throw scene::SceneError(c.file, c.key_lines.at("campaign"), "campaign",
                            fmt::format("scene {} cannot be built: {}", values_of(c, s), e.what()));
     }
     s.output_bytes = estimate.bytes;
     try {
-      solver::check_output_size(estimate, scene);
-    } catch (const io::SceneError& e) {
+      run::check_output_size(estimate, scene);
+    } catch (const scene::SceneError& e) {
       // Blamed on what sets the sampling: the override of the output interval (an axis value, set,
       // samples_per_revolution), else the run length.
       std::size_t k = s.overrides.size();
@@ -40,7 +40,7 @@ void check_campaign_outputs(Campaign& c) {
         if (s.overrides[i].starts_with("scene.output_interval=") || (k == s.overrides.size() && s.overrides[i].starts_with("scene.end_time=")))
           k = i;
       const bool known = k < s.overrides.size();
-      throw io::SceneError(c.file, known ? s.override_lines[k] : c.key_lines.at("campaign"), known ? s.override_keys[k] : "campaign",
+      throw scene::SceneError(c.file, known ? s.override_lines[k] : c.key_lines.at("campaign"), known ? s.override_keys[k] : "campaign",
                            fmt::format("scene {}: {} (in a campaign: fewer samples_per_revolution or revolutions, "
                                        "or \"output.max_size\" in set)", values_of(c, s), e.reason()));
     }

@@ -8,8 +8,8 @@
 
 namespace raceway::driver {
 
-/// Fills every scene's output_bytes (solver::estimate_output, the estimate run_scene holds against
-/// max_size before it creates the file). Throws io::SceneError naming the campaign file, the line and
+/// Fills every scene's output_bytes (run::estimate_output, the estimate run_scene holds against
+/// max_size before it creates the file). Throws scene::SceneError naming the campaign file, the line and
 /// key that set the scene's output interval (an axis value, `set`, samples_per_revolution; else its
 /// run length), the first scene over its limit with its axis values, the size and the limit.
 void check_campaign_outputs(Campaign& campaign);

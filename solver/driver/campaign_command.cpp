@@ -65,16 +65,16 @@ std::string output_of(const std::string& dir, const CampaignScene& s) { return (
 /// DIR/campaign.json: the scenes, their axis values and overrides, run and settling times (what the
 /// table script reads besides the outputs).
 void write_manifest(const Campaign& c, const std::string& dir) {
-  io::JsonObject m;
+  json::JsonObject m;
   m.add("campaign", c.name);
   m.add("file", c.file);
   m.add("scene", c.scene_path);
   m.add("sweep", c.sweep);
-  io::JsonObject axes, metrics, scenes;
+  json::JsonObject axes, metrics, scenes;
   for (std::size_t a = 0; a < c.axes.size(); ++a) axes.add(c.axes[a].name, c.axes[a].key);
   for (const std::string& name : c.metrics) metrics.add(name, true);
   for (const CampaignScene& s : c.scenes) {
-    io::JsonObject one, values, overrides;
+    json::JsonObject one, values, overrides;
     for (std::size_t a = 0; a < c.axes.size(); ++a) values.add(c.axes[a].name, s.axis_values[a]);
     for (std::size_t i = 0; i < s.overrides.size(); ++i) overrides.add(fmt::format("{}", i), s.overrides[i]);
     one.add("axis_values", std::move(values));
@@ -90,7 +90,7 @@ void write_manifest(const Campaign& c, const std::string& dir) {
   m.add("scenes", std::move(scenes));
   // Array tasks write it at the same time: each through a file of its own, renamed (atomic).
   const fs::path own = fs::path(dir) / fmt::format(".campaign_{}.json", getpid());
-  io::write_json_file(own.string(), m);
+  json::write_json_file(own.string(), m);
   fs::rename(own, fs::path(dir) / "campaign.json");
 }
 
@@ -108,18 +108,18 @@ scheduler::JobResult run_in_group(const scheduler::CampaignGroups& g, const Camp
   } else {
     broadcast_scene(g.group, source, true);
     try {
-      const io::Scene scene = campaign_scene(c, entry);
-      solver::RunOptions run;
+      const scene::Scene scene = campaign_scene(c, entry);
+      run::RunOptions run;
       run.executor = &executor;
       run.output_path = output_of(dir, entry);
       run.resume = resume && job.attempt == 0;  // a retry starts afresh
-      run.stop_signal = &solver::stop_request();
+      run.stop_signal = &run::stop_request();
       run.mpi_library = mpi_library_version();
       run.output_thread = output_thread;
       run.on_info = [&](const std::string& s) { spdlog::debug("{}: {}", entry.id, s); };
-      const auto summary = solver::run_scene(scene, run);
-      io::write_json_file((fs::path(dir) / (entry.id + ".json")).string(), summary.to_json());
-    } catch (const solver::ResumeRefused& e) {
+      const auto summary = run::run_scene(scene, run);
+      json::write_json_file((fs::path(dir) / (entry.id + ".json")).string(), summary.to_json());
+    } catch (const run::ResumeRefused& e) {
       // A checkpoint this build cannot continue (another build, another scene): a failure that a
       // fresh start mends, so it is retried from the beginning like an integration failure.
       result.code = 1;
@@ -172,9 +172,9 @@ struct CampaignProgress {
 
 void write_status(const std::string& dir, const std::string& only_id, const CampaignProgress& p,
                   const scheduler::DispatchRecord& rec, int groups, int ranks) {
-  io::JsonObject status, scenes;
+  json::JsonObject status, scenes;
   for (const scheduler::JobResult& r : p.finished) {
-    io::JsonObject one;
+    json::JsonObject one;
     one.add("exit_code", r.code);
     one.add("attempts", r.attempt + 1);
     one.add("wall_time_s", r.wall_seconds);
@@ -194,14 +194,14 @@ void write_status(const std::string& dir, const std::string& only_id, const Camp
   const std::string stem = only_id.empty() ? "campaign_status_" : fmt::format("campaign_status_{}_", only_id);
   int n = 0;
   while (fs::exists(fs::path(dir) / fmt::format("{}{}.json", stem, n))) ++n;
-  io::write_json_file((fs::path(dir) / fmt::format("{}{}.json", stem, n)).string(), status);
+  json::write_json_file((fs::path(dir) / fmt::format("{}{}.json", stem, n)).string(), status);
 }
 
 /// The table and plots of DIR (io/report/campaign_table.py); 0 on success.
 int make_table(const std::string& dir) {
   const char* py = std::getenv("RACEWAY_PYTHON");
   // Beside the report's script (io/report/CMakeLists.txt: share/raceway/report of the build or install).
-  const std::string report = io::report_script_path();
+  const std::string report = report::report_script_path();
   if (report.empty()) {
     spdlog::error("campaign: no table script (share/raceway/report/campaign_table.py beside the executable)");
     return 1;
@@ -209,7 +209,7 @@ int make_table(const std::string& dir) {
   const std::vector<std::string> command{py && *py ? py : "/usr/bin/python3",
                                          (fs::path(report).parent_path() / "campaign_table.py").string(), dir};
   std::string error;
-  const int status = io::run_process(command, error);
+  const int status = report::run_process(command, error);
   if (status != 0)
     spdlog::error("campaign: the table of {} failed ({}: {})", dir, fmt::join(command, " "),
                   status < 0 ? error : fmt::format("exit {}", status));
@@ -221,7 +221,7 @@ int only_scene(const Campaign& c, const std::string& only) {
   if (only.empty()) return -1;
   for (std::size_t i = 0; i < c.scenes.size(); ++i)
     if (c.scenes[i].id == only || std::to_string(i) == only) return static_cast<int>(i);
-  throw solver::OptionsError(fmt::format("--only {}: no such scene in {} (indices 0..{} in sweep order, or ids s000..{})",
+  throw numerics::OptionsError(fmt::format("--only {}: no such scene in {} (indices 0..{} in sweep order, or ids s000..{})",
                                          only, c.file, c.scenes.size() - 1, c.scenes.back().id));
 }
 
@@ -236,7 +236,7 @@ std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
     const std::string out = output_of(req.output_dir, c.scenes[i]);
     const bool started = fs::exists(out) || fs::exists(out + ".partial");
     if (started && !req.resume)
-      throw io::OutputPathError(fmt::format("campaign: {} already holds {}{}; continue with --resume or choose another "
+      throw h5::OutputPathError(fmt::format("campaign: {} already holds {}{}; continue with --resume or choose another "
                                             "folder (-o)", req.output_dir, c.scenes[i].id,
                                             fs::exists(out) ? ".h5" : ".h5.partial"));
     if (!fs::exists(out)) left.push_back(static_cast<int>(i));
@@ -246,18 +246,18 @@ std::vector<int> prepare(const Campaign& c, const CampaignRequest& req) {
   return left;
 }
 
-/// The predicted speed-up of the campaign's base scene: raceway plan's (plan::predicted_speedup over
+/// The predicted speed-up of the campaign's base scene: raceway plan's (driver::predicted_speedup over
 /// the rank table's rows of the scene file's name).
 SpeedupPrediction planned_speedup(const Campaign& c) {
   const std::string scene = fs::path(c.scene_path).stem().string();
-  std::vector<plan::RankRow> rows;
+  std::vector<driver::RankRow> rows;
   try {
-    for (auto& r : plan::read_rank_table(plan::rank_table_path()))
+    for (auto& r : driver::read_rank_table(driver::rank_table_path()))
       if (r.scene == scene) rows.push_back(std::move(r));
   } catch (const std::exception& e) {
     spdlog::warn("campaign: no predicted speed-up ({}): 1 rank per scene", e.what());
   }
-  return [rows](int ranks) { return plan::predicted_speedup(rows, ranks); };
+  return [rows](int ranks) { return driver::predicted_speedup(rows, ranks); };
 }
 
 /// Rank 0: the ranks per scene. --only: all of them on its scene; fixed by the campaign file; or
@@ -272,7 +272,7 @@ int group_size(const Campaign& c, const CampaignRequest& req, const std::vector<
   for (const int j : left) costs.push_back(c.scenes[static_cast<std::size_t>(j)].predicted_cost);
   const GroupSizeChoice choice = choose_group_size(world, costs, planned_speedup(c));
   spdlog::info("campaign: ranks per scene not fixed by {}; from the predicted speed-up of {} ({}):", c.file,
-               fs::path(c.scene_path).stem().string(), plan::rank_table_path());
+               fs::path(c.scene_path).stem().string(), driver::rank_table_path());
   for (const std::string& line : choice.reasons) spdlog::info("campaign:   {}", line);
   return choice.ranks_per_group;
 }
@@ -293,7 +293,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
   MPI_Bcast(decided, 2, MPI_INT, 0, MPI_COMM_WORLD);
   if (decided[0] != 0) return decided[0];
   int code = 0;
-  solver::accept_stop_requests();
+  run::accept_stop_requests();
   // The groups fill the node's cores: then the output thread would take a rank's (no binding to a
   // free core here: every group leader would want one).
   const OutputThreadPlace thread_place = place_output_thread("auto", MPI_COMM_WORLD, false);
@@ -311,12 +311,12 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     for (const int j : left) progress.cost_left += costs[static_cast<std::size_t>(j)];
     scheduler::DispatchEvents events{[&](const auto& job, int group) { progress.started(job, group); },
                                      [&](const auto& r, int group, bool retry) { progress.ended(r, group, retry); },
-                                     [] { return solver::stop_request().load() != 0; }};
+                                     [] { return run::stop_request().load() != 0; }};
     dispatcher = std::make_unique<scheduler::CampaignDispatcher>(g, costs, left, events);
   }
   {
     // PETSc on the group leaders only (PETSC_COMM_WORLD = MPI_COMM_SELF), one per process.
-    std::unique_ptr<solver::PetscRuntime> petsc = g.leader() ? std::make_unique<solver::PetscRuntime>() : nullptr;
+    std::unique_ptr<numerics::PetscRuntime> petsc = g.leader() ? std::make_unique<numerics::PetscRuntime>() : nullptr;
     scheduler::JobResult last;
     while (true) {
       scheduler::JobAssignment job = g.leader() ? scheduler::request_job(g, last) : scheduler::JobAssignment{};
@@ -334,7 +334,7 @@ int run_campaign(const Campaign& c, const CampaignRequest& req, int rank) {
     spdlog::info("campaign: {} of {} scenes done, {} failed, in {} ({} groups; busy {:.1f} s, waiting for the "
                  "dispatcher {:.3f} s, idle at the end {:.1f} s)", finished, progress.total, progress.failed,
                  clock(record.wall), g.group_count, record.group_busy, record.group_waiting, record.group_idle_at_end);
-    code = solver::stop_request().load() != 0 ? 4 : progress.failed > 0 ? 1 : 0;
+    code = run::stop_request().load() != 0 ? 4 : progress.failed > 0 ? 1 : 0;
     if (code == 4) spdlog::warn("campaign stopped by a signal: continue with --resume");
     if (finished < progress.total && code == 0) code = 1;
     // The table records every scene, done, failed or not finished, whatever the exit code; an array
@@ -374,7 +374,7 @@ int check_campaign(const Campaign& c, int ranks) {
     std::vector<double> costs;
     for (const CampaignScene& s : c.scenes) costs.push_back(s.predicted_cost);
     std::printf("on %d ranks, from the predicted speed-up of %s (%s):\n", ranks,
-                fs::path(c.scene_path).stem().string().c_str(), plan::rank_table_path().c_str());
+                fs::path(c.scene_path).stem().string().c_str(), driver::rank_table_path().c_str());
     for (const std::string& line : choose_group_size(ranks, costs, planned_speedup(c)).reasons)
       std::printf("  %s\n", line.c_str());
   }

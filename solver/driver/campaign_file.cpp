@@ -41,7 +41,7 @@ class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
   [[noreturn]] void fail(int line, const std::string& key, const std::string& reason) const {
-    throw io::SceneError(file_, line, key, reason);
+    throw scene::SceneError(file_, line, key, reason);
   }
   void allow(const toml::table& t, std::span<const std::string_view> keys, const std::string& where) const {
     for (const auto& [k, v] : t)
@@ -86,7 +86,7 @@ class Reader {
   double seconds(const toml::table& t, std::string_view key, bool zero_allowed = false) const {
     const toml::node* n = t.get(key);
     try {
-      const double v = io::parse_quantity(*n, io::dim::time, "0.5 s");
+      const double v = scene::parse_quantity(*n, scene::dim::time, "0.5 s");
       if (v > 0 || (zero_allowed && v == 0)) return v;
     } catch (const std::exception& e) {
       fail(line_of(*n), fmt::format("campaign.{}", key), e.what());
@@ -288,7 +288,7 @@ void check_keys_set_once(const Reader& r, const Campaign& c, const RunLength& le
 }
 
 /// The driven ring's speed relative to the other at the end of the run (rad/s).
-double relative_speed(const io::Scene& s) {
+double relative_speed(const scene::Scene& s) {
   constexpr double late = 1e9;  // time functions are held constant after their last point
   return std::abs(s.inner_ring.speed(late) - s.outer_ring.speed(late));
 }
@@ -332,7 +332,7 @@ std::vector<std::vector<std::size_t>> combinations(const Reader& r, const Campai
 
 /// The override of `scene` that a scene error is about: the one whose key it names (the error's key,
 /// else its text), the last that sets it; -1 for none.
-int blamed_override(const CampaignScene& scene, const io::SceneError& e) {
+int blamed_override(const CampaignScene& scene, const scene::SceneError& e) {
   for (std::size_t i = scene.overrides.size(); i-- > 0;) {
     const std::string key = scene.overrides[i].substr(0, scene.overrides[i].find('='));
     if (!e.key().empty() && overlapping(e.key(), key)) return static_cast<int>(i);
@@ -359,8 +359,8 @@ CampaignScene expand_scene(const Reader& r, const Campaign& c, const RunLength& 
   }
   const auto parsed = [&]() {
     try {
-      return io::parse_scene(c.base_text, c.scene_path, s.overrides);
-    } catch (const io::SceneError& e) {
+      return scene::parse_scene(c.base_text, c.scene_path, s.overrides);
+    } catch (const scene::SceneError& e) {
       // Blame the override the error names (an axis value, `set`, the run length), else the
       // campaign's own settings.
       const int i = blamed_override(s, e);
@@ -372,7 +372,7 @@ CampaignScene expand_scene(const Reader& r, const Campaign& c, const RunLength& 
                          axis ? fmt::format(" ({})", s.axis_values[k - len.common.size()]) : "", e.what()));
     }
   };
-  io::Scene scene = parsed();
+  scene::Scene scene = parsed();
   const double omega = relative_speed(scene);
   const double period = omega > 0 ? 2 * std::numbers::pi / omega : 0;
   if (period == 0 && (len.revolutions > 0 || len.settling_revolutions > 0 || len.samples_per_revolution > 0))
@@ -435,7 +435,7 @@ Campaign load_campaign(const std::string& path) {
   if (!campaign->get("scene")) r.fail(line_of(*campaign), "campaign.scene", "required: the base scene file");
   const auto scene = std::filesystem::path(r.text_of(*campaign->get("scene"), "campaign.scene"));
   c.scene_path = (scene.is_absolute() ? scene : std::filesystem::path(path).parent_path() / scene).lexically_normal().string();
-  c.base_text = io::load_scene(c.scene_path).text;  // a SceneError names the scene file
+  c.base_text = scene::load_scene(c.scene_path).text;  // a SceneError names the scene file
   if (const toml::node* sweep = campaign->get("sweep")) {
     c.sweep = r.text_of(*sweep, "campaign.sweep");
     if (c.sweep != "product" && c.sweep != "zip") r.fail(line_of(*sweep), "campaign.sweep", "expected \"product\" or \"zip\"");
@@ -474,8 +474,8 @@ Campaign load_campaign(const std::string& path) {
   return c;
 }
 
-io::Scene campaign_scene(const Campaign& campaign, const CampaignScene& scene) {
-  return io::parse_scene(campaign.base_text, campaign.scene_path, scene.overrides);
+scene::Scene campaign_scene(const Campaign& campaign, const CampaignScene& scene) {
+  return scene::parse_scene(campaign.base_text, campaign.scene_path, scene.overrides);
 }
 
 }  // namespace raceway::driver

@@ -14,7 +14,7 @@
 //   key = "inner_ring.speed"
 //   values = ["1000 rpm", "2000 rpm"]          # or range = [1000, 8000, 1000] with unit = "rpm"
 //
-// Every problem is an io::SceneError naming the campaign file, the line, the key and the reason,
+// Every problem is an scene::SceneError naming the campaign file, the line, the key and the reason,
 // also a value the scene rejects (the scene's reason follows).
 #pragma once
 
@@ -68,7 +68,7 @@ struct Campaign {
 Campaign load_campaign(const std::string& path);
 
 /// The scene of one entry, parsed (it was validated by load_campaign).
-io::Scene campaign_scene(const Campaign& campaign, const CampaignScene& scene);
+scene::Scene campaign_scene(const Campaign& campaign, const CampaignScene& scene);
 
 /// The metrics a campaign table can hold (docs/campaigns.md).
 const std::vector<std::string>& known_campaign_metrics();

@@ -18,7 +18,7 @@ namespace raceway::driver {
 
 namespace {
 
-using solver::OptionsError;
+using numerics::OptionsError;
 
 constexpr const char* kCostModelColumns[] = {"reference_rpm", "reference_rolling_elements", "steps_per_revolution",
                                              "steps_per_revolution_exponent", "wall_per_step_s",

@@ -27,7 +27,7 @@ struct CostModel {
 };
 
 /// The cost model in the CSV file at PATH (a header line naming the six constants, one line of
-/// values; '#' lines are comments). Throws solver::OptionsError naming the file, the line and what
+/// values; '#' lines are comments). Throws numerics::OptionsError naming the file, the line and what
 /// is wrong (exit 2: before a campaign does anything).
 CostModel read_cost_model(const std::string& path);
 

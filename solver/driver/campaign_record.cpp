@@ -103,7 +103,7 @@ void check_identity(const Campaign& c, const std::string& dir) {
   const std::string path = identity_path(dir);
   if (!fs::exists(path)) {
     if (fs::is_directory(dir) && holds_scene_outputs(dir))
-      throw io::SceneError(c.file, 1, "campaign",
+      throw scene::SceneError(c.file, 1, "campaign",
                            fmt::format("{} holds scene outputs but no record of the campaign they belong to ({}): "
                                        "not a folder of this campaign, or one begun by an older raceway; give "
                                        "another folder (-o)", dir, path));
@@ -128,7 +128,7 @@ void check_identity(const Campaign& c, const std::string& dir) {
   if (differences.empty()) return;
   const std::size_t named = std::min(differences.size(), kDifferencesNamed);
   const std::string more = differences.size() > named ? fmt::format("; and {} more", differences.size() - named) : "";
-  throw io::SceneError(
+  throw scene::SceneError(
       c.file, first ? first->line : 1, first ? first->key : "campaign",
       fmt::format("{} holds another campaign, or this one before an edit ({} difference(s) from {}: {}{}); its results "
                   "would be labelled with this file's values: resume with the campaign file it was begun with, or "

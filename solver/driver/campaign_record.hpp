@@ -20,7 +20,7 @@ std::string campaign_identity(const Campaign& campaign);
 std::string identity_path(const std::string& dir);
 
 /// Before a campaign touches DIR: when DIR holds an identity that is not `campaign`'s, throws
-/// io::SceneError naming the campaign file, the line and key of the first difference and the
+/// scene::SceneError naming the campaign file, the line and key of the first difference and the
 /// differences (the folder's value and this file's); when DIR holds scene outputs but no identity,
 /// throws too (they cannot be told apart). Touches nothing.
 void check_identity(const Campaign& campaign, const std::string& dir);

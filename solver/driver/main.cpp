@@ -59,8 +59,8 @@ namespace {
 using namespace raceway;
 using driver::exit_code_of;
 
-io::Scene load(const std::string& path, const std::vector<std::string>& overrides) {
-  return io::load_scene(path, overrides);
+scene::Scene load(const std::string& path, const std::vector<std::string>& overrides) {
+  return scene::load_scene(path, overrides);
 }
 
 std::string clock_text(double s) {
@@ -77,7 +77,7 @@ class ProgressReporter {
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
   ~ProgressReporter() { finish(); }
-  void operator()(const solver::Progress& p) {
+  void operator()(const run::Progress& p) {
     const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
     if (tty_) {
       const auto now = std::chrono::steady_clock::now();
@@ -103,10 +103,10 @@ class ProgressReporter {
   }
 
  private:
-  static double eta(const solver::Progress& p, double frac) {
+  static double eta(const run::Progress& p, double frac) {
     return frac > 0 ? p.wall_seconds * (1 - frac) / frac : NAN;
   }
-  void draw(const solver::Progress& p) {
+  void draw(const run::Progress& p) {
     const double frac = p.end_time > 0 ? p.time / p.end_time : 1.0;
     const int width = 30, filled = static_cast<int>(std::clamp(frac, 0.0, 1.0) * width + 1e-6);
     std::fprintf(stderr, "\r[%s%s] %5.1f%%  t %.4g s  %.2f rev  wall %s  eta %s  steps %ld   ",
@@ -119,7 +119,7 @@ class ProgressReporter {
   bool tty_;
   bool open_ = false;     ///< a bar is drawn and its line not ended
   bool pending_ = false;  ///< last_ has not been drawn (rate limit)
-  solver::Progress last_{};
+  run::Progress last_{};
   double next_ = 0.1;
   std::chrono::steady_clock::time_point last_draw_{};
 };
@@ -142,17 +142,17 @@ class LevelPrefix : public spdlog::custom_flag_formatter {
 struct RunRequest {
   std::string output, summary_json, result_options;
   bool scheduler_log = false, resume = false;
-  solver::SharedOutput* shared_output = nullptr;  ///< the parallel output; nullptr: rank 0 writes all
+  run::SharedOutput* shared_output = nullptr;  ///< the parallel output; nullptr: rank 0 writes all
   driver::OutputThreadPlace output_thread{true, -1, ""};  ///< driver::place_output_thread
 };
 
-int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
+int run_command(const scene::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
   for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
   const std::string& output = request.output;
   const std::string& summary_json = request.summary_json;
-  if (!summary_json.empty()) io::check_output_path(summary_json, "run summary (--summary-json)");
-  solver::RunOptions options;
+  if (!summary_json.empty()) h5::check_output_path(summary_json, "run summary (--summary-json)");
+  run::RunOptions options;
   options.executor = &executor;
   options.output_path = output;
   options.scheduler_log = request.scheduler_log;
@@ -161,15 +161,15 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   options.output_thread = request.output_thread.on;
   options.output_thread_core = request.output_thread.core;
   options.result_options = request.result_options;
-  options.stop_signal = &solver::stop_request();
+  options.stop_signal = &run::stop_request();
   options.mpi_library = driver::mpi_library_version();
   ProgressReporter progress;
-  options.on_progress = [&](const solver::Progress& p) { progress(p); };
+  options.on_progress = [&](const run::Progress& p) { progress(p); };
   options.on_info = [&](const std::string& s) {
     progress.finish();  // a message never shares the bar's line
     spdlog::info("{}", s);
   };
-  const auto sum = solver::run_scene(scene, options);
+  const auto sum = run::run_scene(scene, options);
   progress.finish();
   executor.stop();
   const auto json = sum.to_json();
@@ -189,16 +189,16 @@ int run_command(const io::Scene& scene, const RunRequest& request, scheduler::Ex
   }
   spdlog::info("output written to {}", output);
   if (!summary_json.empty()) {
-    io::write_json_file(summary_json, json);
+    json::write_json_file(summary_json, json);
     spdlog::info("summary written to {}", summary_json);
   }
-  if (const std::string note = solver::output_share_note(sum); !note.empty()) spdlog::info("{}", note);
+  if (const std::string note = run::output_share_note(sum); !note.empty()) spdlog::info("{}", note);
   for (const auto& [name, text] : sum.warnings) spdlog::warn("{}", text);  // the last lines of the run
   return 0;
 }
 
 /// `raceway report OUT.h5`: the Python report (io/report/raceway_report.py) of a planar or spatial run.
-int report_command(const io::ReportOptions& options) { return io::run_report(options); }
+int report_command(const report::ReportOptions& options) { return report::run_report(options); }
 
 /// `--inject-pause EVALUATION:SECONDS` (test only).
 void parse_pause(const std::string& spec, scheduler::MpiExecutorOptions& options) {
@@ -277,7 +277,7 @@ struct CommandLine {
   std::vector<std::string> overrides;  ///< --set section.key=VALUE
   bool replan_every_evaluation = false, scheduler_log = false, resume = false, parallel_output = false;
   std::string output_thread = "auto";
-  io::ReportOptions report_options;
+  report::ReportOptions report_options;
   double window_start = NAN;
   bool no_plots = false, animate = false, xdmf = false, vtk = false;
   double contact_threshold = NAN;
@@ -285,7 +285,7 @@ struct CommandLine {
   CLI::App* check = nullptr;
   CLI::App* report = nullptr;
   CLI::App* plan = nullptr;
-  plan::PlanOptions plan_options;
+  driver::PlanOptions plan_options;
 };
 
 /// --set section.key=VALUE, repeatable: a scene key set on the command line.
@@ -384,16 +384,16 @@ void add_report_command(CLI::App& app, CommandLine& cl) {
 
 /// `raceway check SCENE`: the model the scene builds and the Newton linear solver it would use.
 int check_command(const std::string& scene_path, const std::vector<std::string>& overrides) {
-  const io::Scene scene = load(scene_path, overrides);
+  const scene::Scene scene = load(scene_path, overrides);
   for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
-  std::fputs(io::describe_catalogue_values(scene).c_str(), stdout);
-  const auto model = solver::build_model(scene);
+  std::fputs(scene::describe_catalogue_values(scene).c_str(), stdout);
+  const auto model = bearing::build_model(scene);
   std::fputs(model.describe().c_str(), stdout);
-  const solver::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
-  std::puts(solver::prepare_linear_solver(scene.solver, layout).c_str());
-  const solver::OutputEstimate output = solver::estimate_output(model, scene);
+  const numerics::BorderedLayout layout{model.border_size, model.element_count, model.block_size};
+  std::puts(numerics::prepare_linear_solver(scene.solver, layout).c_str());
+  const run::OutputEstimate output = run::estimate_output(model, scene);
   std::puts(output.describe(scene.output.max_size).c_str());
-  solver::check_output_size(output, scene);
+  run::check_output_size(output, scene);
   std::puts("scene OK");
   return 0;
 }
@@ -405,7 +405,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   driver::SceneSource source;
-  io::Scene scene;
+  scene::Scene scene;
   bool ok = true;
   int code = 0;
   if (rank == 0) {
@@ -413,10 +413,10 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
       scene = load(cl.scene_path, cl.overrides);
       // --method edits the scene text, so the output's stored scene says what ran.
       if (!cl.method.empty())
-        scene = io::parse_scene(io::override_scene_key(scene.text, "solver", "method", fmt::format("\"{}\"", cl.method)),
+        scene = scene::parse_scene(scene::override_scene_key(scene.text, "solver", "method", fmt::format("\"{}\"", cl.method)),
                                 scene.source, scene.overrides);
       source = {scene.text, scene.source, scene.overrides};
-    } catch (const io::SceneError& e) {
+    } catch (const scene::SceneError& e) {
       spdlog::error("{}", e.what());
       code = 2, ok = false;
     }
@@ -444,7 +444,7 @@ int run_on_all_ranks(CommandLine& cl, MPI_Comm comm) {
                                scheduler::schedule_policy_name(cl.exec_options.policy));
     code = exit_code_of([&] {
       // PETSc on rank 0 only (PETSC_COMM_WORLD = MPI_COMM_SELF): the Newton systems live there.
-      const solver::PetscRuntime petsc(cl.petsc_options);
+      const numerics::PetscRuntime petsc(cl.petsc_options);
       // --parallel-output: with several ranks each writes the segment diagnostics it evaluated
       // (MPI-IO); by default rank 0 writes everything (measured cheaper, output_notes.md).
       driver::MpiSharedOutput shared(comm, executor);
@@ -465,9 +465,9 @@ int check_or_report(CommandLine& cl) {
   // PETSc after MPI (so it leaves MPI_Finalize to us), on rank 0 only: the Newton systems and their
   // linear algebra live there (README.md, "In parallel"). Destroyed before MPI_Finalize.
   return exit_code_of([&] {
-    const solver::PetscRuntime petsc(cl.petsc_options);
+    const numerics::PetscRuntime petsc(cl.petsc_options);
     if (*cl.check) return check_command(cl.scene_path, cl.overrides);
-    if (*cl.plan) return plan::plan_command(cl.plan_options);
+    if (*cl.plan) return driver::plan_command(cl.plan_options);
     if (!std::isnan(cl.window_start)) cl.report_options.window_start = cl.window_start;
     if (!std::isnan(cl.contact_threshold)) cl.report_options.contact_threshold = cl.contact_threshold;
     cl.report_options.plots = !cl.no_plots;
@@ -499,11 +499,11 @@ int main(int argc, char** argv) {
   // First, before MPI or anything else starts a thread: SIGINT, SIGTERM and SIGUSR1 go to one thread
   // that waits for them, blocked in all others (solver/run/stop_signals.hpp says why). A run or a
   // campaign takes them as stop requests from here on (Slurm's SIGUSR1 may come at once).
-  solver::take_stop_signals(takes_stop_requests(argc, argv));
+  run::take_stop_signals(takes_stop_requests(argc, argv));
   // A file-size limit (ulimit -f, a quota) is reported by the write that hits it, as an error with
   // the file's name, rather than ending the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
-  io::prepare_hdf5_library();  // before MPI_Init
+  h5::prepare_hdf5_library();  // before MPI_Init
   // A campaign's dispatcher is a thread beside world rank 0's own scenes (scheduler/campaign_dispatch.hpp).
   const bool campaign = argc > 1 && std::string_view(argv[1]) == "campaign";
   // Otherwise rank 0 has threads that never call MPI (the output thread, the chunk compressor).
@@ -520,14 +520,14 @@ int main(int argc, char** argv) {
   CLI::App app{"raceway: rolling-bearing dynamics (rings, rollers, cage) with CVODE"};
   app.require_subcommand(1);
   std::string libraries;
-  for (const auto& [name, value] : solver::build_info(driver::mpi_library_version()))
+  for (const auto& [name, value] : run::build_info(driver::mpi_library_version()))
     if (name != "raceway_version" && name != "raceway_commit") libraries += fmt::format("\n  {}: {}", name, value);
   app.set_version_flag("--version", fmt::format("raceway {} (commit {}){}", kVersion, kGitCommit, libraries));
   CommandLine cl;
   add_run_command(app, cl);
   add_check_command(app, cl);
   add_report_command(app, cl);
-  cl.plan = plan::add_plan_command(app, cl.plan_options);
+  cl.plan = driver::add_plan_command(app, cl.plan_options);
   driver::CampaignRequest campaign_request;
   CLI::App* campaign_app = driver::add_campaign_command(app, campaign_request);
   try {

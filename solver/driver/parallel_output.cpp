@@ -13,11 +13,11 @@ const std::vector<int>& MpiSharedOutput::sample(long sample) {
   return executor_.output(payload);
 }
 
-void MpiSharedOutput::write(const std::string& file, std::vector<io::SharedRows>& rows) {
+void MpiSharedOutput::write(const std::string& file, std::vector<h5::SharedRows>& rows) {
   const double payload[1] = {static_cast<double>(OutputOperation::write)};
   executor_.output(payload);
   std::string path = file;
-  if (const std::string error = io::write_shared_rows(comm_, path, rows, {}); !error.empty())
+  if (const std::string error = h5::write_shared_rows(comm_, path, rows, {}); !error.empty())
     throw std::runtime_error(error);
 }
 
@@ -28,14 +28,14 @@ void WorkerOutput::operator()(std::span<const double> payload, std::span<const i
     auto& sample = samples_[static_cast<long>(payload[1])];
     const std::size_t size = records.size() / std::max<std::size_t>(1, tasks.size());
     for (std::size_t i = 0; i < tasks.size(); ++i) {
-      const double* d = records.data() + i * size + solver::SegmentRecord::diagnostics;
-      std::copy_n(d, solver::SegmentRecord::max_diagnostics, sample[tasks[i]].begin());
+      const double* d = records.data() + i * size + bearing::SegmentRecord::diagnostics;
+      std::copy_n(d, bearing::SegmentRecord::max_diagnostics, sample[tasks[i]].begin());
     }
     return;
   }
   std::string file;
-  std::vector<io::SharedRows> rows;
-  const std::string error = io::write_shared_rows(comm_, file, rows, [this](io::SharedRows& r) { fill(r); });
+  std::vector<h5::SharedRows> rows;
+  const std::string error = h5::write_shared_rows(comm_, file, rows, [this](h5::SharedRows& r) { fill(r); });
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   if (!error.empty()) {  // rank 0 throws the same text and ends the run; this rank says it too
@@ -45,11 +45,11 @@ void WorkerOutput::operator()(std::span<const double> payload, std::span<const i
   }
   // The samples every shared series has in the file are not needed any more.
   std::size_t done = static_cast<std::size_t>(-1);
-  for (const io::SharedRows& r : rows) done = std::min(done, written_[r.path] = r.first_row + r.rows);
+  for (const h5::SharedRows& r : rows) done = std::min(done, written_[r.path] = r.first_row + r.rows);
   samples_.erase(samples_.begin(), samples_.lower_bound(static_cast<long>(done)));
 }
 
-void WorkerOutput::fill(io::SharedRows& r) const {
+void WorkerOutput::fill(h5::SharedRows& r) const {
   const auto series = series_.find(r.path);
   if (series == series_.end()) throw std::runtime_error("rank 0 writes a shared series this rank does not know: " + r.path);
   const auto& segments = series->second.segments;

@@ -19,11 +19,11 @@
 #include "solver/numerics/petsc_runtime.hpp"
 
 
-namespace raceway::plan {
+namespace raceway::driver {
 
 namespace {
 
-using solver::OptionsError;
+using numerics::OptionsError;
 
 /// An option is recommended only when it saves at least 5 % of the time: the table's timings (the
 /// smaller CPU time of two runs) scatter by a few per cent.
@@ -386,8 +386,8 @@ namespace {
 double parse_probe_time(const std::string& text) {
   double seconds = 0;
   try {
-    seconds = io::parse_quantity(text, io::dim::time);
-  } catch (const io::UnitError& e) {
+    seconds = scene::parse_quantity(text, scene::dim::time);
+  } catch (const scene::UnitError& e) {
     throw OptionsError(fmt::format("--probe-time '{}': {}", text, e.what()));
   }
   if (!(seconds > 0)) throw OptionsError(fmt::format("--probe-time '{}': the probe needs a positive time", text));
@@ -397,7 +397,7 @@ double parse_probe_time(const std::string& text) {
 std::string seconds_text(double s) { return s >= 0.1 ? fmt::format("{:.3g} s", s) : fmt::format("{:.3g} ms", 1e3 * s); }
 
 /// What the probe measured on this scene, and what it predicts for the scene's whole run.
-void print_probe(const io::Scene& scene, const Probe& p) {
+void print_probe(const scene::Scene& scene, const Probe& p) {
   std::printf("probe, MEASURED on this scene at its own settings (one rank, %s): %s of simulated time (%.3g "
               "revolutions of the driven ring) in %.3g CPU s%s\n", p.method.c_str(), seconds_text(p.simulated_s).c_str(),
               p.revolutions, p.cpu_s, p.simulated_s >= scene.scene.end_time ? " (the whole run)" : "");
@@ -418,7 +418,7 @@ void print_probe(const io::Scene& scene, const Probe& p) {
 }
 
 /// The plan of a scene the table has measured itself (its file name, no --set).
-void plan_measured(const io::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& rows,
+void plan_measured(const scene::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& rows,
                    const std::vector<Target>& targets) {
   const auto find = [&](const char* option) -> const FidelityRow* {
     for (const auto& r : rows)
@@ -434,7 +434,7 @@ void plan_measured(const io::Scene& scene, const PlanOptions& options, const std
 }
 
 /// The plan of any other scene: a probe run of it and the effects transferred from a table scene.
-void plan_probed(const io::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& table,
+void plan_probed(const scene::Scene& scene, const PlanOptions& options, const std::vector<FidelityRow>& table,
                  const std::vector<Target>& targets) {
   const Transfer transfer = transfer_from_table(options.scene_path, options.overrides, table);
   const Probe probe = probe_scene(scene, options.probe_time.empty() ? kDefaultProbeSeconds
@@ -465,7 +465,7 @@ void plan_probed(const io::Scene& scene, const PlanOptions& options, const std::
 
 int plan_command(const PlanOptions& options) {
   // Everything is checked before anything is printed: the scene, the targets, the tables.
-  const io::Scene scene = io::load_scene(options.scene_path, options.overrides);
+  const scene::Scene scene = scene::load_scene(options.scene_path, options.overrides);
   std::vector<Target> targets;
   for (const auto& t : options.targets) targets.push_back(parse_target(t));
   if (!options.probe_time.empty()) parse_probe_time(options.probe_time);
@@ -480,7 +480,7 @@ int plan_command(const PlanOptions& options) {
   if (rows.empty()) plan_probed(scene, options, table, targets);
   else plan_measured(scene, options, rows, targets);
   std::printf("planar or spatial: %s; a %s bearing is built %s only\n",
-              scene.scene.model == io::ModelKind::spatial ? "spatial" : "planar",
+              scene.scene.model == scene::ModelKind::spatial ? "spatial" : "planar",
               scene.bearing.is_ball_bearing() ? "ball" : "cylindrical roller",
               scene.bearing.is_ball_bearing() ? "spatial" : "planar");
   print_rank_advice(ranks, options.rank_table_path);
@@ -489,4 +489,4 @@ int plan_command(const PlanOptions& options) {
   return 0;
 }
 
-}  // namespace raceway::plan
+}  // namespace raceway::driver

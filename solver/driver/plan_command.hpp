@@ -18,7 +18,7 @@ namespace CLI {
 class App;
 }
 
-namespace raceway::plan {
+namespace raceway::driver {
 
 /// The quantities a target can name, in the table's column order.
 inline constexpr std::array<const char*, 3> kQuantities{"cage_speed", "max_load", "pocket_force"};
@@ -45,10 +45,10 @@ struct Recommendation {
 };
 
 /// The rows of the table at PATH (a CSV file with a header line; '#' lines are comments). Throws
-/// solver::OptionsError naming the file and line when it cannot be read.
+/// numerics::OptionsError naming the file and line when it cannot be read.
 std::vector<FidelityRow> read_fidelity_table(const std::string& path);
 
-/// "cage_speed=0.01" or "cage_speed=1%"; throws solver::OptionsError with the reason.
+/// "cage_speed=0.01" or "cage_speed=1%"; throws numerics::OptionsError with the reason.
 Target parse_target(const std::string& text);
 
 /// The cheapest combination of one option (or none) per choice whose predicted changes meet every
@@ -91,7 +91,7 @@ double predicted_speedup(const std::vector<RankRow>& rows, int ranks);
 /// --rank-table names another.
 std::string rank_table_path();
 
-/// The rows of the rank table at PATH; throws solver::OptionsError naming the file and line.
+/// The rows of the rank table at PATH; throws numerics::OptionsError naming the file and line.
 std::vector<RankRow> read_rank_table(const std::string& path);
 
 /// The most ranks whose predicted efficiency on NETWORK is at least 0.7 (1 when none).
@@ -106,4 +106,4 @@ CLI::App* add_plan_command(CLI::App& app, PlanOptions& options);
 /// Runs `raceway plan`; returns the exit code (bad input throws, exit 2 by the caller's mapping).
 int plan_command(const PlanOptions& options);
 
-}  // namespace raceway::plan
+}  // namespace raceway::driver

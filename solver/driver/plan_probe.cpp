@@ -14,7 +14,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "solver/run/run.hpp"
 
-namespace raceway::plan {
+namespace raceway::driver {
 
 namespace {
 
@@ -51,9 +51,9 @@ class TemporaryFolder {
 };
 
 /// Every resolved parameter of a scene as one line each, to tell whether an option changes it.
-std::set<std::string> parameter_lines(const io::Scene& scene) {
+std::set<std::string> parameter_lines(const scene::Scene& scene) {
   std::set<std::string> out;
-  for (const auto& p : io::scene_parameters(scene)) {
+  for (const auto& p : scene::scene_parameters(scene)) {
     std::string line = p.key + "=" + (p.number ? fmt::format("{}", *p.number) : "") + p.word.value_or("");
     for (const double t : p.times) line += fmt::format(" t{}", t);
     for (const double v : p.values) line += fmt::format(" {}", v);
@@ -64,26 +64,26 @@ std::set<std::string> parameter_lines(const io::Scene& scene) {
 
 }  // namespace
 
-Probe probe_scene(const io::Scene& scene, double probe_seconds) {
-  io::Scene shortened = scene;
+Probe probe_scene(const scene::Scene& scene, double probe_seconds) {
+  scene::Scene shortened = scene;
   const double end = std::min(scene.scene.end_time, std::max(probe_seconds, 2 * scene.scene.output_interval));
   shortened.scene.end_time = end;
   const TemporaryFolder folder;
-  solver::RunOptions options;
+  run::RunOptions options;
   options.output_path = (folder.path() / "probe.h5").string();
   options.output_thread = false;  // as the fidelity table's runs (--output-thread off)
   options.on_info = [](const std::string&) {};
   Probe probe;
   const double cpu_start = process_cpu_seconds();
   // The window starts at the first output time at or after half the probe.
-  options.on_progress = [&](const solver::Progress& p) {
+  options.on_progress = [&](const run::Progress& p) {
     if (probe.window_start_s > 0 || p.time < 0.5 * end - 1e-12 || p.time >= end - 1e-12) return;
     probe.window_start_s = p.time;
     probe.cpu_at_window_s = process_cpu_seconds() - cpu_start;
     probe.steps_at_window = p.steps;
     probe.revolutions_at_window = p.revolutions;
   };
-  const solver::RunSummary summary = solver::run_scene(shortened, options);
+  const run::RunSummary summary = run::run_scene(shortened, options);
   probe.cpu_s = process_cpu_seconds() - cpu_start;
   probe.simulated_s = summary.simulated_time_s;
   probe.steps = summary.stats.steps;
@@ -94,13 +94,13 @@ Probe probe_scene(const io::Scene& scene, double probe_seconds) {
 
 Transfer transfer_from_table(const std::string& scene_path, const std::vector<std::string>& overrides,
                              const std::vector<FidelityRow>& table) {
-  const std::set<std::string> own = parameter_lines(io::load_scene(scene_path, overrides));
+  const std::set<std::string> own = parameter_lines(scene::load_scene(scene_path, overrides));
   // Whether the option's overrides give a valid scene that differs from this one.
   const auto applies = [&](const FidelityRow& r) {
     std::vector<std::string> with(overrides);
     for (const auto& o : split_overrides(r.overrides)) with.push_back(o);
     try {
-      return parameter_lines(io::load_scene(scene_path, with)) != own;
+      return parameter_lines(scene::load_scene(scene_path, with)) != own;
     } catch (const std::exception&) {
       return false;  // not a key of this bearing, or a value this scene refuses
     }
@@ -128,4 +128,4 @@ Transfer transfer_from_table(const std::string& scene_path, const std::vector<st
   return t;
 }
 
-}  // namespace raceway::plan
+}  // namespace raceway::driver

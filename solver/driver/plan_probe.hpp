@@ -11,7 +11,7 @@
 #include "io/scene/scene.hpp"
 #include "solver/driver/plan_command.hpp"
 
-namespace raceway::plan {
+namespace raceway::driver {
 
 /// The probe's length of simulated time unless --probe-time says otherwise: a few ms, the second
 /// half of which (after the start-up's transient and CVODE's first, smallest steps) gives the rates.
@@ -41,8 +41,8 @@ struct Probe {
 
 /// Runs SCENE for min(PROBE_SECONDS, its end time) of simulated time (at least two output
 /// intervals, so the window has a start) into a temporary folder that is removed afterwards.
-/// Integration failures propagate (solver::IntegrationFailure: the scene does not run).
-Probe probe_scene(const io::Scene& scene, double probe_seconds);
+/// Integration failures propagate (numerics::IntegrationFailure: the scene does not run).
+Probe probe_scene(const scene::Scene& scene, double probe_seconds);
 
 /// The rows of one reference scene of the fidelity table transferred to another scene.
 struct Transfer {
@@ -59,4 +59,4 @@ struct Transfer {
 Transfer transfer_from_table(const std::string& scene_path, const std::vector<std::string>& overrides,
                              const std::vector<FidelityRow>& table);
 
-}  // namespace raceway::plan
+}  // namespace raceway::driver

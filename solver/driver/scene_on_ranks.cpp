@@ -35,19 +35,19 @@ void broadcast_string(MPI_Comm comm, int rank, std::string& s) {
 }  // namespace
 
 int exit_code_for(const std::exception& e) {
-  if (dynamic_cast<const io::SceneError*>(&e) ||
-      dynamic_cast<const solver::OptionsError*>(&e) || dynamic_cast<const io::OutputPathError*>(&e) ||
-      dynamic_cast<const solver::ResumeRefused*>(&e))
+  if (dynamic_cast<const scene::SceneError*>(&e) ||
+      dynamic_cast<const numerics::OptionsError*>(&e) || dynamic_cast<const h5::OutputPathError*>(&e) ||
+      dynamic_cast<const run::ResumeRefused*>(&e))
     return 2;
-  if (dynamic_cast<const solver::IntegrationFailure*>(&e)) return 3;
-  if (dynamic_cast<const solver::RunInterrupted*>(&e)) return 4;
+  if (dynamic_cast<const numerics::IntegrationFailure*>(&e)) return 3;
+  if (dynamic_cast<const run::RunInterrupted*>(&e)) return 4;
   return 1;
 }
 
 int exit_code_of(const std::function<int()>& command) {
   try {
     return command();
-  } catch (const solver::RunInterrupted& e) {
+  } catch (const run::RunInterrupted& e) {
     spdlog::warn("{}", e.what());
     return exit_code_for(e);
   } catch (const std::exception& e) {
@@ -161,9 +161,9 @@ bool broadcast_scene(MPI_Comm comm, SceneSource& scene, bool ok) {
 void serve_scene_tasks(const SceneSource& source, scheduler::MpiExecutor& executor, MPI_Comm comm,
                        bool parallel_output) {
   try {
-    const io::Scene scene = io::parse_scene(source.text, source.source, source.overrides);
+    const scene::Scene scene = scene::parse_scene(source.text, source.source, source.overrides);
     if (!executor.await_start()) return;  // rank 0 failed before it had a model and says why
-    solver::serve_scene(scene, [&](const scheduler::TaskCatalogue& c, const std::map<std::string, solver::SegmentSeries>& s) {
+    run::serve_scene(scene, [&](const scheduler::TaskCatalogue& c, const std::map<std::string, run::SegmentSeries>& s) {
       if (!parallel_output) return executor.serve(c);  // no handler: no records kept per evaluation
       WorkerOutput output(comm, s);  // the parallel output's samples and writes
       executor.serve(c, [&](std::span<const double> payload, std::span<const int> tasks, std::span<const double> records) {

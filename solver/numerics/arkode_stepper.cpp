@@ -15,7 +15,7 @@
 
 #include "solver/numerics/time_stepper.hpp"
 
-namespace raceway::solver::stepping {
+namespace raceway::numerics::stepping {
 
 namespace {
 
@@ -70,9 +70,9 @@ constexpr ArkodeCalls kArkCalls{ARKStepEvolve,          ARKStepGetDky,         A
 class ArkodeStepper final : public TimeStepper {
  public:
   explicit ArkodeStepper(const StepperSetup& s)
-      : implicit_(s.spec.method == io::IntegrationMethod::ark), calls_(implicit_ ? kArkCalls : kErkCalls),
+      : implicit_(s.spec.method == scene::IntegrationMethod::ark), calls_(implicit_ ? kArkCalls : kErkCalls),
         order_(s.spec.max_order) {
-    const io::SolverSpec& spec = s.spec;
+    const scene::SolverSpec& spec = s.spec;
     const Callbacks& cb = s.callbacks;
     if (implicit_) {
       const auto& t = table_of_order(kDirkTables, spec.max_order, "ark");
@@ -164,4 +164,4 @@ std::unique_ptr<TimeStepper> make_arkode_stepper(const StepperSetup& setup) {
   return std::make_unique<ArkodeStepper>(setup);
 }
 
-}  // namespace raceway::solver::stepping
+}  // namespace raceway::numerics::stepping

@@ -11,7 +11,7 @@
 #include "solver/numerics/bordered_matrix.hpp"
 #include "solver/numerics/linear_solver_registry.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 /// block_elimination_backend.cpp: BorderedMatrix content, BorderedFactorization solver.
 NewtonObjects create_block_elimination(SUNContext ctx, N_Vector y, const BorderedLayout& layout);
@@ -28,4 +28,4 @@ NewtonObjects create_sundials_dense(SUNContext ctx, N_Vector y, const BorderedLa
 /// Writes J into a SUNDIALS dense matrix.
 void load_dense(const BorderedMatrix& j, SUNMatrix a);
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

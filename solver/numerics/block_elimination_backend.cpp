@@ -5,7 +5,7 @@
 #include "solver/numerics/backend_factories.hpp"
 #include "solver/numerics/sundials_custom.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 namespace {
 
@@ -45,4 +45,4 @@ NewtonObjects create_block_elimination(SUNContext ctx, N_Vector, const BorderedL
   return o;
 }
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

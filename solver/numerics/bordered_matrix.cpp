@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 BorderedMatrix::BorderedMatrix(int border_size, int block_count, int block_size)
     : border(Eigen::MatrixXd::Zero(border_size, border_size)),
@@ -134,4 +134,4 @@ void BorderedFactorization::solve(const double* b, double* x) const {
     Eigen::Map<Eigen::VectorXd>(x + nb + k * bs, bs) = y[k] - block_inv_border_[k] * work_x_;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

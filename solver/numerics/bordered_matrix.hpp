@@ -18,7 +18,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 /// Sizes of a bordered system: border states (rings, cage), rolling elements, states per element.
 struct BorderedLayout {
@@ -72,4 +72,4 @@ class BorderedFactorization {
   mutable Eigen::VectorXd work_b_, work_x_;
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

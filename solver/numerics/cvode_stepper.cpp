@@ -9,7 +9,7 @@
 
 #include "solver/numerics/time_stepper.hpp"
 
-namespace raceway::solver::stepping {
+namespace raceway::numerics::stepping {
 
 void check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(fmt::format("SUNDIALS set-up failed in {} (flag {})", what, flag));
@@ -19,8 +19,8 @@ namespace {
 
 class CvodeStepper final : public TimeStepper {
  public:
-  explicit CvodeStepper(const StepperSetup& s) : bdf_(s.spec.method == io::IntegrationMethod::bdf) {
-    const io::SolverSpec& spec = s.spec;
+  explicit CvodeStepper(const StepperSetup& s) : bdf_(s.spec.method == scene::IntegrationMethod::bdf) {
+    const scene::SolverSpec& spec = s.spec;
     mem_ = CVodeCreate(bdf_ ? CV_BDF : CV_ADAMS, s.ctx);
     if (!mem_) throw std::runtime_error("CVodeCreate failed");
     check(CVodeSetErrHandlerFn(mem_, s.callbacks.error_handler, s.callbacks.user), "CVodeSetErrHandlerFn");
@@ -91,4 +91,4 @@ std::unique_ptr<TimeStepper> make_cvode_stepper(const StepperSetup& setup) {
   return std::make_unique<CvodeStepper>(setup);
 }
 
-}  // namespace raceway::solver::stepping
+}  // namespace raceway::numerics::stepping

@@ -10,7 +10,7 @@
 
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 class DynamicSystem {
  public:
@@ -30,4 +30,4 @@ class DynamicSystem {
   virtual std::string explain_state(int index) const = 0;
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

@@ -11,7 +11,7 @@
 #include "solver/numerics/time_stepper.hpp"
 #include "solver/numerics/timed_linear_solver.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 namespace {
 
@@ -31,13 +31,13 @@ class ScopedTimer {
   Clock::time_point start_;
 };
 
-bool implicit_method(io::IntegrationMethod m) { return m != io::IntegrationMethod::erk; }
+bool implicit_method(scene::IntegrationMethod m) { return m != scene::IntegrationMethod::erk; }
 
 }  // namespace
 
 struct Integrator::Impl {
   DynamicSystem& eq;
-  io::SolverSpec spec;
+  scene::SolverSpec spec;
   SUNContext ctx = nullptr;
   N_Vector y = nullptr;
   N_Vector error = nullptr, weights = nullptr;  // scratch for the step-limiting accounting
@@ -63,7 +63,7 @@ struct Integrator::Impl {
     return out_of_wall_time;
   }
 
-  Impl(DynamicSystem& e, const io::SolverSpec& s) : eq(e), spec(s) {}
+  Impl(DynamicSystem& e, const scene::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
     stepper.reset();
     if (timed_solver) SUNLinSolFree(timed_solver);
@@ -107,7 +107,7 @@ struct Integrator::Impl {
   std::string diagnose(int flag, bool budget_exhausted) const;
 };
 
-Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, double t0,
+Integrator::Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, double t0,
                        const std::vector<double>& z0)
     : impl_(std::make_unique<Impl>(equations, spec)) {
   Impl& s = *impl_;
@@ -127,9 +127,9 @@ Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, dou
 
   if (implicit_method(spec.method)) {
     const BorderedLayout layout{equations.border_size(), equations.block_count(), equations.block_size()};
-    const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
+    const scene::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
     // PETSc options are validated here at the latest (run_scene does it before opening the output).
-    if (kind == io::LinearSolverKind::petsc_bordered) configure_petsc_options(spec, layout);
+    if (kind == scene::LinearSolverKind::petsc_bordered) configure_petsc_options(spec, layout);
     s.scratch = BorderedMatrix(layout.border, layout.blocks, layout.block_size);
     s.linear = std::make_unique<NewtonLinearSystem>(kind, s.ctx, s.y, layout);
     s.timed_solver = backend::make_timed_solver(s.ctx, s.linear->solver(), &s.timing.linear_setup,
@@ -139,7 +139,7 @@ Integrator::Integrator(DynamicSystem& equations, const io::SolverSpec& spec, dou
                                      {Impl::rhs, Impl::jacobian, Impl::error_handler, &s},
                                      s.linear.get(), s.timed_solver};
   try {
-    s.stepper = spec.method == io::IntegrationMethod::bdf || spec.method == io::IntegrationMethod::adams
+    s.stepper = spec.method == scene::IntegrationMethod::bdf || spec.method == scene::IntegrationMethod::adams
                     ? stepping::make_cvode_stepper(setup)
                     : stepping::make_arkode_stepper(setup);
   } catch (...) {
@@ -232,4 +232,4 @@ const StepLimitingStates& Integrator::step_limiting_states() const { return impl
 const IntegratorTiming& Integrator::timing() const { return impl_->timing; }
 std::string Integrator::method_name() const { return impl_->stepper->method_name(); }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

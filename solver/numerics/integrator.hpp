@@ -21,7 +21,7 @@
 #include "solver/numerics/dynamic_system.hpp"
 #include "solver/numerics/newton_backends.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 struct IntegratorStatistics {
   long steps = 0;
@@ -67,7 +67,7 @@ class IntegrationFailure : public std::runtime_error {
 
 class Integrator {
  public:
-  Integrator(DynamicSystem& equations, const io::SolverSpec& spec, double t0, const std::vector<double>& z0);
+  Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, double t0, const std::vector<double>& z0);
   ~Integrator();
   Integrator(const Integrator&) = delete;
   Integrator& operator=(const Integrator&) = delete;
@@ -92,4 +92,4 @@ class Integrator {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

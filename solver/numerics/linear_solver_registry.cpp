@@ -5,11 +5,11 @@
 
 #include "solver/numerics/backend_factories.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 namespace {
 
-using Kind = io::LinearSolverKind;
+using Kind = scene::LinearSolverKind;
 
 const std::array<LinearSolverBackend, 4> kBackends{{
     {Kind::automatic, "auto", nullptr,
@@ -30,10 +30,10 @@ const std::array<LinearSolverBackend, 4> kBackends{{
 
 std::span<const LinearSolverBackend> linear_solver_backends() { return kBackends; }
 
-const LinearSolverBackend& linear_solver_backend(io::LinearSolverKind kind) {
+const LinearSolverBackend& linear_solver_backend(scene::LinearSolverKind kind) {
   for (const LinearSolverBackend& b : kBackends)
     if (b.kind == kind) return b;
-  throw std::logic_error("linear_solver_backend: a LinearSolverKind without an entry");
+  throw std::logic_error("linear_solver_backend: a scene::LinearSolverKind without an entry");
 }
 
 // `auto` is the hand-written block elimination. Measured per Newton setup + solve (assembly, M =
@@ -45,10 +45,10 @@ const LinearSolverBackend& linear_solver_backend(io::LinearSolverKind kind) {
 // blocks, the Schur complement through KSPMatSolve on dense column blocks, and object bookkeeping.
 // PETSc earns its place where the hand-written path cannot go: run-time solver choices (MUMPS,
 // SuperLU_DIST, hypre, ILU) and, later, the distributed (MPIAIJ) Newton systems of multi-rank runs.
-io::LinearSolverKind resolve_linear_solver(io::LinearSolverKind kind, const BorderedLayout&) {
-  return kind == io::LinearSolverKind::automatic ? io::LinearSolverKind::block_elimination : kind;
+scene::LinearSolverKind resolve_linear_solver(scene::LinearSolverKind kind, const BorderedLayout&) {
+  return kind == scene::LinearSolverKind::automatic ? scene::LinearSolverKind::block_elimination : kind;
 }
 
-const char* linear_solver_name(io::LinearSolverKind kind) { return linear_solver_backend(kind).name; }
+const char* linear_solver_name(scene::LinearSolverKind kind) { return linear_solver_backend(kind).name; }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

@@ -1,8 +1,8 @@
-// The Newton linear-solver backends, in one table: for each io::LinearSolverKind of the scene its
+// The Newton linear-solver backends, in one table: for each scene::LinearSolverKind of the scene its
 // name (as [solver] linear_solver spells it), the older alias the scene parser also accepts, a
 // description, and the function that creates its SUNDIALS matrix and linear solver. The scene
 // parser (io/scene/scene_parser.cpp) maps the names to the kinds; a test checks that it agrees
-// with this table (tests/solver/newton_backends_test.cpp).
+// with this table (tests/solver/numerics/newton_backends_test.cpp).
 #pragma once
 
 #include <sundials/sundials_context.h>
@@ -15,7 +15,7 @@
 #include "io/scene/scene.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 /// A backend's SUNDIALS matrix and linear solver, for the caller to own.
 struct NewtonObjects {
@@ -24,7 +24,7 @@ struct NewtonObjects {
 };
 
 struct LinearSolverBackend {
-  io::LinearSolverKind kind;
+  scene::LinearSolverKind kind;
   const char* name;         ///< [solver] linear_solver = "name"
   const char* alias;        ///< an older name the scene parser accepts too, or nullptr
   const char* description;  ///< what it is, one line
@@ -36,12 +36,12 @@ struct LinearSolverBackend {
 /// Every entry, `auto` first.
 std::span<const LinearSolverBackend> linear_solver_backends();
 /// The entry of `kind`.
-const LinearSolverBackend& linear_solver_backend(io::LinearSolverKind kind);
+const LinearSolverBackend& linear_solver_backend(scene::LinearSolverKind kind);
 
 /// The backend `linear_solver = "auto"` stands for: block elimination (the measured reason is at its
 /// definition and in README "Newton linear solvers"). Any other kind is returned as is.
-io::LinearSolverKind resolve_linear_solver(io::LinearSolverKind kind, const BorderedLayout& layout);
+scene::LinearSolverKind resolve_linear_solver(scene::LinearSolverKind kind, const BorderedLayout& layout);
 /// "petsc-bordered", "block-elimination", "sundials-dense", "auto".
-const char* linear_solver_name(io::LinearSolverKind kind);
+const char* linear_solver_name(scene::LinearSolverKind kind);
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

@@ -7,9 +7,9 @@
 #include "solver/numerics/backend_factories.hpp"
 #include "solver/numerics/sundials_custom.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
-NewtonLinearSystem::NewtonLinearSystem(io::LinearSolverKind kind, SUNContext ctx, N_Vector y,
+NewtonLinearSystem::NewtonLinearSystem(scene::LinearSolverKind kind, SUNContext ctx, N_Vector y,
                                        const BorderedLayout& layout)
     : kind_(kind) {
   const LinearSolverBackend& backend = linear_solver_backend(kind);
@@ -41,16 +41,16 @@ std::string NewtonLinearSystem::last_error() const {
   return backend::solver_content(solver_).last_error;
 }
 
-std::string prepare_linear_solver(const io::SolverSpec& spec, const BorderedLayout& layout) {
-  const io::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
+std::string prepare_linear_solver(const scene::SolverSpec& spec, const BorderedLayout& layout) {
+  const scene::LinearSolverKind kind = resolve_linear_solver(spec.linear_solver, layout);
   std::string line = fmt::format("Newton linear solver: {}", linear_solver_name(kind));
-  if (spec.linear_solver == io::LinearSolverKind::automatic)
-    line += fmt::format(" (auto: {})", linear_solver_backend(io::LinearSolverKind::automatic).description);
+  if (spec.linear_solver == scene::LinearSolverKind::automatic)
+    line += fmt::format(" (auto: {})", linear_solver_backend(scene::LinearSolverKind::automatic).description);
   // PETSc options are validated whenever they are given, even if `auto` chose the other backend, so
   // that a typo shows at start-up and not in the first large run.
   PetscRuntime* petsc = PetscRuntime::active() ? &PetscRuntime::current() : nullptr;
   const bool options_given = !spec.petsc_options.empty() || (petsc && !petsc->command_line_options().empty());
-  if (kind == io::LinearSolverKind::petsc_bordered) {
+  if (kind == scene::LinearSolverKind::petsc_bordered) {
     line += "; " + configure_petsc_options(spec, layout);
   } else if (options_given && petsc) {
     petsc->configure_options(spec, layout);
@@ -59,4 +59,4 @@ std::string prepare_linear_solver(const io::SolverSpec& spec, const BorderedLayo
   return line;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

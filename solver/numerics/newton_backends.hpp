@@ -27,43 +27,43 @@
 #include "solver/numerics/linear_solver_registry.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 /// Puts the scene's and the command line's PETSc options into PETSc's database (defaults where
 /// neither sets a key) and validates them by a trial setup + solve of a small system with `layout`'s
 /// border and block sizes: a misspelt type, a package PETSc lacks, an option nothing reads, or a
-/// combination that fails to set up or solve throws io::SceneError (scene options) or OptionsError
+/// combination that fails to set up or solve throws scene::SceneError (scene options) or OptionsError
 /// (command line). Returns a one-line description of the solver the options build, with the trial's
 /// relative residual (an inexact choice such as ILU is allowed, and said so). Cached: repeated calls
 /// with the same options only return the description. Requires a PetscRuntime.
-std::string configure_petsc_options(const io::SolverSpec& spec, const BorderedLayout& layout);
+std::string configure_petsc_options(const scene::SolverSpec& spec, const BorderedLayout& layout);
 
 /// For the run driver and `raceway check`: resolves `auto`, configures PETSc when it is chosen, and
 /// returns a line saying which backend runs and why.
-std::string prepare_linear_solver(const io::SolverSpec& spec, const BorderedLayout& layout);
+std::string prepare_linear_solver(const scene::SolverSpec& spec, const BorderedLayout& layout);
 
 /// A SUNMatrix + SUNLinearSolver pair for one backend, owned. CVODE's Jacobian callback fills the
 /// matrix with load_jacobian(); CVODE then forms M = I - gamma J through the matrix's ops.
 class NewtonLinearSystem {
  public:
   /// `kind` must be resolved (not automatic). `y` is a template vector of the state's length.
-  NewtonLinearSystem(io::LinearSolverKind kind, SUNContext ctx, N_Vector y, const BorderedLayout& layout);
+  NewtonLinearSystem(scene::LinearSolverKind kind, SUNContext ctx, N_Vector y, const BorderedLayout& layout);
   ~NewtonLinearSystem();
   NewtonLinearSystem(const NewtonLinearSystem&) = delete;
   NewtonLinearSystem& operator=(const NewtonLinearSystem&) = delete;
 
   SUNMatrix matrix() const { return matrix_; }
   SUNLinearSolver solver() const { return solver_; }
-  io::LinearSolverKind kind() const { return kind_; }
+  scene::LinearSolverKind kind() const { return kind_; }
   /// Writes J into `a` (this system's matrix or a clone of it, as CVODE passes them).
   static void load_jacobian(const BorderedMatrix& j, SUNMatrix a);
   /// The last error of the linear solver (PETSc's message), empty if none.
   std::string last_error() const;
 
  private:
-  io::LinearSolverKind kind_;
+  scene::LinearSolverKind kind_;
   SUNMatrix matrix_ = nullptr;
   SUNLinearSolver solver_ = nullptr;
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

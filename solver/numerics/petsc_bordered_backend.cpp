@@ -17,7 +17,7 @@
 #include "solver/numerics/petsc_runtime.hpp"
 #include "solver/numerics/sundials_custom.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 namespace {
 
@@ -322,4 +322,4 @@ std::string describe_petsc_bordered(SUNLinearSolver s) {
   return description;
 }
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

@@ -20,7 +20,7 @@
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/numerics/petsc_runtime.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 namespace {
 
@@ -68,7 +68,7 @@ Trial trial_solve(const BorderedLayout& real) {
       N_Vector a, b, c;
       ~Vectors() { N_VDestroy(a), N_VDestroy(b), N_VDestroy(c); }
     } vectors{b, x, y};
-    NewtonLinearSystem sys(io::LinearSolverKind::petsc_bordered, ctx, b, l);
+    NewtonLinearSystem sys(scene::LinearSolverKind::petsc_bordered, ctx, b, l);
     NewtonLinearSystem::load_jacobian(j, sys.matrix());
     SUNMatScaleAddI(-0.05, sys.matrix());  // I - gamma J, diagonally dominant
     if (SUNLinSolSetup(sys.solver(), sys.matrix()) != 0) {
@@ -150,7 +150,7 @@ std::string information_flag_refusal(const std::string& flag) {
                      flag);
 }
 
-std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const BorderedLayout& layout) {
+std::string PetscRuntime::configure_options(const scene::SolverSpec& spec, const BorderedLayout& layout) {
   // PETSC_OPTIONS from the environment, as PETSc reads it: the lowest priority (the scene and the
   // command line override it). PetscOptionsClear below drops what PetscInitialize read, so it is
   // put back first; PETSc's diagnostics in it (-log_view) then reach PetscFinalize.
@@ -195,7 +195,7 @@ std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const Bo
     });
   Trial t = stage(spec.petsc_options, [&](const std::string& reason) {
     PetscOptionsClear(nullptr);
-    throw io::SceneError(spec.petsc_options_file.empty() ? "<scene>" : spec.petsc_options_file,
+    throw scene::SceneError(spec.petsc_options_file.empty() ? "<scene>" : spec.petsc_options_file,
                          spec.petsc_options_line, "solver.petsc_options", reason);
   });
   if (!command_line_options_.empty())
@@ -211,8 +211,8 @@ std::string PetscRuntime::configure_options(const io::SolverSpec& spec, const Bo
   return applied_summary_;
 }
 
-std::string configure_petsc_options(const io::SolverSpec& spec, const BorderedLayout& layout) {
+std::string configure_petsc_options(const scene::SolverSpec& spec, const BorderedLayout& layout) {
   return PetscRuntime::current().configure_options(spec, layout);
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

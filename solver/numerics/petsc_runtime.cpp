@@ -5,7 +5,7 @@
 
 #include <cstdlib>
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 PetscRuntime* PetscRuntime::live_ = nullptr;
 
@@ -57,7 +57,7 @@ bool PetscRuntime::active() { return live_ != nullptr; }
 PetscRuntime& PetscRuntime::current() {
   if (!live_)
     throw std::logic_error("the petsc-bordered linear solver needs PETSc initialised: create a "
-                           "solver::PetscRuntime after MPI_Init (the raceway driver and the test mains do)");
+                           "numerics::PetscRuntime after MPI_Init (the raceway driver and the test mains do)");
   return *live_;
 }
 
@@ -66,4 +66,4 @@ void PetscRuntime::check(int code, const char* what) const {
   throw std::runtime_error(fmt::format("PETSc: {} failed: {}", what, last_error_));
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

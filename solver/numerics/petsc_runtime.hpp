@@ -17,10 +17,10 @@
 #include "io/scene/scene.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver {
+namespace raceway::numerics {
 
 /// Bad PETSc options given on the command line (--petsc-options): exit code 2, like a bad scene.
-/// Bad options from the scene are io::SceneError naming the file, line and key solver.petsc_options.
+/// Bad options from the scene are scene::SceneError naming the file, line and key solver.petsc_options.
 class OptionsError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -56,7 +56,7 @@ class PetscRuntime {
   void set_command_line_options(std::string options) { command_line_options_ = std::move(options); }
 
   /// See configure_petsc_options (solver/numerics/newton_backends.hpp).
-  std::string configure_options(const io::SolverSpec& spec, const BorderedLayout& layout);
+  std::string configure_options(const scene::SolverSpec& spec, const BorderedLayout& layout);
 
   /// First line of the last PETSc error since clear_last_error(), with PETSc's code and function.
   const std::string& last_error() const { return last_error_; }
@@ -75,4 +75,4 @@ class PetscRuntime {
   std::string applied_summary_;  ///< what configure_options said for them
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::numerics

@@ -4,7 +4,7 @@
 
 #include <exception>
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 MatrixContent& content(SUNMatrix a) { return *static_cast<MatrixContent*>(a->content); }
 SolverContent& solver_content(SUNLinearSolver s) { return *static_cast<SolverContent*>(s->content); }
@@ -84,4 +84,4 @@ SUNLinearSolver make_custom_solver(SUNContext ctx, std::unique_ptr<SolverContent
   return s;
 }
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

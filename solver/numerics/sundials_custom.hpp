@@ -12,7 +12,7 @@
 
 #include "solver/numerics/bordered_matrix.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 /// Content of a custom SUNMatrix: a bordered matrix in one representation or another.
 class MatrixContent {
@@ -59,4 +59,4 @@ int free_owned_content(SUNLinearSolver ls) {
 /// A direct SUNLinearSolver of type SUNLINEARSOLVER_CUSTOM owning `c`.
 SUNLinearSolver make_custom_solver(SUNContext ctx, std::unique_ptr<SolverContent> c);
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

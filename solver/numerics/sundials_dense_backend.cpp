@@ -6,7 +6,7 @@
 
 #include "solver/numerics/backend_factories.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 NewtonObjects create_sundials_dense(SUNContext ctx, N_Vector y, const BorderedLayout& layout) {
   const auto n = static_cast<sunindextype>(layout.size());
@@ -36,4 +36,4 @@ void load_dense(const BorderedMatrix& j, SUNMatrix a) {
   }
 }
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

@@ -15,7 +15,7 @@
 #include "solver/numerics/integrator.hpp"
 #include "solver/numerics/newton_backends.hpp"
 
-namespace raceway::solver::stepping {
+namespace raceway::numerics::stepping {
 
 /// The integrator's callbacks, in the signatures CVODE and ARKODE share (CVRhsFn = ARKRhsFn,
 /// CVLsJacFn = ARKLsJacFn, CVErrHandlerFn = ARKErrHandlerFn).
@@ -30,7 +30,7 @@ struct Callbacks {
 /// What a stepper is made from. `linear` and `linear_solver` are used by the implicit methods (bdf,
 /// adams, ark) only.
 struct StepperSetup {
-  const io::SolverSpec& spec;
+  const scene::SolverSpec& spec;
   SUNContext ctx;
   N_Vector y0;     ///< initial state (also the template vector)
   double t0;
@@ -67,4 +67,4 @@ std::unique_ptr<TimeStepper> make_arkode_stepper(const StepperSetup& setup);
 /// Throws std::runtime_error naming the call when a SUNDIALS set-up call returned a negative flag.
 void check(int flag, const char* what);
 
-}  // namespace raceway::solver::stepping
+}  // namespace raceway::numerics::stepping

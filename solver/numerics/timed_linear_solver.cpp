@@ -4,7 +4,7 @@
 
 #include "solver/numerics/sundials_custom.hpp"
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 namespace {
 
@@ -47,4 +47,4 @@ SUNLinearSolver make_timed_solver(SUNContext ctx, SUNLinearSolver inner, double*
   return s;
 }
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

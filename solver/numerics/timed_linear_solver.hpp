@@ -7,11 +7,11 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
-namespace raceway::solver::backend {
+namespace raceway::numerics::backend {
 
 /// A wrapper around `inner` (not owned: the caller frees `inner` after the wrapper). Adds seconds to
 /// *setup_seconds and *solve_seconds, which must outlive it.
 SUNLinearSolver make_timed_solver(SUNContext ctx, SUNLinearSolver inner, double* setup_seconds,
                                   double* solve_seconds);
 
-}  // namespace raceway::solver::backend
+}  // namespace raceway::numerics::backend

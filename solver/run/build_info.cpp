@@ -8,7 +8,7 @@
 
 #include "raceway/version.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -47,4 +47,4 @@ std::string build_fingerprint(const std::string& mpi_library) {
   return out;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

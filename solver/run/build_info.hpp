@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// The output file's layout version: increased when a reader of the file would need to change
 /// (3: one dataset name per quantity in planar and spatial runs, the bearing attributes always).
@@ -21,4 +21,4 @@ std::vector<std::pair<std::string, std::string>> build_info(const std::string& m
 /// The build as one line, for fingerprints: the values of build_info, joined.
 std::string build_fingerprint(const std::string& mpi_library);
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -14,7 +14,7 @@
 #include "io/h5/h5_reader.hpp"
 #include "io/h5/h5_series.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -94,8 +94,8 @@ const char* checkpoint_kind_name(CheckpointKind kind) {
 std::string checkpoint_path(const std::string& output_path) { return output_path + ".checkpoint"; }
 
 void write_checkpoint(const std::string& path, const Checkpoint& cp) {
-  // Sealed: a resume checks every byte of it before HDF5 reads any (io::sealed_file_problem).
-  auto file = io::H5SeriesWriter::create(path, {.gzip_level = 0, .shuffle = false, .sealed = true});
+  // Sealed: a resume checks every byte of it before HDF5 reads any (h5::sealed_file_problem).
+  auto file = h5::H5SeriesWriter::create(path, {.gzip_level = 0, .shuffle = false, .sealed = true});
   file.set_attribute("/", "checkpoint_version", kCheckpointVersion);
   file.set_attribute("/", "kind", std::string(checkpoint_kind_name(cp.kind)));
   file.set_attribute("/", "sample", static_cast<long long>(cp.sample));
@@ -128,8 +128,8 @@ std::optional<Checkpoint> read_checkpoint(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return std::nullopt;
   try {
-    if (const std::string problem = io::sealed_file_problem(path); !problem.empty()) throw std::runtime_error(problem);
-    const io::H5Reader r(path);
+    if (const std::string problem = h5::sealed_file_problem(path); !problem.empty()) throw std::runtime_error(problem);
+    const h5::H5Reader r(path);
     if (const double version = r.number_attribute("/", "checkpoint_version");
         version != static_cast<double>(kCheckpointVersion))
       throw std::runtime_error(fmt::format("checkpoint version {}, this build reads version {}", version, kCheckpointVersion));
@@ -186,9 +186,9 @@ void require_same_run(const RunFingerprint& checkpoint, const RunFingerprint& no
     throw ResumeRefused(fmt::format("cannot resume from '{}': {}; run without --resume to start again", path, reason));
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run
 
-namespace raceway::solver {
+namespace raceway::run {
 
 void require_fits(const Checkpoint& cp, std::size_t state_size, long samples, double dt, const std::string& path) {
   std::string reason;
@@ -212,4 +212,4 @@ void require_fits(const Checkpoint& cp, std::size_t state_size, long samples, do
     throw ResumeRefused(fmt::format("cannot resume from '{}': {}; run without --resume to start again", path, reason));
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

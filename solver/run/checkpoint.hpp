@@ -1,7 +1,7 @@
 // A run's checkpoint: what `raceway run SCENE -o OUT.h5 --resume` needs to continue OUT.h5.partial
 // (docs/output_layout.md, "Checkpoints and resume"). A small HDF5 file OUT.h5.checkpoint, written
 // atomically (OUT.h5.checkpoint.partial, fsync, rename) after the output file was flushed, so it
-// never names rows that are not on disk. Sealed (io::sealed_file_problem: the CRC-32 of all its
+// never names rows that are not on disk. Sealed (h5::sealed_file_problem: the CRC-32 of all its
 // bytes, checked before HDF5 reads it), with a CRC-32 of its payload and of the .partial file's
 // rows up to it: a damaged checkpoint or .partial is refused, never resumed with other results.
 #pragma once
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// --resume refused: the checkpoint belongs to another scene, build or set of options, or its
 /// output is missing. Bad input: exit code 2, nothing is written.
@@ -45,7 +45,7 @@ struct Checkpoint {
   std::map<std::string, std::vector<double>> unwritten_rows;
   RunFingerprint fingerprint;
   /// Per series of OUT.h5.partial, the CRC-32 of its rows appended so far, file and unwritten
-  /// (io::H5SeriesWriter::row_checksums): a resume checks the .partial file against them.
+  /// (h5::H5SeriesWriter::row_checksums): a resume checks the .partial file against them.
   std::map<std::string, double> partial_crc;
 };
 
@@ -69,4 +69,4 @@ void require_fits(const Checkpoint& cp, std::size_t state_size, long samples, do
 /// option sets) when `now` is not the fingerprint the checkpoint was written with.
 void require_same_run(const RunFingerprint& checkpoint, const RunFingerprint& now, const std::string& path);
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <chrono>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 OutputThread::OutputThread(std::size_t state_size, Work work, std::size_t capacity, std::size_t batch)
     : work_(std::move(work)),
@@ -21,7 +21,7 @@ OutputThread::~OutputThread() {
   thread_.join();
 }
 
-std::string OutputThread::bind_to_core(int core) { return io::bind_thread_to_core(thread_, core); }
+std::string OutputThread::bind_to_core(int core) { return h5::bind_thread_to_core(thread_, core); }
 
 void OutputThread::wake() {
   signal_.fetch_add(1);
@@ -78,4 +78,4 @@ void OutputThread::loop() {
   }
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

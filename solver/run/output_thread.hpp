@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 class OutputThread {
  public:
@@ -39,7 +39,7 @@ class OutputThread {
   /// Waits until every queued sample has been worked; rethrows a failure if `rethrow`.
   void drain(bool rethrow = true);
   /// Binds this object's thread alone to the logical CPU `core`; returns its affinity read back
-  /// ("" when the system refused: io::bind_thread_to_core).
+  /// ("" when the system refused: h5::bind_thread_to_core).
   std::string bind_to_core(int core);
   /// Wall seconds spent in work() so far (read after drain()).
   double busy_seconds() const { return busy_; }
@@ -70,4 +70,4 @@ class OutputThread {
   std::thread thread_;  // last: started when everything above exists
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -11,7 +11,7 @@
 #include "solver/run/pocket_steps.hpp"
 #include "solver/run/schedule_output.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 using contact::Vec3;
 
@@ -31,7 +31,7 @@ struct BodySeries {
 // One name per quantity in both spaces (layout version 3): a planar bearing stores the planar
 // components (x, y and about z) of the quantity a spatial one stores in full; each series' attribute
 // `components` names its columns. docs/output_layout.md lists the names of earlier versions.
-const std::vector<BodySeries>& border_series(io::ModelKind kind) {
+const std::vector<BodySeries>& border_series(scene::ModelKind kind) {
   static const std::vector<BodySeries> planar = {
       {"position", Quantity::position, {0, 1}, "m", "centre x, y in the bearing frame"},
       {"velocity", Quantity::velocity, {0, 1}, "m/s", "centre velocity"},
@@ -49,10 +49,10 @@ const std::vector<BodySeries>& border_series(io::ModelKind kind) {
        "centre acceleration and angular acceleration, bearing frame (0 where not a state)"},
       {"force", Quantity::force, {0, 1, 2, 3, 4, 5}, "N, N m",
        "net force and moment at the centre (contacts, loads, supports, gravity)"}};
-  return kind == io::ModelKind::spatial ? spatial : planar;
+  return kind == scene::ModelKind::spatial ? spatial : planar;
 }
 
-const std::vector<BodySeries>& element_series(io::ModelKind kind) {
+const std::vector<BodySeries>& element_series(scene::ModelKind kind) {
   static const std::vector<BodySeries> planar = {
       {"position", Quantity::position, {0, 1}, "m", "roller centres x, y"},
       {"velocity", Quantity::velocity, {0, 1}, "m/s", "roller centre velocities"},
@@ -64,7 +64,7 @@ const std::vector<BodySeries>& element_series(io::ModelKind kind) {
       {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "ball angular velocities, bearing frame"},
       {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
        "ball centre acceleration and angular acceleration, bearing frame"}};
-  return kind == io::ModelKind::spatial ? spatial : planar;
+  return kind == scene::ModelKind::spatial ? spatial : planar;
 }
 
 /// The `components` attribute of a series: what each of its columns is ("x", "about z", ...).
@@ -107,15 +107,15 @@ double component(const BodySample& s, Quantity q, int c) {
 
 
 template <class Table>
-void define_diagnostics(io::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns,
+void define_diagnostics(h5::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns,
                         bool shared) {
   for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning, shared);
 }
 
 template <class Table>
-std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids(const io::H5SeriesWriter& file, const std::string& group,
+std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids(const h5::H5SeriesWriter& file, const std::string& group,
                                                          const Table& fields) {
-  std::vector<io::H5SeriesWriter::SeriesId> ids;
+  std::vector<h5::H5SeriesWriter::SeriesId> ids;
   for (const auto& f : fields) ids.push_back(file.series_id(group + "/" + f.name));
   return ids;
 }
@@ -151,7 +151,7 @@ std::string bytes_text(double bytes) {
 }
 
 // Upper bounds of the parts of a file beside its series' values, measured on this writer's files
-// (tests/cli/cli_test.sh output_size checks the whole file against the estimate): the superblock,
+// (tests/system/cli/cli_test.sh output_size checks the whole file against the estimate): the superblock,
 // the root's fixed attributes (build, versions) and the summary's fixed keys; per dataset its
 // object header (shape, chunking, filters, units, description, the time scale's references) and
 // its first chunk-index node; per series byte the chunk index's growth and deflate's worst case.
@@ -163,13 +163,13 @@ constexpr double kBytesPerDataset = 4e3;
 constexpr double kIndexShare = 0.01;
 
 /// The datasets the writer defines for `m` (OutputWriter's constructor and define_segment_groups).
-double dataset_count(const Model& m, bool segments) {
+double dataset_count(const bearing::Model& m, bool segments) {
   double n = 2 + static_cast<double>(m.first_element * static_cast<int>(border_series(m.kind).size())) +
              static_cast<double>(element_series(m.kind).size()) + PocketSteps::quantities;
   n += 2;  // /cage/epicyclic_speed, /cage/rolling_speed (both kinds)
   if (!segments) return n;
   std::set<std::pair<int, bool>> kinds;  // (kind, line family)
-  for (const Segment& s : m.segments)
+  for (const bearing::Segment& s : m.segments)
     kinds.emplace(static_cast<int>(s.kind), is_planar_element(m.laws[static_cast<std::size_t>(s.law)]));
   for (const auto& [kind, line] : kinds)
     n += 2 + static_cast<double>(line ? contact::line_diagnostic_fields.size() : contact::point_diagnostic_fields.size());
@@ -177,14 +177,14 @@ double dataset_count(const Model& m, bool segments) {
 }
 
 /// Everything of a file but its series' values and the /scheduler log's arrays (OutputEstimate).
-double fixed_output_bytes(const Model& m, const io::Scene& scene, double series_bytes) {
+double fixed_output_bytes(const bearing::Model& m, const scene::Scene& scene, double series_bytes) {
   // The scene text in scene_text and about four times in the summary's parameters; the model's description.
   double text = 5 * static_cast<double>(scene.text.size()) + static_cast<double>(scene.source.size() + m.describe().size());
   for (const std::string& o : scene.overrides) text += 2 * static_cast<double>(o.size());
   double names = 0;  // variable-length strings: a 16-byte reference and the text in a heap
   for (const std::string& n : m.state_name) names += 32 + static_cast<double>(n.size());
   if (scene.output.segments)
-    for (const Segment& s : m.segments) names += 40 + static_cast<double>(s.name.size());
+    for (const bearing::Segment& s : m.segments) names += 40 + static_cast<double>(s.name.size());
   return kFileBaseBytes + text + names + kBytesPerDataset * dataset_count(m, scene.output.segments) +
          kIndexShare * series_bytes + kScheduleLogFixedBytes;
 }
@@ -197,7 +197,7 @@ std::string OutputEstimate::describe(double limit) const {
                      samples, values_per_sample, bytes_text(bytes), bytes_text(fixed_bytes), bytes_text(limit));
 }
 
-OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
+OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scene) {
   OutputEstimate e;
   const double end = scene.scene.end_time, dt = scene.scene.output_interval;
   // As run_scene counts them: t = 0 and every whole interval up to end_time. Held as a double
@@ -207,7 +207,7 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   if (scene.output.segments)
-    for (const Segment& s : m.segments)
+    for (const bearing::Segment& s : m.segments)
       values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
   e.values_per_sample = values;
   e.bytes = samples * static_cast<double>(values) * sizeof(double);
@@ -216,11 +216,11 @@ OutputEstimate estimate_output(const Model& m, const io::Scene& scene) {
   return e;
 }
 
-void check_output_size(const OutputEstimate& e, const io::Scene& scene) {
+void check_output_size(const OutputEstimate& e, const scene::Scene& scene) {
   const double limit = scene.output.max_size;
   if (e.total() <= limit) return;
   const std::string key = "scene.output_interval";
-  throw io::SceneError(
+  throw scene::SceneError(
       scene.source, scene.line_of(key), key,
       fmt::format("the output would be {} ({:.4g} samples, one every {:g} s over end_time = {:g} s, x {} values x 8 "
                   "bytes, + {} of names, attributes and indexes), more than [output] max_size = {}: raise "
@@ -235,17 +235,17 @@ namespace {
 
 /// A choice key's word as the scene spells it ("deep_groove_ball"), from the schema's resolved
 /// parameters (the one table of those names).
-std::string scene_word(const io::Scene& scene, const std::string& key) {
-  for (const io::SceneParameter& p : io::scene_parameters(scene))
+std::string scene_word(const scene::Scene& scene, const std::string& key) {
+  for (const scene::SceneParameter& p : scene::scene_parameters(scene))
     if (p.key == key && p.word) return *p.word;
   return "";
 }
 
 }  // namespace
 
-void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m, const io::Scene& scene) {
-  const io::BearingGeometry& g = scene.bearing;
-  const bool spatial = m.kind == io::ModelKind::spatial;
+void write_bearing_attributes(h5::H5SeriesWriter& file, const bearing::Model& m, const scene::Scene& scene) {
+  const scene::BearingGeometry& g = scene.bearing;
+  const bool spatial = m.kind == scene::ModelKind::spatial;
   file.set_attribute("/", "model_kind", std::string(spatial ? "spatial" : "planar"));
   file.set_attribute("/", "bearing_type", scene_word(scene, "bearing.type"));
   file.set_attribute("/", "rolling_element", std::string(g.is_ball_bearing() ? "ball" : "roller"));
@@ -267,26 +267,26 @@ void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m, const io
   file.set_attribute("/", "cage_guidance", scene_word(scene, "cage.guidance"));
   file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
   file.set_attribute("/", "land_clearance",
-                     m.first_segment(SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);
+                     m.first_segment(bearing::SegmentKind::cage_land) ? scene.cage.land_clearance : 0.0);
   // The integrator's error control on the rolling elements' positions: the resolution of what is
   // read from them (the report's contact-angle resolution).
   const std::vector<double> atol = m.absolute_tolerance();
-  const Body& element = m.bodies[static_cast<std::size_t>(m.first_element)];
-  const int slot = element.slot[spatial ? sz : sx];
+  const bearing::Body& element = m.bodies[static_cast<std::size_t>(m.first_element)];
+  const int slot = element.slot[spatial ? bearing::sz : bearing::sx];
   file.set_attribute("/", "element_position_tolerance", slot >= 0 ? atol[static_cast<std::size_t>(slot)] : 0.0);
   file.set_attribute("/", "relative_tolerance", scene.solver.rtol);
 }
 
-BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
-                       const Wrench& net) {
-  const Body& body = m.bodies[static_cast<std::size_t>(b)];
+BodySample sample_body(const bearing::Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
+                       const bearing::Wrench& net) {
+  const bearing::Body& body = m.bodies[static_cast<std::size_t>(b)];
   auto state = [&](int c) { return body.slot[c] >= 0 ? z[static_cast<std::size_t>(body.slot[c])] : 0.0; };
   BodySample s;
   for (int c = 0; c < 6; ++c) {
-    s.acceleration[c] = body.slot[svx + c] >= 0 ? zdot[static_cast<std::size_t>(body.slot[svx + c])] : 0.0;
+    s.acceleration[c] = body.slot[bearing::svx + c] >= 0 ? zdot[static_cast<std::size_t>(body.slot[bearing::svx + c])] : 0.0;
     s.force[c] = c < 3 ? net.force[c] : net.moment[c - 3];
   }
-  if (m.kind == io::ModelKind::planar) {
+  if (m.kind == scene::ModelKind::planar) {
     const auto k = m.planar_kinematics(b, t, z.data());
     s.position = Vec3(k.x, k.y, 0), s.velocity = Vec3(k.vx, k.vy, 0);
     s.angles = Vec3(0, 0, k.theta), s.angular_velocity = Vec3(0, 0, k.omega);
@@ -294,20 +294,20 @@ BodySample sample_body(const Model& m, int b, double t, const std::vector<double
   }
   const auto k = m.kinematics(b, t, z.data());
   s.position = k.position, s.velocity = k.velocity, s.angular_velocity = k.angular_velocity;
-  s.angles = Vec3(state(sax), state(say), state(saz));
-  if (body.ring && body.ring->tilt == io::RingTilt::prescribed)
+  s.angles = Vec3(state(bearing::sax), state(bearing::say), state(bearing::saz));
+  if (body.ring && body.ring->tilt == scene::RingTilt::prescribed)
     s.angles.x() = body.ring->misalignment_x(t), s.angles.y() = body.ring->misalignment_y(t);
   return s;
 }
 
-std::map<std::string, SegmentSeries> segment_series(const Model& m) {
+std::map<std::string, SegmentSeries> segment_series(const bearing::Model& m) {
   std::map<std::string, SegmentSeries> all;
-  for (int k = 0; k < segment_kind_count; ++k) {
+  for (int k = 0; k < bearing::segment_kind_count; ++k) {
     std::vector<int> segments;
     for (std::size_t s = 0; s < m.segments.size(); ++s)
       if (static_cast<int>(m.segments[s].kind) == k) segments.push_back(static_cast<int>(s));
     if (segments.empty()) continue;
-    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k)) + "/";
+    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<bearing::SegmentKind>(k)) + "/";
     auto add = [&](const auto& fields) {
       for (std::size_t f = 0; f < fields.size(); ++f) all[g + fields[f].name] = {static_cast<int>(f), segments};
     };
@@ -319,7 +319,7 @@ std::map<std::string, SegmentSeries> segment_series(const Model& m) {
   return all;
 }
 
-OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments, bool shared_segments)
+OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments)
     : file_(file), m_(m), segments_(segments), shared_(shared_segments) {
   file_.define_series("/time", {}, "s", "output times (interpolated, not solver steps)");
   file_.define_series("/energy", {}, "J", "kinetic + elastic + support + load potential energy");
@@ -329,7 +329,7 @@ OutputWriter::OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segmen
       file_.define_series(path, row_shape(s, {}), s.unit, s.meaning);
       file_.set_attribute(path, "components", component_names(s));
     }
-  if (m.kind == io::ModelKind::spatial) {
+  if (m.kind == scene::ModelKind::spatial) {
     file_.define_series("/cage/epicyclic_speed", {}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
     file_.define_series("/cage/rolling_speed", {}, "rad/s",
                         "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
@@ -370,7 +370,7 @@ void OutputWriter::define_pocket_steps() {
 }
 
 void OutputWriter::define_segment_groups() {
-  for (int k = 0; k < segment_kind_count; ++k) {
+  for (int k = 0; k < bearing::segment_kind_count; ++k) {
     std::vector<std::string> names;
     std::vector<double> elements;
     for (std::size_t s = 0; s < m_.segments.size(); ++s)
@@ -380,8 +380,8 @@ void OutputWriter::define_segment_groups() {
         index_[k].push_back(static_cast<int>(s));
       }
     if (names.empty()) continue;
-    line_family_[k] = is_planar_element(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
-    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<SegmentKind>(k));
+    line_family_[k] = bearing::is_planar_element(m_.laws[static_cast<std::size_t>(m_.segments[static_cast<std::size_t>(index_[k][0])].law)]);
+    const std::string g = std::string("/segments/") + segment_kind_name(static_cast<bearing::SegmentKind>(k));
     file_.write_array(g + "/names", names, "segment names, in column order of the datasets of this group");
     file_.write_array(g + "/element", {elements.size()}, elements, "-",
                       "rolling element (0-based) of each column; -1 for cage-land");
@@ -395,25 +395,25 @@ void OutputWriter::define_segment_groups() {
   }
 }
 
-double OutputWriter::loaded_contact_angle(const Model& m, const Equations& eq) {
+double OutputWriter::loaded_contact_angle(const bearing::Model& m, const bearing::Equations& eq) {
   constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
   constexpr int contact_angle = contact::field_index(contact::point_diagnostic_fields, "contact_angle");
   double load = 0, weighted = 0;
   for (std::size_t s = 0; s < m.segments.size(); ++s) {
-    if (m.segments[s].kind != SegmentKind::ball_inner_groove) continue;
+    if (m.segments[s].kind != bearing::SegmentKind::ball_inner_groove) continue;
     const double q = eq.diagnostic(s, normal_force);
     load += q, weighted += q * std::abs(eq.diagnostic(s, contact_angle));
   }
   return load > 0 ? weighted / load : m.nominal_contact_angle;
 }
 
-double OutputWriter::rolling_cage_speed(const Model& m, const Equations& eq, double t) {
-  if (m.kind != io::ModelKind::spatial) return m.epicyclic_cage_speed(t);  // line contacts roll at 0 deg
+double OutputWriter::rolling_cage_speed(const bearing::Model& m, const bearing::Equations& eq, double t) {
+  if (m.kind != scene::ModelKind::spatial) return m.epicyclic_cage_speed(t);  // line contacts roll at 0 deg
   return m.epicyclic_cage_speed(t, loaded_contact_angle(m, eq));
 }
 
 void OutputWriter::append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot,
-                                 const Equations& eq) {
+                                 const bearing::Equations& eq) {
   const auto& loads = eq.body_loads();
   auto id = border_ids_.begin();
   for (int bi = 0; bi < m_.first_element; ++bi) {
@@ -442,7 +442,7 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
   }
 }
 
-void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
+void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
                           double energy, const std::vector<double>& pocket_steps,
                           const std::vector<int>* segment_rank) {
   file_.append(time_, std::span<const double>(&t, 1));
@@ -454,7 +454,7 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
       file_.append(pocket_step_ids_[q], std::span<const double>(pocket_steps.data() + q * cells, cells));
   }
   if (!segments_) return;
-  for (int k = 0; k < segment_kind_count; ++k) {
+  for (int k = 0; k < bearing::segment_kind_count; ++k) {
     const std::vector<int>& index = index_[k];
     row_.resize(index.size());
     if (shared_) {
@@ -473,4 +473,4 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
   }
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -11,7 +11,7 @@
 #include "io/h5/h5_series.hpp"
 #include "solver/bearing/equations.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// What the output knows of one body at one sample.
 struct BodySample {
@@ -38,19 +38,19 @@ struct OutputEstimate {
   /// (limit 4 GB, [output] max_size)".
   std::string describe(double limit) const;
 };
-OutputEstimate estimate_output(const Model& m, const io::Scene& scene);
-/// Throws io::SceneError (bad input) naming output_interval, end_time and max_size, with the
+OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scene);
+/// Throws scene::SceneError (bad input) naming output_interval, end_time and max_size, with the
 /// numbers, when the estimate exceeds [output] max_size.
-void check_output_size(const OutputEstimate& estimate, const io::Scene& scene);
+void check_output_size(const OutputEstimate& estimate, const scene::Scene& scene);
 
 /// The root attributes that describe the bearing, written for every run (docs/output_layout.md,
 /// "Bearing attributes"): its kind, the rolling elements, the geometry in SI (radii, clearances,
 /// contact angle) and the integrator's tolerances of the element positions, so that readers never
 /// parse the model's description.
-void write_bearing_attributes(io::H5SeriesWriter& file, const Model& m, const io::Scene& scene);
+void write_bearing_attributes(h5::H5SeriesWriter& file, const bearing::Model& m, const scene::Scene& scene);
 
-BodySample sample_body(const Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
-                       const Wrench& net);
+BodySample sample_body(const bearing::Model& m, int b, double t, const std::vector<double>& z, const std::vector<double>& zdot,
+                       const bearing::Wrench& net);
 
 /// The segment diagnostic series of the layout (the series the parallel output shares between
 /// ranks), by path: the diagnostic's position in its family's field table and the segment of each
@@ -59,45 +59,45 @@ struct SegmentSeries {
   int field = 0;
   std::vector<int> segments;
 };
-std::map<std::string, SegmentSeries> segment_series(const Model& m);
+std::map<std::string, SegmentSeries> segment_series(const bearing::Model& m);
 
 class OutputWriter {
  public:
   /// Defines the layout for the model (segment diagnostics only if `segments`; written by all
   /// ranks together if `shared_segments`: the file has a shared writer, see H5SeriesWriter).
-  OutputWriter(io::H5SeriesWriter& file, const Model& m, bool segments, bool shared_segments = false);
+  OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments = false);
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
   /// `pocket_steps`: the step-resolved pocket statistics of the interval ending at t
   /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets).
   /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
   /// process writes the diagnostics of rank 0's).
-  void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq,
+  void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
               double energy, const std::vector<double>& pocket_steps, const std::vector<int>* segment_rank = nullptr);
 
   /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
   /// balls roll at); the nominal angle when none is loaded.
-  static double loaded_contact_angle(const Model& m, const Equations& eq);
+  static double loaded_contact_angle(const bearing::Model& m, const bearing::Equations& eq);
   /// The kinematic cage speed at that angle at time t (/cage/rolling_speed): the cage speed of
   /// elements rolling without slip at the angle they are loaded at. Planar: the epicyclic speed of
   /// line contacts (0 deg).
-  static double rolling_cage_speed(const Model& m, const Equations& eq, double t);
+  static double rolling_cage_speed(const bearing::Model& m, const bearing::Equations& eq, double t);
 
  private:
   void define_segment_groups();
   void define_pocket_steps();
-  void append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot, const Equations& eq);
+  void append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq);
 
-  io::H5SeriesWriter& file_;
-  const Model& m_;
+  h5::H5SeriesWriter& file_;
+  const bearing::Model& m_;
   bool segments_, shared_;
   std::vector<unsigned char> mine_;  ///< reused: which cells of a shared row this process writes
   // The series' handles in the order append() writes them (looked up once, not per sample).
-  io::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
-  std::vector<io::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_;
-  std::vector<io::H5SeriesWriter::SeriesId> diagnostic_ids_[segment_kind_count];
+  h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
+  std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_;
+  std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids_[bearing::segment_kind_count];
   std::vector<double> row_;  ///< reused row buffer
-  std::vector<int> index_[segment_kind_count];  ///< segments of each kind, in column order
-  bool line_family_[segment_kind_count] = {};    ///< the kind's diagnostics: line (else point) field table
+  std::vector<int> index_[bearing::segment_kind_count];  ///< segments of each kind, in column order
+  bool line_family_[bearing::segment_kind_count] = {};    ///< the kind's diagnostics: line (else point) field table
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

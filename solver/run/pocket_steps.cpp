@@ -7,7 +7,7 @@
 
 #include "solver/bearing/segment_record.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -19,12 +19,12 @@ std::string value_name(const std::string& what, std::size_t i) { return fmt::for
 
 }  // namespace
 
-PocketSteps::PocketSteps(const Model& m) {
+PocketSteps::PocketSteps(const bearing::Model& m) {
   for (std::size_t s = 0; s < m.segments.size(); ++s) {
-    const Segment& seg = m.segments[s];
-    const int side = seg.kind == SegmentKind::cage_bar_front ? 0
-                     : seg.kind == SegmentKind::cage_bar_rear ? 1
-                     : seg.kind == SegmentKind::ball_pocket   ? -1
+    const bearing::Segment& seg = m.segments[s];
+    const int side = seg.kind == bearing::SegmentKind::cage_bar_front ? 0
+                     : seg.kind == bearing::SegmentKind::cage_bar_rear ? 1
+                     : seg.kind == bearing::SegmentKind::ball_pocket   ? -1
                                                               : -2;
     if (side == -2 || seg.element < 0) continue;
     columns_.push_back({static_cast<int>(s), seg.element, side});
@@ -40,8 +40,8 @@ void PocketSteps::sum_forces(const std::vector<double>& records, double* force) 
   std::fill(force, force + cells_, 0.0);
   for (const Column& c : columns_) {
     const double* diagnostics =
-        records.data() + static_cast<std::size_t>(c.segment) * SegmentRecord::size + SegmentRecord::diagnostics;
-    const double fn = diagnostics[normal_force_field];
+        records.data() + static_cast<std::size_t>(c.segment) * bearing::SegmentRecord::size + bearing::SegmentRecord::diagnostics;
+    const double fn = diagnostics[bearing::normal_force_field];
     if (!(fn > 0)) continue;
     const int side = c.side >= 0 ? c.side : (diagnostics[circumferential_field] < 0 ? 0 : 1);
     force[static_cast<std::size_t>(c.pocket) * sides + static_cast<std::size_t>(side)] += fn;
@@ -120,8 +120,8 @@ void PocketSteps::restore(const Checkpoint& cp) {
     for (std::size_t s = 0; s < sides; ++s) total_[q][s] = value(value_name(quantity_names[q], s));
 }
 
-io::JsonObject PocketSteps::totals_json() const {
-  io::JsonObject j;
+json::JsonObject PocketSteps::totals_json() const {
+  json::JsonObject j;
   if (!active()) return j;
   j.add("sides", "[0, 1]: 0 the bar ahead in +z (spatial: circumferential_force < 0; planar: cage_bar_front), "
                  "1 the bar behind");
@@ -130,4 +130,4 @@ io::JsonObject PocketSteps::totals_json() const {
   return j;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -26,7 +26,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/run/checkpoint.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 class PocketSteps {
  public:
@@ -34,7 +34,7 @@ class PocketSteps {
   /// The statistics of a row, in this order, each [pockets x sides].
   static constexpr int quantities = 4;  // onsets, peak force, impulse, contact time
 
-  explicit PocketSteps(const Model& m);
+  explicit PocketSteps(const bearing::Model& m);
   /// The model has pocket contacts (ball_pocket or cage bar segments).
   bool active() const { return !columns_.empty(); }
   int pockets() const { return pockets_; }
@@ -51,7 +51,7 @@ class PocketSteps {
   void save(Checkpoint& cp) const;
   void restore(const Checkpoint& cp);
   /// The run's totals per side: onsets, peak force, impulse, contact time (summary_json).
-  io::JsonObject totals_json() const;
+  json::JsonObject totals_json() const;
 
  private:
   struct Column {
@@ -77,4 +77,4 @@ class PocketSteps {
   double total_[quantities][sides] = {};
 };
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

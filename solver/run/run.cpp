@@ -31,10 +31,10 @@
 #include "solver/run/scene_summary.hpp"
 #include "solver/run/schedule_output.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
-io::JsonObject RunSummary::to_json() const {
-  io::JsonObject j;
+json::JsonObject RunSummary::to_json() const {
+  json::JsonObject j;
   j.add("simulated_time_s", simulated_time_s);
   j.add("wall_time_s", wall_time_s);
   j.add("steps", stats.steps);
@@ -68,7 +68,7 @@ io::JsonObject RunSummary::to_json() const {
   j.add("output_write_time_s", output_write_seconds);
   j.add("output_thread_time_s", output_thread_seconds);
   if (!pocket_step_totals.empty()) j.add("pocket_step_totals", pocket_step_totals);
-  io::JsonObject named_warnings;
+  json::JsonObject named_warnings;
   for (const auto& [name, text] : warnings) named_warnings.add(name, text);
   j.add("warnings", std::move(named_warnings));
   j.add("scene_overrides", scene_overrides);
@@ -109,24 +109,24 @@ namespace {
 /// Checks the Newton linear solver (and PETSc's options) before any output exists, then creates the
 /// output (OUT.h5.partial), or opens it to continue from a checkpoint, with the attributes every
 /// run has.
-io::H5SeriesWriter open_run_output(const io::Scene& scene, const RunOptions& options, const Equations& eq,
+h5::H5SeriesWriter open_run_output(const scene::Scene& scene, const RunOptions& options, const bearing::Equations& eq,
                                    const Checkpoint* resumed) {
   const std::string solver_line =
-      prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
+      numerics::prepare_linear_solver(scene.solver, {eq.border_size(), eq.block_count(), eq.block_size()});
   if (options.on_info) options.on_info(solver_line);
-  const Model& model = eq.model();
-  io::H5WriterOptions storage;
+  const bearing::Model& model = eq.model();
+  h5::H5WriterOptions storage;
   // Written by the output thread (not the parallel output): flushed every 4 MiB of rows there, so
   // that the commit at the end, on the run's thread, has little left to store and to sync.
   if (!options.shared_output && options.output_thread) {
     storage.max_buffered_bytes = std::size_t{4} << 20;
     storage.compressor_core = options.output_thread_core;  // beside the output thread, off the rank's core
   }
-  auto file = resumed ? io::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
+  auto file = resumed ? h5::H5SeriesWriter::reopen(options.output_path, static_cast<std::size_t>(resumed->sample + 1),
                                                    resumed->unwritten_rows, storage, resumed->partial_crc)
-                      : io::H5SeriesWriter::create(options.output_path, storage);
+                      : h5::H5SeriesWriter::create(options.output_path, storage);
   if (options.shared_output)  // the segment diagnostics: written by every rank together
-    file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<io::SharedRows>& rows) {
+    file.share_series_with([shared = options.shared_output, path = file.partial_path()](std::vector<h5::SharedRows>& rows) {
       shared->write(path, rows);
     });
   file.set_attribute("/", "scene_text", scene.text);
@@ -174,7 +174,7 @@ std::optional<Checkpoint> checkpoint_to_resume(const RunOptions& options, const 
 }
 
 /// The last output sample of the run (samples 0..this).
-long run_samples(const io::Scene& scene) {
+long run_samples(const scene::Scene& scene) {
   return std::lround(std::floor(scene.scene.end_time / scene.scene.output_interval + 1e-9));
 }
 
@@ -195,14 +195,14 @@ struct CheckpointPlan {
   }
 };
 
-StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset,
-                                  Equations& eq);
+bearing::StartupReport startup_naming_keys(const bearing::Model& model, const scene::Scene& scene, double t0, double azimuth_offset,
+                                  bearing::Equations& eq);
 
 /// One run from its first sample (0, or the one after a checkpoint) to the end: integration, output
 /// samples, checkpoints and the summary.
 class RunLoop {
  public:
-  RunLoop(const io::Scene& scene, const RunOptions& options, const Model& model, Equations& eq,
+  RunLoop(const scene::Scene& scene, const RunOptions& options, const bearing::Model& model, bearing::Equations& eq,
           scheduler::Executor& executor, const RunFingerprint& fingerprint)
       : scene_(scene), options_(options), model_(model), eq_(eq), executor_(executor), fingerprint_(fingerprint),
         dt_(scene.scene.output_interval), samples_(run_samples(scene)),
@@ -219,7 +219,7 @@ class RunLoop {
   /// The output of one sample: the right-hand side at (t, z) for the diagnostics on `eq`, the rows,
   /// the summary's sums (on the output thread, or on this one with the parallel output). Returns the
   /// right-hand side's wall seconds.
-  double write_sample(Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot,
+  double write_sample(bearing::Equations& eq, double t, long sample, const std::vector<double>& z, std::vector<double>& zdot,
                       const std::vector<double>& pocket_row);
   /// A new integrator from (t, z), its accepted steps observed by the pocket statistics.
   void start_integrator(double t);
@@ -231,10 +231,10 @@ class RunLoop {
   /// `rethrow`, else left to the failure being reported).
   RunSummary finish(double t, bool rethrow = true);
 
-  const io::Scene& scene_;
+  const scene::Scene& scene_;
   const RunOptions& options_;
-  const Model& model_;
-  Equations& eq_;
+  const bearing::Model& model_;
+  bearing::Equations& eq_;
   scheduler::Executor& executor_;
   const RunFingerprint& fingerprint_;
   const double dt_;
@@ -246,9 +246,9 @@ class RunLoop {
   // of each sample goes to the output with it.
   PocketSteps pockets_;
   std::vector<double> pocket_row_;
-  std::optional<io::H5SeriesWriter> file_;
+  std::optional<h5::H5SeriesWriter> file_;
   std::optional<OutputWriter> out_;
-  std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<numerics::Integrator> integrator_;
   std::vector<double> z_, zdot_, restart_times_;
   double output_seconds_ = 0, last_checkpoint_wall_ = 0;
   double diagnostics_seconds_ = 0;  // of output_seconds_: the right-hand sides at output times
@@ -256,12 +256,12 @@ class RunLoop {
   // executor: the same records bit for bit) and the thread. Without them (the parallel output, whose
   // workers keep the diagnostics of the right-hand side they evaluated) the run's thread writes.
   scheduler::SerialExecutor sample_executor_;
-  std::unique_ptr<Equations> sample_eq_;
+  std::unique_ptr<bearing::Equations> sample_eq_;
   std::vector<double> sample_zdot_;
   std::unique_ptr<OutputThread> output_thread_;  // after what its work uses: it ends first
 };
 
-double RunLoop::write_sample(Equations& eq, double t, long sample, const std::vector<double>& z,
+double RunLoop::write_sample(bearing::Equations& eq, double t, long sample, const std::vector<double>& z,
                              std::vector<double>& zdot, const std::vector<double>& pocket_row) {
   const double before = wall();
   eq.rhs(t, z.data(), zdot.data());
@@ -312,7 +312,7 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
 RunSummary RunLoop::finish(double t, bool rethrow) {
   drain_output(rethrow);
   RunSummary sum;
-  sum.model_kind = model_.kind == io::ModelKind::spatial ? "spatial" : "planar";
+  sum.model_kind = model_.kind == scene::ModelKind::spatial ? "spatial" : "planar";
   totals_.summarize(sum, t, integrator_->statistics(), eq_, executor_, wall());
   // The integrator since the last restart (a checkpoint restarts it): its method, the states that
   // limit its step and the split of its time.
@@ -334,7 +334,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
 }
 
 void RunLoop::start_integrator(double t) {
-  integrator_ = std::make_unique<Integrator>(eq_, scene_.solver, t, z_);
+  integrator_ = std::make_unique<numerics::Integrator>(eq_, scene_.solver, t, z_);
   // The last right-hand side of an accepted step is the integrator's own: a sample's (write_sample
   // on eq_) comes after advance_to() returns, and every step evaluates the right-hand side again.
   if (pockets_.active())
@@ -363,7 +363,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   const double t0 = 0.0;
   long first = 1;  // the first sample integrated to
   if (!options_.shared_output && options_.output_thread) {
-    sample_eq_ = std::make_unique<Equations>(model_, sample_executor_);
+    sample_eq_ = std::make_unique<bearing::Equations>(model_, sample_executor_);
     sample_executor_.attach(sample_eq_->task_catalogue());
     sample_zdot_.resize(static_cast<std::size_t>(model_.state_size));
     totals_.count_also(*sample_eq_, sample_executor_);
@@ -374,7 +374,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
     if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
   } else {
-    const StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset, eq_);
+    const bearing::StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset, eq_);
     if (options_.on_info) options_.on_info(start.summary);
     z_ = start.state;
   }
@@ -384,7 +384,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
     out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr);
   } catch (const std::runtime_error& e) {
-    if (!resumed || dynamic_cast<const io::SceneError*>(&e) || dynamic_cast<const OptionsError*>(&e)) throw;
+    if (!resumed || dynamic_cast<const scene::SceneError*>(&e) || dynamic_cast<const numerics::OptionsError*>(&e)) throw;
     // The .partial file does not continue (missing rows, a damaged chunk, rows whose checksum is
     // not the checkpoint's): a refused resume, exit 2, nothing more written.
     throw ResumeRefused(fmt::format("cannot resume from {}: {}; run without --resume to start again",
@@ -406,7 +406,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     const double t = t0 + static_cast<double>(i) * dt_;
     try {
       integrator_->advance_to(t, z_);
-    } catch (const IntegrationFailure&) {
+    } catch (const numerics::IntegrationFailure&) {
       finish(t_last, false);
       file_->flush();
       throw;  // the .partial file stays, the previous output is untouched
@@ -438,8 +438,8 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
 }
 
 /// The start-up state; a start-up that fails names the scene keys that set it (file, lines).
-StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, double t0, double azimuth_offset,
-                                  Equations& eq) {
+bearing::StartupReport startup_naming_keys(const bearing::Model& model, const scene::Scene& scene, double t0, double azimuth_offset,
+                                  bearing::Equations& eq) {
   try {
     return initial_state(model, t0, azimuth_offset, &eq);  // its contacts through the executor
   } catch (const std::runtime_error& e) {
@@ -448,8 +448,8 @@ StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, do
         "outer_ring.translation", "inner_ring.axial", "outer_ring.axial", "inner_ring.tilt", "outer_ring.tilt",
         "inner_ring.load", "outer_ring.load", "inner_ring.support", "outer_ring.support", "inner_ring.speed",
         "outer_ring.speed", "scene.gravity"};
-    const std::string named = io::keys_with_lines(scene, keys);
-    throw io::SceneError(scene.source, 0, "",
+    const std::string named = scene::keys_with_lines(scene, keys);
+    throw scene::SceneError(scene.source, 0, "",
                          fmt::format("{}; the keys that set the start-up: {}", e.what(),
                                      named.empty() ? "none given (the defaults of [bearing] and the rings)" : named));
   }
@@ -457,17 +457,17 @@ StartupReport startup_naming_keys(const Model& model, const io::Scene& scene, do
 
 }  // namespace
 
-RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
-  io::check_output_path(options.output_path, "output file (-o)");
-  const io::OutputLock lock(options.output_path);  // before anything of the output is touched
-  const Model model = build_model(scene);
+RunSummary run_scene(const scene::Scene& scene, const RunOptions& options) {
+  h5::check_output_path(options.output_path, "output file (-o)");
+  const h5::OutputLock lock(options.output_path);  // before anything of the output is touched
+  const bearing::Model model = bearing::build_model(scene);
   check_output_size(estimate_output(model, scene), scene);  // before any work or file
   scheduler::SerialExecutor serial;
   scheduler::Executor& executor = options.executor ? *options.executor : serial;
-  Equations eq(model, executor);
+  bearing::Equations eq(model, executor);
   executor.attach(eq.task_catalogue());
   // The overrides are part of the scene: a resume with other ones is refused at their line.
-  const RunFingerprint fingerprint{scene.text + io::overrides_as_comments(scene.overrides), build_fingerprint(options.mpi_library), options.result_options};
+  const RunFingerprint fingerprint{scene.text + scene::overrides_as_comments(scene.overrides), build_fingerprint(options.mpi_library), options.result_options};
   const std::optional<Checkpoint> resumed = checkpoint_to_resume(options, fingerprint);
   if (resumed)
     require_fits(*resumed, static_cast<std::size_t>(model.state_size), run_samples(scene),
@@ -476,14 +476,14 @@ RunSummary run_scene(const io::Scene& scene, const RunOptions& options) {
   return loop.run(resumed);
 }
 
-void serve_scene(const io::Scene& scene,
+void serve_scene(const scene::Scene& scene,
                  const std::function<void(const scheduler::TaskCatalogue&, const std::map<std::string, SegmentSeries>&)>& serve) {
   // The equations need an executor, but a worker's never call run(): their tasks are called by
   // `serve` with the master's context.
   scheduler::SerialExecutor unused;
-  const Model model = build_model(scene);
-  const Equations eq(model, unused);
+  const bearing::Model model = bearing::build_model(scene);
+  const bearing::Equations eq(model, unused);
   serve(eq.task_catalogue(), segment_series(model));
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

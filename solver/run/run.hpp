@@ -16,7 +16,7 @@
 #include "solver/numerics/integrator.hpp"
 #include "solver/run/run_profile.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 struct Progress {
   double time = 0, end_time = 0;  ///< s
@@ -34,9 +34,9 @@ class SharedOutput {
   /// Right after the right-hand side at output sample `sample`: the other ranks keep the
   /// diagnostics of their segments for the file. Returns each segment's rank in that evaluation.
   virtual const std::vector<int>& sample(long sample) = 0;
-  /// The collective write of the shared series' rows of `file` (io::write_shared_rows on every
+  /// The collective write of the shared series' rows of `file` (h5::write_shared_rows on every
   /// rank); throws std::runtime_error naming the failure.
-  virtual void write(const std::string& file, std::vector<io::SharedRows>& rows) = 0;
+  virtual void write(const std::string& file, std::vector<h5::SharedRows>& rows) = 0;
 };
 
 struct RunOptions {
@@ -80,7 +80,7 @@ class RunInterrupted : public std::runtime_error {
 
 struct RunSummary {
   double simulated_time_s = 0, wall_time_s = 0;
-  IntegratorStatistics stats;
+  numerics::IntegratorStatistics stats;
   long model_rhs_evaluations = 0, model_jacobian_evaluations = 0, segment_evaluations = 0;
   double rhs_seconds = 0, jacobian_seconds = 0;  ///< task time inside segment evaluations
   /// Wall time of the output on the run's thread: handing the samples to the output thread (or, with
@@ -105,16 +105,16 @@ struct RunSummary {
   int output_samples = 0;
   std::string method;                        ///< the integrator's method ("CVODE BDF", ...)
   std::vector<StateClassShare> step_limiting;  ///< which states limit the step, largest share first
-  IntegratorTiming timing;                   ///< where the integrator's time went
+  numerics::IntegratorTiming timing;                   ///< where the integrator's time went
   /// The scene's keys set on the command line ("key": "value as given") and its resolved
   /// parameters ("key": {"value": SI value or word, "unit": SI unit}): scene_summary.hpp.
-  io::JsonObject scene_overrides, scene_parameters;
+  json::JsonObject scene_overrides, scene_parameters;
   /// The step-resolved pocket statistics' run totals (solver/run/pocket_steps.hpp); empty without pockets.
-  io::JsonObject pocket_step_totals;
+  json::JsonObject pocket_step_totals;
   /// Signs that the run ended far from any physical running regime (regime_warnings()), by name:
   /// printed as warnings at the end and kept in the summary's "warnings".
   std::vector<std::pair<std::string, std::string>> warnings;
-  io::JsonObject to_json() const;
+  json::JsonObject to_json() const;
 };
 
 /// Cage slip (1 - cage / epicyclic speed, second half) at or beyond which a run is said to have
@@ -138,15 +138,15 @@ std::string output_share_note(const RunSummary& sum);
 /// replaced only when the run ends), with checkpoints (solver/run/checkpoint.hpp) as the scene's
 /// [output] section asks. On an integration failure the partial output is kept as OUT.h5.partial
 /// and IntegrationFailure is rethrown with its diagnosis. A bad output path throws
-/// io::OutputPathError, a refused resume ResumeRefused, a stop by a signal RunInterrupted.
-RunSummary run_scene(const io::Scene& scene, const RunOptions& options);
+/// h5::OutputPathError, a refused resume ResumeRefused, a stop by a signal RunInterrupted.
+RunSummary run_scene(const scene::Scene& scene, const RunOptions& options);
 
 /// The worker side of a run: builds the same model and equations as run_scene does on the
 /// master and hands their task catalogue to `serve` (which evaluates tasks until the master stops
 /// it, e.g. scheduler::MpiExecutor::serve) with the layout's segment series (segment_series(), for
 /// the parallel output's worker side). No integration.
 struct SegmentSeries;
-void serve_scene(const io::Scene& scene,
+void serve_scene(const scene::Scene& scene,
                  const std::function<void(const scheduler::TaskCatalogue&, const std::map<std::string, SegmentSeries>&)>& serve);
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

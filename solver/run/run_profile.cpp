@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -17,7 +17,7 @@ std::string class_of(const std::string& state_name) {
 
 }  // namespace
 
-std::vector<StateClassShare> step_limiting_classes(const Model& model, const StepLimitingStates& limiting) {
+std::vector<StateClassShare> step_limiting_classes(const bearing::Model& model, const numerics::StepLimitingStates& limiting) {
   std::map<std::string, StateClassShare> by_name;
   std::map<std::string, int> members;
   const double steps = static_cast<double>(std::max(1L, limiting.steps));
@@ -40,10 +40,10 @@ std::vector<StateClassShare> step_limiting_classes(const Model& model, const Ste
   return out;
 }
 
-io::JsonObject step_limiting_json(const std::vector<StateClassShare>& classes) {
-  io::JsonObject j;
+json::JsonObject step_limiting_json(const std::vector<StateClassShare>& classes) {
+  json::JsonObject j;
   for (const StateClassShare& c : classes) {
-    io::JsonObject k;
+    json::JsonObject k;
     k.add("error_share", c.error_share);
     k.add("largest_fraction", c.largest_fraction);
     k.add("mean_weighted_error", c.mean_weighted_error);
@@ -52,8 +52,8 @@ io::JsonObject step_limiting_json(const std::vector<StateClassShare>& classes) {
   return j;
 }
 
-io::JsonObject time_split_json(const IntegratorTiming& timing, double output_seconds, double wall_seconds) {
-  io::JsonObject j;
+json::JsonObject time_split_json(const numerics::IntegratorTiming& timing, double output_seconds, double wall_seconds) {
+  json::JsonObject j;
   j.add("rhs", timing.rhs);
   j.add("jacobian", timing.jacobian);
   j.add("linear_setup", timing.linear_setup);
@@ -65,4 +65,4 @@ io::JsonObject time_split_json(const IntegratorTiming& timing, double output_sec
   return j;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

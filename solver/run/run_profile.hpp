@@ -11,7 +11,7 @@
 #include "solver/bearing/model.hpp"
 #include "solver/numerics/integrator.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// One class of states: the states of one coordinate of every body of a kind.
 struct StateClassShare {
@@ -22,13 +22,13 @@ struct StateClassShare {
 };
 
 /// The classes of `limiting` (per state, integrator.hpp) by error share, largest first.
-std::vector<StateClassShare> step_limiting_classes(const Model& model, const StepLimitingStates& limiting);
+std::vector<StateClassShare> step_limiting_classes(const bearing::Model& model, const numerics::StepLimitingStates& limiting);
 
 /// {"roller.vx": {"error_share": .., "largest_fraction": .., "mean_weighted_error": ..}, ...}
-io::JsonObject step_limiting_json(const std::vector<StateClassShare>& classes);
+json::JsonObject step_limiting_json(const std::vector<StateClassShare>& classes);
 
 /// Seconds by part: rhs, jacobian, linear_setup, linear_solve, integrator, accounting, output, and
 /// other (start-up, output file, what no timer covers) = wall - the rest.
-io::JsonObject time_split_json(const IntegratorTiming& timing, double output_seconds, double wall_seconds);
+json::JsonObject time_split_json(const numerics::IntegratorTiming& timing, double output_seconds, double wall_seconds);
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

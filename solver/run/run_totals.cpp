@@ -6,7 +6,7 @@
 
 #include "solver/run/output_writer.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 using contact::Vec3;
 
@@ -15,15 +15,15 @@ namespace {
 // The integrator counters the summary sums over CVODE restarts, by name (checkpoint values).
 struct CounterField {
   const char* name;
-  long IntegratorStatistics::*member;
+  long numerics::IntegratorStatistics::*member;
 };
-constexpr CounterField kCounters[] = {{"steps", &IntegratorStatistics::steps},
-                                      {"cvode_rhs_evaluations", &IntegratorStatistics::rhs_evaluations},
-                                      {"cvode_jacobian_evaluations", &IntegratorStatistics::jacobian_evaluations},
-                                      {"linear_setups", &IntegratorStatistics::linear_setups},
-                                      {"newton_iterations", &IntegratorStatistics::newton_iterations},
-                                      {"newton_failures", &IntegratorStatistics::newton_failures},
-                                      {"error_test_failures", &IntegratorStatistics::error_test_failures}};
+constexpr CounterField kCounters[] = {{"steps", &numerics::IntegratorStatistics::steps},
+                                      {"cvode_rhs_evaluations", &numerics::IntegratorStatistics::rhs_evaluations},
+                                      {"cvode_jacobian_evaluations", &numerics::IntegratorStatistics::jacobian_evaluations},
+                                      {"linear_setups", &numerics::IntegratorStatistics::linear_setups},
+                                      {"newton_iterations", &numerics::IntegratorStatistics::newton_iterations},
+                                      {"newton_failures", &numerics::IntegratorStatistics::newton_failures},
+                                      {"error_test_failures", &numerics::IntegratorStatistics::error_test_failures}};
 
 constexpr const char* kBaseNames[] = {"model_rhs_evaluations", "model_jacobian_evaluations", "segment_evaluations",
                                       "rhs_seconds", "jacobian_seconds", "wall_seconds"};
@@ -31,7 +31,7 @@ constexpr const char* kBaseNames[] = {"model_rhs_evaluations", "model_jacobian_e
 }  // namespace
 
 // The counters of this process (equations, executor, wall clock), in kBaseNames order.
-void RunTotals::process_counts(const Equations& eq, const scheduler::Executor& executor, double wall,
+void RunTotals::process_counts(const bearing::Equations& eq, const scheduler::Executor& executor, double wall,
                                double out[6]) const {
   out[0] = static_cast<double>(eq.rhs_evaluations());
   out[1] = static_cast<double>(eq.jacobian_evaluations());
@@ -45,19 +45,19 @@ void RunTotals::process_counts(const Equations& eq, const scheduler::Executor& e
   out[3] += also_executor_->total_seconds(scheduler::Phase::rhs);
 }
 
-RunTotals::RunTotals(const Model& m, double end_time)
+RunTotals::RunTotals(const bearing::Model& m, double end_time)
     : m_(m),
       end_(end_time),
-      drive_(m.params().inner_ring.motion == io::RingMotion::driven ? &m.params().inner_ring : &m.params().outer_ring) {}
+      drive_(m.params().inner_ring.motion == scene::RingMotion::driven ? &m.params().inner_ring : &m.params().outer_ring) {}
 
 void RunTotals::turn_to(double t) {
   if (!turned_) last_t_ = t, turned_ = true;
-  if (drive_->motion == io::RingMotion::driven)
+  if (drive_->motion == scene::RingMotion::driven)
     revolutions_ += 0.5 * (drive_->speed(last_t_) + drive_->speed(t)) * (t - last_t_) / (2 * std::numbers::pi);
   last_t_ = t;
 }
 
-void RunTotals::record(double t, const std::vector<double>& z, const Equations& eq, double energy) {
+void RunTotals::record(double t, const std::vector<double>& z, const bearing::Equations& eq, double energy) {
   if (samples_ == 0) energy_initial_ = energy;
   energy_final_ = energy;
   energy_max_drift_ = std::max(energy_max_drift_, std::abs(energy - energy_initial_));
@@ -70,21 +70,21 @@ void RunTotals::record(double t, const std::vector<double>& z, const Equations& 
   constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
   std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);
   for (std::size_t s = 0; s < m_.segments.size(); ++s)
-    if (m_.segments[s].kind == SegmentKind::ball_inner_groove)
+    if (m_.segments[s].kind == bearing::SegmentKind::ball_inner_groove)
       element_load[static_cast<std::size_t>(m_.segments[s].element)] += eq.diagnostic(s, normal_force);
   for (double q : element_load) max_element_load_ = std::max(max_element_load_, q);
   const std::vector<double> none(z.size(), 0.0);
-  cage_sum_ += sample_body(m_, m_.cage, t, z, none, Wrench{}).angular_velocity.z();
+  cage_sum_ += sample_body(m_, m_.cage, t, z, none, bearing::Wrench{}).angular_velocity.z();
   epicyclic_sum_ += m_.epicyclic_cage_speed(t);
   rolling_sum_ += OutputWriter::rolling_cage_speed(m_, eq, t);
   ++half_count_;
 }
 
-void RunTotals::add_finished_integrator(const IntegratorStatistics& s) {
+void RunTotals::add_finished_integrator(const numerics::IntegratorStatistics& s) {
   for (const CounterField& c : kCounters) finished_.*c.member += s.*c.member;
 }
 
-void RunTotals::save(Checkpoint& cp, const IntegratorStatistics& current, const Equations& eq,
+void RunTotals::save(Checkpoint& cp, const numerics::IntegratorStatistics& current, const bearing::Equations& eq,
                      const scheduler::Executor& executor, double wall_seconds) const {
   auto& v = cp.values;
   for (const CounterField& c : kCounters) v[c.name] = static_cast<double>(finished_.*c.member + current.*c.member);
@@ -102,7 +102,7 @@ void RunTotals::save(Checkpoint& cp, const IntegratorStatistics& current, const 
   v["second_half.max_element_load"] = max_element_load_, v["second_half.count"] = static_cast<double>(half_count_);
 }
 
-void RunTotals::restore(const Checkpoint& cp, const Equations& eq, const scheduler::Executor& executor) {
+void RunTotals::restore(const Checkpoint& cp, const bearing::Equations& eq, const scheduler::Executor& executor) {
   auto get = [&](const std::string& name) {
     const auto it = cp.values.find(name);
     if (it == cp.values.end()) throw ResumeRefused("cannot resume: the checkpoint lacks the value '" + name + "'");
@@ -123,7 +123,7 @@ void RunTotals::restore(const Checkpoint& cp, const Equations& eq, const schedul
   max_element_load_ = get("second_half.max_element_load"), half_count_ = std::lround(get("second_half.count"));
 }
 
-void RunTotals::summarize(RunSummary& sum, double t, const IntegratorStatistics& current, const Equations& eq,
+void RunTotals::summarize(RunSummary& sum, double t, const numerics::IntegratorStatistics& current, const bearing::Equations& eq,
                           const scheduler::Executor& executor, double wall_seconds) const {
   sum.stats = current;
   for (const CounterField& c : kCounters) sum.stats.*c.member = finished_.*c.member + current.*c.member;
@@ -147,11 +147,11 @@ void RunTotals::summarize(RunSummary& sum, double t, const IntegratorStatistics&
   sum.rolling_cage_speed_rpm = rolling_sum_ / n * rpm;
   sum.cage_slip = sum.rolling_cage_speed_rpm != 0 ? 1.0 - sum.cage_speed_rpm / sum.rolling_cage_speed_rpm : 0.0;
   sum.max_ball_load_n = max_element_load_;
-  const int dims = m_.kind == io::ModelKind::spatial ? 3 : 2;
+  const int dims = m_.kind == scene::ModelKind::spatial ? 3 : 2;
   for (int d = 0; d < dims; ++d) {
     sum.inner_ring_contact_force_n.push_back(force_sum_[d] / n);
     sum.inner_ring_load_n.push_back(load_sum_[d] / n);
   }
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

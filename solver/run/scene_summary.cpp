@@ -3,12 +3,12 @@
 #include "io/scene/scene_overrides.hpp"
 #include "io/scene/scene_parameters.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
-io::JsonObject scene_parameters_json(const io::Scene& scene) {
-  io::JsonObject all;
-  for (const io::SceneParameter& p : io::scene_parameters(scene)) {
-    io::JsonObject one;
+json::JsonObject scene_parameters_json(const scene::Scene& scene) {
+  json::JsonObject all;
+  for (const scene::SceneParameter& p : scene::scene_parameters(scene)) {
+    json::JsonObject one;
     if (p.number) one.add("value", *p.number);
     if (p.word) one.add("value", *p.word);
     if (!p.times.empty()) one.add("time", p.times);
@@ -19,19 +19,19 @@ io::JsonObject scene_parameters_json(const io::Scene& scene) {
   return all;
 }
 
-io::JsonObject scene_overrides_json(const io::Scene& scene) {
-  io::JsonObject all;
+json::JsonObject scene_overrides_json(const scene::Scene& scene) {
+  json::JsonObject all;
   for (const std::string& text : scene.overrides) {
-    const io::SceneOverride o = io::parse_scene_override(text);
+    const scene::SceneOverride o = scene::parse_scene_override(text);
     all.add(o.key, o.value);
   }
   return all;
 }
 
-std::string scene_overrides_text(const io::Scene& scene) {
+std::string scene_overrides_text(const scene::Scene& scene) {
   std::string text;
   for (const std::string& o : scene.overrides) text += o + "\n";
   return text;
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

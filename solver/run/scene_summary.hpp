@@ -7,15 +7,15 @@
 #include "io/json/summary_json.hpp"
 #include "io/scene/scene.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// Every resolved parameter of the scene (io/scene/scene_parameters.hpp) as
 /// {"section.key": {"value": SI number or word, "unit": "m"}}; time-function tables as
 /// {"time": [...], "value": [...], "unit": ...}.
-io::JsonObject scene_parameters_json(const io::Scene& scene);
+json::JsonObject scene_parameters_json(const scene::Scene& scene);
 /// The scene's overrides as {"section.key": "VALUE as given"}.
-io::JsonObject scene_overrides_json(const io::Scene& scene);
+json::JsonObject scene_overrides_json(const scene::Scene& scene);
 /// The overrides one per line, "section.key=VALUE" as given (the root attribute scene_overrides).
-std::string scene_overrides_text(const io::Scene& scene);
+std::string scene_overrides_text(const scene::Scene& scene);
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -25,7 +25,7 @@ double schedule_log_array_bytes(const scheduler::ScheduleLog& log) {
   return task_array_bytes(log) + row_bytes(log.plans.size(), kPlanColumns) + row_bytes(log.samples.size(), kSampleColumns);
 }
 
-void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& full, double budget_bytes) {
+void write_schedule_log(h5::H5SeriesWriter& file, const scheduler::ScheduleLog& full, double budget_bytes) {
   // Within the budget: thin the samples first (every other one, as the executor does past its own
   // bound), then keep only the first and last plans, then leave out the per-task arrays.
   scheduler::ScheduleLog log = full;
@@ -129,4 +129,4 @@ void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& 
   }
 }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

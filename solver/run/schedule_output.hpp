@@ -8,7 +8,7 @@
 #include "io/h5/h5_series.hpp"
 #include "scheduler/schedule_log.hpp"
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// Bytes of /scheduler's attributes and object headers, apart from its arrays: what
 /// estimate_output reserves for it in every run.
@@ -21,7 +21,7 @@ double schedule_log_array_bytes(const scheduler::ScheduleLog& log);
 /// series and the fixed parts): past it, every other imbalance sample is left out (and
 /// sample_every doubled) until they fit, then the plans beyond the first and last ones, then the
 /// per-task arrays; what was left out is said in the attribute `left_out_for_max_size`.
-void write_schedule_log(io::H5SeriesWriter& file, const scheduler::ScheduleLog& log,
+void write_schedule_log(h5::H5SeriesWriter& file, const scheduler::ScheduleLog& log,
                         double budget_bytes = std::numeric_limits<double>::infinity());
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

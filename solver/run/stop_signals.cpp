@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <thread>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 namespace {
 
@@ -60,4 +60,4 @@ void accept_stop_requests() { g_accepting.store(true); }
 
 const std::atomic<int>& stop_request() { return g_stop_request; }
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -15,7 +15,7 @@
 
 #include <atomic>
 
-namespace raceway::solver {
+namespace raceway::run {
 
 /// Blocks the stop signals in the calling thread, which every thread it creates afterwards
 /// inherits, and starts the thread that takes them. Call it first in main(), before any library
@@ -33,4 +33,4 @@ void accept_stop_requests();
 /// The signal that asked for a stop, 0 for none: rank 0's run loop reads it at every output time.
 const std::atomic<int>& stop_request();
 
-}  // namespace raceway::solver
+}  // namespace raceway::run

@@ -1,6 +1,6 @@
 // Executors on one process (MPI singleton): MpiExecutor gives the same records as SerialExecutor
 // in task order, measures every task, keeps its schedule log bounded, and refuses mismatched
-// calls. (Several ranks: tests/parallel.)
+// calls. (Several ranks: tests/system/parallel.)
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -60,7 +60,7 @@ TEST(MpiExecutor, SameRecordsAsSerialInTaskOrder) {
 TEST(MpiExecutor, RecordsCarryOnlyTheDoublesEachTaskUses) {
   // Each task declares how many leading doubles of its record it fills and writes zeros beyond
   // them; the records are those of the serial executor, and the schedule log has the sizes (what
-  // crosses ranks: tests/parallel compares the results of several ranks bit for bit).
+  // crosses ranks: tests/system/parallel compares the results of several ranks bit for bit).
   auto cat = catalogue(6);
   cat.used_size[0] = {4, 1, 2, 4, 3, 0};
   cat.used_size[1] = {7, 7, 2, 5, 1, 3};

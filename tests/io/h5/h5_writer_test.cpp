@@ -1,0 +1,240 @@
+// Tests of the HDF5 writer's run-survival features (io/h5/h5_series.hpp): rows kept in memory until a
+// flush, continuing an interrupted file (reopen), the time dimension scale, replacing fixed arrays,
+// and the small reader (io/h5/h5_reader.hpp).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/h5/h5_reader.hpp"
+#include "io/h5/h5_series.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using raceway::h5::H5Reader;
+using raceway::h5::H5SeriesWriter;
+
+namespace {
+
+using H5Writer = raceway::test::TempDir;
+
+std::string bytes_of(const std::string& path) { return raceway::test::read_text(path); }
+
+// Writes rows [first, last) of a [T] series "/time" (value 0.5 * row) and a [T x 2] series "/xy".
+void append_rows(H5SeriesWriter& w, int first, int last, double offset = 0) {
+  for (int r = first; r < last; ++r) {
+    const double t = 0.5 * r + offset;
+    const double xy[2] = {t, -t};
+    w.append("/time", std::span<const double>(&t, 1));
+    w.append("/xy", xy);
+  }
+}
+
+void define(H5SeriesWriter& w) {
+  w.define_series("/time", {}, "s", "time");
+  w.define_series("/xy", {2}, "m", "position");
+}
+
+}  // namespace
+
+TEST_F(H5Writer, RowsStayInMemoryUntilFlushSoTheFileOnDiskIsTheLastFlushed) {
+  auto w = H5SeriesWriter::create(path("a.h5"));
+  define(w);
+  w.flush();
+  const std::string after_flush = bytes_of(path("a.h5.partial"));
+  append_rows(w, 0, 5000);
+  EXPECT_EQ(w.buffered_bytes(), 5000u * 3 * sizeof(double));
+  EXPECT_EQ(bytes_of(path("a.h5.partial")), after_flush) << "the file changed between flushes";
+  // Whole chunks are with the compressor until the flush: the unwritten rows are asked after it.
+  EXPECT_THROW(w.unwritten_rows(), std::logic_error);
+  w.flush();
+  EXPECT_NE(bytes_of(path("a.h5.partial")), after_flush);
+  // A flush writes whole chunks (16 KiB: 2048 rows of /time, 1024 of /xy); the rest stays buffered.
+  const H5Reader r(path("a.h5.partial"));  // readable while the writer has it open
+  EXPECT_EQ(r.doubles("/time").size(), 4096u);
+  EXPECT_EQ(r.doubles("/xy").size(), 4096u * 2);
+  const auto unwritten = w.unwritten_rows();
+  ASSERT_EQ(unwritten.size(), 2u);
+  EXPECT_EQ(unwritten.at("/time").size(), 904u);
+  EXPECT_EQ(unwritten.at("/time").front(), 0.5 * 4096);
+  EXPECT_EQ(unwritten.at("/xy").size(), 904u * 2);
+  EXPECT_EQ(w.buffered_bytes(), 904u * 3 * sizeof(double));
+  const std::string after_second = bytes_of(path("a.h5.partial"));
+  w.flush();  // nothing new to write: whole chunks once written are never written again
+  EXPECT_EQ(bytes_of(path("a.h5.partial")), after_second);
+  w.commit();
+  const H5Reader done(path("a.h5"));
+  EXPECT_EQ(done.doubles("/time").size(), 5000u);
+}
+
+TEST_F(H5Writer, ReopenCutsTheSeriesToTheCheckpointAndContinuesThem) {
+  std::map<std::string, std::vector<double>> unwritten;
+  {
+    auto w = H5SeriesWriter::create(path("r.h5"));
+    define(w);
+    append_rows(w, 0, 3000);
+    w.flush();  // the checkpoint: 3000 rows, of which the file holds 2048 of /time and 2048 of /xy
+    unwritten = w.unwritten_rows();
+    append_rows(w, 3000, 5000, 100.0);  // after the checkpoint: must go
+    w.flush();
+  }  // destroyed without commit: an interrupted run (it writes what it has)
+  ASSERT_TRUE(fs::exists(path("r.h5.partial")));
+  {
+    auto w = H5SeriesWriter::reopen(path("r.h5"), 3000, unwritten);
+    define(w);
+    EXPECT_EQ(w.rows("/time"), 3000u);
+    append_rows(w, 3000, 3016);
+    w.commit();
+  }
+  const H5Reader r(path("r.h5"));
+  std::vector<std::size_t> shape;
+  const auto t = r.doubles("/time", &shape);
+  ASSERT_EQ(shape, std::vector<std::size_t>{3016});
+  for (int i = 0; i < 3016; ++i) ASSERT_EQ(t[static_cast<std::size_t>(i)], 0.5 * i) << i;
+  const auto xy = r.doubles("/xy", &shape);
+  EXPECT_EQ(shape, (std::vector<std::size_t>{3016, 2}));
+  EXPECT_EQ(xy[2 * 3015 + 1], -0.5 * 3015);
+  EXPECT_EQ(r.string_attribute("/xy", "units"), "m");
+}
+
+TEST_F(H5Writer, ReopenRefusesAMissingFileAShorterSeriesOrAnotherShape) {
+  EXPECT_THROW((void)H5SeriesWriter::reopen(path("none.h5"), 3), std::runtime_error);
+  {
+    auto w = H5SeriesWriter::create(path("s.h5"));
+    define(w);
+    append_rows(w, 0, 4);
+    w.flush();
+  }
+  {
+    auto w = H5SeriesWriter::reopen(path("s.h5"), 5);  // the file holds 4 rows (written when destroyed)
+    try {
+      define(w);
+      ADD_FAILURE() << "a series with fewer rows than the checkpoint was continued";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("has 4 rows, the checkpoint needs 5"), std::string::npos) << e.what();
+    }
+  }
+  auto w = H5SeriesWriter::reopen(path("s.h5"), 2);
+  w.define_series("/time", {}, "s", "time");
+  try {
+    w.define_series("/xy", {3}, "m", "another shape");
+    ADD_FAILURE() << "a series of another shape was continued";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another shape"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(H5Writer, TimeIsTheDimensionScaleOfEverySeries) {
+  {
+    auto w = H5SeriesWriter::create(path("d.h5"));
+    define(w);
+    w.define_series("/g/matrix", {2, 3}, "N", "m");
+    w.set_time_scale("/time", "time");
+    append_rows(w, 0, 3);
+    for (int r = 0; r < 3; ++r) w.append("/g/matrix", std::vector<double>(6, r));
+    w.commit();
+  }
+  const hid_t f = H5Fopen(path("d.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t time = H5Dopen2(f, "/time", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_scale(time), 0);
+  char name[16] = {};
+  H5DSget_scale_name(time, name, sizeof name);
+  EXPECT_STREQ(name, "time");
+  for (const char* p : {"/xy", "/g/matrix"}) {
+    const hid_t d = H5Dopen2(f, p, H5P_DEFAULT);
+    EXPECT_GT(H5DSis_attached(d, time, 0), 0) << p;
+    EXPECT_EQ(H5DSget_num_scales(d, 1), 0) << p;
+    H5Dclose(d);
+  }
+  H5Dclose(time);
+  H5Fclose(f);
+}
+
+TEST_F(H5Writer, WriteArrayReplacesAFixedArrayButNotASeries) {
+  auto w = H5SeriesWriter::create(path("w.h5"));
+  define(w);
+  w.write_array("/fixed", {2}, std::vector<double>{1, 2}, "s", "first");
+  w.write_array("/fixed", {3}, std::vector<double>{4, 5, 6}, "m", "second");
+  EXPECT_THROW(w.write_array("/xy", {1}, std::vector<double>{1}, "m", "clash"), std::runtime_error);
+  w.commit();
+  const H5Reader r(path("w.h5"));
+  EXPECT_EQ(r.doubles("/fixed"), (std::vector<double>{4, 5, 6}));
+  EXPECT_EQ(r.string_attribute("/fixed", "description"), "second");
+  EXPECT_TRUE(r.has("/xy"));
+  EXPECT_FALSE(r.has("/nothing/here"));
+  EXPECT_THROW((void)r.doubles("/nothing"), std::runtime_error);
+}
+
+namespace {
+
+// Every stored chunk of every chunked dataset of a file: filter mask and bytes, by dataset and offset.
+std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> stored_chunks(const std::string& file_path) {
+  std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> out;
+  const hid_t file = H5Fopen(file_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  for (const char* name : {"/time", "/xy", "/wide"}) {
+    const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
+    const hid_t space = H5Dget_space(d);
+    hsize_t chunks = 0;
+    H5Dget_num_chunks(d, space, &chunks);
+    for (hsize_t i = 0; i < chunks; ++i) {
+      hsize_t offset[2] = {0, 0};
+      unsigned mask = 0;
+      haddr_t address = 0;
+      hsize_t size = 0;
+      H5Dget_chunk_info(d, space, i, offset, &mask, &address, &size);
+      std::vector<char> bytes(size);
+      std::uint32_t read_mask = 0;
+      H5Dread_chunk(d, H5P_DEFAULT, offset, &read_mask, bytes.data());
+      out[std::string(name) + "@" + std::to_string(offset[0]) + "," + std::to_string(offset[1])] = {read_mask,
+                                                                                                     std::move(bytes)};
+    }
+    H5Sclose(space);
+    H5Dclose(d);
+  }
+  H5Fclose(file);
+  return out;
+}
+
+}  // namespace
+
+// Chunks filtered on the background thread and stored with H5Dwrite_chunk are the chunks HDF5's own
+// filter pipeline stores (shuffle + deflate, and deflate alone), whole and partial, across flushes;
+// a series whose row does not fit a chunk (/wide: 2100 values, 16 KiB chunks) takes HDF5's path;
+// at two gzip levels one after the other (each thread keeps its deflate state between chunks).
+TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
+  for (const auto& [shuffle, level] : {std::pair{true, 1}, std::pair{false, 1}, std::pair{true, 6}}) {
+    std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> chunks[2];
+    for (const bool background : {false, true}) {
+      raceway::h5::H5WriterOptions options;
+      options.shuffle = shuffle;
+      options.gzip_level = level;
+      options.background_compression = background;
+      const std::string out = path(std::string("c") + (background ? "1" : "0") + ".h5");
+      auto w = H5SeriesWriter::create(out, options);
+      define(w);
+      w.define_series("/wide", {2100}, "-", "a row larger than a chunk");
+      std::vector<double> wide(2100);
+      for (int r = 0; r < 5000; ++r) {
+        append_rows(w, r, r + 1, std::sin(0.01 * r));
+        if (r % 100 == 0) {
+          for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = std::cos(0.001 * static_cast<double>(i * r));
+          w.append("/wide", wide);
+        }
+        if (r == 2500) w.flush();
+      }
+      w.commit();
+      chunks[background] = stored_chunks(out);
+      EXPECT_EQ(H5Reader(out).doubles("/xy"), H5Reader(path("c0.h5")).doubles("/xy"));
+    }
+    EXPECT_EQ(chunks[0].size(), 3u + 5u + 100u) << "chunks of /time, /xy, /wide (2 per row)";
+    EXPECT_TRUE(chunks[0] == chunks[1]) << "shuffle " << shuffle << ", level " << level;
+  }
+}
