@@ -1,6 +1,7 @@
 // The table of contact laws (law_registry.hpp). Implementations: line_contact.hpp (palmgren, the
 // tanh traction curve and Hunt-Crossley damping of line contacts), point_contact.hpp (hertz,
-// limiting-shear traction, and the same damping and curve for point contacts).
+// limiting-shear traction, and the same damping and curve for point contacts), lubricated_line_contact.hpp
+// (moes_ehd, ehd, hydrodynamic), short_bearing_film.hpp (short_bearing).
 #include "contact/laws/law_registry.hpp"
 
 #include <array>
@@ -33,6 +34,10 @@ constexpr LawEntry kLaws[] = {
     {LawRole::normal, LawId::hydrodynamic, "hydrodynamic", roller_cage_contact,
      "hydrodynamic film (seed 003 2.2.1): rigid roller on a flat bar, rolling and squeeze film up to a gap of 2 % "
      "of the roller radius, the dry Palmgren law once the film collapses to 0.2 um; viscous Couette drag (needs "
+     "[lubricant] viscosity)"},
+    {LawRole::normal, LawId::short_bearing, "short_bearing", cage_land_contact,
+     "short journal-bearing film of the cage on its land (Ocvirk: rolling and squeeze together, half-Sommerfeld "
+     "cavitation), station by station, the dry Palmgren law once the film collapses to 0.2 um (ball bearings; needs "
      "[lubricant] viscosity)"},
 };
 

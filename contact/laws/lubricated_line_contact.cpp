@@ -1,5 +1,7 @@
 #include "contact/laws/lubricated_line_contact.hpp"
 
+#include "contact/laws/reynolds_line_film.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -20,12 +22,14 @@ double film_window(double h, double cutoff, double* slope) {
 
 }  // namespace
 
+double moes_modulus(const LineFilm& f) { return 2.0 * f.reduced_modulus; }
+
 double speed_parameter(const LineFilm& f, double entrainment_speed) {
-  return 2.0 * f.viscosity * entrainment_speed / (f.reduced_modulus * f.reduced_radius);
+  return 2.0 * f.viscosity * entrainment_speed / (moes_modulus(f) * f.reduced_radius);
 }
 
 double material_parameter(const LineFilm& f, double speed_parameter) {
-  return f.pressure_viscosity * f.reduced_modulus * std::pow(speed_parameter, 0.25);
+  return f.pressure_viscosity * moes_modulus(f) * std::pow(speed_parameter, 0.25);
 }
 
 double film_load_parameter(double film_parameter, double material_parameter, double* slope) {
@@ -52,7 +56,7 @@ double film_load_per_length(const LineFilm& f, double h, double u, double* d_thi
   const double H = h / (f.reduced_radius * root_u);
   double dm_dh = 0;
   const double m = film_load_parameter(H, L, &dm_dh);
-  const double scale = f.reduced_modulus * f.reduced_radius * root_u;  // w = scale M_1
+  const double scale = moes_modulus(f) * f.reduced_radius * root_u;  // w = scale M_1
   const double w = scale * m;
   if (d_thickness) *d_thickness = scale * dm_dh / (f.reduced_radius * root_u) * window + w * window_slope;
   if (d_speed) {
@@ -129,13 +133,13 @@ EhdState evaluate_ehd(const EhdLineLaw& law, double gap, double u) {
   st.d_force_d_gap = len * w_h * elastic_slope / denominator;
   st.d_force_d_speed = len * w_h * (len * w_u / denominator) + len * w_u;
   const double U = speed_parameter(law.film, u);
-  st.load_parameter = w / (law.film.reduced_modulus * law.film.reduced_radius * std::sqrt(U));
+  st.load_parameter = w / (moes_modulus(law.film) * law.film.reduced_radius * std::sqrt(U));
   st.valid = std::isfinite(st.force) && d <= law.max_approach;
   return st;
 }
 
 double poiseuille_force_per_length(const LineFilm& f, double U, double load_parameter) {
-  return f.reduced_modulus * f.reduced_radius * std::pow(U, 0.75) *
+  return moes_modulus(f) * f.reduced_radius * std::pow(U, 0.75) *
          std::min(1.42 * std::sqrt(std::max(load_parameter, 0.0)), 1.47);
 }
 
@@ -159,11 +163,9 @@ HydrodynamicForce evaluate_hydrodynamic(const HydrodynamicLineLaw& law, double g
   const double h_rate = gap_rate;
   const double window = film_window(h, f.cutoff, nullptr);
   if (window > 0) {
-    const double rolling = 2.0 * martin_load_constant * f.viscosity * std::abs(u) * f.reduced_radius / h;
-    const double squeeze = h_rate < 0 ? 3.0 * std::numbers::sqrt2 * std::numbers::pi * f.viscosity *
-                                            std::pow(f.reduced_radius, 1.5) * (-h_rate) / std::pow(h, 1.5)
-                                      : 0.0;
-    out.film_force = f.length * (rolling + squeeze) * window;
+    // Rolling and squeeze together, with cavitation (reynolds_line_film.hpp): not their sum.
+    out.film_force =
+        f.length * reynolds_line_load_per_length(f.viscosity, f.reduced_radius, h, u, h_rate) * window;
     // Couette shear of a rigid cylinder on a plane: eta u_s integral dx / h = eta u_s pi sqrt(2 R / h).
     out.couette_force_per_speed =
         f.length * f.viscosity * std::numbers::pi * std::sqrt(2.0 * f.reduced_radius / h) * window;

@@ -4,7 +4,9 @@
 // says so ("_per_length"); derived constants once when a law is built.
 //
 // Seed 003's dimensionless groups (eq. 8-10), with u_m the entrainment speed (mean surface speed),
-// R the reduced radius, E' the reduced modulus, alpha the pressure-viscosity coefficient, w_1 the
+// R the reduced radius, E' = 2 E* Moes' reduced modulus (E* of line_contact.hpp: 1/E* = (1-nu1^2)/E1 +
+// (1-nu2^2)/E2, so 2/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2, as Moes, Hamrock-Dowson and the ball contacts
+// of point_contact.hpp define it), alpha the pressure-viscosity coefficient, w_1 the
 // load per unit length and h_m the minimum film thickness:
 //   U = 2 eta u_m / (E' R),  M_1 = w_1 / (E' R sqrt(U)),  H_m = h_m / (R sqrt(U)),  L = alpha E' U^(1/4).
 // Film load capacity:
@@ -32,7 +34,7 @@ inline constexpr double regime_blend_exponent = 3.5;
 struct LineFilm {
   double viscosity = 0;           ///< eta_0 [Pa s]
   double pressure_viscosity = 0;  ///< alpha [1/Pa]; 0: isoviscous
-  double reduced_modulus = 0;     ///< E' [Pa] (plane-strain: E' = E* of line_contact.hpp)
+  double reduced_modulus = 0;     ///< E* [Pa] of line_contact.hpp; the film's groups use E' = 2 E*
   double reduced_radius = 0;      ///< R [m]: 1/R = 1/r_roller +- 1/r_race
   double length = 0;              ///< effective contact length [m]
   /// Beyond this film thickness the film carries nothing (fully flooded conditions end); between
@@ -40,6 +42,8 @@ struct LineFilm {
   double cutoff = 0;
 };
 
+/// Moes' E' = 2 E* [Pa].
+double moes_modulus(const LineFilm& f);
 /// Seed 003's groups at entrainment speed u_m > 0.
 double speed_parameter(const LineFilm& f, double entrainment_speed);  ///< U
 double material_parameter(const LineFilm& f, double speed_parameter);  ///< L
@@ -95,11 +99,15 @@ struct CouetteTraction {
 };
 
 /// The hydrodynamic roller/cage line contact (seed 003 2.2.1): rigid surfaces (no elastic
-/// deformation in the film), a cylinder of radius R on a flat bar, the film carrying
-///   rolling (entrainment):  w_r = 2 C_M eta |u_m| R / h           (Martin, Reynolds' condition),
-///   squeeze (approach):     w_s = 3 sqrt(2) pi eta R^1.5 (-dh/dt) / h^1.5 for dh/dt < 0 (full film;
-///                            a separating film cavitates and carries nothing),
-/// per unit length, superposed. When the film collapses the bodies meet: the film's thickness is
+/// deformation in the film), a cylinder of radius R on a flat bar, the film carrying the load of
+/// the Reynolds equation with rolling and squeeze together and Reynolds' cavitation condition
+/// (reynolds_line_film.hpp), per unit length. Its limits:
+///   rolling alone:   w_r = 2 C_M eta |u_m| R / h           (Martin),
+///   approach alone:  w_s = 3 sqrt(2) pi eta R^1.5 (-dh/dt) / h^1.5 (full film),
+///   separation alone: nothing (the film cavitates);
+/// seed 003 adds w_r and w_s, which a joint solution shows 13-28 % too high on approach and more
+/// on separation (a separating film cavitates where rolling alone would carry load: 18 % at a
+/// squeeze a sixth of the rolling speed, see the tests). When the film collapses the bodies meet: the film's thickness is
 /// held above `film_floor` (a smooth maximum, of the order of the surface roughness) and the dry
 /// Palmgren law of the overlap adds to it, so the force passes smoothly from film to dry contact.
 struct HydrodynamicLineLaw {

@@ -1,5 +1,7 @@
 #include "contact/segments/ball_segments.hpp"
 
+#include "contact/segments/land_film.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -350,6 +352,25 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   return r;
 }
 
+namespace {
+/// Station j's strip of the land's film (land_film.hpp) on the cage (A) and the ring (B).
+void add_land_film(const CageLandSegment3& s, int j, const SpatialKinematics& cage, const SpatialKinematics& ring,
+                   const Vec3& station, const Vec3& q, SpatialSegmentResult& r) {
+  const Vec3 arm = station - ring.position;
+  const Vec3 q_rate = ring.rotation.transpose() *
+                      (point_velocity(cage, station) - ring.velocity - ring.angular_velocity.cross(arm));
+  const double spin = (cage.angular_velocity - ring.angular_velocity).dot(ring.rotation.col(2));
+  const LandFilmStation f = land_film_station(*s.film, s.width, s.stations, j, s.outer_land, ring.rotation,
+                                              ring.position, q, q_rate, spin);
+  if (!f.valid) r.valid = false;
+  apply_at_point(cage, ring, f.point, f.force_on_ring, f.couple_on_ring, r);
+  r.diagnostics.normal_force += f.force_on_ring.norm();
+  r.diagnostics.power_loss += f.power_loss;
+  const double film = r.diagnostics.film_thickness;
+  r.diagnostics.film_thickness = film > 0 ? std::min(film, f.minimum_film) : f.minimum_film;
+}
+}  // namespace
+
 SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ring) {
   SpatialSegmentResult r;
@@ -374,6 +395,7 @@ SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics
     const double approach = eccentricity - s.clearance;
     if (!std::isfinite(approach) || !std::isfinite(q.z())) return invalid_result(approach);
     max_approach = std::max(max_approach, approach);
+    if (s.film) add_land_film(s, j, cage, ring, station, q, r);
     if (approach <= 0) continue;
 
     // Normal force on the ring (B) along u, the station's eccentricity direction (bearing frame);

@@ -23,9 +23,11 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 
 #include "contact/laws/line_contact.hpp"
 #include "contact/laws/point_contact.hpp"
+#include "contact/laws/short_bearing_film.hpp"
 #include "contact/segments/segment_result.hpp"
 
 namespace raceway::contact {
@@ -200,6 +202,11 @@ struct CageLandSegment3 {
   bool outer_land = false;
   LineContactLaw law;      ///< for one station (width / stations)
   TractionCurve friction;
+  /// Lubricated land (normal = "short_bearing"): each station also carries its strip of the land's
+  /// short journal-bearing film (land_film.hpp), apart as well as in contact, its force and power
+  /// in the diagnostics (normal_force, power_loss; film_thickness the smallest station film); the
+  /// dry law above adds where the surfaces overlap.
+  std::optional<ShortBearingFilm> film;
 };
 SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ring);

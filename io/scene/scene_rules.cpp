@@ -453,7 +453,11 @@ void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
 // The film laws of seed 003 (EHD roller-race, hydrodynamic roller-cage) need a viscosity.
 void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   const contact::LawId id = b.contact->normal.id;
-  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic) return;
+  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing)
+    return;
+  if (id == contact::LawId::short_bearing && !b.scene.bearing.is_ball_bearing())
+    s.fail("normal", "normal = \"short_bearing\" is the land film of a ball bearing's cage; a cylindrical roller "
+                     "bearing's cage land has the dry law (palmgren) only");
   if (!(b.scene.lubricant.viscosity > 0))
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",

@@ -252,6 +252,18 @@ void add_land_segment(Model& m, const scene::Scene& scene, const CageGeometry& g
     l.friction.slip_velocity_scale =
         scene.cage_land.traction.slip_velocity_scale > 0 ? scene.cage_land.traction.slip_velocity_scale : 0.01;
   }
+  if (scene.cage_land.normal.id == contact::LawId::short_bearing) {
+    // The land's short-bearing film (contact/laws/short_bearing_film.hpp): radius and clearance of the
+    // land, its whole width (each station takes its strip), collapsing to the dry law at 0.2 um, the
+    // combined roughness of ground surfaces (as the roller/cage film).
+    contact::ShortBearingFilm film;
+    film.viscosity = scene.lubricant.viscosity;
+    film.radius = l.land_radius;
+    film.width = l.width;
+    film.clearance = l.clearance;
+    film.film_floor = 0.2e-6;
+    l.film = film;
+  }
   m.laws.push_back(l);
   m.segments.push_back({SegmentKind::cage_land, m.cage, outer ? m.outer_ring : m.inner_ring,
                         static_cast<int>(m.laws.size()) - 1, -1, outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
@@ -367,9 +379,10 @@ std::string describe_ball_model(const Model& m) {
   if (!land)
     out += "  cage-land: none (the cage is guided by the balls" + std::string(sc.cage.support.any() ? " and its spindle support)\n" : ")\n");
   else
-    out += fmt::format("  cage-land: {} land, clearance {:.4g} mm, 2 stations (tilt moments)\n",
+    out += fmt::format("  cage-land: {} land, clearance {:.4g} mm, 2 stations (tilt moments){}\n",
                        m.law<contact::CageLandSegment3>(*land).outer_land ? "outer-ring" : "inner-ring",
-                       1e3 * m.law<contact::CageLandSegment3>(*land).clearance);
+                       1e3 * m.law<contact::CageLandSegment3>(*land).clearance,
+                       m.law<contact::CageLandSegment3>(*land).film ? ", short-bearing film (Ocvirk, half-Sommerfeld)" : "");
   out += fmt::format("state layout: border {} states (rings, cage), then {} blocks of {} (balls)\n", m.border_size,
                      m.element_count, m.block_size);
   return out;

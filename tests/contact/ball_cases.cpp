@@ -73,7 +73,7 @@ AnySegment make_segment(const SpatialCase& c, const LawOptions& o) {
           .outer_land = c.outer,
           .law = make_line_contact_law(steel_brass(), land_width / land_stations, 1, 0.0, damping,
                                        land_max_approach),
-          .friction = curve};
+          .friction = curve, .film = std::nullopt};
   }
   throw std::logic_error("unknown segment kind");
 }

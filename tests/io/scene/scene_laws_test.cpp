@@ -41,6 +41,7 @@ constexpr Accepted kExpected[] = {
     {LawRole::normal, "moes_ehd", LawId::moes_ehd, contact::roller_race_contact},
     {LawRole::traction, "ehd", LawId::ehd_traction, contact::roller_race_contact},
     {LawRole::normal, "hydrodynamic", LawId::hydrodynamic, contact::roller_cage_contact},
+    {LawRole::normal, "short_bearing", LawId::short_bearing, contact::cage_land_contact},
 };
 constexpr LawRole kRoles[] = {LawRole::normal, LawRole::damping, LawRole::traction};
 
@@ -205,6 +206,21 @@ TEST(SceneLaws, FilmLawsNeedALubricantAndEhdTractionTheEhdFilm) {
                                        "\n[contact.roller_race]\ntraction = \"ehd\"\n");
   EXPECT_EQ(dry_film.key(), "contact.roller_race.traction");
   EXPECT_NE(dry_film.reason().find("needs normal = \"moes_ehd\""), std::string::npos) << dry_film.what();
+}
+
+// The land film: a ball bearing's cage land with a lubricant; refused without one, and on a
+// cylindrical roller bearing (whose cage land has the dry law only), naming the key.
+TEST(SceneLaws, LandFilmNeedsALubricantAndABallBearing) {
+  const std::string land = "\n[contact.cage_land]\nnormal = \"short_bearing\"\n";
+  const std::string guided = spatial("guidance = \"rolling_element\"", "guidance = \"inner_land\"\nland_clearance = \"0.3 mm\"");
+  const SceneError dry = error_of(guided + land);
+  EXPECT_EQ(dry.key(), "contact.cage_land.normal") << dry.what();
+  EXPECT_NE(dry.reason().find("needs a lubricant"), std::string::npos) << dry.what();
+  const Scene wet = parse(guided + "\n[lubricant]\nviscosity = \"20 mPa s\"\n" + land);
+  EXPECT_EQ(wet.cage_land.normal.id, LawId::short_bearing);
+  const SceneError roller = error_of(std::string(kPlanarMinimal) + "\n[lubricant]\nviscosity = \"20 mPa s\"\n" + land);
+  EXPECT_EQ(roller.key(), "contact.cage_land.normal") << roller.what();
+  EXPECT_NE(roller.reason().find("ball bearing"), std::string::npos) << roller.what();
 }
 
 }  // namespace
