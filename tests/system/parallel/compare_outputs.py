@@ -11,41 +11,21 @@ output_write_time_s, output_thread_time_s), and
     compare_outputs.py REFERENCE.h5 OTHER.h5 [OTHER.h5 ...]
 """
 import json
+import os
 import sys
 
 import h5py
 import numpy as np
 
-TIMING_KEYS = {"wall_time_s", "time_per_rhs_s", "time_per_jacobian_s", "time_split_s", "output_time_s",
-               "output_write_time_s", "output_thread_time_s"}
-SKIPPED_GROUPS = ("/scheduler",)
-
-
-def dereferenced(f, value):
-    """An attribute holding object references (the dimension-scale lists DIMENSION_LIST and
-    REFERENCE_LIST) as the names the references point to: their bytes are addresses."""
-    if isinstance(value, h5py.Reference):
-        return f[value].name if value else None
-    if isinstance(value, (np.ndarray, list, tuple, np.void)):
-        return tuple(dereferenced(f, v) for v in value)
-    return value.item() if isinstance(value, np.generic) else value
+# The timing fields, the skipped groups, references as names and chunks as stored: the same as the
+# refactor comparison's (scripts/compare_outputs.py), which this one extends to several files.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "scripts"))
+from compare_outputs import SKIPPED_GROUPS, TIMING_KEYS, dereferenced, stored_chunks  # noqa: E402
 
 
 def has_references(v):
     return isinstance(v, np.ndarray) and (v.dtype.kind == "O" or (v.dtype.names and any(
         v.dtype.fields[n][0].kind == "O" for n in v.dtype.names)))
-
-
-def stored_chunks(dataset):
-    """A chunked dataset's chunks as stored (offset, filter mask, filtered bytes): the files must
-    agree in what is on disk, not only in the values read back."""
-    if dataset.chunks is None:
-        return None
-    chunks = []
-    for i in range(dataset.id.get_num_chunks()):
-        offset = dataset.id.get_chunk_info(i).chunk_offset
-        chunks.append((offset,) + tuple(dataset.id.read_direct_chunk(offset)))
-    return sorted(chunks)
 
 
 def collect(path):
