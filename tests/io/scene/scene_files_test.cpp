@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "io/scene/scene_parser.hpp"
-#include "solver/driver/campaign_file.hpp"
 #include "tests/support/scene_test_util.hpp"
 
 namespace raceway::scene {
@@ -216,57 +215,6 @@ TEST(JobScenes, Seed001QJ215ValidationInSI) {
   EXPECT_DOUBLE_EQ(s.ball_race.traction.friction_coefficient, 0.09);
   EXPECT_FALSE(s.ball_race.traction.rolling_resistance);
   EXPECT_DOUBLE_EQ(s.cage_land.traction.friction_coefficient, 0.1);
-}
-
-// Seed 001's three sweeps are campaign files over the validation scene (jobs/campaigns/): each
-// scene is the validation scene with the swept speed or loads, 20 inner-ring revolutions and 600
-// output samples per revolution, as in the paper. Their "_unbalance" twins are the same sweeps with
-// a cage unbalance of 50 um (docs/campaigns/qj215_whirl.md), 60 revolutions and four realisations
-// per point (the cage started 0 to 75 um off-centre), the validation scene's cage otherwise.
-TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
-  const Scene reference = job("qj215_validation");
-  struct Case {
-    std::string campaign;
-    std::vector<double> rpm, fa, fr;
-    double unbalance = 0, revolutions = 20;
-    std::vector<double> offsets{0.0};  // the realisations of each point, slowest axis first
-  };
-  std::vector<Case> cases(3);
-  cases[0].campaign = "qj215_speed";
-  for (int v = 1000; v <= 8000; v += 1000) cases[0].rpm.push_back(v), cases[0].fa.push_back(1000), cases[0].fr.push_back(0);
-  cases[1].campaign = "qj215_axial";
-  for (int v = 1000; v <= 5000; v += 1000) cases[1].rpm.push_back(1000), cases[1].fa.push_back(v), cases[1].fr.push_back(0);
-  cases[2].campaign = "qj215_radial";
-  for (int v = 100; v <= 600; v += 100) cases[2].rpm.push_back(1000), cases[2].fa.push_back(2000), cases[2].fr.push_back(v);
-  for (int k = 0; k < 3; ++k) {
-    Case twin = cases[static_cast<std::size_t>(k)];
-    twin.campaign += "_unbalance";
-    twin.unbalance = 50e-6;
-    twin.revolutions = 60;
-    twin.offsets = {0.0, 25e-6, 50e-6, 75e-6};
-    cases.push_back(twin);
-  }
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.campaign);
-    const auto campaign = driver::load_campaign((kSourceDir / "jobs" / "campaigns" / (c.campaign + ".toml")).string());
-    ASSERT_EQ(campaign.scenes.size(), c.rpm.size() * c.offsets.size());
-    for (std::size_t n = 0; n < campaign.scenes.size(); ++n) {
-      const std::size_t k = n / c.offsets.size();
-      const Scene s = driver::campaign_scene(campaign, campaign.scenes[n]);
-      EXPECT_NEAR(s.inner_ring.speed(0.0), rpm(c.rpm[k]), 1e-9);
-      EXPECT_DOUBLE_EQ(s.inner_ring.load.fz(0.0), c.fa[k]);
-      EXPECT_DOUBLE_EQ(s.inner_ring.load.fy(0.0), -c.fr[k]);
-      EXPECT_TRUE(s.inner_ring.load.fx.is_zero());
-      EXPECT_NEAR(s.inner_ring.speed(0.0) * s.scene.end_time / (2 * pi), c.revolutions, 1e-9);
-      EXPECT_NEAR(s.scene.output_interval * s.inner_ring.speed(0.0) / (2 * pi), 1.0 / 600, 1e-12);
-      EXPECT_EQ(s.bearing.rolling_elements, reference.bearing.rolling_elements);
-      EXPECT_EQ(s.bearing.ball.inner_conformity, reference.bearing.ball.inner_conformity);
-      EXPECT_EQ(s.cage.land_clearance, reference.cage.land_clearance);
-      EXPECT_DOUBLE_EQ(s.cage.mass_eccentricity, c.unbalance);
-      EXPECT_NEAR(s.cage.initial_offset, c.offsets[n % c.offsets.size()], 1e-15);
-      EXPECT_EQ(s.ball_race.traction.friction_coefficient, reference.ball_race.traction.friction_coefficient);
-    }
-  }
 }
 
 // ---- tests/io/scene/bad_scenes/*.toml ------------------------------------------------------------------
