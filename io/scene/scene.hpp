@@ -219,6 +219,9 @@ struct SolverSpec {
   int max_order = 5;                 ///< bdf, adams: largest order; erk, ark: the order of the pair
   bool stability_limit_detection = false;  ///< bdf: CVODE's BDF stability-limit detection (order 3 and up)
   double rtol = 1e-6;
+  /// Tolerances this many times tighter on a rolling element and the cage while the element touches
+  /// its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).
+  double pocket_tolerance_factor = 1;
   /// Absolute tolerances per variable class (SI).
   double atol_position = 0;          ///< m
   double atol_angle = 0;             ///< rad

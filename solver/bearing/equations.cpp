@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <type_traits>
 
@@ -87,6 +88,31 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
     parts_.push_back(parts);
     task_segment_.insert(task_segment_.end(), static_cast<std::size_t>(parts), static_cast<int>(parts_.size() - 1));
     cut_ = cut_ || parts > 1;
+  }
+  for (std::size_t s = 0; s < model.segments.size(); ++s) {
+    const SegmentKind k = model.segments[s].kind;
+    if (k == SegmentKind::ball_pocket || k == SegmentKind::cage_bar_front || k == SegmentKind::cage_bar_rear)
+      pocket_segments_.push_back(static_cast<int>(s));
+  }
+  pocket_weight_factor_ = model.params().solver.pocket_tolerance_factor;
+  pocket_margin_ = 1e-4 * model.element_radius;
+}
+
+void Equations::adjust_error_weights(double t, const double* z, double* ewt) const {
+  std::array<double, SegmentRecord::size> rec{};
+  pocket_touched_.assign(model_.bodies.size(), 0);
+  for (const int s : pocket_segments_) {
+    const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
+    std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
+               model_.laws[static_cast<std::size_t>(seg.law)]);
+    if (!(rec[SegmentRecord::diagnostics + approach_field] > -pocket_margin_)) continue;
+    pocket_touched_[static_cast<std::size_t>(seg.body_a)] = 1;
+    pocket_touched_[static_cast<std::size_t>(seg.body_b)] = 1;
+  }
+  for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
+    if (!pocket_touched_[b]) continue;
+    const Body& body = model_.bodies[b];
+    for (int i = body.offset; i < body.offset + body.size; ++i) ewt[i] *= pocket_weight_factor_;
   }
 }
 

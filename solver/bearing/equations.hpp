@@ -40,6 +40,10 @@ class Equations final : public numerics::DynamicSystem {
   int block_count() const override { return model_.element_count; }
   int block_size() const override { return model_.block_size; }
   std::vector<double> absolute_tolerance() const override { return model_.absolute_tolerance(); }
+  bool adjusts_error_weights() const override { return pocket_weight_factor_ > 1 && !pocket_segments_.empty(); }
+  /// While a rolling element touches its pocket, or is within pocket_margin_ of it, the error
+  /// weights of its states and the cage's are multiplied by pocket_weight_factor_.
+  void adjust_error_weights(double t, const double* z, double* ewt) const override;
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   int rhs(double t, const double* z, double* zdot) override;
   /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).
@@ -114,6 +118,11 @@ class Equations final : public numerics::DynamicSystem {
   std::unique_ptr<BodyDynamics> dynamics_;
   FiniteDifferenceSteps step_;
   std::vector<double> records_, jac_records_, rest_records_;
+  // [solver] pocket_tolerance_factor: the pocket segments, the factor, the margin (m) and the
+  // bodies touched (scratch of adjust_error_weights, on the integrating thread).
+  std::vector<int> pocket_segments_;
+  double pocket_weight_factor_ = 1, pocket_margin_ = 0;
+  mutable std::vector<char> pocket_touched_;
   // Segments cut into sub-tasks (a ball-groove contact whose traction grid has several blocks):
   std::vector<int> parts_;       ///< per segment: its tasks (1: one task, as a whole)
   std::vector<int> first_task_;  ///< per segment: its first task; its tasks are consecutive

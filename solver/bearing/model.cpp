@@ -4,6 +4,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -145,6 +147,33 @@ Mat3 cardan_rotation(double ax, double ay, double az) {
       .toRotationMatrix();
 }
 
+namespace {
+
+/// cardan_rotation(ax, ay, az) of the angles last asked for in slot `slot`, on this thread: a
+/// right-hand side asks for a ring's or the cage's kinematics once per segment and traction part
+/// (a ring: twice per ball and part), each time with the same angles. The rotation is a function of
+/// the three angles alone, so a hit (the same bits) returns exactly what the call would.
+const Mat3& memo_rotation(std::size_t slot, double ax, double ay, double az) {
+  struct Entry {
+    std::uint64_t key[3];
+    Mat3 rotation;
+    bool filled = false;
+  };
+  thread_local std::vector<Entry> memo;
+  if (slot >= memo.size()) memo.resize(slot + 1);
+  Entry& e = memo[slot];
+  const std::uint64_t key[3] = {std::bit_cast<std::uint64_t>(ax), std::bit_cast<std::uint64_t>(ay),
+                                std::bit_cast<std::uint64_t>(az)};
+  if (!e.filled || e.key[0] != key[0] || e.key[1] != key[1] || e.key[2] != key[2]) {
+    e.rotation = cardan_rotation(ax, ay, az);
+    std::copy(key, key + 3, e.key);
+    e.filled = true;
+  }
+  return e.rotation;
+}
+
+}  // namespace
+
 Vec3 cardan_rates(double ay, double az, const Vec3& w) {
   const double cb = std::cos(ay), sb = std::sin(ay), cc = std::cos(az), sc = std::sin(az);
   const double ax_rate = (w.x() * cc - w.y() * sc) / cb;
@@ -179,7 +208,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:
-      k.rotation = cardan_rotation(v[sax], v[say], v[saz]);
+      k.rotation = memo_rotation(2 * static_cast<std::size_t>(b), v[sax], v[say], v[saz]);
       k.angular_velocity = k.rotation * Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::inner_ring:
@@ -188,8 +217,8 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
         v[sax] = body.ring->misalignment_x(t), v[say] = body.ring->misalignment_y(t);
         v[swx] = body.ring->misalignment_x.derivative(t), v[swy] = body.ring->misalignment_y.derivative(t);
       }
-      k.rotation = cardan_rotation(v[sax], v[say], 0.0);
-      const Mat3 rx = cardan_rotation(v[sax], 0.0, 0.0);
+      k.rotation = memo_rotation(2 * static_cast<std::size_t>(b), v[sax], v[say], 0.0);
+      const Mat3& rx = memo_rotation(2 * static_cast<std::size_t>(b) + 1, v[sax], 0.0, 0.0);
       k.angular_velocity = ring_spin(b, t, z) * k.rotation.col(2) + v[swx] * Vec3::UnitX() + v[swy] * rx.col(1);
       break;
     }

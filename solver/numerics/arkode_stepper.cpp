@@ -82,6 +82,7 @@ class ArkodeStepper final : public TimeStepper {
       check(ARKStepSetErrHandlerFn(mem_, cb.error_handler, cb.user), "ARKStepSetErrHandlerFn");
       check(ARKStepSetUserData(mem_, cb.user), "ARKStepSetUserData");
       check(ARKStepSVtolerances(mem_, spec.rtol, s.atol), "ARKStepSVtolerances");
+      if (cb.error_weights) check(ARKStepWFtolerances(mem_, cb.error_weights), "ARKStepWFtolerances");
       check(ARKStepSetTableNum(mem_, t.id, ARKODE_ERK_NONE), "ARKStepSetTableNum");
       if (spec.max_step > 0) check(ARKStepSetMaxStep(mem_, spec.max_step), "ARKStepSetMaxStep");
       if (spec.initial_step > 0) check(ARKStepSetInitStep(mem_, spec.initial_step), "ARKStepSetInitStep");
@@ -95,6 +96,7 @@ class ArkodeStepper final : public TimeStepper {
       check(ERKStepSetErrHandlerFn(mem_, cb.error_handler, cb.user), "ERKStepSetErrHandlerFn");
       check(ERKStepSetUserData(mem_, cb.user), "ERKStepSetUserData");
       check(ERKStepSVtolerances(mem_, spec.rtol, s.atol), "ERKStepSVtolerances");
+      if (cb.error_weights) check(ERKStepWFtolerances(mem_, cb.error_weights), "ERKStepWFtolerances");
       check(ERKStepSetTableNum(mem_, t.id), "ERKStepSetTableNum");
       if (spec.max_step > 0) check(ERKStepSetMaxStep(mem_, spec.max_step), "ERKStepSetMaxStep");
       if (spec.initial_step > 0) check(ERKStepSetInitStep(mem_, spec.initial_step), "ERKStepSetInitStep");

@@ -27,6 +27,7 @@ class CvodeStepper final : public TimeStepper {
     check(CVodeInit(mem_, s.callbacks.rhs, s.t0, s.y0), "CVodeInit");
     check(CVodeSetUserData(mem_, s.callbacks.user), "CVodeSetUserData");
     check(CVodeSVtolerances(mem_, spec.rtol, s.atol), "CVodeSVtolerances");
+    if (s.callbacks.error_weights) check(CVodeWFtolerances(mem_, s.callbacks.error_weights), "CVodeWFtolerances");
     check(CVodeSetMaxOrd(mem_, spec.max_order), "CVodeSetMaxOrd");
     if (spec.max_step > 0) check(CVodeSetMaxStep(mem_, spec.max_step), "CVodeSetMaxStep");
     if (spec.initial_step > 0) check(CVodeSetInitStep(mem_, spec.initial_step), "CVodeSetInitStep");

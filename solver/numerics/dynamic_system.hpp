@@ -21,6 +21,12 @@ class DynamicSystem {
   virtual int block_size() const = 0;
   /// Absolute tolerance per state (SI, by variable class).
   virtual std::vector<double> absolute_tolerance() const = 0;
+  /// Whether adjust_error_weights() changes anything (else SUNDIALS' own weights are used).
+  virtual bool adjusts_error_weights() const { return false; }
+  /// Tightens the error weights `ewt` (1 / (rtol |z_i| + atol_i), SUNDIALS' own) for the state z
+  /// at t, the start of the step they test. A pure function of (t, z): the same weights on every
+  /// rank and after a restart from the same state, so nothing of it goes into a checkpoint.
+  virtual void adjust_error_weights(double /*t*/, const double* /*z*/, double* /*ewt*/) const {}
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   virtual int rhs(double t, const double* z, double* zdot) = 0;
   /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).

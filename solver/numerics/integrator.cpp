@@ -51,6 +51,9 @@ struct Integrator::Impl {
   long steps_budget = 0;
   StepLimitingStates limiting;
   IntegratorTiming timing;
+  // The error weights' pieces (error_weights below), when the system adjusts them.
+  std::vector<double> atol;
+  double t0 = 0;
   // Wall-clock budget ([solver] max_wall_time): checked at every right-hand side and Jacobian, so
   // a run that crawls ends within one evaluation of its budget.
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
@@ -98,6 +101,26 @@ struct Integrator::Impl {
       return -1;
     }
   }
+  /// 1 / (rtol |y_i| + atol_i), SUNDIALS' own weights (the same operations, so the same bits),
+  /// then the system's adjustment (DynamicSystem::adjust_error_weights).
+  static int error_weights(N_Vector y, N_Vector ewt, void* user) {
+    auto* self = static_cast<Impl*>(user);
+    const double* v = N_VGetArrayPointer(y);
+    double* w = N_VGetArrayPointer(ewt);
+    const double rtol = self->spec.rtol;
+    for (std::size_t i = 0; i < self->atol.size(); ++i) {
+      const double tolerance = rtol * std::abs(v[i]) + self->atol[i];
+      if (!(tolerance > 0)) return -1;
+      w[i] = 1.0 / tolerance;
+    }
+    try {
+      self->eq.adjust_error_weights(self->stepper ? self->stepper->time() : self->t0, v, w);
+    } catch (...) {
+      self->callback_error = std::current_exception();
+      return -1;
+    }
+    return 0;
+  }
   static void error_handler(int code, const char* module, const char* function, char* msg, void* user) {
     auto* self = static_cast<Impl*>(user);
     self->last_message = fmt::format("{} {} (code {}): {}", module, function, code, msg);
@@ -120,6 +143,9 @@ Integrator::Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, 
   N_Vector atol = N_VNew_Serial(n, s.ctx);
   const auto abs_tol = equations.absolute_tolerance();
   std::copy(abs_tol.begin(), abs_tol.end(), N_VGetArrayPointer(atol));
+  s.atol = abs_tol;
+  s.t0 = t0;
+  const bool adjusts = equations.adjusts_error_weights();
   s.steps_budget = spec.max_steps;
   s.limiting.share_sum.assign(z0.size(), 0.0);
   s.limiting.largest.assign(z0.size(), 0);
@@ -136,7 +162,7 @@ Integrator::Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, 
                                                 &s.timing.linear_solve);
   }
   const stepping::StepperSetup setup{spec, s.ctx, s.y, t0, atol,
-                                     {Impl::rhs, Impl::jacobian, Impl::error_handler, &s},
+                                     {Impl::rhs, Impl::jacobian, Impl::error_handler, adjusts ? Impl::error_weights : nullptr, &s},
                                      s.linear.get(), s.timed_solver};
   try {
     s.stepper = spec.method == scene::IntegrationMethod::bdf || spec.method == scene::IntegrationMethod::adams

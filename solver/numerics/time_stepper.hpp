@@ -24,6 +24,8 @@ struct Callbacks {
   int (*jacobian)(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix j, void* user, N_Vector, N_Vector,
                   N_Vector) = nullptr;
   void (*error_handler)(int code, const char* module, const char* function, char* msg, void* user) = nullptr;
+  /// The error weights (CVEwtFn = ARKEwtFn); null: SUNDIALS' own from rtol and atol.
+  int (*error_weights)(N_Vector y, N_Vector ewt, void* user) = nullptr;
   void* user = nullptr;
 };
 

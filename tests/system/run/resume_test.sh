@@ -9,6 +9,8 @@
 #     to the end: after every kill the .partial file opens in h5py, and the final file's datasets and
 #     summary are bitwise those of the uninterrupted run (tests/system/parallel/compare_outputs.py). At 2
 #     ranks the whole mpirun job is killed. The random delays are printed, to repeat a failure.
+#   kill_resume_pocket_factor: kill_resume_np1 with [solver] pocket_tolerance_factor = 10 (error
+#     weights that follow the pocket contacts: a function of the state alone, nothing in the checkpoint).
 #   kill_resume_np2_parallel_output: the same at 2 ranks with every rank writing its segment
 #     diagnostics (--parallel-output, MPI-IO), compared with the uninterrupted run of the same kind.
 #   signals_np1, signals_np2: SIGINT, SIGTERM and SIGUSR1 (np2: to both ranks, and SIGUSR1 to mpirun,
@@ -236,6 +238,7 @@ case "$case_name" in
 kill_resume_np1) kill_resume 1 ;;
 kill_resume_np2) kill_resume 2 ;;
 kill_resume_np2_parallel_output) kill_resume 2 --parallel-output ;;
+kill_resume_pocket_factor) kill_resume 1 --set solver.pocket_tolerance_factor=10 ;;
 signals_np1) signals 1 ;;
 signals_np2) signals 2 ;;
 wall_clock)
