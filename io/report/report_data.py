@@ -185,7 +185,7 @@ def read_bearing(out):
     _pocket_steps(out, run)
     _driven(out, run)
     _sum_power(out, run)
-    run.life_input = read_life_input(out)
+    run.life_input = read_life_input(out, n)
     return run
 
 

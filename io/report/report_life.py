@@ -25,13 +25,12 @@ DEFAULT_LUBRICANT_DENSITY = 870.0  # kg/m^3: a mineral oil
 RACE_KINDS = {"inner": ("ball_inner_groove", "roller_inner_race"), "outer": ("ball_outer_groove", "roller_outer_race")}
 
 
-def read_life_input(out):
+def read_life_input(out, n):
     """What the lives need from an output file: the run summary's resolved scene parameters, each
     ring's race contact loads split into tracks ([T x n] each: column j the rolling element j; the
     k-th segment of an element on a ring is its track k) with their contact angles, and the rings'
-    speeds about the axis."""
+    speeds about the axis; n rolling elements."""
     summary = out.summary or {}
-    n = int(out.attrs.get("element_count", 0))
     found = {"parameters": summary.get("scene_parameters", {}), "tracks": {}, "speeds": {}}
     for ring, kinds in RACE_KINDS.items():
         for kind in kinds:
@@ -40,8 +39,10 @@ def read_life_input(out):
             q = np.asarray(out[f"segments/{kind}/normal_force"], dtype=float)
             a = np.asarray(out[f"segments/{kind}/contact_angle"], dtype=float) \
                 if f"segments/{kind}/contact_angle" in out else np.zeros_like(q)
-            element = np.asarray(out[f"segments/{kind}/element"], dtype=int) \
-                if f"segments/{kind}/element" in out else np.arange(q.shape[1])
+            named = [f"segments/{kind}/{name}" for name in ("element", "ball") if f"segments/{kind}/{name}" in out]
+            element = np.asarray(out[named[0]], dtype=float).astype(int) if named else np.arange(q.shape[1])
+            if element.shape != (q.shape[1],) or (element < 0).any() or (element >= n).any():
+                continue  # no rolling element for each column: no life from this file
             tracks, seen = [], {}
             for col, j in enumerate(element):
                 k = seen.get(int(j), 0)
@@ -73,13 +74,14 @@ def bearing_geometry(p, nominal_contact_angle=0.0):
     g = {"type": kind, "ball": ball, "z": int(_value(p, "bearing.rolling_elements") or 0),
          "dw": 1e3 * (_value(p, "bearing.ball_diameter" if ball else "bearing.roller_diameter") or math.nan),
          "dpw": 1e3 * (_value(p, "bearing.pitch_diameter") or math.nan), "lwe": None, "fi": None, "fe": None,
-         "alpha": 0.0}
+         "alpha": 0.0, "rows": 1}
     if ball:
         g["fi"], g["fe"] = _value(p, "bearing.inner_conformity"), _value(p, "bearing.outer_conformity")
         if kind == "angular_contact_ball":
             g["alpha"] = _value(p, "bearing.contact_angle") or nominal_contact_angle
-        elif kind == "four_point_contact_ball":
+        elif kind == "four_point_contact_ball":  # rated as a double-row angular contact bearing (i = 2)
             g["alpha"] = _value(p, "bearing.arc_contact_angle") or nominal_contact_angle
+            g["rows"] = 2
     else:
         g["lwe"] = 1e3 * (_value(p, "bearing.roller_length") or math.nan)
     return g
@@ -125,8 +127,8 @@ def summarize_life(run, w):
     rpm = abs(wi - wo) * 60 / (2 * math.pi)
     inner_rotating = abs(wi) >= abs(wo)
     # ISO 281 ratings.
-    c_iso, fc, bm, gamma = lt.dynamic_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"])
-    c0_iso, f0 = lt.static_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"])
+    c_iso, fc, bm, gamma = lt.dynamic_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
+    c0_iso, f0 = lt.static_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
     designation = _word(p, "bearing.designation")
     c_pub, c_src = _published(p, "dynamic_load_rating", run.scene_text, designation)
     c0_pub, c0_src = _published(p, "static_load_rating", run.scene_text, designation)
@@ -157,7 +159,8 @@ def summarize_life(run, w):
     out = {
         "standards": "ISO 281:2007 (C, P, L10, a_1, a_ISO), ISO 76:2006 (C_0), ISO/TS 16281:2008 (L10r)",
         "bearing_type": g["type"], "rolling_elements": g["z"], "element_diameter_mm": g["dw"],
-        "pitch_diameter_mm": g["dpw"], "contact_angle_deg": math.degrees(g["alpha"]), "gamma": gamma,
+        "pitch_diameter_mm": g["dpw"], "contact_angle_deg": math.degrees(g["alpha"]), "rows": g["rows"],
+        "gamma": gamma,
         "dynamic_load_rating_n": c,
         "dynamic_load_rating_source": c_src or "ISO 281 from the geometry",
         "dynamic_load_rating_iso281_n": c_iso, "f_c": fc, "b_m": bm,
@@ -185,7 +188,7 @@ def summarize_life(run, w):
 def reference_life(li, s, g, c, gamma, inner_rotating, exponent, rpm, a1, e_c, cu, kappa):
     """ISO/TS 16281 over the window: every track's rating and equivalent load, L10r, L10mr."""
     ball = g["ball"]
-    qci, qce = lt.contact_ratings(ball, c, g["z"], gamma, g["alpha"], g["fi"], g["fe"])
+    qci, qce = lt.contact_ratings(ball, c, g["z"], gamma, g["alpha"], g["fi"], g["fe"], g["rows"])
     tracks, pairs = [], []
     for ring, qc, rotating in (("inner", qci, inner_rotating), ("outer", qce, not inner_rotating)):
         for k, (q, _) in enumerate(li["tracks"][ring]):
