@@ -102,6 +102,16 @@ def case_iso281_6205(raceway, source, folder):
     near(life["l10_mrev"], (14800.0 / fr) ** 3, 0.005, "6205: L10 = (C / P)^3 with the published C")
     near(life["l10_h"], (14800.0 / fr) ** 3 * 1e6 / (60 * 3000), 0.005, "6205: L10 in hours at 3000 r/min")
     check(life["reference"]["l10r_mrev"] > 0, "6205: a reference life")
+    # The same numbers in the campaign table's columns and on the report page's table.
+    sys.path.insert(0, os.path.join(source, "io", "report"))
+    import campaign_table
+    import report_life
+    metrics, _ = campaign_table.scene_metrics(path, s["window"]["start_s"])
+    check(metrics["life_l10_mrev"] == life["l10_mrev"] and metrics["life_l10r_mrev"] == life["reference"]["l10r_mrev"]
+          and metrics["life_lnm_mrev"] == life["lnm_mrev"], "6205: the campaign table's life columns are the report's")
+    rows = dict(report_life.life_rows(life))
+    check(rows.get("ISO 281 L10 (basic)", "").startswith(f"{life['l10_mrev']:.4g} x 10^6 rev"),
+          f"6205: the page's L10 row ({rows.get('ISO 281 L10 (basic)')})")
 
 
 def case_iso281_6309(raceway, source, folder):
