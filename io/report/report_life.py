@@ -31,7 +31,8 @@ def read_life_input(out, n):
     k-th segment of an element on a ring is its track k) with their contact angles, and the rings'
     speeds about the axis; n rolling elements."""
     summary = out.summary or {}
-    found = {"parameters": summary.get("scene_parameters", {}), "tracks": {}, "speeds": {}}
+    found = {"parameters": summary.get("scene_parameters", {}), "overrides": summary.get("scene_overrides") or {},
+             "tracks": {}, "speeds": {}}
     for ring, kinds in RACE_KINDS.items():
         for kind in kinds:
             if f"segments/{kind}/normal_force" not in out:
@@ -97,11 +98,11 @@ def carried_load(tracks, element_xy):
     return float(math.hypot(np.mean(fx), np.mean(fy))), float(abs(np.mean(fz)))
 
 
-def _published(p, key, scene_text, designation):
+def _published(p, key, scene_text, overrides, designation):
     value = _value(p, f"life.{key}")
     if value is None:
         return None, None
-    given = key in scene_text
+    given = key in scene_text or f"life.{key}" in overrides
     return value, (f"published: given by the scene ([life] {key})" if given or not designation
                    else f"published: the catalogue's for the {designation} (docs/catalogue.md)")
 
@@ -130,9 +131,9 @@ def summarize_life(run, w):
     c_iso, fc, bm, gamma = lt.dynamic_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
     c0_iso, f0 = lt.static_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
     designation = _word(p, "bearing.designation")
-    c_pub, c_src = _published(p, "dynamic_load_rating", run.scene_text, designation)
-    c0_pub, c0_src = _published(p, "static_load_rating", run.scene_text, designation)
-    cu_pub, cu_src = _published(p, "fatigue_load_limit", run.scene_text, designation)
+    c_pub, c_src = _published(p, "dynamic_load_rating", run.scene_text, li["overrides"], designation)
+    c0_pub, c0_src = _published(p, "static_load_rating", run.scene_text, li["overrides"], designation)
+    cu_pub, cu_src = _published(p, "fatigue_load_limit", run.scene_text, li["overrides"], designation)
     c = c_pub if c_pub is not None else c_iso
     c0 = c0_pub if c0_pub is not None else c0_iso
     if c is None or c0 is None:
