@@ -14,6 +14,9 @@ written out here from the standards' formulas, one case per ctest.
   balls where the run has them, the inner ring displaced until the Hertz loads Q_j = (d . u_j)^1.5
   balance the applied load (zero clearance: Stribeck's distribution, whose shape needs no stiffness),
   then ISO/TS 16281's equivalent loads and contact ratings written out here.
+- roller_radial: seed 002's cylindrical roller bearing (no clearance) under 1 kN: ISO 281's roller
+  rating by hand, and ISO/TS 16281's roller life against the same quasi-static calculation with
+  Palmgren's exponent 10/9 (within 2 %).
 - bad_keys: [life] values out of range refused with file, line, key and reason, exit code 2.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (numpy or h5py missing).
@@ -148,17 +151,18 @@ def case_iso281_6309(raceway, source, folder):
     near(life["lnm_mrev"], 0.25 * a_iso * l10, 0.005, "6309: L_nm = a_1 a_ISO L10")
 
 
-def quasi_static_loads(u, f):
-    """Q_j = (d . u_j)_+^1.5 with d solving sum Q_j u_j = f (Newton), for ball directions u [n x 2]."""
-    d = np.array(f) / np.linalg.norm(f) * (np.linalg.norm(f) / 2.0) ** (2 / 3)
-    for _ in range(60):
+def quasi_static_loads(u, f, exponent=1.5):
+    """Q_j = (d . u_j)_+^n with d solving sum Q_j u_j = f (Newton), for element directions u [m x 2]:
+    without clearance the shape of the distribution needs no stiffness (n = 3/2 Hertz, 10/9 Palmgren)."""
+    d = np.array(f) / np.linalg.norm(f) * (np.linalg.norm(f) / 2.0) ** (1 / exponent)
+    for _ in range(100):
         s = np.maximum(u @ d, 0.0)
-        r = (s ** 1.5) @ u - f
-        jac = 1.5 * (u * (s ** 0.5)[:, None]).T @ u
+        r = (s ** exponent) @ u - f
+        jac = exponent * (u * (s ** (exponent - 1))[:, None]).T @ u
         d = d - np.linalg.solve(jac, r)
         if np.linalg.norm(r) < 1e-12 * np.linalg.norm(f):
             break
-    return np.maximum(u @ d, 0.0) ** 1.5
+    return np.maximum(u @ d, 0.0) ** exponent
 
 
 def case_iso16281_radial(raceway, source, folder):
@@ -202,6 +206,49 @@ def case_iso16281_radial(raceway, source, folder):
     near(life["l10_mrev"], (c / life["equivalent_load_n"]) ** 3, 1e-9, "16281 scene: L10")
 
 
+def case_roller_radial(raceway, source, folder):
+    """seed 002's cylindrical roller bearing (zero clearance, Palmgren's Q = K delta^(10/9)) under
+    1 kN at 10 Hz: ISO 281's roller rating by hand, and ISO/TS 16281's roller formulas against the
+    quasi-static distribution at the run's roller positions."""
+    load = 1000.0
+    path, s = run_and_report(raceway, source, "seed002_40hz.toml", folder,
+                             ["scene.end_time=20 ms", "scene.gravity=false", "inner_ring.speed=10 Hz"])
+    life = s["life"]
+    # ISO 281, radial roller bearing: Z = 13, D_we = 9.2 mm, L_we = 10 mm, D_pw = 45.74 mm, alpha = 0.
+    gamma = 9.2 / 45.74                                      # 0.201137
+    fc = 88.7 + (gamma - 0.20) / 0.01 * (88.5 - 88.7)        # Table 7 between 0.20 (88.7) and 0.21 (88.5): 88.677
+    c_hand = 1.1 * fc * 10 ** (7 / 9) * 13 ** 0.75 * 9.2 ** (29 / 27)  # b_m f_c (i L_we)^(7/9) Z^(3/4) D_we^(29/27)
+    c0_hand = 44 * (1 - gamma) * 13 * 10 * 9.2               # 44 (1 - gamma) i Z L_we D_we
+    near(life["dynamic_load_rating_n"], c_hand, 0.005, "roller: ISO 281 C")
+    near(life["static_load_rating_n"], c0_hand, 0.005, "roller: ISO 76 C_0")
+    near(life["fatigue_load_limit_n"], c0_hand / 8.2, 0.005, "roller: C_u = C_0 / 8.2")
+    near(life["l10_mrev"], (c_hand / life["equivalent_load_n"]) ** (10 / 3), 0.005, "roller: L10 = (C / P)^(10/3)")
+    near(life["equivalent_load_n"], load, 0.01, "roller: P = the applied F_r")
+    with h5py.File(path, "r") as f:
+        t = f["time"][:]
+        w = t >= s["window"]["start_s"] - 1e-12
+        xy = f["rollers/position"][:][w][..., :2]
+    q = []
+    for sample in xy:
+        u = sample / np.linalg.norm(sample, axis=1)[:, None]
+        q.append(quasi_static_loads(u, np.array([0.0, -load]), exponent=10 / 9))
+    q = np.array(q)
+    q_ei = np.mean(q ** 4) ** 0.25                           # the inner ring rotates relative to the load
+    q_ee = np.mean(q ** 4.5) ** (1 / 4.5)
+    term = 1.038 * ((1 - gamma) / (1 + gamma)) ** (143 / 108)
+    q_ci = c_hand / (0.83 * 0.378 * 13) * (1 + term ** 4.5) ** (2 / 9)
+    q_ce = c_hand / (0.83 * 0.364 * 13) * (1 + term ** -4.5) ** (2 / 9)
+    l10r = ((q_ci / q_ei) ** -4.5 + (q_ce / q_ee) ** -4.5) ** (-8 / 9)
+    ref = life["reference"]
+    tracks = {tr["ring"]: tr for tr in ref["tracks"]}
+    print(f"quasi-static: q_ei {q_ei:.2f} N, q_ee {q_ee:.2f} N, L10r {l10r:.4g}; run: "
+          f"{tracks['inner']['equivalent_load_n']:.2f} N, {tracks['outer']['equivalent_load_n']:.2f} N, "
+          f"{ref['l10r_mrev']:.4g}")
+    near(tracks["inner"]["rating_n"], q_ci, 0.005, "roller 16281: Q_ci")
+    near(tracks["outer"]["rating_n"], q_ce, 0.005, "roller 16281: Q_ce")
+    near(ref["l10r_mrev"], l10r, 0.02, "roller 16281: L10r against the quasi-static calculation")
+
+
 def case_bad_keys(raceway, source, folder):
     scene = os.path.join(source, "jobs", "scenes", "6205_first_scene.toml")
     with open(scene) as fh:
@@ -227,7 +274,8 @@ def main(argv):
     case, raceway, source = argv
     with tempfile.TemporaryDirectory(prefix="life_test_") as folder:
         {"iso281_6205": case_iso281_6205, "iso281_6309": case_iso281_6309,
-         "iso16281_radial": case_iso16281_radial, "bad_keys": case_bad_keys}[case](raceway, source, folder)
+         "iso16281_radial": case_iso16281_radial, "roller_radial": case_roller_radial,
+         "bad_keys": case_bad_keys}[case](raceway, source, folder)
     if failures:
         print(f"{len(failures)} failure(s)", file=sys.stderr)
         return 1
