@@ -111,6 +111,62 @@ def _hours(mrev, rpm):
     return mrev * 1e6 / (60.0 * rpm) if rpm > 0 and math.isfinite(mrev) else None
 
 
+def window_operation(run, li, s):
+    """The load the inner race contacts carry over the window slice s (F_r, F_a, N), the rings'
+    relative speed (r/min) and whether the inner ring is the one rotating relative to the load."""
+    fr, fa = carried_load([(q[s], a[s]) for q, a in li["tracks"]["inner"]], run.element_xy[s])
+    speed = {ring: float(np.mean(li["speeds"][ring][s])) if ring in li["speeds"] else 0.0
+             for ring in ("inner_ring", "outer_ring")}
+    rpm = abs(speed["inner_ring"] - speed["outer_ring"]) * 60 / (2 * math.pi)
+    return fr, fa, rpm, abs(speed["inner_ring"]) >= abs(speed["outer_ring"])
+
+
+def load_ratings(run, li, g):
+    """C, C_0, C_u: computed from the geometry, published where the scene or catalogue gives them."""
+    p, ball = li["parameters"], g["ball"]
+    c_iso, fc, bm, gamma = lt.dynamic_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
+    c0_iso, f0 = lt.static_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
+    designation = _word(p, "bearing.designation")
+    published = {key: _published(p, key, run.scene_text, li["overrides"], designation)
+                 for key in ("dynamic_load_rating", "static_load_rating", "fatigue_load_limit")}
+    c_pub, c_src = published["dynamic_load_rating"]
+    c0_pub, c0_src = published["static_load_rating"]
+    cu_pub, cu_src = published["fatigue_load_limit"]
+    c = c_pub if c_pub is not None else c_iso
+    c0 = c0_pub if c0_pub is not None else c0_iso
+    out = {"gamma": gamma, "dynamic_load_rating_n": c,
+           "dynamic_load_rating_source": c_src or "ISO 281 from the geometry",
+           "dynamic_load_rating_iso281_n": c_iso, "f_c": fc, "b_m": bm,
+           "static_load_rating_n": c0, "static_load_rating_source": c0_src or "ISO 76 from the geometry",
+           "static_load_rating_iso76_n": c0_iso, "f_0": f0}
+    if c is None or c0 is None:
+        return out
+    out["fatigue_load_limit_n"] = cu_pub if cu_pub is not None else lt.fatigue_load_limit(ball, c0, g["dpw"])
+    out["fatigue_load_limit_source"] = cu_src or ("estimated: C_0 / {} {} (ISO 281 Annex B)".format(
+        22 if ball else 8.2, "" if g["dpw"] <= 100 else f"(100 / D_pw)^{0.5 if ball else 0.3}").replace("  ", " "))
+    return out
+
+
+def modification(p, g, rpm):
+    """a_1 and the lubrication of a_ISO: reliability, e_C, nu, nu_1, kappa (None where not known), notes."""
+    reliability = _value(p, "life.reliability") or DEFAULT_RELIABILITY
+    eta = _value(p, "lubricant.viscosity") or 0.0
+    rho = _value(p, "life.lubricant_density") or DEFAULT_LUBRICANT_DENSITY
+    nu = eta / rho * 1e6 if eta > 0 else None
+    nu1 = lt.reference_viscosity(rpm, g["dpw"]) if rpm > 0 else None
+    kappa = nu / nu1 if nu and nu1 else None
+    notes = []
+    if kappa is None:
+        why = "the scene has no [lubricant]" if nu is None else "the rings do not turn"
+        notes.append(f"no modified lives: {why}")
+    elif kappa < 0.1:
+        notes.append(f"no modified lives: kappa = {kappa:.3g} is below ISO 281's range (0.1 to 4)")
+    return {"reliability_percent": reliability, "a1": lt.a1(reliability),
+            "contamination_factor": _value(p, "life.contamination_factor") or DEFAULT_CONTAMINATION,
+            "kinematic_viscosity_mm2_s": nu, "lubricant_density_kg_m3": rho, "rated_viscosity_mm2_s": nu1,
+            "kappa": kappa}, notes
+
+
 def summarize_life(run, w):
     """The `life` object of summary.json over the window w (report_metrics.select_window)."""
     li = run.life_input or {}
@@ -118,69 +174,32 @@ def summarize_life(run, w):
     if not p or "inner" not in li.get("tracks", {}) or "outer" not in li["tracks"]:
         return {"note": "no life: the file has no run summary (an interrupted run) or no race contacts"}
     g = bearing_geometry(p, float(run.geometry.get("nominal_contact_angle", 0.0) or 0.0))
-    ball, s = g["ball"], w.slice
-    notes = []
-    # The load and speed of the window.
-    inner = [(q[s], a[s]) for q, a in li["tracks"]["inner"]]
-    fr, fa = carried_load(inner, run.element_xy[s])
-    wi = float(np.mean(li["speeds"].get("inner_ring", np.zeros(1))[s])) if "inner_ring" in li["speeds"] else 0.0
-    wo = float(np.mean(li["speeds"].get("outer_ring", np.zeros(1))[s])) if "outer_ring" in li["speeds"] else 0.0
-    rpm = abs(wi - wo) * 60 / (2 * math.pi)
-    inner_rotating = abs(wi) >= abs(wo)
-    # ISO 281 ratings.
-    c_iso, fc, bm, gamma = lt.dynamic_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
-    c0_iso, f0 = lt.static_load_rating(ball, g["z"], g["dw"], g["dpw"], g["alpha"], g["lwe"], g["rows"])
-    designation = _word(p, "bearing.designation")
-    c_pub, c_src = _published(p, "dynamic_load_rating", run.scene_text, li["overrides"], designation)
-    c0_pub, c0_src = _published(p, "static_load_rating", run.scene_text, li["overrides"], designation)
-    cu_pub, cu_src = _published(p, "fatigue_load_limit", run.scene_text, li["overrides"], designation)
-    c = c_pub if c_pub is not None else c_iso
-    c0 = c0_pub if c0_pub is not None else c0_iso
-    if c is None or c0 is None:
-        return {"note": f"no life: D_w cos(alpha) / D_pw = {gamma:.4f} is outside ISO 281's f_c table and the scene "
-                        "gives no [life] dynamic_load_rating"}
-    cu = cu_pub if cu_pub is not None else lt.fatigue_load_limit(ball, c0, g["dpw"])
-    pe, x, y, e = lt.equivalent_load(g["type"], fr, fa, c0, f0, g["alpha"])
-    exponent = 3.0 if ball else 10 / 3
+    ratings = load_ratings(run, li, g)
+    if "fatigue_load_limit_n" not in ratings:
+        return {"note": f"no life: D_w cos(alpha) / D_pw = {ratings['gamma']:.4f} is outside ISO 281's f_c table and "
+                        "the scene gives no [life] dynamic_load_rating"}
+    fr, fa, rpm, inner_rotating = window_operation(run, li, w.slice)
+    c, cu = ratings["dynamic_load_rating_n"], ratings["fatigue_load_limit_n"]
+    pe, x, y, e = lt.equivalent_load(g["type"], fr, fa, ratings["static_load_rating_n"], ratings["f_0"], g["alpha"])
+    exponent = 3.0 if g["ball"] else 10 / 3
     l10 = (c / pe) ** exponent if pe > 0 else math.inf
-    # Life modification: reliability, lubrication, contamination.
-    reliability = _value(p, "life.reliability") or DEFAULT_RELIABILITY
-    e_c = _value(p, "life.contamination_factor") or DEFAULT_CONTAMINATION
-    eta = _value(p, "lubricant.viscosity") or 0.0
-    rho = _value(p, "life.lubricant_density") or DEFAULT_LUBRICANT_DENSITY
-    nu = eta / rho * 1e6 if eta > 0 else None
-    nu1 = lt.reference_viscosity(rpm, g["dpw"]) if rpm > 0 else None
-    kappa = nu / nu1 if nu and nu1 else None
-    a1 = lt.a1(reliability)
-    if kappa is None:
-        notes.append("no modified lives: " + ("the scene has no [lubricant]" if nu is None else "the rings do not turn"))
-    elif kappa < 0.1:
-        notes.append(f"no modified lives: kappa = {kappa:.3g} is below ISO 281's range (0.1 to 4)")
-    a_iso = lt.a_iso(ball, kappa, e_c * cu / pe) if kappa and pe > 0 else None
-    out = {
-        "standards": "ISO 281:2007 (C, P, L10, a_1, a_ISO), ISO 76:2006 (C_0), ISO/TS 16281:2008 (L10r)",
-        "bearing_type": g["type"], "rolling_elements": g["z"], "element_diameter_mm": g["dw"],
-        "pitch_diameter_mm": g["dpw"], "contact_angle_deg": math.degrees(g["alpha"]), "rows": g["rows"],
-        "gamma": gamma,
-        "dynamic_load_rating_n": c,
-        "dynamic_load_rating_source": c_src or "ISO 281 from the geometry",
-        "dynamic_load_rating_iso281_n": c_iso, "f_c": fc, "b_m": bm,
-        "static_load_rating_n": c0, "static_load_rating_source": c0_src or "ISO 76 from the geometry",
-        "static_load_rating_iso76_n": c0_iso, "f_0": f0,
-        "fatigue_load_limit_n": cu,
-        "fatigue_load_limit_source": cu_src or ("estimated: C_0 / {} {} (ISO 281 Annex B)".format(
-            22 if ball else 8.2, "" if g["dpw"] <= 100 else f"(100 / D_pw)^{0.5 if ball else 0.3}").strip()),
-        "radial_load_n": fr, "axial_load_n": fa, "load_note": "the window's mean load the inner race contacts carry",
-        "equivalent_load_n": pe, "x": x, "y": y, "e": e,
-        "speed_rpm": rpm, "rotating_ring": "inner_ring" if inner_rotating else "outer_ring",
-        "l10_mrev": l10, "l10_h": _hours(l10, rpm),
-        "reliability_percent": reliability, "a1": a1, "contamination_factor": e_c,
-        "kinematic_viscosity_mm2_s": nu, "lubricant_density_kg_m3": rho, "rated_viscosity_mm2_s": nu1,
-        "kappa": kappa, "a_iso": a_iso,
-        "lnm_mrev": a1 * a_iso * l10 if a_iso is not None else None,
-    }
-    out["lnm_h"] = _hours(out["lnm_mrev"], rpm) if out["lnm_mrev"] is not None else None
-    out["reference"] = reference_life(li, s, g, c, gamma, inner_rotating, exponent, rpm, a1, e_c, cu, kappa)
+    mod, notes = modification(p, g, rpm)
+    kappa, e_c = mod["kappa"], mod["contamination_factor"]
+    a_iso = lt.a_iso(g["ball"], kappa, e_c * cu / pe) if kappa and pe > 0 else None
+    lnm = mod["a1"] * a_iso * l10 if a_iso is not None else None
+    out = {"standards": "ISO 281:2007 (C, P, L10, a_1, a_ISO), ISO 76:2006 (C_0), ISO/TS 16281:2008 (L10r)",
+           "bearing_type": g["type"], "rolling_elements": g["z"], "element_diameter_mm": g["dw"],
+           "pitch_diameter_mm": g["dpw"], "contact_angle_deg": math.degrees(g["alpha"]), "rows": g["rows"]}
+    out.update(ratings)
+    out.update({"radial_load_n": fr, "axial_load_n": fa,
+                "load_note": "the window's mean load the inner race contacts carry",
+                "equivalent_load_n": pe, "x": x, "y": y, "e": e,
+                "speed_rpm": rpm, "rotating_ring": "inner_ring" if inner_rotating else "outer_ring",
+                "l10_mrev": l10, "l10_h": _hours(l10, rpm)})
+    out.update(mod)
+    out.update({"a_iso": a_iso, "lnm_mrev": lnm, "lnm_h": _hours(lnm, rpm) if lnm is not None else None})
+    out["reference"] = reference_life(li, w.slice, g, c, ratings["gamma"], inner_rotating, exponent, rpm, mod["a1"],
+                                      e_c, cu, kappa)
     if notes:
         out["notes"] = notes
     return out
@@ -216,6 +235,9 @@ def life_rows(life):
     if "l10_mrev" not in life:
         return [("life", life.get("note", "not computed"))]
 
+    def number(value):
+        return "-" if value is None else f"{value:.3g}"
+
     def lives(mrev, hours):
         if mrev is None:
             return "-"
@@ -232,8 +254,8 @@ def life_rows(life):
         ("load F_r, F_a -> P", f"{life['radial_load_n']:.4g} N, {life['axial_load_n']:.4g} N -> "
                                f"{life['equivalent_load_n']:.4g} N at {life['speed_rpm']:.4g} r/min"),
         ("ISO 281 L10 (basic)", lives(life["l10_mrev"], life["l10_h"])),
-        (f"ISO 281 L_nm (a_1 = {life['a1']:.3g}, a_ISO = {life['a_iso'] if life['a_iso'] is None else format(life['a_iso'], '.3g')}"
-         f", kappa = {life['kappa'] if life['kappa'] is None else format(life['kappa'], '.3g')}, e_C = {life['contamination_factor']:.3g})",
+        (f"ISO 281 L_nm (a_1 = {life['a1']:.3g}, a_ISO = {number(life['a_iso'])}, kappa = {number(life['kappa'])}, "
+         f"e_C = {life['contamination_factor']:.3g})",
          lives(life["lnm_mrev"], life["lnm_h"])),
         ("ISO/TS 16281 L10r (from the contact loads)", lives(ref["l10r_mrev"], ref["l10r_h"])),
         (f"ISO/TS 16281 L10mr (P_ref = {ref['reference_load_n']:.4g} N)", lives(ref["l10mr_mrev"], ref["l10mr_h"])),
