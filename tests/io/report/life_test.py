@@ -17,6 +17,8 @@ written out here from the standards' formulas, one case per ctest.
 - roller_radial: seed 002's cylindrical roller bearing (no clearance) under 1 kN: ISO 281's roller
   rating by hand, and ISO/TS 16281's roller life against the same quasi-static calculation with
   Palmgren's exponent 10/9 (within 2 %).
+- tables: the equivalent load's X, Y, e (deep groove, angular and four-point contact), a_1 and the
+  other branches of a_ISO against ISO 281's tables and formulas by hand.
 - bad_keys: [life] values out of range refused with file, line, key and reason, exit code 2.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (numpy or h5py missing).
@@ -249,6 +251,38 @@ def case_roller_radial(raceway, source, folder):
     near(ref["l10r_mrev"], l10r, 0.02, "roller 16281: L10r against the quasi-static calculation")
 
 
+def case_tables(raceway, source, folder):
+    """The equivalent load's X, Y, e, a_1 and a_ISO's other branches against ISO 281's tables by hand."""
+    sys.path.insert(0, os.path.join(source, "io", "report"))
+    import life_tables as lt
+    # Deep groove, f_0 = 13.9, C_0r = 7800 N, F_r = 1000 N, F_a = 500 N: f_0 F_a / C_0r = 0.8910, between
+    # 0.689 (e 0.26, Y 1.71) and 1.03 (e 0.28, Y 1.55); F_a / F_r = 0.5 > e: X = 0.56.
+    t = (13.9 * 500 / 7800 - 0.689) / (1.03 - 0.689)
+    e, y = 0.26 + t * 0.02, 1.71 - t * 0.16
+    p, x_, y_, e_ = lt.equivalent_load("deep_groove_ball", 1000, 500, 7800, 13.9)
+    near(p, 0.56 * 1000 + y * 500, 1e-9, "deep groove P = 0.56 F_r + Y F_a")
+    near(e_, e, 1e-9, "deep groove e")
+    check(lt.equivalent_load("deep_groove_ball", 1000, 100, 7800, 13.9)[0] == 1000,
+          "deep groove: F_a / F_r below e: P = F_r")
+    # Angular contact 40 deg, single row: e = 1.14; X = 0.35, Y = 0.57 above it.
+    near(lt.equivalent_load("angular_contact_ball", 1000, 1500, alpha=math.radians(40))[0], 0.35 * 1000 + 0.57 * 1500,
+         1e-9, "angular contact 40 deg: P = 0.35 F_r + 0.57 F_a")
+    # Four-point contact 35 deg as a double row: F_a / F_r <= 0.95: P = F_r + 0.66 F_a; above: 0.6 F_r + 1.07 F_a.
+    near(lt.equivalent_load("four_point_contact_ball", 1000, 900, alpha=math.radians(35))[0], 1000 + 0.66 * 900, 1e-9,
+         "four-point 35 deg, F_a / F_r = 0.9: P = F_r + 0.66 F_a")
+    near(lt.equivalent_load("four_point_contact_ball", 500, 2000, alpha=math.radians(35))[0], 0.6 * 500 + 1.07 * 2000,
+         1e-9, "four-point 35 deg, F_a / F_r = 4: P = 0.6 F_r + 1.07 F_a")
+    near(lt.a1(95), 0.64, 1e-9, "a_1 at 95 %")
+    near(lt.a1(99.5), 0.5 * (0.19 + 0.16), 1e-9, "a_1 between 99.4 and 99.6 %")
+    # a_ISO's other branches: balls 0.4 <= kappa < 1, rollers 0.1 <= kappa < 0.4, and the cap of 50.
+    near(lt.a_iso(True, 0.6, 0.2), 0.1 * (1 - (2.5671 - 1.9987 / 0.6 ** 0.19087) ** 0.83 * 0.2 ** (1 / 3)) ** -9.3,
+         1e-12, "a_ISO, balls, kappa 0.6")
+    near(lt.a_iso(False, 0.3, 0.2), 0.1 * (1 - (1.5859 - 1.3993 / 0.3 ** 0.054381) * 0.2 ** 0.4) ** -9.185, 1e-12,
+         "a_ISO, rollers, kappa 0.3")
+    check(lt.a_iso(True, 4, 5) == 50 and lt.a_iso(True, 0.05, 0.1) is None, "a_ISO capped at 50, none below kappa 0.1")
+    near(lt.reference_viscosity(500, 50), 45000 * 500 ** -0.83 * 50 ** -0.5, 1e-12, "nu_1 below 1000 r/min")
+
+
 def case_bad_keys(raceway, source, folder):
     scene = os.path.join(source, "jobs", "scenes", "6205_first_scene.toml")
     with open(scene) as fh:
@@ -275,7 +309,7 @@ def main(argv):
     with tempfile.TemporaryDirectory(prefix="life_test_") as folder:
         {"iso281_6205": case_iso281_6205, "iso281_6309": case_iso281_6309,
          "iso16281_radial": case_iso16281_radial, "roller_radial": case_roller_radial,
-         "bad_keys": case_bad_keys}[case](raceway, source, folder)
+         "tables": case_tables, "bad_keys": case_bad_keys}[case](raceway, source, folder)
     if failures:
         print(f"{len(failures)} failure(s)", file=sys.stderr)
         return 1
