@@ -10,19 +10,20 @@ import math
 
 import numpy as np
 
-# ISO 281:2007 Table 1, first column (single-row radial contact groove ball bearings and single- and
-# double-row angular contact groove ball bearings): f_c against D_w cos(alpha) / D_pw.
+# ISO 281:2007, the table of f_c for radial ball bearings, first column (single-row radial contact
+# groove ball bearings and single- and double-row angular contact groove ball bearings): f_c against
+# D_w cos(alpha) / D_pw.
 BALL_FC = ((0.01, 29.1), (0.02, 35.8), (0.03, 40.3), (0.04, 43.8), (0.05, 46.7), (0.06, 49.1), (0.07, 51.1),
            (0.08, 52.8), (0.09, 54.3), (0.10, 55.5), (0.12, 57.5), (0.14, 58.8), (0.16, 59.6), (0.18, 59.9),
            (0.20, 59.9), (0.22, 59.6), (0.24, 59.0), (0.26, 58.2), (0.28, 57.1), (0.30, 56.0), (0.32, 54.6),
            (0.34, 53.2), (0.36, 51.7), (0.38, 50.0), (0.40, 48.4))
-# ISO 281:2007 Table 7 (radial roller bearings): f_c against D_we cos(alpha) / D_pw.
+# ISO 281:2007, the table of f_c for radial roller bearings: f_c against D_we cos(alpha) / D_pw.
 ROLLER_FC = ((0.01, 52.1), (0.02, 60.8), (0.03, 66.5), (0.04, 70.7), (0.05, 74.1), (0.06, 76.9), (0.07, 79.2),
              (0.08, 81.2), (0.09, 82.8), (0.10, 84.2), (0.11, 85.4), (0.12, 86.4), (0.13, 87.1), (0.14, 87.7),
              (0.15, 88.2), (0.16, 88.5), (0.17, 88.7), (0.18, 88.8), (0.19, 88.8), (0.20, 88.7), (0.21, 88.5),
              (0.22, 88.2), (0.23, 87.9), (0.24, 87.5), (0.25, 87.0), (0.26, 86.4), (0.27, 85.8), (0.28, 85.2),
              (0.29, 84.5), (0.30, 83.8))
-# ISO 76:2006 Table 1 (radial contact groove and angular contact groove ball bearings): f_0 against
+# ISO 76:2006, the table of f_0 (radial contact groove and angular contact groove ball bearings): f_0 against
 # D_w cos(alpha) / D_pw.
 BALL_F0 = ((0.00, 14.7), (0.01, 14.9), (0.02, 15.1), (0.03, 15.3), (0.04, 15.5), (0.05, 15.7), (0.06, 15.9),
            (0.07, 16.1), (0.08, 16.3), (0.09, 16.5), (0.10, 16.4), (0.11, 16.1), (0.12, 15.9), (0.13, 15.6),
@@ -30,16 +31,17 @@ BALL_F0 = ((0.00, 14.7), (0.01, 14.9), (0.02, 15.1), (0.03, 15.3), (0.04, 15.5),
            (0.21, 13.7), (0.22, 13.5), (0.23, 13.2), (0.24, 13.0), (0.25, 12.8), (0.26, 12.5), (0.27, 12.3),
            (0.28, 12.1), (0.29, 11.8), (0.30, 11.6), (0.31, 11.4), (0.32, 11.2), (0.33, 10.9), (0.34, 10.7),
            (0.35, 10.5), (0.36, 10.3), (0.37, 10.0), (0.38, 9.8), (0.39, 9.6), (0.40, 9.4))
-# ISO 281:2007 Table 9, single-row radial contact groove ball bearings (normal clearance): f_0 F_a / C_0r,
-# e, and Y for F_a / F_r > e (X = 0.56 there; X = 1, Y = 0 for F_a / F_r <= e).
+# ISO 281:2007, the table of X, Y and e of radial ball bearings, single-row radial contact groove ball
+# bearings (normal clearance): f_0 F_a / C_0r, e, and Y for F_a / F_r > e (X = 0.56 there; X = 1,
+# Y = 0 for F_a / F_r <= e).
 DEEP_GROOVE_XY = ((0.172, 0.19, 2.30), (0.345, 0.22, 1.99), (0.689, 0.26, 1.71), (1.03, 0.28, 1.55),
                   (1.38, 0.30, 1.45), (2.07, 0.34, 1.31), (3.45, 0.38, 1.15), (5.17, 0.42, 1.04), (6.89, 0.44, 1.00))
-# ISO 281:2007 Table 9, angular contact groove ball bearings: alpha (deg), e, then (X, Y) for F_a / F_r > e
+# The same table, angular contact groove ball bearings: alpha (deg), e, then (X, Y) for F_a / F_r > e
 # of a single row, and (Y for F_a / F_r <= e; X, Y for F_a / F_r > e) of a double row (X = 1 at <= e).
 ANGULAR_XY = ((25, 0.68, 0.41, 0.87, 0.92, 0.67, 1.41), (30, 0.80, 0.39, 0.76, 0.78, 0.63, 1.24),
               (35, 0.95, 0.37, 0.66, 0.66, 0.60, 1.07), (40, 1.14, 0.35, 0.57, 0.55, 0.57, 0.93),
               (45, 1.34, 0.33, 0.50, 0.47, 0.54, 0.81))
-# ISO 281:2007 Table 12: life modification factor for reliability a_1 against the reliability in percent.
+# ISO 281:2007, the table of the life modification factor for reliability a_1 against the reliability in percent.
 A1 = ((90, 1.0), (95, 0.64), (96, 0.55), (97, 0.47), (98, 0.37), (99, 0.25), (99.2, 0.22), (99.4, 0.19),
       (99.6, 0.16), (99.8, 0.12), (99.9, 0.093), (99.92, 0.087), (99.94, 0.080), (99.95, 0.077))
 
@@ -80,7 +82,7 @@ def static_load_rating(ball, z, dw, dpw, alpha=0.0, lwe=None, rows=1):
 
 
 def fatigue_load_limit(ball, c0, dpw):
-    """ISO 281 Annex B's simple estimate of the fatigue load limit C_u (N) from C_0 (bearings of
+    """ISO 281's simple estimate of the fatigue load limit C_u (N) from C_0 (bearings of
     ordinary steel and quality)."""
     if ball:
         return c0 / 22.0 * (1.0 if dpw <= 100 else (100.0 / dpw) ** 0.5)
@@ -136,7 +138,7 @@ def a_iso(ball, kappa, load_ratio):
 
 
 def a1(reliability_percent):
-    """ISO 281 Table 12's a_1, interpolated between its rows (90 % .. 99.95 %)."""
+    """ISO 281's table of a_1, interpolated between its rows (90 % .. 99.95 %)."""
     return interpolate(A1, reliability_percent)
 
 

@@ -142,7 +142,7 @@ def load_ratings(run, li, g):
     if c is None or c0 is None:
         return out
     out["fatigue_load_limit_n"] = cu_pub if cu_pub is not None else lt.fatigue_load_limit(ball, c0, g["dpw"])
-    out["fatigue_load_limit_source"] = cu_src or ("estimated: C_0 / {} {} (ISO 281 Annex B)".format(
+    out["fatigue_load_limit_source"] = cu_src or ("estimated: C_0 / {} {} (ISO 281's estimate)".format(
         22 if ball else 8.2, "" if g["dpw"] <= 100 else f"(100 / D_pw)^{0.5 if ball else 0.3}").replace("  ", " "))
     return out
 

@@ -86,10 +86,11 @@ def case_iso281_6205(raceway, source, folder):
     # ISO 281 by hand. The catalogue's 6205 (CWRU's published geometry): Z = 9, D_w = 7.940 mm,
     # D_pw = 39.040 mm, alpha = 0.
     gamma = 7.940 / 39.040                                   # 0.203381
-    fc = 59.9 + (gamma - 0.20) / (0.22 - 0.20) * (59.6 - 59.9)  # Table 1 between 0.20 (59.9) and 0.22 (59.6): 59.849
+    # f_c table between 0.20 (59.9) and 0.22 (59.6): 59.849
+    fc = 59.9 + (gamma - 0.20) / (0.22 - 0.20) * (59.6 - 59.9)
     c_hand = 1.3 * fc * 1.0 ** 0.7 * 9 ** (2 / 3) * 7.940 ** 1.8  # b_m f_c (i cos a)^0.7 Z^(2/3) D_w^1.8, D_w <= 25.4 mm
     check(abs(c_hand - 14023.0) < 1.0, f"hand C = {c_hand:.1f} N (1.3 x 59.849 x 4.3267 x 41.656 = 14023.0 N)")
-    f0 = 14.0 + (gamma - 0.20) / 0.01 * (13.7 - 14.0)       # ISO 76 Table 1 between 0.20 (14.0) and 0.21 (13.7)
+    f0 = 14.0 + (gamma - 0.20) / 0.01 * (13.7 - 14.0)       # ISO 76's f_0 between 0.20 (14.0) and 0.21 (13.7)
     c0_hand = f0 * 1 * 9 * 7.940 ** 2                        # f_0 i Z D_w^2 cos a: 13.899 x 9 x 63.04 = 7886 N
     near(life["dynamic_load_rating_iso281_n"], c_hand, 0.005, "6205: ISO 281 C from the geometry")
     near(life["static_load_rating_iso76_n"], c0_hand, 0.005, "6205: ISO 76 C_0 from the geometry")
@@ -125,11 +126,11 @@ def case_iso281_6309(raceway, source, folder):
     life = s["life"]
     # seed 000's 6309: Z = 8, D_w = 17.462 mm, D_pw = 72.5 mm, alpha = 0; no published rating.
     gamma = 17.462 / 72.5                                    # 0.240855
-    fc = 59.0 + (gamma - 0.24) / 0.02 * (58.2 - 59.0)        # Table 1 between 0.24 (59.0) and 0.26 (58.2): 58.966
+    fc = 59.0 + (gamma - 0.24) / 0.02 * (58.2 - 59.0)        # f_c table between 0.24 (59.0) and 0.26 (58.2): 58.966
     c_hand = 1.3 * fc * 8 ** (2 / 3) * 17.462 ** 1.8         # 1.3 x 58.966 x 4 x 172.10 = 52768 N
     f0 = 13.0 + (gamma - 0.24) / 0.01 * (12.8 - 13.0)        # ISO 76: 12.983
     c0_hand = f0 * 8 * 17.462 ** 2                           # 31670 N
-    cu_hand = c0_hand / 22                                   # ISO 281 Annex B, D_pw <= 100 mm: 1439.5 N
+    cu_hand = c0_hand / 22                                   # ISO 281's estimate, D_pw <= 100 mm: 1439.5 N
     near(life["dynamic_load_rating_n"], c_hand, 0.005, "6309: C from the geometry")
     check(life["dynamic_load_rating_source"] == "ISO 281 from the geometry", "6309: C is the computed one")
     near(life["static_load_rating_n"], c0_hand, 0.005, "6309: C_0 (ISO 76)")
@@ -218,7 +219,7 @@ def case_roller_radial(raceway, source, folder):
     life = s["life"]
     # ISO 281, radial roller bearing: Z = 13, D_we = 9.2 mm, L_we = 10 mm, D_pw = 45.74 mm, alpha = 0.
     gamma = 9.2 / 45.74                                      # 0.201137
-    fc = 88.7 + (gamma - 0.20) / 0.01 * (88.5 - 88.7)        # Table 7 between 0.20 (88.7) and 0.21 (88.5): 88.677
+    fc = 88.7 + (gamma - 0.20) / 0.01 * (88.5 - 88.7)        # roller f_c between 0.20 (88.7) and 0.21 (88.5): 88.677
     c_hand = 1.1 * fc * 10 ** (7 / 9) * 13 ** 0.75 * 9.2 ** (29 / 27)  # b_m f_c (i L_we)^(7/9) Z^(3/4) D_we^(29/27)
     c0_hand = 44 * (1 - gamma) * 13 * 10 * 9.2               # 44 (1 - gamma) i Z L_we D_we
     near(life["dynamic_load_rating_n"], c_hand, 0.005, "roller: ISO 281 C")
