@@ -71,6 +71,12 @@ UNITS = {
     "element_load_min_n": ("N", "smallest inner-race load of any rolling element in the window"),
     "element_load_max_n": ("N", "largest inner-race load of any rolling element in the window"),
     "power_loss_w": ("W", "mean total power loss of the contacts (when the output has it)"),
+    "life_l10_mrev": ("1e6 rev", "ISO 281 basic rating life L10 = (C / P)^p at the window's mean load (docs/life.md)"),
+    "life_lnm_mrev": ("1e6 rev", "ISO 281 modified rating life a_1 a_ISO L10 (empty without a lubricant)"),
+    "life_l10r_mrev": ("1e6 rev", "ISO/TS 16281 reference rating life L10r from the window's race contact loads"),
+    "life_l10mr_mrev": ("1e6 rev", "ISO/TS 16281 modified reference rating life a_1 a_ISO L10r"),
+    "life_equivalent_load_n": ("N", "ISO 281 dynamic equivalent load P"),
+    "life_reference_load_n": ("N", "ISO/TS 16281 reference load P_ref = C / L10r^(1/p)"),
     "window_revolutions": ("rev", "revolutions of the driven ring relative to the other in the window"),
     "window_samples": ("1", "output samples in the window"),
     "steps": ("1", "integration steps of the whole run"),
@@ -86,7 +92,10 @@ COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
                                "pocket_force_front_peak_n", "pocket_force_rear_peak_n"],
               "max_element_load": ["max_element_load_mean_n"],
               "element_load_range": ["element_load_min_n", "element_load_max_n"],
-              "power_loss": ["power_loss_w"], "steps": ["steps"], "wall_time": ["wall_time_s"]}
+              "power_loss": ["power_loss_w"],
+              "life": ["life_l10_mrev", "life_lnm_mrev", "life_l10r_mrev", "life_l10mr_mrev", "life_equivalent_load_n",
+                       "life_reference_load_n"],
+              "steps": ["steps"], "wall_time": ["wall_time_s"]}
 
 
 def _number(value):
@@ -108,6 +117,15 @@ def _pocket_columns(summary, window_revolutions):
     return {"impacts_front_per_rev": per_rev(front["events"]), "impacts_rear_per_rev": per_rev(rear["events"]),
             "pocket_force_rms_n": rms, "pocket_force_front_peak_n": front["peak_n"],
             "pocket_force_rear_peak_n": rear["peak_n"]}
+
+
+def _life_columns(life):
+    """The rating lives of report_life.summarize_life (None where it has none)."""
+    ref = life.get("reference", {})
+    return {"life_l10_mrev": _number(life.get("l10_mrev")), "life_lnm_mrev": _number(life.get("lnm_mrev")),
+            "life_l10r_mrev": _number(ref.get("l10r_mrev")), "life_l10mr_mrev": _number(ref.get("l10mr_mrev")),
+            "life_equivalent_load_n": _number(life.get("equivalent_load_n")),
+            "life_reference_load_n": _number(ref.get("reference_load_n"))}
 
 
 def scene_metrics(path, settling_time):
@@ -148,6 +166,7 @@ def scene_metrics(path, settling_time):
         "samples": w.samples,
     }
     m.update(_pocket_columns(report, revolutions))
+    m.update(_life_columns(report.get("life", {})))
     return m, summary
 
 

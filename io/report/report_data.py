@@ -16,6 +16,7 @@ import numpy as np
 
 from raceway import RacewayOutput
 from report_bridges import bridge_forces
+from report_life import read_life_input
 from report_metrics import cage_direction, element_loads, split_bar_forces
 
 
@@ -53,6 +54,7 @@ class BearingRun:
     contact: dict = field(default_factory=dict)  # kind -> {names, element, normal_force, ...} (spatial)
     power_loss: dict = field(default_factory=dict)  # segment kind -> [T] W (sum over its segments)
     geometry: dict = field(default_factory=dict)     # pitch_radius, clearances, radii (m)
+    life_input: dict = None  # what the rating lives need (report_life.read_life_input)
     notes: list = field(default_factory=list)
     build: dict = field(default_factory=dict)
     scene_text: str = ""
@@ -183,6 +185,7 @@ def read_bearing(out):
     _pocket_steps(out, run)
     _driven(out, run)
     _sum_power(out, run)
+    run.life_input = read_life_input(out, n)
     return run
 
 

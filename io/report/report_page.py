@@ -5,6 +5,8 @@ import html
 import math
 import os
 
+from report_life import life_rows
+
 CAPTIONS = {
     "cage_speed.png": "Cage speed about the bearing axis against the kinematic cage speed; the slip is over the shaded "
                       "window (time means).",
@@ -129,7 +131,10 @@ def write_page(run, summary, folder, pngs, name="report.html"):
              "window shaded; their vertical axes are scaled to the window.</p>",
              "<h2>Numbers</h2><table><tr><th>quantity</th><th>value</th></tr>"]
     parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in rows(summary, run.element)]
-    parts.append("</table><p>All metrics: <code>summary.json</code> beside this page.</p><h2>Figures</h2>")
+    parts.append("</table><h2>Rating life</h2><table><tr><th>quantity</th><th>value</th></tr>")
+    parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in life_rows(summary.get("life", {}))]
+    parts.append("</table><p>docs/life.md: the standards' formulas and what is estimated.</p>"
+                 "<p>All metrics: <code>summary.json</code> beside this page.</p><h2>Figures</h2>")
     for png in pngs:
         with open(os.path.join(folder, png), "rb") as fh:
             data = base64.b64encode(fh.read()).decode("ascii")

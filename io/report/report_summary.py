@@ -9,6 +9,7 @@ import numpy as np
 
 import report_metrics as rm
 from report_bridges import summarize_bridges
+from report_life import summarize_life
 
 DEG = 180.0 / math.pi
 
@@ -229,6 +230,7 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
         s["friction"] = fr
         if "power_loss_mean_w" in fr:
             s["power_loss"] = {"total_mean_w": fr["power_loss_mean_w"]}
+    s["life"] = summarize_life(run, w)
     if run.notes:
         s["notes"] = "; ".join(run.notes)
     return s, headlines(s, run)
@@ -265,4 +267,10 @@ def headlines(s, run):
         fr = s["friction"]
         lines.append(f"friction torque {fr['friction_torque_mean_n_m']:.4g} N m (mean), power loss "
                      f"{fr.get('power_loss_mean_w', math.nan):.4g} W (mean)")
+    life = s.get("life", {})
+    if "l10_mrev" in life:
+        lnm = life["lnm_mrev"]
+        lines.append(f"rating life (10^6 rev): ISO 281 L10 {life['l10_mrev']:.4g} at P {life['equivalent_load_n']:.4g} N"
+                     + (f", L_nm {lnm:.4g}" if lnm is not None else "")
+                     + f"; ISO/TS 16281 L10r {life['reference']['l10r_mrev']:.4g} from the contact loads (docs/life.md)")
     return lines

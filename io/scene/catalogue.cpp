@@ -243,6 +243,18 @@ std::vector<Fill> cage_values(const Entry& e, const ElementSize& size, const tom
   return out;
 }
 
+/// The load ratings a maker publishes for the size ([ratings.DESIGNATION], kN), as [life] keys; the
+/// report computes them from the geometry where none is published (docs/life.md).
+std::vector<Fill> rating_values(const Entry& e) {
+  const toml::table* r = the_catalogue().root["ratings"][e.designation].as_table();
+  if (!r) return {};
+  const std::string origin = "published: " + source((*r)["source"].value_or(std::string()));
+  std::vector<Fill> out;
+  for (const char* key : {"dynamic_load_rating", "static_load_rating", "fatigue_load_limit"})
+    if (r->contains(key)) out.push_back(word("life", key, fmt::format("{:g} kN", number(r->get(key))), origin));
+  return out;
+}
+
 /// What a first scene needs besides the bearing: gravity, a lubricant, ring motions.
 std::vector<Fill> first_scene_values(const Entry& e, const toml::table& root) {
   const bool ball = e.series->ball();
@@ -325,6 +337,8 @@ std::vector<CatalogueValue> catalogue::fill(toml::table& root, const std::string
   fills.insert(fills.end(), geometry.begin(), geometry.end());
   const std::vector<Fill> cage = cage_values(e, size, root["cage"].as_table());
   fills.insert(fills.end(), cage.begin(), cage.end());
+  const std::vector<Fill> ratings = rating_values(e);
+  fills.insert(fills.end(), ratings.begin(), ratings.end());
   std::vector<CatalogueValue> out;
   for (const Fill& f : fills) {
     const bool pseudo = f.key.starts_with("(");

@@ -5,6 +5,7 @@
 // the io boundary only. Every field has been validated when a Scene is returned.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -207,6 +208,19 @@ struct Lubricant {
                                           ///< 12 gives measured traction-curve shapes and practical steps
 };
 
+/// [life]: what the rating lives of ISO 281 and ISO/TS 16281 take besides the geometry and the run's
+/// loads (computed by the report, io/report/report_life.py; docs/life.md). NaN: not given (the
+/// report then uses its documented default, or the rating computed from the geometry).
+struct LifeSpec {
+  static constexpr double not_given = std::numeric_limits<double>::quiet_NaN();
+  double reliability = not_given;           ///< percent, 90 to 99.95 (a_1); not given: 90
+  double contamination_factor = not_given;  ///< e_C of ISO 281, (0, 1]; not given: 0.5
+  double dynamic_load_rating = not_given;   ///< N, published C (else computed from the geometry)
+  double static_load_rating = not_given;    ///< N, published C_0 (else ISO 76 from the geometry)
+  double fatigue_load_limit = not_given;    ///< N, published C_u (else estimated from C_0)
+  double lubricant_density = not_given;     ///< kg/m^3, for nu = eta / rho; not given: 870 kg/m^3
+};
+
 /// CVODE's multistep methods (bdf: stiff, adams: non-stiff), ARKODE's explicit Runge-Kutta pairs (erk) and
 /// its diagonally implicit Runge-Kutta methods with the Newton solve (ark; solver/numerics/integrator.hpp).
 enum class IntegrationMethod { bdf, adams, erk, ark };
@@ -280,6 +294,7 @@ struct Scene {
   RingSpec inner_ring;
   RingSpec outer_ring;
   Lubricant lubricant;
+  LifeSpec life;
   ContactSpec roller_race;  ///< planar: roller-race
   ContactSpec roller_cage;  ///< planar: roller-cage bar
   ContactSpec ball_race;    ///< spatial: ball-groove

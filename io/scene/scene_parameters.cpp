@@ -1,5 +1,6 @@
 #include "io/scene/scene_parameters.hpp"
 
+#include <cmath>
 #include <type_traits>
 
 #include "io/scene/scene_schema.hpp"
@@ -46,7 +47,10 @@ void add_row(const Row& row, const std::string& prefix, Bind& b, std::vector<Sce
         using T = std::remove_cv_t<std::remove_pointer_t<decltype(target)>>;
         if constexpr (std::is_same_v<T, std::monostate> || std::is_same_v<T, ContactSpec>) {
           p.key.clear();
-        } else if constexpr (std::is_same_v<T, double> || std::is_same_v<T, int> || std::is_same_v<T, long>) {
+        } else if constexpr (std::is_same_v<T, double>) {
+          if (std::isnan(*target)) p.key.clear();  // absent (Default::absent, LifeSpec::not_given): nothing stored
+          else p.number = *target;
+        } else if constexpr (std::is_same_v<T, int> || std::is_same_v<T, long>) {
           p.number = static_cast<double>(*target);
         } else if constexpr (std::is_same_v<T, bool>) {
           if (row.kind == ValueKind::choice) p.word = std::string(option_name(row.options, *target ? 1 : 0));

@@ -364,6 +364,7 @@ Scene parse_table(toml::table& root, const std::string& source_name) {
   }
   if (const Section lubricant = top(file, root, "lubricant", false); lubricant.present())
     read_section("lubricant", lubricant, b);
+  if (const Section life = top(file, root, "life", false); life.present()) read_section("life", life, b);
   read_section("contact", top(file, root, "contact", false), b);
   read_section("solver", top(file, root, "solver", false), b);
   read_section("output", top(file, root, "output", false), b);

@@ -391,6 +391,39 @@ constexpr Row kRows[] = {
      .meaning = "largest alpha p in the Barus law (contact/laws/point_contact.hpp); 12 gives measured traction-curve "
                 "shapes and practical steps"},
 
+    // ---- [life]: optional; what the rating lives take besides the geometry and the run's loads ---
+    // (computed by the report, io/report/report_life.py; docs/life.md). Absent keys store nothing:
+    // the report uses the defaults named here.
+    {.section = "life", .key = "reliability", .kind = number, .field = FIELD(scene.life.reliability), .dim = dim::none,
+     .bounds = {.lo = 90, .hi = 99.95, .note = " (percent: ISO 281's a_1 table runs from 90 to 99.95)"},
+     .def = {.kind = Default::Kind::absent, .text = "90"}, .example = "99",
+     .meaning = "reliability in percent of the modified lives (ISO 281 life modification factor a_1)"},
+    {.section = "life", .key = "contamination_factor", .kind = number, .field = FIELD(scene.life.contamination_factor),
+     .dim = dim::none,
+     .bounds = {.lo = 0, .hi = 1, .lo_open = true,
+                .note = " (ISO 281: 1 extreme cleanliness, 0.5 to 0.6 normal, 0.1 to 0.3 typical contamination; "
+                        "docs/life.md)"},
+     .def = {.kind = Default::Kind::absent, .text = "0.5 (normal cleanliness)"}, .example = "0.5",
+     .meaning = "contamination factor e_C of ISO 281 (docs/life.md gives the standard's guidance)"},
+    {.section = "life", .key = "dynamic_load_rating", .kind = number, .field = FIELD(scene.life.dynamic_load_rating),
+     .dim = dim::force, .bounds = positive,
+     .def = {.kind = Default::Kind::absent, .text = "the catalogue's published value, else ISO 281 from the geometry"},
+     .example = "14.8 kN", .meaning = "published basic dynamic load rating C (the one the lives use)"},
+    {.section = "life", .key = "static_load_rating", .kind = number, .field = FIELD(scene.life.static_load_rating),
+     .dim = dim::force, .bounds = positive,
+     .def = {.kind = Default::Kind::absent, .text = "the catalogue's published value, else ISO 76 from the geometry"},
+     .example = "7.8 kN", .meaning = "published basic static load rating C_0 (axial load factors, fatigue load limit)"},
+    {.section = "life", .key = "fatigue_load_limit", .kind = number, .field = FIELD(scene.life.fatigue_load_limit),
+     .dim = dim::force, .bounds = positive,
+     .def = {.kind = Default::Kind::absent,
+             .text = "the catalogue's published value, else estimated from C_0 (ISO 281)"},
+     .example = "0.335 kN", .meaning = "published fatigue load limit C_u (a_ISO)"},
+    {.section = "life", .key = "lubricant_density", .kind = number, .field = FIELD(scene.life.lubricant_density),
+     .dim = dim::density, .bounds = positive,
+     .def = {.kind = Default::Kind::absent, .text = "870 kg/m^3 (a mineral oil)"}, .example = "870 kg/m^3",
+     .meaning = "lubricant density: the kinematic viscosity nu = [lubricant] viscosity / density of the viscosity "
+                "ratio"},
+
     // ---- [contact]: one table per contact of the bearing ----------------------------------------
     {.section = "contact", .key = "roller_race", .kind = table, .field = FIELD(scene.roller_race), .def = empty_table,
      .bearings = roller_bearings, .contacts = contact::roller_race_contact, .elsewhere = kRollerContact,
@@ -519,8 +552,8 @@ constexpr Row kRows[] = {
 
 #undef FIELD
 
-constexpr std::string_view kTopSections[] = {"scene",      "bearing",   "materials", "cage",   "inner_ring",
-                                             "outer_ring", "carrier",   "lubricant", "contact", "solver", "output"};
+constexpr std::string_view kTopSections[] = {"scene",     "bearing", "materials", "cage",   "inner_ring", "outer_ring",
+                                             "carrier",   "lubricant", "life",    "contact", "solver",   "output"};
 
 }  // namespace
 

@@ -407,7 +407,7 @@ const std::vector<std::string>& known_campaign_metrics() {
   static const std::vector<std::string> names{"cage_speed",   "cage_slip",        "cage_whirl_radius",
                                               "vortex",       "impacts",          "pocket_force",
                                               "max_element_load", "element_load_range", "power_loss",
-                                              "steps",        "wall_time"};
+                                              "life",         "steps",            "wall_time"};
   return names;
 }
 

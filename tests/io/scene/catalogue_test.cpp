@@ -92,6 +92,12 @@ TEST(Catalogue, ValuesComeFromTheirSources) {
   EXPECT_EQ(s.bearing.type, scene::BearingType::deep_groove_ball);
   EXPECT_TRUE(s.gravity);
   EXPECT_GT(s.lubricant.viscosity, 0);
+  // SKF's published load ratings fill [life]; a bearing without published ones leaves it empty.
+  EXPECT_DOUBLE_EQ(s.life.dynamic_load_rating, 14.8e3);
+  EXPECT_DOUBLE_EQ(s.life.static_load_rating, 7.8e3);
+  EXPECT_DOUBLE_EQ(s.life.fatigue_load_limit, 335);
+  EXPECT_TRUE(std::isnan(s.life.contamination_factor));
+  EXPECT_TRUE(std::isnan(scene_of("6206").life.dynamic_load_rating));
   // The QJ215 of seed 001 (Table 1): 15 balls of 17.462 mm, 27 um clearance, arcs at 35 deg.
   const scene::Scene qj = scene_of("QJ215");
   EXPECT_EQ(qj.bearing.rolling_elements, 15);
@@ -114,6 +120,10 @@ TEST(Catalogue, TheSceneOverridesAnyValue) {
   int given = 0;
   for (const scene::CatalogueValue& v : s.catalogue) given += v.given;
   EXPECT_EQ(given, 4);
+  // A published rating the scene gives replaces the catalogue's.
+  const scene::Scene rated = scene_of("6205", "[life]\ndynamic_load_rating = \"15 kN\"\n");
+  EXPECT_DOUBLE_EQ(rated.life.dynamic_load_rating, 15e3);
+  EXPECT_DOUBLE_EQ(rated.life.static_load_rating, 7.8e3);
   EXPECT_NE(scene::describe_catalogue_values(s).find("given by the scene"), std::string::npos);
   // An angular contact bearing given by its groove clearance: the catalogue's 40 deg stands back.
   const scene::Scene ac = scene_of("7206B", "radial_clearance = \"30 um\"\n");
