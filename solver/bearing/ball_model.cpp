@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/race_defects.hpp"
+
 namespace raceway::bearing {
 
 using contact::Mat3;
@@ -182,6 +184,9 @@ contact::BallGrooveSegment groove_law(const Model& m, const scene::Scene& scene,
   s.lubricant = lubricant(scene);
   s.rolling_resistance = scene.ball_race.traction.rolling_resistance && s.lubricant.viscosity > 0;
   if (scene.bearing.type == scene::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
+  const auto& g = scene.bearing;
+  s.imperfections = race_imperfections(outer ? scene.outer_ring : scene.inner_ring,
+                                       0.5 * (outer ? g.outer_race_diameter() : g.inner_race_diameter()), rb);
   return s;
 }
 

@@ -191,6 +191,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.rotation = cardan_rotation(v[sax], v[say], 0.0);
       const Mat3 rx = cardan_rotation(v[sax], 0.0, 0.0);
       k.angular_velocity = ring_spin(b, t, z) * k.rotation.col(2) + v[swx] * Vec3::UnitX() + v[swy] * rx.col(1);
+      if (body.ring->motion == scene::RingMotion::driven) k.spin_angle = body.ring->speed.integral(t);
       break;
     }
   }
