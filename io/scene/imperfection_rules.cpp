@@ -1,4 +1,5 @@
 // The rules of a race's imperfections (spall, waviness) and of the housing (scene_rules.hpp).
+#include <cmath>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -66,6 +67,12 @@ void sensor_interval_within_output(const Row&, const Section& s, Bind& b) {
     return fmt::format("a sensor interval of {:g} s is longer than output_interval ({:g} s); the sensor samples at "
                        "least as often as the output",
                        sensor, output);
+  });
+  const double ratio = output / sensor;
+  s.check(std::abs(ratio - std::round(ratio)) <= 1e-6 * ratio && ratio <= 1e5, "sensor_interval", [&] {
+    return fmt::format("output_interval ({:g} s) must be a whole multiple of the sensor interval ({:g} s), at most "
+                       "100000 of them; it is {:.6g} of them",
+                       output, sensor, ratio);
   });
 }
 

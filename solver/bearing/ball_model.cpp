@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/housing.hpp"
 #include "solver/bearing/race_defects.hpp"
 
 namespace raceway::bearing {
@@ -307,6 +308,7 @@ void add_rings(Model& m, const scene::Scene& scene) {
            0.5 * g.inner_race_diameter() + 0.25 * D, width, density);
   add_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
            0.5 * g.outer_outside_diameter, width, density);
+  add_housing(m, scene);
 }
 
 CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
@@ -320,6 +322,7 @@ CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
 void add_segments(Model& m, const scene::Scene& scene) {
   add_ball_segments(m, scene);
   add_land_segment(m, scene, cage_geometry(m, scene));
+  attach_outer_ring_to_housing(m);
 }
 
 }  // namespace
@@ -367,6 +370,7 @@ std::string describe_ball_model(const Model& m) {
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
                        b.name, b.mass, b.axial_inertia, b.transverse_inertia, b.size, why);
   }
+  for (const auto& node : m.nodes) out += node->describe(m);
   int count[segment_kind_count] = {};
   for (const auto& s : m.segments) ++count[static_cast<int>(s.kind)];
   out += "contact segments:\n";
