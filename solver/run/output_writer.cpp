@@ -395,6 +395,10 @@ void OutputWriter::define_housing_sensor() {
                         s.meaning);
     sensor_ids_.push_back(file_.series_id(s.path));
   }
+  file_.set_attribute("/housing", "mass", housing->mass());
+  file_.set_attribute("/housing", "stiffness", housing->stiffness());
+  file_.set_attribute("/housing", "damping", housing->damping());
+  file_.set_attribute("/housing", "natural_frequency", housing->natural_frequency());
 }
 
 void OutputWriter::define_segment_groups() {
