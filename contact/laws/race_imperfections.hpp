@@ -4,8 +4,7 @@
 // towards the rolling element, the approach grows by h; a spall's depth lowers it), and the
 // contact's normal law, film and traction see the changed approach. This is how the published
 // defect models put a defect into a rolling-bearing model (a change of the contact deflection:
-// Sawalhi and Randall 2008, Patil et al. 2010; waviness: Wardle 1988, Harsha 2006;
-// docs/references.md).
+// Sawalhi and Randall 2008, Patil et al. 2010; waviness: Wardle 1988; docs/references.md).
 //
 // Coordinates: `azimuth` is the contact's angle about the ring's axis in the ring's own frame
 // (a defect on a turning ring turns with it); `transverse` the contact point's distance from the
