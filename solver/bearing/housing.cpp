@@ -58,9 +58,10 @@ namespace {
 /// housing's displacement and velocity; the force on it drives the housing.
 class HousingMarker final : public MarkerKind {
  public:
-  explicit HousingMarker(std::shared_ptr<const Housing> housing) : housing_(std::move(housing)) {}
+  HousingMarker(std::shared_ptr<const Housing> housing, int planning_id)
+      : housing_(std::move(housing)), planning_id_(planning_id) {}
   int body() const override { return housing_->ring_body(); }
-  int planning_id() const override { return housing_->ring_body(); }
+  int planning_id() const override { return planning_id_; }  // the housing node's: its states couple them
 
   contact::PlanarKinematics planar(const Model& m, double t, const double* z, const contact::PlanarKinematics&,
                                    const double*, MarkerPoint&) const override {
@@ -93,11 +94,15 @@ class HousingMarker final : public MarkerKind {
 
  private:
   std::shared_ptr<const Housing> housing_;
+  int planning_id_;
 };
 
-std::shared_ptr<const Housing> shared_housing(const Model& m) {
-  for (const auto& n : m.nodes)
-    if (auto h = std::dynamic_pointer_cast<const Housing>(n)) return h;
+std::shared_ptr<const Housing> shared_housing(const Model& m, int* index = nullptr) {
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (auto h = std::dynamic_pointer_cast<const Housing>(m.nodes[i])) {
+      if (index) *index = static_cast<int>(i);
+      return h;
+    }
   return nullptr;
 }
 
@@ -117,9 +122,11 @@ void add_housing(Model& m, const scene::Scene& scene) {
 }
 
 void attach_outer_ring_to_housing(Model& m) {
-  auto housing = shared_housing(m);
+  int node = -1;
+  auto housing = shared_housing(m, &node);
   if (!housing) return;
-  const int marker = m.add_marker(std::shared_ptr<const MarkerKind>(std::make_shared<HousingMarker>(housing)));
+  const int marker = m.add_marker(
+      std::shared_ptr<const MarkerKind>(std::make_shared<HousingMarker>(housing, m.node_planning_id(node))));
   for (Segment& seg : m.segments) {
     if (seg.body_a == m.outer_ring) seg.marker_a = marker;
     if (seg.body_b == m.outer_ring) seg.marker_b = marker;
