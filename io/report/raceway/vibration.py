@@ -128,7 +128,7 @@ def peak_near(freq, amp, f0, rel=0.02):
     if 0 < i < amp.size - 1:
         a, b, c = amp[i - 1], amp[i], amp[i + 1]
         den = a - 2 * b + c
-        shift = 0.5 * (a - c) / den if den != 0 else 0.0
+        shift = min(1.0, max(-1.0, 0.5 * (a - c) / den)) if den != 0 else 0.0
         return float(freq[i] + shift * (freq[1] - freq[0])), float(b)
     return float(freq[i]), float(amp[i])
 

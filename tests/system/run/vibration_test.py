@@ -21,6 +21,8 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
   clean: the same bearing without a defect: at BPFO, BPFI (harmonics 1 to 3) its envelope spectrum
     carries no line above 3 times its floor, and each is below 10 % of the spalled bearing's line
     (printed: the floor, the numerical noise it is measured against).
+  report: `raceway report` on the outer-race run: summary.json's vibration part (BPFO x2 among the lines
+    that carry energy, BPFI not), the log's sensor line, and sensor.csv holding the window's samples.
   ranks: the outer-race run at np = 2 against np = 1, and a run killed (SIGKILL) after a checkpoint and
     resumed against an uninterrupted one with the same checkpoint interval: /housing bitwise.
 
@@ -58,7 +60,7 @@ stiffness = "1000 MN/m"
 damping = "3000 N s/m"
 sensor_interval = "10 us"
 [output]
-segments = false
+segments = {segments}
 {extra}
 """
 SPALL = 'spall = { angle = "%s", length = "0.5 mm", width = "2 mm", depth = "0.1 mm" }'
@@ -71,10 +73,11 @@ def check(cond, what):
         failures.append(what)
 
 
-def write_scene(work, name, end="40 ms", load='fy = "-500 N"', inner="", outer="", extra=""):
+def write_scene(work, name, end="40 ms", load='fy = "-500 N"', inner="", outer="", extra="", segments=False):
     path = os.path.join(work, name + ".toml")
     with open(path, "w", encoding="utf-8") as f:
-        f.write(SCENE.format(end=end, load=load, inner=inner, outer=outer, extra=extra))
+        f.write(SCENE.format(end=end, load=load, inner=inner, outer=outer, extra=extra,
+                             segments="true" if segments else "false"))
     return path
 
 
@@ -163,6 +166,33 @@ def case_clean(raceway, work):
             check(a < 0.1 * defect, f"clean {name} x{k}: {a:.4g} < 10 % of the spalled bearing's {defect:.4g}")
 
 
+def case_report(raceway, work):
+    """`raceway report` on a spalled run: the vibration summary, its lines and the sensor's CSV."""
+    import csv
+    import json
+    out = run(raceway, write_scene(work, "report", end="30 ms", outer=SPALL % "-90 deg", segments=True),
+              os.path.join(work, "report.h5"))
+    r = subprocess.run([raceway, "report", out, "--no-plots"], capture_output=True, text=True, timeout=300)
+    check(r.returncode == 0, f"raceway report: exit {r.returncode}: {r.stderr[-600:]}")
+    folder = os.path.join(work, "report_report")
+    summary = json.load(open(os.path.join(folder, "summary.json"), encoding="utf-8"))
+    v = summary.get("vibration", {})
+    check({"statistics", "frequencies_hz", "lines", "slip"} <= v.keys(), f"summary.json's vibration: {sorted(v)}")
+    carrying = [(line["name"], line["harmonic"]) for line in v.get("lines", []) if line["carries_energy"]]
+    check(("BPFO", 2) in carrying, f"the table says BPFO x2 carries energy: {carrying}")
+    check(all(name != "BPFI" or k != 1 for name, k in carrying), f"and BPFI does not: {carrying}")
+    check("housing sensor (y): RMS" in r.stderr, "the report's log names the sensor's RMS")
+    with open(os.path.join(folder, "sensor.csv"), encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    with h5py.File(out, "r") as f:
+        t = f["housing/sensor_time"][1:].reshape(-1)
+        ay = f["housing/acceleration"][1:].reshape(-1, 2)[:, 1]
+    start = summary["window"]["start_s"]
+    keep = t >= start
+    check(rows[0][0] == "time_s" and len(rows) - 1 == int(keep.sum()), f"sensor.csv: {len(rows) - 1} rows")
+    check(float(rows[1][6]) == ay[keep][0] and float(rows[-1][0]) == t[keep][-1], "sensor.csv holds the samples")
+
+
 def housing_series(path):
     with h5py.File(path, "r") as f:
         return {k: f["housing"][k][()] for k in f["housing"]}
@@ -208,8 +238,8 @@ def main():
         if case == "ranks":
             case_ranks(raceway, mpiexec, work)
         else:
-            {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean}[case](raceway,
-                                                                                                          work)
+            {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
+             "report": case_report}[case](raceway, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
         return 1
