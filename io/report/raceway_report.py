@@ -159,7 +159,8 @@ def main(argv):
             if vibration is not None:
                 try:
                     import report_vibration
-                    log("info", f"vibration spectra written to {os.path.join(folder, report_vibration.plot(vibration, folder))}")
+                    png = report_vibration.plot(vibration, folder)
+                    log("info", f"vibration spectra written to {os.path.join(folder, png)}")
                 except ImportError as err:
                     log("warning", f"vibration plot skipped: {err}")
     return 0

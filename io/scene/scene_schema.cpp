@@ -563,8 +563,8 @@ constexpr Row kRows[] = {
 
 #undef FIELD
 
-constexpr std::string_view kTopSections[] = {"scene",      "bearing",   "materials", "cage",   "inner_ring",
-                                             "outer_ring", "housing", "carrier",   "lubricant", "contact", "solver", "output"};
+constexpr std::string_view kTopSections[] = {"scene",   "bearing",   "materials", "cage",   "inner_ring", "outer_ring",
+                                             "housing", "carrier",   "lubricant", "contact", "solver",     "output"};
 
 }  // namespace
 

@@ -144,7 +144,8 @@ def statistics(x):
     x = np.asarray(x, float) - np.mean(x)
     rms = float(np.sqrt(np.mean(x * x)))
     kurtosis = float(np.mean(x ** 4) / rms ** 4) if rms > 0 else float("nan")
-    return {"rms": rms, "kurtosis": kurtosis, "crest_factor": float(np.max(np.abs(x)) / rms) if rms > 0 else float("nan")}
+    crest = float(np.max(np.abs(x)) / rms) if rms > 0 else float("nan")
+    return {"rms": rms, "kurtosis": kurtosis, "crest_factor": crest}
 
 
 def energy_table(freq, amp, frequencies, harmonics=3, threshold=4.0):
