@@ -382,6 +382,7 @@ std::string describe_ball_model(const Model& m) {
                      "({}x{} grid), rolling resistance {}\n",
                      sc.ball_race.damping.name(), sc.ball_race.traction.name(), sc.ball_race.traction.grid_x,
                      sc.ball_race.traction.grid_y, groove && m.law<contact::BallGrooveSegment>(*groove).rolling_resistance ? "on" : "off");
+  out += describe_race_imperfections(m);
   out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}\n",
                      sc.cage.pocket_shape == scene::PocketShape::spherical ? "spherical" : "cylindrical",
                      1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name());

@@ -1,5 +1,7 @@
 #include "solver/bearing/race_defects.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -54,6 +56,30 @@ double ball_limit(const contact::RaceImperfections& race, const contact::Spatial
 }
 
 }  // namespace
+
+std::string describe_race_imperfections(const Model& m) {
+  std::string out;
+  for (const SegmentKind kind : {SegmentKind::ball_inner_groove, SegmentKind::ball_outer_groove}) {
+    const Segment* seg = m.first_segment(kind);
+    if (!seg) continue;
+    const auto& race = m.law<contact::BallGrooveSegment>(*seg).imperfections;
+    if (!race) continue;
+    const char* ring = kind == SegmentKind::ball_inner_groove ? "inner" : "outer";
+    if (race->has_spall) {
+      const contact::RaceSpall& s = race->spall;
+      out += fmt::format("  {} race: spall at {:.4g} deg (ring frame), {:.4g} x {:.4g} mm, {:.4g} mm deep, {} edges: a "
+                         "ball drops at most {:.4g} um into it; at least {} steps across it\n",
+                         ring, s.angle * 180 / std::numbers::pi, 1e3 * s.length, 1e3 * s.width, 1e3 * s.depth,
+                         s.edge == contact::SpallEdge::sharp ? "sharp" : "smooth",
+                         1e6 * contact::spall_effective_depth(s, race->ball_radius), steps_within_spall);
+    }
+    const contact::RaceWaviness& w = race->waviness;
+    for (std::size_t k = 0; k < w.orders.size(); ++k)
+      out += fmt::format("  {} race: waviness of order {}, amplitude {:.4g} um, phase {:.4g} deg\n", ring, w.orders[k],
+                         1e6 * w.amplitudes[k], w.phases[k] * 180 / std::numbers::pi);
+  }
+  return out;
+}
 
 bool has_spall(const Model& m) {
   for (const Segment& seg : m.segments) {

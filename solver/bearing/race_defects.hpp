@@ -11,6 +11,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "contact/laws/race_imperfections.hpp"
 #include "io/scene/scene.hpp"
@@ -21,6 +22,9 @@ namespace raceway::bearing {
 /// The imperfections of a ring's race for its ball-groove laws; null when the race is perfect.
 std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene::RingSpec& ring, double race_radius,
                                                                      double ball_radius);
+
+/// Lines for the model's description (raceway check): each race's spall and waviness, or "".
+std::string describe_race_imperfections(const Model& m);
 
 /// Steps a ball takes at least within a spall.
 inline constexpr double steps_within_spall = 10;
