@@ -66,10 +66,14 @@ struct Integrator::Impl {
   // The physics' step limit (DynamicSystem::step_limit), from the state where the step starts.
   bool limits_steps = false;
   N_Vector at_start = nullptr;
+  bool stepped = false;  // before the first step y is the start state (there is no interpolant yet)
   void limit_next_step() {
     const double t = stepper->time();
     if (!at_start) at_start = N_VClone(y);
-    if (stepper->interpolate(t, at_start) < 0) return;
+    if (!stepped)
+      N_VScale(1.0, y, at_start);
+    else if (stepper->interpolate(t, at_start) < 0)
+      return;
     const double h = eq.step_limit(t, N_VGetArrayPointer(at_start));
     if (h > 0 && std::isfinite(h)) stepping::check(stepper->stop_at(t + h), "the step limit's stop time");
   }
@@ -178,6 +182,7 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
     const int flag = s.stepper->step(t_out, s.y, t_reached);
     if (s.callback_error) std::rethrow_exception(s.callback_error);
     if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
+    s.stepped = true;
     s.record_step_error();
     if (s.step_observer) s.step_observer();
   }
