@@ -143,7 +143,15 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
   const double d_rad = rho_ball - s.centre_radius;
   const double d_ax = p.z() - s.centre_axial;
   const double len = length(d_rad, d_ax);
-  const double approach = len - (s.groove_radius - s.ball_radius);
+  // The race's imperfections (a spall, waviness) move its surface along the normal by a height at
+  // the contact's azimuth (contact/laws/race_imperfections.hpp); a perfect race adds nothing.
+  RaceHeight surface;
+  if (s.imperfections) {
+    const double contact_axial = len > 0 ? s.centre_axial + s.groove_radius * d_ax / len : 0.0;
+    surface = race_height(*s.imperfections, std::atan2(p.y(), p.x()) - ring.spin_angle, contact_axial);
+  }
+  const double approach = s.imperfections ? len - (s.groove_radius - s.ball_radius) + surface.height
+                                          : len - (s.groove_radius - s.ball_radius);
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) {
     r = invalid_result(approach);
@@ -163,7 +171,11 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
   g.ey = g.n.cross(g.ex);
   g.point = ring.position + rot * point_ring;
   const Vec3 v_rel = point_velocity(ball, g.point) - point_velocity(ring, g.point);
-  const double approach_rate = g.n.dot(v_rel);  // exact d(approach)/dt
+  double approach_rate = g.n.dot(v_rel);  // exact d(approach)/dt
+  if (s.imperfections) {  // and the surface's height passing under the contact
+    const Vec3 rel_dot = rot.transpose() * (ball.velocity - ring.velocity - ring.angular_velocity.cross(rel));
+    approach_rate += surface.per_azimuth * rel_dot.dot(e_t) / rho_ball;
+  }
 
   // Hertz at s = cos(contact angle); relative curvatures for the film.
   const double cos_angle = std::abs(n_rad);

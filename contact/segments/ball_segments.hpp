@@ -23,10 +23,12 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <optional>
 
 #include "contact/laws/line_contact.hpp"
 #include "contact/laws/point_contact.hpp"
+#include "contact/laws/race_imperfections.hpp"
 #include "contact/laws/short_bearing_film.hpp"
 #include "contact/segments/segment_result.hpp"
 
@@ -41,6 +43,9 @@ struct SpatialKinematics {
   Mat3 rotation = Mat3::Identity();
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();  ///< bearing frame
+  /// A ring's angle about its own axis, which `rotation` leaves out (its grooves are surfaces of
+  /// revolution): read only where the race is not (a spall, waviness). 0 for other bodies.
+  double spin_angle = 0;
 };
 
 /// Force [N] and moment [N m] on a body at its centre, bearing frame.
@@ -123,6 +128,10 @@ struct BallGrooveSegment {
   /// or -z side only: a ball pushed past the bottom towards the low shoulder leaves the groove (no
   /// force), as it lifts off a real counterbored ring instead of finding a mirrored contact.
   int groove_side = 0;
+  /// The race's spall and waviness (contact/laws/race_imperfections.hpp); null: a perfect race.
+  /// They add a height to the approach at the contact's azimuth in the ring frame (and its rate to
+  /// the approach rate); the normal stays the groove's.
+  std::shared_ptr<const RaceImperfections> imperfections;
 };
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball);

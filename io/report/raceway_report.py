@@ -139,6 +139,7 @@ def main(argv):
         log("info", line)
     folder = output_dir(args)
     os.makedirs(folder, exist_ok=True)
+    vibration = vibration_part(args, summary, folder)
     summary_path = os.path.join(folder, "summary.json")
     write_json(summary_path, summary)
     log("info", f"summary written to {summary_path}")
@@ -155,7 +156,32 @@ def main(argv):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             figures(run, summary, folder, args)
+            if vibration is not None:
+                try:
+                    import report_vibration
+                    png = report_vibration.plot(vibration, folder)
+                    log("info", f"vibration spectra written to {os.path.join(folder, png)}")
+                except ImportError as err:
+                    log("warning", f"vibration plot skipped: {err}")
     return 0
+
+
+def vibration_part(args, summary, folder):
+    """With a housing: the vibration summary into `summary` (key "vibration"), the sensor's CSV, and
+    the analysis for the plot; None without one."""
+    import report_vibration
+    start = summary.get("window", {}).get("start_s", 0.0) if isinstance(summary.get("window"), dict) else 0.0
+    result = report_vibration.analyse(args.input, start or 0.0)
+    if result is None:
+        return None
+    summary["vibration"] = report_vibration.summary_of(result)
+    st = result["statistics"]
+    carrying = [f"{r['name']} x{r['harmonic']}" for r in result["table"] if r["carries_energy"]]
+    log("info", f"housing sensor (y): RMS {st['rms']:.4g} m/s^2, kurtosis {st['kurtosis']:.3g}, crest factor "
+                f"{st['crest_factor']:.3g}; slip {100 * result['frequencies']['slip']:.3f} %; lines carrying energy in "
+                f"the envelope spectrum: {', '.join(carrying) if carrying else 'none'}")
+    log("info", f"sensor signal written to {report_vibration.export(args.input, folder, start or 0.0)}")
+    return result
 
 
 if __name__ == "__main__":

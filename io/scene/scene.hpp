@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact/laws/law_registry.hpp"
+#include "contact/laws/race_imperfections.hpp"
 
 namespace raceway::scene {
 
@@ -26,6 +27,8 @@ struct TimeFunction {
   double operator()(double t) const;
   /// Time derivative (piecewise constant; 0 outside the table).
   double derivative(double t) const;
+  /// Its integral from 0 to t (a driven ring's angle from its speed).
+  double integral(double t) const;
   bool is_zero() const;
 };
 
@@ -151,6 +154,24 @@ enum class RingTilt { fixed, free, prescribed };
 /// n = 2..modes are states (solver/bearing/ring_modes.hpp; planar roller bearings, outer ring only).
 enum class RingFlexibility { rigid, ring_modes };
 
+/// A localized defect on a ring's race (ball bearings): contact/laws/race_imperfections.hpp.
+struct SpallSpec {
+  bool present = false;  ///< a [*_ring.spall] table was given
+  double angle = 0;      ///< rad, its centre, ring frame, about the ring axis (0: along the ring's x)
+  double length = 0;     ///< m, along the race
+  double width = 0;      ///< m, across the race
+  double depth = 0;      ///< m
+  contact::SpallEdge edge = contact::SpallEdge::sharp;
+};
+
+/// A race's waviness: radius deviation sum A_k cos(n_k theta + phase_k) (ball bearings).
+struct WavinessSpec {
+  std::vector<int> orders;
+  std::vector<double> amplitudes;  ///< m
+  std::vector<double> phases;      ///< rad (empty: all 0)
+  bool present() const { return !orders.empty(); }
+};
+
 struct RingSpec {
   RingMotion motion = RingMotion::fixed;
   TimeFunction speed;       ///< rad/s, for motion = driven
@@ -169,6 +190,19 @@ struct RingSpec {
   double rim_thickness = 0;      ///< m, radial, of the rim's bending section; 0 = outside - race radius
   double rim_width = 0;          ///< m, axial, of the rim's bending section; 0 = ring width
   double rim_damping_ratio = 0;  ///< ring_modes: modal damping ratio of every bending mode
+  SpallSpec spall;               ///< ball bearings: a spall on this ring's race
+  WavinessSpec waviness;         ///< ball bearings: this ring's race's waviness
+};
+
+/// The fixed outer ring mounted in a housing (ball bearings): the housing and ring move together
+/// in x and y on the housing's spring and damper (one mode per radial direction); a sensor on it
+/// is sampled every sensor_interval (solver/bearing/housing.hpp).
+struct HousingSpec {
+  bool present = false;    ///< a [housing] section was given
+  double mass = 0;         ///< kg, the housing's (the outer ring's mass is added)
+  double stiffness = 0;    ///< N/m, radial (x and y)
+  double damping = 0;      ///< N s/m, radial
+  double sensor_interval = 0;  ///< s, between the sensor's samples
 };
 
 /// Contact laws, chosen by name in the scene. The parser looks every name up in the law registry
@@ -300,6 +334,7 @@ struct Scene {
   ContactSpec ball_race;    ///< spatial: ball-groove
   ContactSpec ball_cage;    ///< spatial: ball-pocket
   ContactSpec cage_land;
+  HousingSpec housing;    ///< spatial: the outer ring in a housing (absent: the outer ring as its motion says)
   CarrierSpec carrier;    ///< planar: the bearing on a rotating planet carrier (absent: inertial frame)
   SolverSpec solver;
   OutputSpec output;

@@ -61,6 +61,8 @@ std::string value_text(const Row& row) {
     case ValueKind::time_function: return "a time function: " + dimension_description(row.dim);
     case ValueKind::cell_grid: return "[nx, ny], integers from 1 to 128";
     case ValueKind::table: return fmt::format("a table: [{}]", row.sub);
+    case ValueKind::number_list: return "an array: " + dimension_description(row.dim);
+    case ValueKind::integer_list: return "an array of integers";
   }
   return "";
 }
@@ -121,10 +123,12 @@ std::string applies_text(const Row& row) {
 
 std::string bounds_text(const Row& row) {
   if (row.kind == ValueKind::cell_grid) return "1 to 128";
-  if (row.kind != ValueKind::number && row.kind != ValueKind::integer && row.kind != ValueKind::time_function)
+  const bool integer = row.kind == ValueKind::integer || row.kind == ValueKind::integer_list;
+  if (row.kind != ValueKind::number && !integer && row.kind != ValueKind::time_function &&
+      row.kind != ValueKind::number_list)
     return "";
-  const std::string b = bounds_notation(row.bounds, row.kind == ValueKind::integer);
-  const bool si_units = !b.empty() && row.bounds.unit.empty() && row.kind != ValueKind::integer;
+  const std::string b = bounds_notation(row.bounds, integer);
+  const bool si_units = !b.empty() && row.bounds.unit.empty() && !integer;
   const std::string unit = si_fraction(row.dim);
   return si_units && !unit.empty() && b != "> 0" && b != ">= 0" ? b + " " + unit : b;
 }

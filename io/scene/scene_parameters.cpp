@@ -29,6 +29,9 @@ void add_row(const Row& row, const std::string& prefix, Bind& b, std::vector<Sce
   SceneParameter p{prefix + std::string(row.key), {}, {}, {}, {}, {}};
   const Field field = row.field ? row.field(b) : Field();
   if (row.kind == ValueKind::table) {
+    // A race's imperfections are listed only where given (a perfect race lists nothing new).
+    if (row.sub == "*_ring.spall" && !b.ring->spall.present) return;
+    if (row.sub == "*_ring.waviness" && !b.ring->waviness.present()) return;
     Bind inner = b;
     if (auto* const* c = std::get_if<ContactSpec*>(&field)) {
       inner.contact = *c;
@@ -37,7 +40,7 @@ void add_row(const Row& row, const std::string& prefix, Bind& b, std::vector<Sce
     walk(row.sub, p.key + ".", inner, out);
     return;
   }
-  if (row.kind == ValueKind::number || row.kind == ValueKind::time_function) {
+  if (row.kind == ValueKind::number || row.kind == ValueKind::time_function || row.kind == ValueKind::number_list) {
     const QuantityKind* kind = quantity_kind(row.dim);
     p.unit = kind ? std::string(kind->si) : si_unit(row.dim);
     if (p.unit == "1") p.unit.clear();
@@ -57,6 +60,10 @@ void add_row(const Row& row, const std::string& prefix, Bind& b, std::vector<Sce
           else p.number = *target ? 1.0 : 0.0;
         } else if constexpr (std::is_same_v<T, std::string>) {
           p.word = *target;
+        } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          p.values = *target;
+        } else if constexpr (std::is_same_v<T, std::vector<int>>) {
+          p.values.assign(target->begin(), target->end());
         } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
           p.word = joined(*target);
         } else if constexpr (std::is_same_v<T, TimeFunction>) {
@@ -100,7 +107,7 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
       Bind on_ring = b;
       on_ring.ring = section == "inner_ring" ? &s.inner_ring : &s.outer_ring;
       walk("*_ring", prefix, on_ring, out);
-    } else {
+    } else if (section != "housing" || s.housing.present) {
       walk(section, prefix, b, out);
     }
   }

@@ -232,6 +232,16 @@ void read_value(const Row& row, const Section& s, Bind& b) {
       break;
     case ValueKind::cell_grid: read_grid(row, s, *std::get<TractionLaw*>(field)); break;
     case ValueKind::table: read_table(row, s, b, field); break;
+    case ValueKind::number_list:
+      if (s.has(row.key))
+        *std::get<std::vector<double>*>(field) =
+            s.quantity_list(row.key, row.dim, row.bounds, row.example, sane_range_checked(row, s, b));
+      break;
+    case ValueKind::integer_list:
+      if (s.has(row.key))
+        *std::get<std::vector<int>*>(field) =
+            s.integer_list(row.key, static_cast<long>(row.bounds.lo), static_cast<long>(row.bounds.hi));
+      break;
   }
 }
 
@@ -357,6 +367,10 @@ Scene parse_table(toml::table& root, const std::string& source_name) {
     Bind on_ring = b;
     on_ring.ring = ring;
     read_section("*_ring", *section, on_ring);
+  }
+  if (const Section housing = top(file, root, "housing", false); housing.present()) {
+    read_section("housing", housing, b);
+    scene.housing.present = true;
   }
   if (const Section carrier = top(file, root, "carrier", false); carrier.present()) {
     read_section("carrier", carrier, b);

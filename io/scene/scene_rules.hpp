@@ -87,6 +87,12 @@ void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
 void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);
 void order_exists_for_method(const Row& row, const Section& s, Bind& b);
 
+// ---- the race's imperfections and the housing (imperfection_rules.cpp) -------------------------
+void spall_given(const Row& row, const Section& s, Bind& b);
+void waviness_lists_match(const Row& row, const Section& s, Bind& b);
+std::optional<std::string> housing_holds_fixed_outer_ring(const Section& s, const Bind& b);
+void sensor_interval_within_output(const Row& row, const Section& s, Bind& b);
+
 // ---- across sections ---------------------------------------------------------------------------
 /// The rolling elements fit on the pitch circle (with room for ball-cage bars), and the rings are
 /// held radially (and, spatial, axially and in tilt). Errors name [bearing] or [outer_ring] keys.

@@ -69,6 +69,12 @@ constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
 constexpr Bounds kMassEccentricity{.lo = 0, .hi = 1e-3, .unit = "um",
                                    .note = " (machined cages are balanced to some micrometres; 1 mm is a sanity limit)"};
 
+constexpr Bounds kSpallAngle{.lo = -2 * std::numbers::pi, .hi = 2 * std::numbers::pi, .unit = "deg"};
+constexpr Bounds kSpallSize{.lo = 0, .hi = 0.01, .lo_open = true, .unit = "mm",
+                            .note = " (a spall is a fraction of a millimetre to some millimetres)"};
+constexpr Bounds kWavinessAmplitude{.lo = 0, .hi = 1e-4, .unit = "um",
+                                    .note = " (waviness is some tenths of a micrometre to some micrometres)"};
+
 constexpr Row kRows[] = {
     // ---- [scene] --------------------------------------------------------------------------------
     {.section = "scene", .key = "name", .kind = text, .field = FIELD(scene.scene.name),
@@ -312,6 +318,35 @@ constexpr Row kRows[] = {
      .elsewhere = kPlanarRim, .when = ring_modes_only,
      .meaning = "flexibility = \"ring_modes\": damping ratio of every bending mode"},
 
+    {.section = "*_ring", .key = "spall", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
+     .elsewhere = kBallOnly, .then = spall_given, .sub = "*_ring.spall",
+     .meaning = "a localized defect (spall) on the ring's race (docs/vibration.md)"},
+    {.section = "*_ring", .key = "waviness", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
+     .elsewhere = kBallOnly, .then = waviness_lists_match, .sub = "*_ring.waviness",
+     .meaning = "the race's waviness: radius deviation sum A_k cos(n_k theta + phase_k) (docs/vibration.md)"},
+
+    // ---- [*_ring.spall] and [*_ring.waviness]: the race's imperfections (ball bearings) ---------
+    {.section = "*_ring.spall", .key = "angle", .kind = number, .field = FIELD(ring->spall.angle), .dim = dim::angle,
+     .bounds = kSpallAngle, .def = value(0), .example = "90 deg",
+     .meaning = "the spall's centre about the ring axis, in the ring's frame (0: along x; the inner ring's turns)"},
+    {.section = "*_ring.spall", .key = "length", .kind = number, .field = FIELD(ring->spall.length),
+     .dim = dim::length, .bounds = kSpallSize, .example = "0.178 mm", .meaning = "along the race"},
+    {.section = "*_ring.spall", .key = "width", .kind = number, .field = FIELD(ring->spall.width), .dim = dim::length,
+     .bounds = kSpallSize, .example = "0.178 mm", .meaning = "across the race (the contact's track must lie within it)"},
+    {.section = "*_ring.spall", .key = "depth", .kind = number, .field = FIELD(ring->spall.depth), .dim = dim::length,
+     .bounds = kSpallSize, .example = "0.28 mm",
+     .meaning = "depth; a ball drops at most r - sqrt(r^2 - (length/2)^2) into it"},
+    {.section = "*_ring.spall", .key = "edge", .kind = choice, .field = FIELD(ring->spall.edge), .def = word("sharp"),
+     .options = kSpallEdges, .noun = "spall edge",
+     .meaning = "sharp: the ball pivots on the edges; smooth: a raised cosine to the same deepest drop"},
+    {.section = "*_ring.waviness", .key = "orders", .kind = integer_list, .field = FIELD(ring->waviness.orders),
+     .bounds = {.lo = 1, .hi = 1000}, .example = "[9, 10]", .meaning = "lobes round the race, one per term"},
+    {.section = "*_ring.waviness", .key = "amplitudes", .kind = number_list,
+     .field = FIELD(ring->waviness.amplitudes), .dim = dim::length, .bounds = kWavinessAmplitude,
+     .example = "[\"1 um\", \"0.5 um\"]", .meaning = "radius deviation of each term"},
+    {.section = "*_ring.waviness", .key = "phases", .kind = number_list, .field = FIELD(ring->waviness.phases),
+     .dim = dim::angle, .def = absent, .example = "[\"0 deg\", \"90 deg\"]", .meaning = "of each term; absent: all 0"},
+
     // ---- [*_ring.misalignment] ------------------------------------------------------------------
     {.section = "*_ring.misalignment", .key = "x", .kind = time_function, .field = FIELD(ring->misalignment_x),
      .dim = dim::angle, .bounds = kMisalignment, .def = value(0), .example = "1.42 mrad",
@@ -371,6 +406,21 @@ constexpr Row kRows[] = {
     {.section = "carrier", .key = "speed", .kind = time_function, .field = FIELD(scene.carrier.speed),
      .dim = dim::angular_speed, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
      .meaning = "the carrier's speed about z; ring speeds and loads are in the bearing frame, which turns with it"},
+
+    // ---- [housing]: optional; the fixed outer ring in a housing on a pedestal (ball bearings) ---
+    {.section = "housing", .key = "mass", .kind = number, .field = FIELD(scene.housing.mass), .dim = dim::mass,
+     .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly, .when = housing_holds_fixed_outer_ring,
+     .meaning = "the housing's mass (the outer ring's is added: they move together in x and y)"},
+    {.section = "housing", .key = "stiffness", .kind = number, .field = FIELD(scene.housing.stiffness),
+     .dim = dim::stiffness, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .when = housing_holds_fixed_outer_ring, .meaning = "radial, in x and y, to ground"},
+    {.section = "housing", .key = "damping", .kind = number, .field = FIELD(scene.housing.damping),
+     .dim = dim::damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .when = housing_holds_fixed_outer_ring, .meaning = "radial, in x and y, to ground"},
+    {.section = "housing", .key = "sensor_interval", .kind = number, .field = FIELD(scene.housing.sensor_interval),
+     .dim = dim::time, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .when = housing_holds_fixed_outer_ring, .then = sensor_interval_within_output, .example = "20 us",
+     .meaning = "time between the sensor's samples (displacement, velocity, acceleration of the housing)"},
 
     // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
     {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
@@ -552,8 +602,8 @@ constexpr Row kRows[] = {
 
 #undef FIELD
 
-constexpr std::string_view kTopSections[] = {"scene",     "bearing", "materials", "cage",   "inner_ring", "outer_ring",
-                                             "carrier",   "lubricant", "life",    "contact", "solver",   "output"};
+constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "housing",
+                                             "carrier", "lubricant", "life",    "contact", "solver",     "output"};
 
 }  // namespace
 

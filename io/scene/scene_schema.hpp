@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "contact/laws/law_registry.hpp"
 #include "io/scene/scene.hpp"
@@ -39,7 +40,8 @@ struct Bind {
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
                            BearingType*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
-                           LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*>;
+                           LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*,
+                           contact::SpallEdge*, std::vector<double>*, std::vector<int>*>;
 
 enum class ValueKind {
   number,         ///< a quantity "<number> <unit>" (a bare number if plain, or 0), converted to SI
@@ -53,6 +55,8 @@ enum class ValueKind {
   time_function,  ///< a quantity, or { time = [...], value = [...] } (piecewise linear, held outside)
   cell_grid,      ///< [nx, ny], two integers from 1 to 50
   table,          ///< a table whose keys are the rows of section `sub`
+  number_list,    ///< an array of quantities, each within the row's bounds
+  integer_list,   ///< an array of integers, each within the row's bounds
 };
 
 /// The bearings that take a key (planar scenes are roller bearings, spatial scenes ball bearings).
@@ -111,6 +115,8 @@ inline constexpr Option kRingMotions[] = {
     {"fixed", int(RingMotion::fixed)}, {"driven", int(RingMotion::driven)}, {"free", int(RingMotion::free)}};
 inline constexpr Option kRingFlexibilities[] = {{"rigid", int(RingFlexibility::rigid)},
                                                 {"ring_modes", int(RingFlexibility::ring_modes)}};
+inline constexpr Option kSpallEdges[] = {{"sharp", int(contact::SpallEdge::sharp)},
+                                         {"smooth", int(contact::SpallEdge::smooth)}};
 inline constexpr Option kFreeOrFixed[] = {{"free", 1}, {"fixed", 0}};
 inline constexpr Option kRingTilts[] = {
     {"fixed", int(RingTilt::fixed)}, {"free", int(RingTilt::free)}, {"prescribed", int(RingTilt::prescribed)}};

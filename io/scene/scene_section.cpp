@@ -235,6 +235,28 @@ TimeFunction Section::time_function(std::string_view key, Dimension d, const Bou
   return f;
 }
 
+std::vector<double> Section::quantity_list(std::string_view key, Dimension d, const Bounds& bounds,
+                                           std::string_view example, bool sane_range) const {
+  std::vector<double> out;
+  for (const toml::node& n : array(key)) {
+    out.push_back(to_si(n, key, d, example));
+    check_bounds(n, key, out.back(), bounds, d, sane_range);
+  }
+  return out;
+}
+
+std::vector<int> Section::integer_list(std::string_view key, long lo, long hi) const {
+  std::vector<int> out;
+  for (const toml::node& n : array(key)) {
+    const auto* i = n.as_integer();
+    if (!i) fail_at(n, key, fmt::format("expected an integer, found {} ({})", type_name(n), shown(n)));
+    if (i->get() < lo || i->get() > hi)
+      fail_at(n, key, fmt::format("must be between {} and {}, found {}", lo, hi, i->get()));
+    out.push_back(static_cast<int>(i->get()));
+  }
+  return out;
+}
+
 const toml::array& Section::array(std::string_view key) const {
   const toml::node& n = required(key);
   if (const auto* a = n.as_array()) return *a;

@@ -80,6 +80,11 @@ class Section {
   /// times and values within their sane ranges when `sane_range`).
   TimeFunction time_function(std::string_view key, Dimension d, const Bounds& bounds, std::optional<double> fallback,
                              std::string_view example = {}, bool sane_range = true) const;
+  /// An array of quantities converted to SI, each within bounds (and its sane range when `sane_range`).
+  std::vector<double> quantity_list(std::string_view key, Dimension d, const Bounds& bounds,
+                                    std::string_view example = {}, bool sane_range = true) const;
+  /// An array of integers, each from lo to hi.
+  std::vector<int> integer_list(std::string_view key, long lo, long hi) const;
   const toml::array& array(std::string_view key) const;
   /// A nested table (inline or [a.b] header); an absent one is an empty Section at this header line.
   Section sub(std::string_view key) const;

@@ -22,6 +22,19 @@ double TimeFunction::derivative(double t) const {
   return (values[k] - values[k - 1]) / (times[k] - times[k - 1]);
 }
 
+double TimeFunction::integral(double t) const {
+  if (values.empty()) return 0.0;
+  if (times.empty()) return values.front() * t;
+  // Held at values.front() before the first knot, piecewise linear between knots, held after.
+  double sum = values.front() * (std::min(t, times.front()) - 0.0);
+  for (std::size_t k = 1; k < times.size() && t > times[k - 1]; ++k) {
+    const double t1 = std::min(t, times[k]);
+    sum += 0.5 * ((*this)(times[k - 1]) + (*this)(t1)) * (t1 - times[k - 1]);
+  }
+  if (t > times.back()) sum += values.back() * (t - times.back());
+  return sum;
+}
+
 bool TimeFunction::is_zero() const {
   return std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
 }

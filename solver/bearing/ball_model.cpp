@@ -7,6 +7,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/housing.hpp"
+#include "solver/bearing/race_defects.hpp"
+
 namespace raceway::bearing {
 
 using contact::Mat3;
@@ -182,6 +185,9 @@ contact::BallGrooveSegment groove_law(const Model& m, const scene::Scene& scene,
   s.lubricant = lubricant(scene);
   s.rolling_resistance = scene.ball_race.traction.rolling_resistance && s.lubricant.viscosity > 0;
   if (scene.bearing.type == scene::BearingType::angular_contact_ball) s.groove_side = arc.outer ? 1 : -1;
+  const auto& g = scene.bearing;
+  s.imperfections = race_imperfections(outer ? scene.outer_ring : scene.inner_ring,
+                                       0.5 * (outer ? g.outer_race_diameter() : g.inner_race_diameter()), rb);
   return s;
 }
 
@@ -302,6 +308,7 @@ void add_rings(Model& m, const scene::Scene& scene) {
            0.5 * g.inner_race_diameter() + 0.25 * D, width, density);
   add_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
            0.5 * g.outer_outside_diameter, width, density);
+  add_housing(m, scene);
 }
 
 CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
@@ -315,6 +322,7 @@ CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
 void add_segments(Model& m, const scene::Scene& scene) {
   add_ball_segments(m, scene);
   add_land_segment(m, scene, cage_geometry(m, scene));
+  attach_outer_ring_to_housing(m);
 }
 
 }  // namespace
@@ -362,6 +370,7 @@ std::string describe_ball_model(const Model& m) {
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
                        b.name, b.mass, b.axial_inertia, b.transverse_inertia, b.size, why);
   }
+  for (const auto& node : m.nodes) out += node->describe(m);
   int count[segment_kind_count] = {};
   for (const auto& s : m.segments) ++count[static_cast<int>(s.kind)];
   out += "contact segments:\n";
@@ -373,6 +382,7 @@ std::string describe_ball_model(const Model& m) {
                      "({}x{} grid), rolling resistance {}\n",
                      sc.ball_race.damping.name(), sc.ball_race.traction.name(), sc.ball_race.traction.grid_x,
                      sc.ball_race.traction.grid_y, groove && m.law<contact::BallGrooveSegment>(*groove).rolling_resistance ? "on" : "off");
+  out += describe_race_imperfections(m);
   out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}\n",
                      sc.cage.pocket_shape == scene::PocketShape::spherical ? "spherical" : "cylindrical",
                      1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name());

@@ -35,7 +35,7 @@ inline const MarkerKind* kind_of(const Marker& marker) {
 
 inline contact::SpatialKinematics spatial_at(const Model& m, const Marker& marker, double t, const double* z) {
   if (const auto* centre = std::get_if<BodyCentre>(&marker)) return m.kinematics(centre->body, t, z);
-  throw std::logic_error("a spatial element attaches at body centres only");
+  return std::get<std::shared_ptr<const MarkerKind>>(marker)->spatial(m, t, z);
 }
 
 /// Planar kinematics of both markers at (t, z) (a marker that follows its partner after it), with

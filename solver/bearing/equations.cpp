@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "solver/bearing/element_evaluation.hpp"
+#include "solver/bearing/race_defects.hpp"
 
 namespace raceway::bearing {
 
@@ -320,6 +321,9 @@ double Equations::energy(double t, const double* z) const {
   for (std::size_t s = 0; s < model_.segments.size(); ++s) e += diagnostic(s, elastic_energy_field_[s]);
   return e;
 }
+
+double Equations::step_limit(double t, const double* z) const { return spall_step_limit(model_, t, z); }
+bool Equations::limits_steps() const { return has_spall(model_); }
 
 std::string Equations::explain_state(int index) const {
   const Model& m = model_;

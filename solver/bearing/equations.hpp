@@ -49,6 +49,9 @@ class Equations final : public numerics::DynamicSystem {
   /// J = df/dz into the bordered matrix. Returns 0, or 1 (recoverable).
   int jacobian(double t, const double* z, numerics::BorderedMatrix& jac) override;
   std::string explain_state(int index) const override;
+  /// The race defects' limit (race_defects.hpp: spall_step_limit).
+  double step_limit(double t, const double* z) const override;
+  bool limits_steps() const override;
 
   /// Records of the last rhs() evaluation, segment-major (SegmentRecord layout).
   const std::vector<double>& segment_records() const { return records_; }

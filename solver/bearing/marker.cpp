@@ -1,9 +1,20 @@
 #include "solver/bearing/marker.hpp"
 
+#include <stdexcept>
+
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 
 namespace raceway::bearing {
+
+contact::SpatialKinematics MarkerKind::spatial(const Model&, double, const double*) const {
+  throw std::logic_error("this marker kind attaches elements of the line family only");
+}
+
+contact::SpatialKinematics marker_spatial(const Model& m, const Marker& marker, double t, const double* z) {
+  if (const auto* centre = std::get_if<BodyCentre>(&marker)) return m.kinematics(centre->body, t, z);
+  return std::get<std::shared_ptr<const MarkerKind>>(marker)->spatial(m, t, z);
+}
 
 contact::PlanarKinematics marker_planar(const Model& m, const Marker& marker, double t, const double* z) {
   if (const auto* centre = std::get_if<BodyCentre>(&marker)) return m.planar_kinematics(centre->body, t, z);

@@ -63,6 +63,8 @@ class MarkerKind {
   virtual contact::PlanarKinematics planar(const Model& m, double t, const double* z,
                                            const contact::PlanarKinematics& partner, const double* shift,
                                            MarkerPoint& point) const = 0;
+  /// Spatial kinematics at (t, z), for elements of the point family (a ring in its housing).
+  virtual contact::SpatialKinematics spatial(const Model&, double, const double*) const;
   /// Whether its point depends on the partner's position (then the Jacobian's columns re-evaluate
   /// both markers).
   virtual bool follows_partner() const { return false; }
@@ -97,6 +99,8 @@ namespace raceway::bearing {
 
 /// Body b's state columns in coordinate order (a body-centre marker's).
 void add_body_columns(const Model& m, int b, bool on_a, std::vector<SegmentColumn>& out);
+/// Spatial kinematics of a marker: a body's centre, or its kind's.
+contact::SpatialKinematics marker_spatial(const Model& m, const Marker& marker, double t, const double* z);
 /// Planar kinematics of a marker that does not follow its partner.
 contact::PlanarKinematics marker_planar(const Model& m, const Marker& marker, double t, const double* z);
 /// The planar kinematics of element seg's other marker than `on_a`'s.

@@ -220,6 +220,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       k.rotation = memo_rotation(2 * static_cast<std::size_t>(b), v[sax], v[say], 0.0);
       const Mat3& rx = memo_rotation(2 * static_cast<std::size_t>(b) + 1, v[sax], 0.0, 0.0);
       k.angular_velocity = ring_spin(b, t, z) * k.rotation.col(2) + v[swx] * Vec3::UnitX() + v[swy] * rx.col(1);
+      if (body.ring->motion == scene::RingMotion::driven) k.spin_angle = body.ring->speed.integral(t);
       break;
     }
   }

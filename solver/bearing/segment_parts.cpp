@@ -96,7 +96,8 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
   // Mode 1 (the seating): the ring at rest.
   const auto [ring, ball] = context[1 + model_.state_size] != 0.0
                                 ? groove_kinematics_at_rest(model_, seg, t, z)
-                                : std::pair{model_.kinematics(seg.body_a, t, z), model_.kinematics(seg.body_b, t, z)};
+                                : std::pair{marker_spatial(model_, model_.markers[static_cast<std::size_t>(seg.marker_a)], t, z),
+                                            marker_spatial(model_, model_.markers[static_cast<std::size_t>(seg.marker_b)], t, z)};
   const contact::TractionResult block = contact::evaluate_traction_block(groove_law(model_, seg), ring, ball, part,
                                                                          part < 2 ? &prepared : nullptr);
   std::fill(rec.begin(), rec.end(), 0.0);
@@ -137,7 +138,9 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
   const auto& law = groove_law(model_, seg);
   const std::vector<SegmentColumn>& columns = shapes_[static_cast<std::size_t>(s)].columns;
-  const auto ka = model_.kinematics(seg.body_a, t, z), kb = model_.kinematics(seg.body_b, t, z);
+  const Marker& ma = model_.markers[static_cast<std::size_t>(seg.marker_a)];
+  const Marker& mb = model_.markers[static_cast<std::size_t>(seg.marker_b)];
+  const auto ka = marker_spatial(model_, ma, t, z), kb = marker_spatial(model_, mb, t, z);
   std::fill(rec.begin(), rec.end(), 0.0);
   bool ok = true;
   std::vector<double> zp(z, z + model_.state_size);
@@ -155,7 +158,7 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
     const SegmentColumn& c = columns[static_cast<std::size_t>(e - 1)];
     const auto j = static_cast<std::size_t>(c.state);
     zp[j] = z[j] + step_(c.state, z);
-    const auto kp = model_.kinematics(c.body, t, zp.data());
+    const auto kp = marker_spatial(model_, c.on_a ? ma : mb, t, zp.data());
     const auto r = c.on_a ? contact::evaluate(law, kp, kb) : contact::evaluate(law, ka, kp);
     zp[j] = z[j];
     ok = ok && r.valid;

@@ -57,15 +57,16 @@ struct ArkodeCalls {
   int (*current_step)(void*, sunrealtype*);
   char* (*flag_name)(long);
   void (*free)(void**);
+  int (*set_stop_time)(void*, sunrealtype);
 };
 constexpr ArkodeCalls kErkCalls{ERKStepEvolve,          ERKStepGetDky,         ERKStepGetCurrentTime,
                                 ERKStepGetEstLocalErrors, ERKStepGetErrWeights, ERKStepGetNumSteps,
                                 ERKStepGetNumErrTestFails, ERKStepGetLastStep,  ERKStepGetCurrentStep,
-                                ERKStepGetReturnFlagName, ERKStepFree};
+                                ERKStepGetReturnFlagName, ERKStepFree,          ERKStepSetStopTime};
 constexpr ArkodeCalls kArkCalls{ARKStepEvolve,          ARKStepGetDky,         ARKStepGetCurrentTime,
                                 ARKStepGetEstLocalErrors, ARKStepGetErrWeights, ARKStepGetNumSteps,
                                 ARKStepGetNumErrTestFails, ARKStepGetLastStep,  ARKStepGetCurrentStep,
-                                ARKStepGetReturnFlagName, ARKStepFree};
+                                ARKStepGetReturnFlagName, ARKStepFree,          ARKStepSetStopTime};
 
 class ArkodeStepper final : public TimeStepper {
  public:
@@ -112,7 +113,8 @@ class ArkodeStepper final : public TimeStepper {
     t_reached = t;
     return flag;
   }
-  int interpolate(double t, N_Vector y) override { return calls_.get_dky(mem_, t, 0, y); }
+  int interpolate(double t, N_Vector y, int derivative) override { return calls_.get_dky(mem_, t, derivative, y); }
+  int stop_at(double t_stop) override { return calls_.set_stop_time(mem_, t_stop); }
   double time() const override {
     sunrealtype t = 0;
     calls_.current_time(mem_, &t);

@@ -45,7 +45,8 @@ class CvodeStepper final : public TimeStepper {
     t_reached = t;
     return flag;
   }
-  int interpolate(double t, N_Vector y) override { return CVodeGetDky(mem_, t, 0, y); }
+  int interpolate(double t, N_Vector y, int derivative) override { return CVodeGetDky(mem_, t, derivative, y); }
+  int stop_at(double t_stop) override { return CVodeSetStopTime(mem_, t_stop); }
   double time() const override {
     sunrealtype t = 0;
     CVodeGetCurrentTime(mem_, &t);

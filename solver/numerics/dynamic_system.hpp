@@ -34,6 +34,11 @@ class DynamicSystem {
   /// Diagnosis of state `index` for a failed integration: its name, the most loaded contact of the
   /// body it belongs to (from the last rhs), and the contact that last left its valid range.
   virtual std::string explain_state(int index) const = 0;
+  /// The largest next step from (t, z) the physics allows (a ball must not cross a race defect
+  /// unseen) [s]; 0: no limit. A function of (t, z) alone.
+  virtual double step_limit(double /*t*/, const double* /*z*/) const { return 0.0; }
+  /// Whether step_limit ever limits (asked once, when the integrator is made).
+  virtual bool limits_steps() const { return false; }
 };
 
 }  // namespace raceway::numerics

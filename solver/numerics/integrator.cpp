@@ -66,12 +66,27 @@ struct Integrator::Impl {
     return out_of_wall_time;
   }
 
+  // The physics' step limit (DynamicSystem::step_limit), from the state where the step starts.
+  bool limits_steps = false;
+  N_Vector at_start = nullptr;
+  bool stepped = false;  // before the first step y is the start state (there is no interpolant yet)
+  void limit_next_step() {
+    const double t = stepper->time();
+    if (!at_start) at_start = N_VClone(y);
+    if (!stepped)
+      N_VScale(1.0, y, at_start);
+    else if (stepper->interpolate(t, at_start) < 0)
+      return;
+    const double h = eq.step_limit(t, N_VGetArrayPointer(at_start));
+    if (h > 0 && std::isfinite(h)) stepping::check(stepper->stop_at(t + h), "the step limit's stop time");
+  }
+
   Impl(DynamicSystem& e, const scene::SolverSpec& s) : eq(e), spec(s) {}
   ~Impl() {
     stepper.reset();
     if (timed_solver) SUNLinSolFree(timed_solver);
     linear.reset();
-    for (N_Vector v : {y, error, weights})
+    for (N_Vector v : {y, error, weights, at_start})
       if (v) N_VDestroy(v);
     if (ctx) SUNContext_Free(&ctx);
   }
@@ -140,6 +155,7 @@ Integrator::Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, 
   std::copy(z0.begin(), z0.end(), N_VGetArrayPointer(s.y));
   s.error = N_VClone(s.y);
   s.weights = N_VClone(s.y);
+  s.limits_steps = equations.limits_steps();
   N_Vector atol = N_VNew_Serial(n, s.ctx);
   const auto abs_tol = equations.absolute_tolerance();
   std::copy(abs_tol.begin(), abs_tol.end(), N_VGetArrayPointer(atol));
@@ -187,10 +203,12 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
   // normal mode does inside, with the accounting of each accepted step in between.
   for (long taken = 0; s.stepper->time() < t_out; ++taken) {
     if (taken >= per_call) throw IntegrationFailure(s.diagnose(0, true));
+    if (s.limits_steps) s.limit_next_step();
     double t_reached = 0;
     const int flag = s.stepper->step(t_out, s.y, t_reached);
     if (s.callback_error) std::rethrow_exception(s.callback_error);
     if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
+    s.stepped = true;
     s.record_step_error();
     if (s.step_observer) s.step_observer();
   }
@@ -198,6 +216,17 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
   if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
   const sunrealtype* y = N_VGetArrayPointer(s.y);
   z.assign(y, y + N_VGetLength(s.y));
+}
+
+double Integrator::time() const { return impl_->stepper->time(); }
+
+void Integrator::interpolate(double t, int derivative, std::vector<double>& out) {
+  Impl& s = *impl_;
+  if (!s.at_start) s.at_start = N_VClone(s.y);
+  const int flag = s.stepper->interpolate(t, s.at_start, derivative);
+  if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
+  const sunrealtype* y = N_VGetArrayPointer(s.at_start);
+  out.assign(y, y + N_VGetLength(s.at_start));
 }
 
 void Integrator::Impl::record_step_error() {

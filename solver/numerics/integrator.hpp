@@ -75,6 +75,11 @@ class Integrator {
   /// Integrates to t_out and returns the state there, interpolated (not at a solver step).
   /// Throws IntegrationFailure with a diagnosis.
   void advance_to(double t_out, std::vector<double>& z);
+  /// The time the integration has reached (the last step's end).
+  double time() const;
+  /// The last step's interpolant at t (within that step, e.g. from a step observer): the state
+  /// (derivative 0) or its time derivative (1), into out.
+  void interpolate(double t, int derivative, std::vector<double>& out);
   /// Called after every accepted step, on the integrating thread, before the next one: the
   /// system's last right-hand side is then the step's own (a BDF step's last Newton iterate at the
   /// step's time, a Runge-Kutta step's last stage). Jacobians do not touch a system's rhs records;

@@ -48,8 +48,10 @@ class TimeStepper {
   /// One internal step towards t_out (the first one also estimates the initial step from t_out).
   /// Returns the SUNDIALS flag (negative: failure); `t_reached` is the time of the new step.
   virtual int step(double t_out, N_Vector y, double& t_reached) = 0;
-  /// y(t) from the interpolant of the last step (t within it).
-  virtual int interpolate(double t, N_Vector y) = 0;
+  /// y(t) from the interpolant of the last step (t within it); derivative 1: dy/dt of it.
+  virtual int interpolate(double t, N_Vector y, int derivative = 0) = 0;
+  /// The next steps stop at t_stop (a step that would pass it ends there).
+  virtual int stop_at(double t_stop) = 0;
   /// The time the integration has reached (the last step's end).
   virtual double time() const = 0;
   /// The last step's estimated local error and the error weights it was tested with; false if the

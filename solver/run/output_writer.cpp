@@ -8,6 +8,7 @@
 #include "io/scene/scene_parameters.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "solver/bearing/element_traits.hpp"
+#include "solver/run/housing_sensor.hpp"
 #include "solver/run/pocket_steps.hpp"
 #include "solver/run/schedule_output.hpp"
 
@@ -206,6 +207,7 @@ OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scen
   long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m.kind));
   values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
+  if (const bearing::Housing* housing = bearing::housing_of(m)) values += HousingSensor::quantities * housing->sensor_samples();
   if (scene.output.segments)
     for (const bearing::Segment& s : m.segments)
       values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
@@ -348,6 +350,7 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
     file_.set_attribute(path, "components", component_names(s));
   }
   define_pocket_steps();
+  define_housing_sensor();
   if (segments_) define_segment_groups();
   time_ = file_.series_id("/time"), energy_ = file_.series_id("/energy");
   for (int b = 0; b < m.first_element; ++b)
@@ -366,7 +369,36 @@ void OutputWriter::define_pocket_steps() {
   for (const PocketStepSeries& s : pocket_step_series) {
     file_.define_series(s.path, {static_cast<std::size_t>(pockets), PocketSteps::sides}, s.unit, s.meaning);
     pocket_step_ids_.push_back(file_.series_id(s.path));
+    pocket_cells_ = static_cast<std::size_t>(pockets) * PocketSteps::sides;
   }
+}
+
+/// The housing sensor's series (solver/run/housing_sensor.hpp), in the order of its row.
+struct SensorSeries {
+  const char* path;
+  const char* unit;
+  const char* meaning;
+};
+constexpr SensorSeries sensor_series[] = {
+    {"/housing/sensor_time", "s", "times of the sensor's samples in the output interval that ends here (NaN at t = 0)"},
+    {"/housing/displacement", "m", "housing (and outer ring) displacement x, y at the sensor's samples"},
+    {"/housing/velocity", "m/s", "housing velocity x, y at the sensor's samples"},
+    {"/housing/acceleration", "m/s^2", "housing acceleration x, y at the sensor's samples (what an accelerometer reads)"}};
+
+void OutputWriter::define_housing_sensor() {
+  const bearing::Housing* housing = bearing::housing_of(m_);
+  if (!housing) return;
+  const auto per = static_cast<std::size_t>(housing->sensor_samples());
+  for (const SensorSeries& s : sensor_series) {
+    const bool time = sensor_ids_.empty();
+    file_.define_series(s.path, time ? std::vector<std::size_t>{per} : std::vector<std::size_t>{per, 2}, s.unit,
+                        s.meaning);
+    sensor_ids_.push_back(file_.series_id(s.path));
+  }
+  file_.set_attribute("/housing", "mass", housing->mass());
+  file_.set_attribute("/housing", "stiffness", housing->stiffness());
+  file_.set_attribute("/housing", "damping", housing->damping());
+  file_.set_attribute("/housing", "natural_frequency", housing->natural_frequency());
 }
 
 void OutputWriter::define_segment_groups() {
@@ -448,10 +480,16 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
   file_.append(time_, std::span<const double>(&t, 1));
   file_.append(energy_, std::span<const double>(&energy, 1));
   append_bodies(t, z, zdot, eq);
-  if (!pocket_step_ids_.empty()) {
-    const std::size_t cells = pocket_steps.size() / pocket_step_ids_.size();
-    for (std::size_t q = 0; q < pocket_step_ids_.size(); ++q)
-      file_.append(pocket_step_ids_[q], std::span<const double>(pocket_steps.data() + q * cells, cells));
+  std::size_t used = 0;
+  for (std::size_t q = 0; q < pocket_step_ids_.size(); ++q, used += pocket_cells_)
+    file_.append(pocket_step_ids_[q], std::span<const double>(pocket_steps.data() + used, pocket_cells_));
+  if (!sensor_ids_.empty()) {
+    const std::size_t per = (pocket_steps.size() - used) / HousingSensor::quantities;
+    for (std::size_t q = 0; q < sensor_ids_.size(); ++q) {
+      const std::size_t cells = q == 0 ? per : 2 * per;
+      file_.append(sensor_ids_[q], std::span<const double>(pocket_steps.data() + used, cells));
+      used += cells;
+    }
   }
   if (!segments_) return;
   for (int k = 0; k < bearing::segment_kind_count; ++k) {

@@ -68,7 +68,8 @@ class OutputWriter {
   OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments = false);
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
   /// `pocket_steps`: the step-resolved pocket statistics of the interval ending at t
-  /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets).
+  /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets),
+  /// then the housing sensor's samples of that interval (solver/run/housing_sensor.hpp).
   /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
   /// process writes the diagnostics of rank 0's).
   void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
@@ -85,6 +86,7 @@ class OutputWriter {
  private:
   void define_segment_groups();
   void define_pocket_steps();
+  void define_housing_sensor();
   void append_bodies(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq);
 
   h5::H5SeriesWriter& file_;
@@ -93,7 +95,8 @@ class OutputWriter {
   std::vector<unsigned char> mine_;  ///< reused: which cells of a shared row this process writes
   // The series' handles in the order append() writes them (looked up once, not per sample).
   h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
-  std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_;
+  std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_, sensor_ids_;
+  std::size_t pocket_cells_ = 0;  ///< doubles of the pocket statistics in a step row (the sensor's follow)
   std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids_[bearing::segment_kind_count];
   std::vector<double> row_;  ///< reused row buffer
   std::vector<int> index_[bearing::segment_kind_count];  ///< segments of each kind, in column order

@@ -25,6 +25,7 @@
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/output_thread.hpp"
 #include "solver/run/output_writer.hpp"
+#include "solver/run/housing_sensor.hpp"
 #include "solver/run/pocket_steps.hpp"
 #include "solver/run/run_profile.hpp"
 #include "solver/run/run_totals.hpp"
@@ -209,7 +210,7 @@ class RunLoop {
         plan_{scene.output.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.output.checkpoint_interval / dt_))
                                                    : 0,
               scene.output.checkpoint_wall_interval, options.stop_signal},
-        totals_(model, scene.scene.end_time), pockets_(model) {}
+        totals_(model, scene.scene.end_time), pockets_(model), sensor_(model, dt_) {}
 
   RunSummary run(const std::optional<Checkpoint>& resumed);
 
@@ -245,6 +246,9 @@ class RunLoop {
   // The step-resolved pocket statistics (solver/run/pocket_steps.hpp), on the run's thread; the row
   // of each sample goes to the output with it.
   PocketSteps pockets_;
+  // The housing's sensor (solver/run/housing_sensor.hpp): its samples of each interval go to the
+  // output with the pocket statistics' row.
+  HousingSensor sensor_;
   std::vector<double> pocket_row_;
   std::optional<h5::H5SeriesWriter> file_;
   std::optional<OutputWriter> out_;
@@ -277,6 +281,7 @@ void RunLoop::record(double t, long sample) {
   const double before = wall();
   totals_.turn_to(t);
   pockets_.take_row(t, pocket_row_);
+  sensor_.take_row(sample, pocket_row_);
   if (output_thread_) {
     output_thread_->submit(t, sample, z_, pocket_row_);
   } else {
@@ -337,8 +342,12 @@ void RunLoop::start_integrator(double t) {
   integrator_ = std::make_unique<numerics::Integrator>(eq_, scene_.solver, t, z_);
   // The last right-hand side of an accepted step is the integrator's own: a sample's (write_sample
   // on eq_) comes after advance_to() returns, and every step evaluates the right-hand side again.
-  if (pockets_.active())
-    integrator_->set_step_observer([this] { pockets_.observe(eq_.last_rhs_time(), eq_.segment_records()); });
+  sensor_.restart(t);
+  if (pockets_.active() || sensor_.active())
+    integrator_->set_step_observer([this] {
+      if (pockets_.active()) pockets_.observe(eq_.last_rhs_time(), eq_.segment_records());
+      sensor_.observe(*integrator_);
+    });
 }
 
 void RunLoop::start_output_thread() {

@@ -306,6 +306,8 @@ def main():
     scene_file, end, sections = {
         "planar": ("seed002_40hz.toml", "2 ms", ["Planar (roller-bearing) runs"]),
         "spatial": ("6309_R3.toml", "1 ms", ["Spatial (ball-bearing) runs"]),
+        "housing": ("cwru_6205_outer_race_007.toml", "2 ms",
+                    ["Spatial (ball-bearing) runs", "Housing (spatial runs with a `[housing]`)"]),
         "planar_bridges": ("seed003_flexible_bridges.toml", "0.3 ms",
                            ["Planar (roller-bearing) runs",
                             'Flexible cage bridges (planar runs with `[cage] bridges = "flexible"`)']),

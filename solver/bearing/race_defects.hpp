@@ -1,0 +1,38 @@
+// A ball bearing's race imperfections (a spall, waviness) in the model: built from the scene into
+// the ball-groove laws (contact/laws/race_imperfections.hpp: a change of the contact's geometry,
+// nothing else), and the step limit that makes the integration see every ball's entry into a spall.
+//
+// A spall is short (0.18 mm on a 6205's outer race: some tens of microseconds of a ball's passage),
+// and a step that carries a ball over it unseen leaves no trace the error test could find. So
+// before each step the step is limited (Equations::step_limit): a ball outside a spall may step at
+// most to the spall's leading edge at its present angular speed relative to the race; a ball
+// within it, a tenth of its passage time. The limit is a function of (t, z) alone, so it is the
+// same at every rank count and after a resume.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "contact/laws/race_imperfections.hpp"
+#include "io/scene/scene.hpp"
+#include "solver/bearing/model.hpp"
+
+namespace raceway::bearing {
+
+/// The imperfections of a ring's race for its ball-groove laws; null when the race is perfect.
+std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene::RingSpec& ring, double race_radius,
+                                                                     double ball_radius);
+
+/// Lines for the model's description (raceway check): each race's spall and waviness, or "".
+std::string describe_race_imperfections(const Model& m);
+
+/// Steps a ball takes at least within a spall.
+inline constexpr double steps_within_spall = 10;
+
+/// Whether a ball-groove law of the model has a spall.
+bool has_spall(const Model& m);
+/// The largest step at (t, z) that lets no ball enter or cross a spall unseen [s]; 0 when the model
+/// has no spall (no limit).
+double spall_step_limit(const Model& m, double t, const double* z);
+
+}  // namespace raceway::bearing

@@ -1,0 +1,129 @@
+// A race's spall and waviness (contact/laws/race_imperfections.hpp): the published ball path into a
+// spall (limited by the ball radius and the spall's length and depth), its smooth variant, the
+// spall's place on the race (wrapping at +-pi, its width), waviness, the height's azimuth slope
+// against finite differences, and the ball-groove contact seeing the height in its approach.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "ball_cases.hpp"
+#include "contact/laws/race_imperfections.hpp"
+
+namespace raceway::contact::test {
+namespace {
+
+using std::numbers::pi;
+constexpr double r = 0.5 * 7.94e-3;  // a 6205's ball
+
+RaceSpall spall(double length, double depth, SpallEdge edge = SpallEdge::sharp) {
+  return {.angle = 0.0, .length = length, .width = 1e-3, .depth = depth, .edge = edge};
+}
+
+// A short spall (CWRU's 0.007 in): the ball cannot reach its bottom; it drops by the sagitta of
+// its radius over half the length. A long shallow one: the ball reaches the depth.
+TEST(RaceSpall, EffectiveDepthIsLimitedByTheBallRadius) {
+  const double L = 0.1778e-3;
+  EXPECT_NEAR(spall_effective_depth(spall(L, 0.28e-3), r), r - std::sqrt(r * r - 0.25 * L * L), 1e-18);
+  EXPECT_NEAR(spall_effective_depth(spall(L, 0.28e-3), r), 0.995e-6, 0.01e-6);  // by hand: L^2 / (8 r)
+  EXPECT_EQ(spall_effective_depth(spall(2e-3, 5e-6), r), 5e-6);
+}
+
+// Sharp edges: the centre pivots on the leading edge, r - sqrt(r^2 - x^2), at most the depth, and
+// symmetric over the trailing edge; nothing outside.
+TEST(RaceSpall, SharpEdgePathPivotsOnTheEdges) {
+  const RaceSpall s = spall(2e-3, 20e-6);
+  for (const double x : {1e-4, 3e-4, 5e-4}) {
+    const double expected = std::min(20e-6, r - std::sqrt(r * r - x * x));
+    EXPECT_NEAR(spall_drop(s, r, x).drop, expected, 1e-18) << x;
+    EXPECT_NEAR(spall_drop(s, r, s.length - x).drop, expected, 1e-18) << x;
+  }
+  EXPECT_EQ(spall_drop(s, r, 1e-3).drop, 20e-6);  // the bottom
+  EXPECT_EQ(spall_drop(s, r, -1e-6).drop, 0.0);
+  EXPECT_EQ(spall_drop(s, r, s.length + 1e-6).drop, 0.0);
+  EXPECT_NEAR(spall_drop(s, r, 1e-9).drop, 0.0, 1e-15);  // continuous at the edge
+}
+
+// Smooth edges: a raised cosine to the same deepest drop, zero at both edges.
+TEST(RaceSpall, SmoothEdgeIsARaisedCosine) {
+  const RaceSpall s = spall(0.5e-3, 0.1e-3, SpallEdge::smooth);
+  const double peak = spall_effective_depth(s, r);
+  EXPECT_NEAR(spall_drop(s, r, 0.25e-3).drop, peak, 1e-18);
+  EXPECT_NEAR(spall_drop(s, r, 0.125e-3).drop, 0.5 * peak, 1e-18);
+  EXPECT_NEAR(spall_drop(s, r, 1e-12).drop, 0.0, 1e-18);
+}
+
+// The slope against central differences, both edges, over the sharp and the smooth path.
+TEST(RaceSpall, SlopeIsTheDerivativeOfTheDrop) {
+  for (const SpallEdge edge : {SpallEdge::sharp, SpallEdge::smooth}) {
+    const RaceSpall s = spall(0.6e-3, 0.1e-3, edge);
+    for (const double x : {0.02e-3, 0.1e-3, 0.22e-3, 0.41e-3, 0.55e-3}) {
+      const double h = 1e-9;
+      const double fd = (spall_drop(s, r, x + h).drop - spall_drop(s, r, x - h).drop) / (2 * h);
+      EXPECT_NEAR(spall_drop(s, r, x).slope, fd, 1e-6 * std::abs(fd) + 1e-9) << x;
+    }
+  }
+}
+
+// On the race: centred at its angle, wrapping through +-pi, only within its width; waviness adds
+// sum A cos(n theta + phase); the azimuth slope is the derivative of the height.
+TEST(RaceHeight, SpallPlaceWidthAndWaviness) {
+  RaceImperfections race;
+  race.race_radius = 25.5e-3;
+  race.ball_radius = r;
+  race.has_spall = true;
+  race.spall = spall(1e-3, 10e-6);
+  race.spall.angle = pi;  // straddles +-pi
+  const double half = 0.5e-3 / race.race_radius;
+  EXPECT_EQ(race_height(race, pi, 0.0).height, -spall_drop(race.spall, r, 0.5e-3).drop);
+  EXPECT_NEAR(race_height(race, -pi + 0.5 * half, 0.0).height, -spall_drop(race.spall, r, 0.75e-3).drop, 1e-15);
+  EXPECT_EQ(race_height(race, pi - 1.01 * half, 0.0).height, 0.0);
+  EXPECT_EQ(race_height(race, pi, 0.6e-3).height, 0.0);  // outside its width (1 mm)
+  race.waviness = {{3, 11}, {1e-6, 0.5e-6}, {0.2, -1.0}};
+  for (const double theta : {0.3, 1.7, -2.2}) {
+    const double expected = 1e-6 * std::cos(3 * theta + 0.2) + 0.5e-6 * std::cos(11 * theta - 1.0);
+    EXPECT_NEAR(race_height(race, theta, 0.0).height, expected, 1e-18);
+  }
+  for (const double theta : {pi - 0.8 * half, pi - 0.1 * half, 2.0}) {
+    const double h = 1e-8;
+    const double fd = (race_height(race, theta + h, 0.0).height - race_height(race, theta - h, 0.0).height) / (2 * h);
+    EXPECT_NEAR(race_height(race, theta, 0.0).per_azimuth, fd, 1e-5 * std::abs(fd) + 1e-12) << theta;
+  }
+}
+
+// The ball-groove contact sees the height in its approach, at the ball's azimuth in the ring's
+// own frame (its spin angle taken off): a ball over the spall carries the force of a perfect race
+// at the approach less the drop; a race without imperfections is untouched.
+TEST(RaceHeight, GrooveContactApproachFollowsTheRace) {
+  using namespace ball;
+  const SpatialCase c{"outer", Kind::groove, true, 0, PocketShape::cylindrical};
+  const BallGrooveSegment perfect = std::get<BallGrooveSegment>(make_segment(c, {.damping = false, .traction = false}));
+  const Groove g = groove_of(c);
+  BallGrooveSegment defective = perfect;
+  auto race = std::make_shared<RaceImperfections>();
+  race->race_radius = g.centre_radius + g.groove_radius;
+  race->ball_radius = ball_radius;
+  race->has_spall = true;
+  race->spall = {.angle = 0.4, .length = 2e-3, .width = 2e-3, .depth = 3e-6, .edge = SpallEdge::sharp};
+  defective.imperfections = race;
+  SpatialKinematics ring;
+  ring.spin_angle = 0.5;  // the ring has turned by 0.5 rad: the spall sits at 0.9 rad in the bearing frame
+  const double m = g.groove_radius - ball_radius, approach = 10e-6;
+  auto ball_at = [&](double psi, double extra) {
+    SpatialKinematics ball;
+    ball.position = (g.centre_radius + m + approach + extra) * radial(psi);
+    return ball;
+  };
+  const SpatialSegmentResult over = evaluate(defective, ring, ball_at(0.9, 0.0));
+  EXPECT_NEAR(over.diagnostics.approach, approach - 3e-6, 1e-15);
+  const SpatialSegmentResult same = evaluate(perfect, ring, ball_at(0.9, -3e-6));
+  EXPECT_NEAR(over.diagnostics.normal_force, same.diagnostics.normal_force, 1e-9 * same.diagnostics.normal_force);
+  const SpatialSegmentResult beside = evaluate(defective, ring, ball_at(0.4, 0.0));  // the spall's ring-frame angle
+  const SpatialSegmentResult clean = evaluate(perfect, ring, ball_at(0.4, 0.0));
+  EXPECT_EQ(beside.diagnostics.approach, clean.diagnostics.approach);
+  EXPECT_EQ(beside.diagnostics.normal_force, clean.diagnostics.normal_force);
+}
+
+}  // namespace
+}  // namespace raceway::contact::test

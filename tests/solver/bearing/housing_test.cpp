@@ -1,0 +1,163 @@
+// The housing under a ball bearing's outer ring (solver/bearing/housing.hpp) and a race's spall in
+// the model (solver/bearing/race_defects.hpp): the Jacobian, assembled through the housing's marker
+// and its own terms, against central differences of the right-hand side over every state (a spall
+// under a ball among them); the housing's static deflection under the bearing's load; and the step
+// limit against a ball's distance to a spall.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "io/scene/scene_parser.hpp"
+#include "scheduler/executor.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/housing.hpp"
+#include "solver/bearing/model.hpp"
+#include "solver/bearing/race_defects.hpp"
+#include "solver/bearing/startup.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "tests/support/solver_test_support.hpp"
+
+namespace raceway::bearing {
+namespace {
+
+constexpr const char* kScene = R"([scene]
+end_time = "20 ms"
+output_interval = "1 ms"
+[bearing]
+designation = "6205"
+[inner_ring]
+speed = "3000 rpm"
+load = { fy = "-375 N" }
+[outer_ring]
+spall = { angle = "-90 deg", length = "1 mm", width = "2 mm", depth = "0.1 mm", edge = "smooth" }
+[housing]
+mass = "2 kg"
+stiffness = "500 MN/m"
+damping = "3000 N s/m"
+sensor_interval = "100 us"
+)";
+
+/// The scene, without its spall where `spall` is false.
+std::string scene_text(bool spall) {
+  std::string text = kScene;
+  if (!spall) text.erase(text.find("spall = "), text.find('\n', text.find("spall = ")) - text.find("spall = ") + 1);
+  return text;
+}
+
+struct HousedBearing {
+  explicit HousedBearing(bool spall = true) : scene(scene::parse_scene(scene_text(spall), "housing_test")) {
+    executor.attach(eq.task_catalogue());
+  }
+  scene::Scene scene;
+  Model model = build_model(scene);
+  scheduler::SerialExecutor executor;
+  Equations eq{model, executor};
+  std::vector<double> start = initial_state(model, 0.0).state;
+  std::vector<double> after(double t) {
+    std::vector<double> z;
+    numerics::Integrator integrator(eq, scene.solver, 0.0, start);
+    integrator.advance_to(t, z);
+    return z;
+  }
+};
+
+/// Worst column error of the model Jacobian against central differences (relative to the column,
+/// or to its class's largest column where the column is near zero).
+double jacobian_error(Equations& eq, const Model& m, double t, const std::vector<double>& z) {
+  const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, t, z);
+  numerics::BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
+  EXPECT_EQ(eq.jacobian(t, z.data(), jac), 0);
+  const Eigen::MatrixXd dense = jac.to_dense();
+  double class_norm[4] = {0, 0, 0, 0};
+  for (int j = 0; j < m.state_size; ++j) {
+    double& c = class_norm[static_cast<int>(m.state_class[static_cast<std::size_t>(j)])];
+    c = std::max(c, fd.col(j).norm());
+  }
+  double worst = 0;
+  int worst_column = 0;
+  for (int j = 0; j < m.state_size; ++j) {
+    const int c = static_cast<int>(m.state_class[static_cast<std::size_t>(j)]);
+    const double diff = (dense.col(j) - fd.col(j)).norm(), ref = fd.col(j).norm();
+    const double e = ref > 1e-9 * class_norm[c] ? diff / ref : diff / class_norm[c];
+    if (e > worst) worst = e, worst_column = j;
+  }
+  std::printf("[ housing ] t = %g s: worst column error %.3g (%s)\n", t, worst,
+              m.state_name[static_cast<std::size_t>(worst_column)].c_str());
+  // The housing's rows depend on the balls through the outer-race contacts: the coupling is there,
+  // and right on its own (the columns above are dominated by the housing's own spring).
+  const Housing* h = housing_of(m);
+  const int balls = m.state_size - m.border_size;
+  const Eigen::MatrixXd coupling = fd.block(h->state(2), m.border_size, 2, balls);
+  EXPECT_GT(coupling.cwiseAbs().maxCoeff(), 0.0);
+  const double coupling_error = (dense.block(h->state(2), m.border_size, 2, balls) - coupling).norm() / coupling.norm();
+  std::printf("[ housing ] t = %g s: the housing's rows over the balls' columns: error %.3g\n", t, coupling_error);
+  EXPECT_LT(coupling_error, 1e-3);
+  return worst;
+}
+
+// The tolerance of tests/solver/bearing/spatial_newton_test.cpp (1e-3 of a column's norm: forward
+// differences per segment against central differences of the whole right-hand side).
+TEST(Housing, JacobianMatchesCentralDifferences) {
+  HousedBearing b;
+  EXPECT_LT(jacobian_error(b.eq, b.model, 0.0, b.start), 1e-3);
+  EXPECT_LT(jacobian_error(b.eq, b.model, 4e-3, b.after(4e-3)), 1e-3);
+}
+
+// Settled (a perfect race), the housing carries the bearing's load on its spring: u_y = -(F + the weights the balls
+// carry to it) / k, the weights of the inner ring, balls and cage (gravity is on: the 6205's
+// first-scene default). Averaged over 2 ms (a housing period is 0.4 ms) after 8 ms (the ring-down
+// of its start takes 1 / (zeta omega) = 0.6 ms).
+TEST(Housing, StaticDeflectionIsTheLoadOverTheStiffness) {
+  HousedBearing b(false);
+  const Housing* h = housing_of(b.model);
+  ASSERT_NE(h, nullptr);
+  numerics::Integrator integrator(b.eq, b.scene.solver, 0.0, b.start);
+  std::vector<double> z;
+  double sum = 0;
+  int n = 0;
+  for (double t = 8e-3; t <= 10e-3 + 1e-12; t += 1e-5, ++n) {
+    integrator.advance_to(t, z);
+    sum += z[static_cast<std::size_t>(h->state(1))];
+  }
+  double weight = 0;
+  for (const Body& body : b.model.bodies)
+    if (body.kind != BodyKind::outer_ring) weight += body.mass * 9.80665;
+  const double expected = -(375.0 + weight) / 500e6;
+  EXPECT_NEAR(sum / n, expected, 0.01 * std::abs(expected));
+  EXPECT_NEAR(h->mass(), 2.0 + b.model.bodies[static_cast<std::size_t>(b.model.outer_ring)].mass, 1e-12);
+}
+
+// A ball outside the spall may step to its edge at its speed relative to the race, not further; one
+// within it a tenth of its passage.
+TEST(Housing, SpallStepLimitReachesTheEdge) {
+  HousedBearing b;
+  const Model& m = b.model;
+  ASSERT_TRUE(has_spall(m));
+  const double limit = spall_step_limit(m, 0.0, b.start.data());
+  // By hand: every ball's azimuth and its rate about the (fixed) outer ring.
+  const double race = 0.5 * b.scene.bearing.outer_race_diameter();
+  const double half = 0.5e-3 / race, start = -0.5 * std::numbers::pi - half;
+  double expected = 1e300;
+  for (int k = 0; k < m.element_count; ++k) {
+    const auto ball = m.kinematics(m.first_element + k, 0.0, b.start.data());
+    const double azimuth = std::atan2(ball.position.y(), ball.position.x());
+    const double rate = (ball.position.x() * ball.velocity.y() - ball.position.y() * ball.velocity.x()) /
+                        (ball.position.x() * ball.position.x() + ball.position.y() * ball.position.y());
+    ASSERT_GT(rate, 0.0);
+    const double within = 2 * half / rate / steps_within_spall;
+    double past = std::fmod(azimuth - start, 2 * std::numbers::pi);
+    if (past < 0) past += 2 * std::numbers::pi;
+    expected = std::min(expected, past < 2 * half ? within : std::max(within, (2 * std::numbers::pi - past) / rate));
+  }
+  EXPECT_NEAR(limit, expected, 1e-9 * expected);
+  EXPECT_GT(limit, 0.0);
+}
+
+}  // namespace
+}  // namespace raceway::bearing

@@ -1,0 +1,252 @@
+#!/usr/bin/env python3
+"""Defects and vibration (docs/vibration.md) on short runs of a 6205 in a housing, one case per ctest:
+
+    vibration_test.py CASE RACEWAY MPIEXEC SOURCE_DIR
+
+The scene: a 6205 (9 balls), inner ring at 12000 r/min (a short run, 40 or 80 ms, gives enough
+revolutions for the frequency resolution), the outer ring in a housing of 1 kg on 1000 MN/m (5.0 kHz, damping
+ratio 0.047) whose acceleration is sampled at 100 kHz; the first 10 ms (the housing settling under
+its load) are left out of every signal. Kinematics after slip: the characteristic frequencies from
+the run's measured cage speed (raceway.vibration.characteristic_frequencies), the slip reported.
+
+  outer: a spall on the outer race in the load zone (0.5 mm long, sharp edges), 500 N radial: in the
+    envelope spectrum (band 0.5 to 1.5 times the housing's frequency) BPFO and its harmonics 2, 3
+    and 4 within 1 % of kinematics after slip, each at least 3 times the floor around it.
+  inner: the spall on the inner race (80 ms): BPFI and harmonics 2 and 3 within 1 %, and the sidebands of
+    the load zone's modulation at BPFI -+ the shaft frequency, each at least 2 times its floor.
+  waviness: inner-race waviness of order n = Z - 1 = 8 and of n = Z + 1 = 10 (two runs, 0.5 um,
+    500 N axial load: every ball loaded alike): the theory (Wardle 1988) puts the housing's
+    vibration at Z (f_i - f_c) -+ f_i for n = Z -+ 1; each order's line within 0.1 % and at least
+    10 times its floor, and the other order's line not above 3 times its floor.
+  clean: the same bearing without a defect (80 ms): at BPFO, BPFI (harmonics 1 to 3) its envelope
+    spectrum carries no line above 3 times its floor, and at BPFO and BPFI themselves less than 10 %
+    of the spalled bearings' lines (printed: the spectrum's median, the numerical noise floor).
+  report: `raceway report` on the outer-race run: summary.json's vibration part (BPFO x2 among the lines
+    that carry energy, BPFI not), the log's sensor line, and sensor.csv holding the window's samples.
+  ranks: the outer-race run at np = 2 against np = 1, and a run killed (SIGKILL) after a checkpoint and
+    resumed against an uninterrupted one with the same checkpoint interval: /housing bitwise.
+
+Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
+"""
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+try:
+    import h5py
+    import numpy as np
+except ImportError as err:
+    print(f"SKIP: {err}", file=sys.stderr)
+    sys.exit(77)
+
+SCENE = """[scene]
+end_time = "{end}"
+output_interval = "1 ms"
+[bearing]
+designation = "6205"
+[inner_ring]
+speed = "12000 rpm"
+load = {{ {load} }}
+{inner}
+[outer_ring]
+motion = "fixed"
+{outer}
+[housing]
+mass = "1 kg"
+stiffness = "1000 MN/m"
+damping = "3000 N s/m"
+sensor_interval = "10 us"
+[output]
+segments = {segments}
+{extra}
+"""
+SPALL = 'spall = { angle = "%s", length = "0.5 mm", width = "2 mm", depth = "0.1 mm" }'
+failures = []
+
+
+def check(cond, what):
+    print(f"{'ok' if cond else 'FAIL'}: {what}", file=sys.stderr)
+    if not cond:
+        failures.append(what)
+
+
+def write_scene(work, name, end="40 ms", load='fy = "-500 N"', inner="", outer="", extra="", segments=False):
+    path = os.path.join(work, name + ".toml")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(SCENE.format(end=end, load=load, inner=inner, outer=outer, extra=extra,
+                             segments="true" if segments else "false"))
+    return path
+
+
+def run(raceway, scene, out, np_ranks=1, mpiexec=None, extra=()):
+    cmd = [raceway, "run", scene, "-o", out, *extra]
+    if np_ranks > 1:
+        cmd = [mpiexec, "--oversubscribe", "-np", str(np_ranks)] + cmd
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env)
+    if r.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)}: exit {r.returncode}: {r.stderr[-800:]}")
+    return out
+
+
+def analyse(path, envelope=True, axis=1):
+    import raceway.vibration as vib
+    with h5py.File(path, "r") as f:
+        freqs = vib.characteristic_frequencies(f)
+        s = vib.sensor_signal(f, start=0.01)
+        x = s.acceleration[:, axis]
+        if envelope:
+            freq, amp = vib.envelope_spectrum(x, s.rate, vib.resonance_band(f), pad=8)
+        else:
+            freq, amp = vib.spectrum(x, s.rate, pad=8)
+    print(f"{os.path.basename(path)}: cage {freqs['FTF']:.3f} Hz, slip {100 * freqs['slip']:.3f} %, "
+          f"BPFO {freqs['BPFO']:.2f} Hz (kinematic {freqs['kinematic']['BPFO']:.2f}), BPFI {freqs['BPFI']:.2f} Hz "
+          f"(kinematic {freqs['kinematic']['BPFI']:.2f}), statistics {vib.statistics(x)}", file=sys.stderr)
+    return vib, freqs, freq, amp
+
+
+def line(vib, freq, amp, f0, name, within, above):
+    at, a = vib.peak_near(freq, amp, f0, 0.03)
+    floor = vib.noise_floor(freq, amp, f0)
+    check(abs(at / f0 - 1) <= within, f"{name}: line at {at:.2f} Hz, expected {f0:.2f} Hz "
+          f"({100 * (at / f0 - 1):+.3f} %, within {100 * within:g} %)")
+    check(a >= above * floor, f"{name}: amplitude {a:.4g} >= {above} x floor {floor:.4g}")
+    return a, floor
+
+
+def case_outer(raceway, work):
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "outer", outer=SPALL % "-90 deg"),
+                                    os.path.join(work, "outer.h5")))
+    for k in range(1, 5):
+        line(vib, freq, amp, k * f["BPFO"], f"BPFO x{k}", 0.01, 3.0)
+
+
+def case_inner(raceway, work):
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "inner", end="80 ms", inner=SPALL % "0 deg"),
+                                    os.path.join(work, "inner.h5")))
+    for k in range(1, 4):
+        line(vib, freq, amp, k * f["BPFI"], f"BPFI x{k}", 0.01, 2.0)
+    for sign, name in ((-1, "BPFI - shaft"), (1, "BPFI + shaft")):
+        line(vib, freq, amp, f["BPFI"] + sign * f["shaft"], name, 0.01, 2.0)
+
+
+def case_waviness(raceway, work):
+    for order, sign in ((8, -1), (10, 1)):
+        scene = write_scene(work, f"waviness{order}", load='fz = "500 N"',
+                            inner=f'waviness = {{ orders = [{order}], amplitudes = ["0.5 um"] }}')
+        vib, f, freq, amp = analyse(run(raceway, scene, os.path.join(work, f"waviness{order}.h5")), envelope=False,
+                                    axis=0)
+        expected = f["BPFI"] + sign * f["shaft"]  # Z (f_i - f_c) -+ f_i
+        line(vib, freq, amp, expected, f"waviness order {order}: Z (f_i - f_c) {'+' if sign > 0 else '-'} f_i", 0.001,
+             10.0)
+        other = f["BPFI"] - sign * f["shaft"]
+        at, a = vib.peak_near(freq, amp, other, 0.01)
+        floor = vib.noise_floor(freq, amp, other)
+        check(a < 3.0 * floor, f"waviness order {order}: nothing at the other order's line {other:.1f} Hz "
+              f"({a:.3g} < 3 x floor {floor:.3g})")
+
+
+def case_clean(raceway, work):
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "clean", end="80 ms"), os.path.join(work, "clean.h5")))
+    _, fo, freq_o, amp_o = analyse(run(raceway, write_scene(work, "outer", end="80 ms", outer=SPALL % "-90 deg"),
+                                       os.path.join(work, "outer.h5")))
+    _, fi, freq_i, amp_i = analyse(run(raceway, write_scene(work, "inner", end="80 ms", inner=SPALL % "0 deg"),
+                                       os.path.join(work, "inner.h5")))
+    print(f"clean: envelope spectrum's median {np.median(amp):.4g} m/s^2 (the floor)", file=sys.stderr)
+    for name, fd, freq_d, amp_d in (("BPFO", fo, freq_o, amp_o), ("BPFI", fi, freq_i, amp_i)):
+        for k in range(1, 4):
+            f0 = k * f[name]
+            _, a = vib.peak_near(freq, amp, f0, 0.02)
+            floor = vib.noise_floor(freq, amp, f0)
+            _, defect = vib.peak_near(freq_d, amp_d, k * fd[name], 0.02)
+            check(a < 3.0 * floor, f"clean {name} x{k}: {a:.4g} < 3 x floor {floor:.4g}")
+            if k == 1:  # the harmonics of a spall are weaker: there the floor alone decides
+                check(a < 0.1 * defect, f"clean {name}: {a:.4g} < 10 % of the spalled bearing's {defect:.4g}")
+
+
+def case_report(raceway, work):
+    """`raceway report` on a spalled run: the vibration summary, its lines and the sensor's CSV."""
+    import csv
+    import json
+    out = run(raceway, write_scene(work, "report", end="30 ms", outer=SPALL % "-90 deg", segments=True),
+              os.path.join(work, "report.h5"))
+    r = subprocess.run([raceway, "report", out, "--no-plots"], capture_output=True, text=True, timeout=300)
+    check(r.returncode == 0, f"raceway report: exit {r.returncode}: {r.stderr[-600:]}")
+    folder = os.path.join(work, "report_report")
+    summary = json.load(open(os.path.join(folder, "summary.json"), encoding="utf-8"))
+    v = summary.get("vibration", {})
+    check({"statistics", "frequencies_hz", "lines", "slip"} <= v.keys(), f"summary.json's vibration: {sorted(v)}")
+    carrying = [(line["name"], line["harmonic"]) for line in v.get("lines", []) if line["carries_energy"]]
+    check(("BPFO", 2) in carrying, f"the table says BPFO x2 carries energy: {carrying}")
+    check(all(name != "BPFI" or k != 1 for name, k in carrying), f"and BPFI does not: {carrying}")
+    check("housing sensor (y): RMS" in r.stderr, "the report's log names the sensor's RMS")
+    with open(os.path.join(folder, "sensor.csv"), encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    with h5py.File(out, "r") as f:
+        t = f["housing/sensor_time"][1:].reshape(-1)
+        ay = f["housing/acceleration"][1:].reshape(-1, 2)[:, 1]
+    start = summary["window"]["start_s"]
+    keep = t >= start
+    check(rows[0][0] == "time_s" and len(rows) - 1 == int(keep.sum()), f"sensor.csv: {len(rows) - 1} rows")
+    check(float(rows[1][6]) == ay[keep][0] and float(rows[-1][0]) == t[keep][-1], "sensor.csv holds the samples")
+
+
+def housing_series(path):
+    with h5py.File(path, "r") as f:
+        return {k: f["housing"][k][()] for k in f["housing"]}
+
+
+def same(a, b, what):
+    equal = a.keys() == b.keys() and all(np.array_equal(a[k], b[k], equal_nan=True) and a[k].shape == b[k].shape
+                                         for k in a)
+    check(equal, what)
+
+
+def case_ranks(raceway, mpiexec, work):
+    scene = write_scene(work, "outer", end="30 ms", outer=SPALL % "-90 deg")
+    one = housing_series(run(raceway, scene, os.path.join(work, "np1.h5")))
+    two = housing_series(run(raceway, scene, os.path.join(work, "np2.h5"), 2, mpiexec))
+    same(one, two, "np = 2 writes the np = 1 run's /housing bitwise")
+    check(np.isfinite(one["acceleration"][1:]).all(), "every sensor sample after t = 0 is written")
+    # Killed after a checkpoint and resumed: the same bits as the uninterrupted run (which restarts
+    # its integrator at the same checkpoints).
+    ckpt = write_scene(work, "ckpt", end="60 ms", outer=SPALL % "-90 deg", extra='checkpoint_interval = "5 ms"')
+    whole = housing_series(run(raceway, ckpt, os.path.join(work, "whole.h5")))
+    out = os.path.join(work, "killed.h5")
+    proc = subprocess.Popen([raceway, "run", ckpt, "-o", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 60
+    while not os.path.exists(out + ".checkpoint") and proc.poll() is None and time.time() < deadline:
+        time.sleep(0.01)
+    time.sleep(0.1)
+    proc.send_signal(signal.SIGKILL)
+    code = proc.wait(timeout=120)
+    check(code != 0 and os.path.exists(out + ".checkpoint"), "the run was killed after a checkpoint")
+    run(raceway, ckpt, out, extra=("--resume",))
+    same(whole, housing_series(out), "a run killed after a checkpoint and resumed writes the uninterrupted /housing "
+         "bitwise")
+
+
+def main():
+    if len(sys.argv) != 5:
+        print(__doc__, file=sys.stderr)
+        return 2
+    case, raceway, mpiexec, source = sys.argv[1:]
+    sys.path.insert(0, os.path.join(source, "io", "report"))
+    with tempfile.TemporaryDirectory() as work:
+        if case == "ranks":
+            case_ranks(raceway, mpiexec, work)
+        else:
+            {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
+             "report": case_report}[case](raceway, work)
+    if failures:
+        print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
+        return 1
+    print(f"{case}: passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
