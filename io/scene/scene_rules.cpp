@@ -1,6 +1,8 @@
 // The rules of a scene that tie keys together (scene_rules.hpp).
 #include "io/scene/scene_rules.hpp"
 
+#include "contact/laws/viscosity.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -48,6 +50,19 @@ std::optional<double> cage_outside_default(const Bind& b) {
   return b.scene.bearing.pitch_diameter + 0.6 * element_diameter(b);
 }
 std::optional<double> cage_width_default(const Bind& b) { return 0.8 * b.scene.bearing.ring_width; }
+// An oil given by its data sheet (viscosity_40): viscosity_100, density and temperature are required.
+std::optional<double> walther_point_default(const Bind& b) {
+  if (b.scene.lubricant.viscosity_40 > 0) return std::nullopt;
+  return 0.0;
+}
+// The viscosity at the oil's temperature by Walther's equation (ASTM D341) through the data sheet's two
+// points, times the density; without a data sheet the key is required.
+std::optional<double> walther_viscosity_default(const Bind& b) {
+  const Lubricant& l = b.scene.lubricant;
+  if (!(l.viscosity_40 > 0)) return std::nullopt;
+  const contact::WaltherConstants w = contact::walther_constants(l.viscosity_40, 313.15, l.viscosity_100, 373.15);
+  return l.density * contact::walther_viscosity(w, l.temperature);
+}
 // A planar support is radial only, so its stiffness is the support; a spatial one names directions.
 std::optional<double> ring_support_stiffness_default(const Bind& b) {
   return b.ball() ? std::optional<double>(0.0) : std::nullopt;
@@ -450,11 +465,16 @@ void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
                        "stress = coefficient x pressure; 0.02 to 0.1 for mineral oils)");
 }
 
-// The film laws of seed 003 (EHD roller-race, hydrodynamic roller-cage) need a viscosity.
+// The film laws (EHD roller-race, hydrodynamic roller-cage, the cage land's and the ball pocket's films) need a
+// viscosity.
 void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   const contact::LawId id = b.contact->normal.id;
-  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing)
+  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing &&
+      id != contact::LawId::pocket_film)
     return;
+  if (id == contact::LawId::pocket_film && b.scene.cage.pocket_shape != PocketShape::cylindrical)
+    s.fail("normal", "normal = \"pocket_film\" is the film of a ball in a cylindrical pocket (pocket_shape = "
+                     "\"cylindrical\"); a spherical pocket's film is not modelled: give normal = \"hertz\"");
   if (id == contact::LawId::short_bearing && !b.scene.bearing.is_ball_bearing())
     s.fail("normal", "normal = \"short_bearing\" is the land film of a ball bearing's cage; a cylindrical roller "
                      "bearing's cage land has the dry law (palmgren) only");
@@ -462,6 +482,23 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",
                                  b.contact->normal.name()));
+}
+
+void walther_points_fit(const Row&, const Section& s, Bind& b) {
+  const Lubricant& l = b.scene.lubricant;
+  if (!s.has("viscosity_100")) return;
+  if (!(l.viscosity_40 > 0))
+    s.fail("viscosity_100", "viscosity_100 comes with viscosity_40 (the oil's two data-sheet points); give both");
+  if (!(l.viscosity_100 < l.viscosity_40))
+    s.fail("viscosity_100", fmt::format("viscosity_100 ({:g} mm^2/s) must be below viscosity_40 ({:g} mm^2/s): an oil "
+                                        "thins as it warms",
+                                        1e6 * l.viscosity_100, 1e6 * l.viscosity_40));
+}
+
+void viscosity_given_once(const Row&, const Section& s, Bind& b) {
+  if (s.has("viscosity") && b.scene.lubricant.viscosity_40 > 0)
+    s.fail("viscosity", "give the viscosity, or the data sheet's viscosity_40 and viscosity_100 (with density and "
+                        "temperature), not both");
 }
 
 // EHD traction is the shear of the EHD film: it needs that film; limiting shear needs its lubricant.
