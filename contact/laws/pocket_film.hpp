@@ -25,7 +25,9 @@
 // (the pressure-gradient shear, which gives a film's rolling resistance, is left out).
 //
 // The integral around the pocket is a fixed rule: `points` midpoints uniform in the Sommerfeld variable
-// (dense where the film is thin), as the short journal bearing's. Film collapse: the minimum film c - |e|
+// (dense where the film is thin), as the short journal bearing's, with the grid's eccentricity held
+// below grid_eccentricity: near touch a separating or sliding ball's film carries its load on the
+// thick side, which the film's own grid would leave with a few strips. Film collapse: the minimum film c - |e|
 // is held above `film_floor` by a smooth maximum, so the film force stays bounded as the surfaces meet;
 // the dry elastic contact of the segment adds from zero at touch (continuous at the critical film).
 // Numerical integration here rather than a library: no Debian package has lubrication integrals.
@@ -40,7 +42,11 @@ struct PocketFilm {
   double ball_radius = 0;   ///< r_b [m]
   double clearance = 0;     ///< c [m], radial: pocket radius - ball radius
   double film_floor = 0;    ///< m: the smallest minimum film the film sees (of the order of the roughness)
-  int points = 64;          ///< strips around the pocket
+  int points = 48;          ///< strips around the pocket
+  /// The strips' Sommerfeld grid follows the film's eccentricity up to about this one (a smooth
+  /// minimum): 48 strips are then within 0.2 % of 8192 on the film's own grid up to an eccentricity
+  /// of 0.999 (the test's), where the grid of the film's own eccentricity leaves the thick side bare.
+  double grid_eccentricity = 0.95;
   bool shear = true;        ///< add the Couette shear of the flooded pocket
 };
 
