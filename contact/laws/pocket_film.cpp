@@ -64,9 +64,10 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
     const double root_h0 = std::sqrt(h0);
     const double rho = std::abs(entrainment), sigma = film_rate * sqrt_2rb / root_h0;
     const double magnitude = std::sqrt(rho * rho + sigma * sigma);
-    const double load = magnitude > 0 ? 24.0 * eta * rb / h0 * magnitude * reynolds_line_load_integral(std::atan2(sigma, rho)) *
-                                       rp * weight
-                                 : 0.0;
+    const double sum = rho + std::abs(sigma);
+    const double load =
+        sum > 0 ? 24.0 * eta * rb / h0 * magnitude * reynolds_line_load_integral_of_ratio(sigma / sum) * rp * weight
+                : 0.0;
     px -= load * ca;
     py -= load * sa_;
     if (!f.shear) continue;
