@@ -44,9 +44,9 @@ struct PocketFilm {
   double film_floor = 0;    ///< m: the smallest minimum film the film sees (of the order of the roughness)
   int points = 48;          ///< strips around the pocket
   /// The strips' Sommerfeld grid follows the film's eccentricity up to about this one (a smooth
-  /// minimum): 48 strips are then within 0.2 % of 8192 on the film's own grid up to an eccentricity
+  /// minimum): 48 strips are then within 0.3 % of 8192 on the film's own grid up to an eccentricity
   /// of 0.999 (the test's), where the grid of the film's own eccentricity leaves the thick side bare.
-  double grid_eccentricity = 0.95;
+  double grid_eccentricity = 0.98;
   bool shear = true;        ///< add the Couette shear of the flooded pocket
 };
 

@@ -74,18 +74,20 @@ TEST(PocketFilm, AgainstTwoDimensionalReynolds) {
   }
 }
 
-// The strips' grid: 48 strips on a Sommerfeld grid whose eccentricity stops near 0.95 give the film of
-// 8192 strips on the film's own grid within 0.2 %, from a centred ball to one at the film's floor,
-// approaching, separating (the load then on the thick side), rolling, sliding and spinning.
+// The strips' grid: 48 strips on a Sommerfeld grid whose eccentricity stops near 0.98 give the film of
+// 8192 strips on the film's own grid within 0.3 %, from an eccentricity of 0.5 to the film's floor,
+// approaching, separating (the load then on the thick side), rolling, sliding and spinning (near the
+// centre the resultant is a small difference of the strips' loads: 6 % of 0.02 N with 32 strips).
 TEST(PocketFilm, StripGridConverged) {
   std::vector<PocketMotion> motions_at;
-  for (const double eps : {0.5, 0.8, 0.95, 0.99, 0.999}) {
+  for (const double eps : {0.5, 0.8, 0.9, 0.95, 0.99, 0.995, 0.999}) {
     const double e = eps * clearance;
     motions_at.push_back({{e, 0}, {2e-3, 0, 0}, {0, 0, 0}});
     motions_at.push_back({{e, 0}, {-2e-3, 0, 0}, {0, -1000, 0}});
     motions_at.push_back({{e, 0}, {0, 0, 0}, {0, -1000, 300}});
     motions_at.push_back({{e * 0.6, -e * 0.8}, {5e-4, -1e-3, 0.05}, {400, 700, -600}});
     motions_at.push_back({{e, 0}, {-1e-3, 1e-3, 0.3}, {400, 700, -600}});
+    motions_at.push_back({{e, 0}, {1e-4, 1e-3, 0.3}, {40, 70, -2000}});
   }
   double worst = 0;
   for (const PocketMotion& m : motions_at) {
@@ -96,7 +98,7 @@ TEST(PocketFilm, StripGridConverged) {
     worst = std::max(worst, error / std::hypot(a.force_on_ball[0], a.force_on_ball[1]));
   }
   std::printf("[ pocket ] %d strips against 8192: %.3f %% at worst\n", PocketFilm{}.points, 100 * worst);
-  EXPECT_LT(worst, 0.002);
+  EXPECT_LT(worst, 0.003);
 }
 
 // The Couette shear of a ball spinning about the pocket's axis, centred: a concentric journal,
