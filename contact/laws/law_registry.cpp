@@ -37,7 +37,7 @@ constexpr LawEntry kLaws[] = {
      "[lubricant] viscosity)"},
     {LawRole::normal, LawId::short_bearing, "short_bearing", cage_land_contact,
      "short journal-bearing film of the cage on its land (Ocvirk: rolling and squeeze together, half-Sommerfeld "
-     "cavitation), station by station, the dry Palmgren law once the film collapses to 0.2 um (ball bearings; needs "
+     "cavitation; a ball bearing's station by station), the dry Palmgren law once the film collapses to 0.2 um (needs "
      "[lubricant] viscosity)"},
     {LawRole::normal, LawId::pocket_film, "pocket_film", ball_cage_contact,
      "Reynolds film of the ball in its cylindrical pocket (rolling, sliding and squeeze together, Reynolds' "

@@ -475,9 +475,6 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   if (id == contact::LawId::pocket_film && b.scene.cage.pocket_shape != PocketShape::cylindrical)
     s.fail("normal", "normal = \"pocket_film\" is the film of a ball in a cylindrical pocket (pocket_shape = "
                      "\"cylindrical\"); a spherical pocket's film is not modelled: give normal = \"hertz\"");
-  if (id == contact::LawId::short_bearing && !b.scene.bearing.is_ball_bearing())
-    s.fail("normal", "normal = \"short_bearing\" is the land film of a ball bearing's cage; a cylindrical roller "
-                     "bearing's cage land has the dry law (palmgren) only");
   if (!(b.scene.lubricant.viscosity > 0))
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",
