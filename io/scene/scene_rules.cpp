@@ -1,8 +1,6 @@
 // The rules of a scene that tie keys together (scene_rules.hpp).
 #include "io/scene/scene_rules.hpp"
 
-#include "contact/laws/viscosity.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -50,19 +48,6 @@ std::optional<double> cage_outside_default(const Bind& b) {
   return b.scene.bearing.pitch_diameter + 0.6 * element_diameter(b);
 }
 std::optional<double> cage_width_default(const Bind& b) { return 0.8 * b.scene.bearing.ring_width; }
-// An oil given by its data sheet (viscosity_40): viscosity_100, density and temperature are required.
-std::optional<double> walther_point_default(const Bind& b) {
-  if (b.scene.lubricant.viscosity_40 > 0) return std::nullopt;
-  return 0.0;
-}
-// The viscosity at the oil's temperature by Walther's equation (ASTM D341) through the data sheet's two
-// points, times the density; without a data sheet the key is required.
-std::optional<double> walther_viscosity_default(const Bind& b) {
-  const Lubricant& l = b.scene.lubricant;
-  if (!(l.viscosity_40 > 0)) return std::nullopt;
-  const contact::WaltherConstants w = contact::walther_constants(l.viscosity_40, 313.15, l.viscosity_100, 373.15);
-  return l.density * contact::walther_viscosity(w, l.temperature);
-}
 // A planar support is radial only, so its stiffness is the support; a spatial one names directions.
 std::optional<double> ring_support_stiffness_default(const Bind& b) {
   return b.ball() ? std::optional<double>(0.0) : std::nullopt;
@@ -479,23 +464,6 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",
                                  b.contact->normal.name()));
-}
-
-void walther_points_fit(const Row&, const Section& s, Bind& b) {
-  const Lubricant& l = b.scene.lubricant;
-  if (!s.has("viscosity_100")) return;
-  if (!(l.viscosity_40 > 0))
-    s.fail("viscosity_100", "viscosity_100 comes with viscosity_40 (the oil's two data-sheet points); give both");
-  if (!(l.viscosity_100 < l.viscosity_40))
-    s.fail("viscosity_100", fmt::format("viscosity_100 ({:g} mm^2/s) must be below viscosity_40 ({:g} mm^2/s): an oil "
-                                        "thins as it warms",
-                                        1e6 * l.viscosity_100, 1e6 * l.viscosity_40));
-}
-
-void viscosity_given_once(const Row&, const Section& s, Bind& b) {
-  if (s.has("viscosity") && b.scene.lubricant.viscosity_40 > 0)
-    s.fail("viscosity", "give the viscosity, or the data sheet's viscosity_40 and viscosity_100 (with density and "
-                        "temperature), not both");
 }
 
 // EHD traction is the shear of the EHD film: it needs that film; limiting shear needs its lubricant.
