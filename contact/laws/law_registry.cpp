@@ -1,7 +1,7 @@
 // The table of contact laws (law_registry.hpp). Implementations: line_contact.hpp (palmgren, the
 // tanh traction curve and Hunt-Crossley damping of line contacts), point_contact.hpp (hertz,
 // limiting-shear traction, and the same damping and curve for point contacts), lubricated_line_contact.hpp
-// (moes_ehd, ehd, hydrodynamic), short_bearing_film.hpp (short_bearing).
+// (moes_ehd, ehd, hydrodynamic), short_bearing_film.hpp (short_bearing), pocket_film.hpp (pocket_film).
 #include "contact/laws/law_registry.hpp"
 
 #include <array>
@@ -37,8 +37,12 @@ constexpr LawEntry kLaws[] = {
      "[lubricant] viscosity)"},
     {LawRole::normal, LawId::short_bearing, "short_bearing", cage_land_contact,
      "short journal-bearing film of the cage on its land (Ocvirk: rolling and squeeze together, half-Sommerfeld "
-     "cavitation), station by station, the dry Palmgren law once the film collapses to 0.2 um (ball bearings; needs "
+     "cavitation; a ball bearing's station by station), the dry Palmgren law once the film collapses to 0.2 um (needs "
      "[lubricant] viscosity)"},
+    {LawRole::normal, LawId::pocket_film, "pocket_film", ball_cage_contact,
+     "Reynolds film of the ball in its cylindrical pocket (rolling, sliding and squeeze together, Reynolds' "
+     "cavitation, in narrow strips around the pocket) with the Couette shear of a flooded pocket, the dry Hertz law "
+     "once the film collapses to 0.2 um (cylindrical pockets; needs [lubricant] viscosity)"},
 };
 
 constexpr std::array<ContactKindBit, 5> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,

@@ -26,7 +26,8 @@ enum class LawId {
   moes_ehd,        ///< normal, roller-race: Palmgren carrying a Moes EHD film (seed 003 eq. 8-9)
   ehd_traction,    ///< traction, roller-race EHD film: Couette and Poiseuille (seed 003 eq. 10)
   hydrodynamic,    ///< normal, roller-cage: rigid film with squeeze, dry Palmgren once it collapses
-  short_bearing    ///< normal, ball-bearing cage land: short journal-bearing film, dry Palmgren once it collapses
+  short_bearing,   ///< normal, ball-bearing cage land: short journal-bearing film, dry Palmgren once it collapses
+  pocket_film      ///< normal, ball in a cylindrical pocket: Reynolds film in narrow strips, dry Hertz once it collapses
 };
 
 /// The contacts of a scene, as bits: a law lists the ones it applies to.

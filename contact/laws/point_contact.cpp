@@ -21,6 +21,8 @@
 // used only inside the EHL fits (and as the tests' comparison).
 #include "contact/laws/point_contact.hpp"
 
+#include "contact/laws/viscosity.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -431,8 +433,10 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
     if (limiting) {
       const double p = pressure_scale * c.shape;
       const double tau_limit = lubricant.limiting_shear_coefficient * p;
-      const double eta =
-          lubricant.viscosity * std::exp(std::min(lubricant.pressure_viscosity * p, lubricant.viscosity_exponent_cap));
+      const double exponent = lubricant.roelands_index > 0
+                                  ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
+                                  : lubricant.pressure_viscosity * p;
+      const double eta = lubricant.viscosity * std::exp(std::min(exponent, lubricant.viscosity_exponent_cap));
       const double area = c.area * area_scale;
       g = tau_limit > 0 ? eta * inverse_h * area * tanh_over_x(eta * inverse_h * s / tau_limit) : 0;
       if (blended)

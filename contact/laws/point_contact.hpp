@@ -73,6 +73,9 @@ struct PointLubricant {
   /// (saturation below 1e-5 m/s), which costs the integrator tiny steps; 10-12 gives saturation
   /// at mm/s, the shape of measured traction curves.
   double viscosity_exponent_cap = 20;
+  /// Roelands' pressure-viscosity index Z (viscosity.hpp) for the limiting-shear model's viscosity; 0:
+  /// Barus, exp(alpha p). Either way ln(eta / eta0) is capped at viscosity_exponent_cap.
+  double roelands_index = 0;
   /// Film thickness [m] at and above which the film carries the whole traction. Below it, as the
   /// film vanishes (the entrainment speed going to zero: standstill, start and stop), the film's
   /// shear hands over to the friction curve by film_weight, so that the traction stays continuous

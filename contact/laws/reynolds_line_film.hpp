@@ -33,6 +33,10 @@ ReynoldsLineSolution reynolds_line_solution(double phi);
 /// cubic Hermite splines, within 2e-9 of it and smooth to the last bits (the root finding's
 /// round-off grows near pure approach, where the pressure balance cancels).
 double reynolds_line_load_integral(double phi);
+/// The same G as a function of t = sigma / (|rho| + |sigma|) in [-1, 1] (phi = atan2(t, 1 - |t|)), for
+/// callers that have rho >= 0 and sigma and would rather not take an arctangent: tabulated once (1025
+/// nodes) from reynolds_line_load_integral and interpolated by cubic Hermite splines, within 1e-6 of it.
+double reynolds_line_load_integral_of_ratio(double t);
 
 /// The film's load per unit length [N/m] of a rigid cylinder of radius R on a plane at film
 /// thickness h0 > 0, entrainment speed u_m (either sign) and approach rate dh0/dt (< 0 approaching),

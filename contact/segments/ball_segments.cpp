@@ -323,6 +323,33 @@ TractionResult evaluate_traction_block(const BallGrooveSegment& s, const Spatial
   return integrate_traction_block(s.traction, s.lubricant, g.q, g.ax, g.ay, g.film.central, g.sliding, block);
 }
 
+namespace {
+/// The pocket's film (pocket_film.hpp) on the ball (B) and the cage (A), both at the ball's centre.
+/// `axis`: the pocket's axis, `d`: the ball centre off the axis, both in the cage frame.
+void add_pocket_film(const BallPocketSegment& s, const SpatialKinematics& cage, const SpatialKinematics& ball,
+                     const Vec3& axis, const Vec3& d, SpatialSegmentResult& r) {
+  const Mat3& rot = cage.rotation;
+  // The pocket frame (e1, e2, a): e1 the cage's axis, e2 = a x e1, in the cage frame.
+  const Vec3 e1 = unit_z, e2 = axis.cross(unit_z);
+  const Vec3 v = rot.transpose() * (ball.velocity - point_velocity(cage, ball.position));
+  const Vec3 w = rot.transpose() * (ball.angular_velocity - cage.angular_velocity);
+  PocketMotion motion;
+  motion.offset = {d.dot(e1), d.dot(e2)};
+  motion.velocity = {v.dot(e1), v.dot(e2), v.dot(axis)};
+  motion.angular_velocity = {w.dot(e1), w.dot(e2), w.dot(axis)};
+  const PocketFilmForce f = evaluate_pocket_film(*s.film, motion);
+  if (!f.valid) r.valid = false;
+  const Vec3 force = rot * (f.force_on_ball[0] * e1 + f.force_on_ball[1] * e2 + f.force_on_ball[2] * axis);
+  const Vec3 moment = rot * (f.moment_on_ball[0] * e1 + f.moment_on_ball[1] * e2 + f.moment_on_ball[2] * axis);
+  apply_at_point(cage, ball, ball.position, force, moment, r);
+  r.diagnostics.normal_force = f.pressure_force;
+  r.diagnostics.power_loss = f.power_loss;
+  r.diagnostics.film_thickness = f.minimum_film;
+  r.diagnostics.traction_force = f.shear_force;
+  r.diagnostics.circumferential_force = circumferential(ball.position, r.on_b.force);
+}
+}  // namespace
+
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ball) {
   SpatialSegmentResult r;
@@ -335,7 +362,11 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   const double approach = len - 0.5 * s.clearance;
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) return invalid_result(approach);
-  if (approach <= 0) return r;
+  if (s.film) add_pocket_film(s, cage, ball, axis, d, r);
+  if (approach <= 0) {
+    check_finite(r);
+    return r;
+  }
 
   const Vec3 n = rot * (d / len);  // from the ball centre into the cage (body 1)
   const Vec3 point = ball.position + s.ball_radius * n;
@@ -354,6 +385,7 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
   const Vec3 f_ball = -q * n + friction;
   const double cbrt_q = std::cbrt(q);
   const double ab = hertz.a_coefficient * hertz.b_coefficient * cbrt_q * cbrt_q;
+  const PointDiagnostics film = r.diagnostics;  // the film's share, added below
   const BallContact contact{
       .point = point, .force_on_ball = f_ball, .couple_on_ball = Vec3::Zero(), .normal_force = q,
       .max_pressure = q > 0 ? 1.5 * q / (std::numbers::pi * ab) : 0.0, .film_thickness = 0.0,
@@ -361,6 +393,13 @@ SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematic
       .traction_force = per_speed * q * speed, .elastic_energy = normal.elastic_energy,
       .power_loss = per_speed * q * speed * speed + normal.damping_power};
   finish_ball_contact(cage, ball, contact, r);
+  if (s.film) {
+    r.diagnostics.normal_force += film.normal_force;
+    r.diagnostics.power_loss += film.power_loss;
+    r.diagnostics.film_thickness = film.film_thickness;
+    r.diagnostics.traction_force += film.traction_force;
+    r.diagnostics.circumferential_force = circumferential(ball.position, r.on_b.force);
+  }
   return r;
 }
 

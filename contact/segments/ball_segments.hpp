@@ -27,6 +27,7 @@
 #include <optional>
 
 #include "contact/laws/line_contact.hpp"
+#include "contact/laws/pocket_film.hpp"
 #include "contact/laws/point_contact.hpp"
 #include "contact/laws/race_imperfections.hpp"
 #include "contact/laws/short_bearing_film.hpp"
@@ -181,6 +182,11 @@ struct BallPocketSegment {
   PocketShape shape = PocketShape::cylindrical;
   PointNormalLaw normal;      ///< Hertz table constant in s
   TractionCurve friction;
+  /// Lubricated pocket (normal = "reynolds_film", cylindrical pockets): the ball's film in the pocket
+  /// (pocket_film.hpp), apart as well as in contact, its pressure and shear on both bodies (at the ball's
+  /// centre), its pressure's resultant in normal_force, its work rate in power_loss, its minimum film in
+  /// film_thickness; the dry Hertz contact and its friction above add where the surfaces overlap.
+  std::optional<PocketFilm> film;
 };
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ball);

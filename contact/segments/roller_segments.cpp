@@ -165,17 +165,29 @@ SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
   return contact_at(s.law, s.traction, cage, roller, point, -1.0 * outward, approach, radial);
 }
 
-SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
-                       const PlanarKinematics& ring) {
-  const Vec2 e = position(cage) - position(ring);
-  const double eccentricity = std::hypot(e.x, e.y);
-  const double approach = eccentricity - s.clearance;
-  if (!(approach > 0)) {
-    SegmentResult r;
-    r.diagnostics.approach = approach;
-    r.valid = std::isfinite(approach);
-    return r;
-  }
+namespace {
+/// The land's short-bearing film on the cage (A) and the ring (B), added to r.
+void add_land_film(const CageLandSegment& s, const PlanarKinematics& cage, const PlanarKinematics& ring, SegmentResult& r) {
+  const double ex = cage.x - ring.x, ey = cage.y - ring.y;
+  const double sign = s.outer_land ? 1.0 : -1.0;  // the journal's centre from the bore's: the cage's on an outer land
+  const ShortBearingForce f =
+      evaluate_short_bearing(*s.film, {sign * ex, sign * ey}, {sign * (cage.vx - ring.vx), sign * (cage.vy - ring.vy)},
+                             s.outer_land ? cage.omega : ring.omega, s.outer_land ? ring.omega : cage.omega);
+  if (!f.valid) r.valid = false;
+  // On the ring: the journal's force and torque on an inner land (the ring is the journal), their
+  // opposites on an outer one.
+  const double to_ring = s.outer_land ? -1.0 : 1.0;
+  const double fx = to_ring * f.on_journal[0], fy = to_ring * f.on_journal[1], torque = to_ring * f.couette_torque;
+  // The force acts midway between the centres: its moment about either centre is (e/2) x F_ring.
+  const double moment = 0.5 * (ex * fy - ey * fx);
+  r.on_b.fx += fx, r.on_b.fy += fy, r.on_b.mz += moment + torque;
+  r.on_a.fx -= fx, r.on_a.fy -= fy, r.on_a.mz += moment - torque;
+  r.diagnostics.normal_force += std::hypot(fx, fy);
+  r.diagnostics.power_loss += f.power_loss;
+}
+
+SegmentResult dry_land(const CageLandSegment& s, const PlanarKinematics& cage, const PlanarKinematics& ring,
+                       const Vec2& e, double eccentricity, double approach) {
   const Vec2 n = (1.0 / eccentricity) * e;  // the cage is displaced along n
   // Inner land: the cage bore (radius land + clearance) meets the land on the side opposite to n.
   // Outer land: the cage outside (radius land - clearance) meets the land bore on the side of n.
@@ -186,6 +198,23 @@ SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
   const Vec2 point = 0.5 * (land_point + cage_point);
   // The land pushes the cage back towards the ring centre: force on the ring (B) is along +n.
   return contact_at(s.law, s.traction, cage, ring, point, n, approach, perp(n));
+}
+}  // namespace
+
+SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
+                       const PlanarKinematics& ring) {
+  const Vec2 e = position(cage) - position(ring);
+  const double eccentricity = std::hypot(e.x, e.y);
+  const double approach = eccentricity - s.clearance;
+  SegmentResult r;
+  if (approach > 0) {
+    r = dry_land(s, cage, ring, e, eccentricity, approach);
+  } else {
+    r.diagnostics.approach = approach;
+    r.valid = std::isfinite(approach);
+  }
+  if (s.film && std::isfinite(approach)) add_land_film(s, cage, ring, r);
+  return r;
 }
 
 }  // namespace raceway::contact

@@ -13,6 +13,7 @@
 
 #include "contact/laws/line_contact.hpp"
 #include "contact/laws/lubricated_line_contact.hpp"
+#include "contact/laws/short_bearing_film.hpp"
 #include "contact/segments/segment_result.hpp"
 
 namespace raceway::contact {
@@ -96,6 +97,12 @@ struct CageLandSegment {
   bool outer_land = false;
   LineContactLaw law;
   TractionCurve traction;
+  /// Lubricated land (normal = "short_bearing"): the land's short journal-bearing film over its whole
+  /// width (short_bearing_film.hpp), apart as well as in contact: its pressure midway between the two
+  /// centres (equal and opposite), its Couette torque on both bodies, its force and power in
+  /// normal_force and power_loss; the dry law above adds where the surfaces overlap (inner land: the
+  /// ring is the journal in the cage's bore; outer land: the cage in the ring's land bore).
+  std::optional<ShortBearingFilm> film;
 };
 SegmentResult evaluate(const CageLandSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& ring);

@@ -235,6 +235,11 @@ struct ContactSpec {
 
 struct Lubricant {
   std::string name;
+  double viscosity_40 = 0;        ///< m^2/s, kinematic viscosity at 40 degC (0: not given)
+  double viscosity_100 = 0;       ///< m^2/s, kinematic viscosity at 100 degC (0: not given)
+  double density = 0;             ///< kg/m^3 (0: not given)
+  double temperature = 0;         ///< K, the oil's temperature (0: not given)
+  bool roelands = false;          ///< pressure-viscosity law of the traction: Roelands (true) or Barus
   double viscosity = 0;           ///< Pa s, dynamic viscosity at the bearing temperature
   double pressure_viscosity = 0;  ///< 1/Pa
   double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure

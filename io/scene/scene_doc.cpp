@@ -73,7 +73,7 @@ std::string si_fraction(Dimension d) {
     int exponent;
     std::string_view symbol;
   };
-  const Base bases[] = {{d.mass, "kg"}, {d.length, "m"}, {d.time, "s"}, {d.angle, "rad"}, {d.information, "B"}};
+  const Base bases[] = {{d.mass, "kg"}, {d.length, "m"}, {d.time, "s"}, {d.angle, "rad"}, {d.information, "B"}, {d.temperature, "K"}};
   std::string up, down;
   int down_terms = 0;
   for (const Base& b : bases) {

@@ -450,14 +450,16 @@ void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
                        "stress = coefficient x pressure; 0.02 to 0.1 for mineral oils)");
 }
 
-// The film laws of seed 003 (EHD roller-race, hydrodynamic roller-cage) need a viscosity.
+// The film laws (EHD roller-race, hydrodynamic roller-cage, the cage land's and the ball pocket's films) need a
+// viscosity.
 void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   const contact::LawId id = b.contact->normal.id;
-  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing)
+  if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing &&
+      id != contact::LawId::pocket_film)
     return;
-  if (id == contact::LawId::short_bearing && !b.scene.bearing.is_ball_bearing())
-    s.fail("normal", "normal = \"short_bearing\" is the land film of a ball bearing's cage; a cylindrical roller "
-                     "bearing's cage land has the dry law (palmgren) only");
+  if (id == contact::LawId::pocket_film && b.scene.cage.pocket_shape != PocketShape::cylindrical)
+    s.fail("normal", "normal = \"pocket_film\" is the film of a ball in a cylindrical pocket (pocket_shape = "
+                     "\"cylindrical\"); a spherical pocket's film is not modelled: give normal = \"hertz\"");
   if (!(b.scene.lubricant.viscosity > 0))
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",

@@ -118,6 +118,7 @@ inline constexpr Option kRingFlexibilities[] = {{"rigid", int(RingFlexibility::r
 inline constexpr Option kSpallEdges[] = {{"sharp", int(contact::SpallEdge::sharp)},
                                          {"smooth", int(contact::SpallEdge::smooth)}};
 inline constexpr Option kFreeOrFixed[] = {{"free", 1}, {"fixed", 0}};
+inline constexpr Option kPressureViscosityLaws[] = {{"barus", 0}, {"roelands", 1}};
 inline constexpr Option kRingTilts[] = {
     {"fixed", int(RingTilt::fixed)}, {"free", int(RingTilt::free)}, {"prescribed", int(RingTilt::prescribed)}};
 inline constexpr Option kMethods[] = {{"bdf", int(IntegrationMethod::bdf)},

@@ -75,6 +75,10 @@ constexpr UnitDef kUnits[] = {
     {"kW", 1e3, dim::power},
     {"P", 0.1, dim::viscosity},   // poise
     {"cP", 1e-3, dim::viscosity}, // centipoise = mPa s
+    {"K", 1.0, dim::temperature},
+    {"degC", 1.0, dim::temperature},  // alone: an absolute temperature, 273.15 K added (parse_quantity)
+    {"\xC2\xB0" "C", 1.0, dim::temperature},
+    {"cSt", 1e-6, dim::kinematic_viscosity},  // centistokes = mm^2/s
     {"B", 1.0, dim::information},  // bytes: decimal and binary multiples
     {"kB", 1e3, dim::information},
     {"MB", 1e6, dim::information},
@@ -113,6 +117,10 @@ constexpr QuantityKind kKinds[] = {
     {dim::angular_damping, "a tilt damping coefficient", "N m s/rad", "N m s/rad", "N m s/rad", 1e-12, 1e9,
      "up to 1 GN m s/rad"},
     {dim::information, "a size in bytes", "B, MB, GB, GiB", "B", "GB", 1, 1e15, "up to a petabyte"},
+    {dim::temperature, "a temperature", "K, degC", "K", "degC", 150, 1000, "from -120 to 730 degC"},
+    {dim::kinematic_viscosity, "a kinematic viscosity", "mm^2/s, cSt", "m^2/s", "mm^2/s", 1e-8, 1e-1,
+     "solvents to greases' base oils"},
+    {Dimension{0, 0, 0, 0, 0, -1}, "an inverse temperature", "1/K", "1/K", "1/K"},
     {Dimension{0, 0, -2, 1}, "an angular acceleration", "rad/s^2", "rad/s^2", "rad/s^2"},
     {Dimension{0, 1, -2, 0}, "an acceleration", "m/s^2", "m/s^2", "m/s^2"},
     {Dimension{0, 0, -1, 0}, "a rate without angle", "1/s", "1/s", "1/s"},
@@ -128,7 +136,7 @@ const UnitDef* find_unit(std::string_view symbol) {
 constexpr int kMaxTermExponent = 9;
 
 bool within_exponent_limit(Dimension d) {
-  for (const int e : {d.mass, d.length, d.time, d.angle, d.information})
+  for (const int e : {d.mass, d.length, d.time, d.angle, d.information, d.temperature})
     if (e < -Dimension::max_exponent || e > Dimension::max_exponent) return false;
   return true;
 }
@@ -238,6 +246,13 @@ Quantity parse_quantity(std::string_view text) {
   Quantity q = parse_unit_expression(text, t.substr(i));
   const double unit = q.value;
   q.value *= number;
+  // Celsius: an absolute temperature only where it stands alone (a compound unit means a difference: K).
+  std::string_view symbol = t.substr(i);
+  while (!symbol.empty() && is_space(symbol.front())) symbol.remove_prefix(1);
+  const bool celsius = symbol == "degC" || symbol == "\xC2\xB0" "C";
+  if (celsius) q.value += 273.15;
+  else if (symbol.find("degC") != std::string_view::npos || symbol.find("\xC2\xB0" "C") != std::string_view::npos)
+    garbage(text, "degC is an absolute temperature and stands alone; in a compound unit write K (e.g. \"W/K\")");
   if (!std::isfinite(q.value))
     garbage(text, fmt::format("it overflows: {:g} times {:g} (the unit in SI) is beyond any finite number", number,
                               unit));
@@ -317,7 +332,7 @@ std::string si_unit(Dimension d) {
   };
   constexpr Base bases[] = {{&Dimension::mass, "kg"}, {&Dimension::length, "m"},
                             {&Dimension::time, "s"}, {&Dimension::angle, "rad"},
-                            {&Dimension::information, "B"}};
+                            {&Dimension::information, "B"}, {&Dimension::temperature, "K"}};
   std::string s;
   for (const auto& b : bases) {
     const int e = d.*(b.member);

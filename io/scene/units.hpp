@@ -11,7 +11,9 @@
 // common spellings r/min, RPM, rev/min, in, ft, lbf, lb, psi are among them. Every result is finite:
 // a number that overflows or underflows in its unit ("1e307 h") is an error.
 //
-// Dimensions tracked: mass, length, time, angle and information (bytes, for output sizes). Angle is a dimension of its own, so an angular
+// Dimensions tracked: mass, length, time, angle, information (bytes, for output sizes) and temperature
+// (K; "degC" or "\u00b0C" alone is an absolute temperature in Celsius, 273.15 K added, and is refused inside
+// a compound unit, where K is meant: "W/K"). Angle is a dimension of its own, so an angular
 // speed (rad/s, rpm, deg/s, Hz) cannot be given where a plain 1/s or a length is expected.
 // Note: "Hz" means revolutions per second here (1 Hz = 2 pi rad/s); it is an angular speed, not a
 // plain frequency.
@@ -27,7 +29,7 @@
 
 namespace raceway::scene {
 
-/// Exponents of mass, length, time, angle and information. Unit expressions keep them small
+/// Exponents of mass, length, time, angle, information and temperature. Unit expressions keep them small
 /// (exponents -9 to 9 per term, at most max_exponent in all).
 struct Dimension {
   int mass = 0;
@@ -35,16 +37,21 @@ struct Dimension {
   int time = 0;
   int angle = 0;
   int information = 0;
+  int temperature = 0;
 
   static constexpr int max_exponent = 64;
   friend constexpr bool operator==(const Dimension&, const Dimension&) = default;
   constexpr Dimension operator*(const Dimension& o) const {
-    return {mass + o.mass, length + o.length, time + o.time, angle + o.angle, information + o.information};
+    return {mass + o.mass, length + o.length, time + o.time, angle + o.angle, information + o.information,
+            temperature + o.temperature};
   }
   constexpr Dimension operator/(const Dimension& o) const {
-    return {mass - o.mass, length - o.length, time - o.time, angle - o.angle, information - o.information};
+    return {mass - o.mass, length - o.length, time - o.time, angle - o.angle, information - o.information,
+            temperature - o.temperature};
   }
-  constexpr Dimension pow(int e) const { return {mass * e, length * e, time * e, angle * e, information * e}; }
+  constexpr Dimension pow(int e) const {
+    return {mass * e, length * e, time * e, angle * e, information * e, temperature * e};
+  }
 };
 
 /// The dimensions the scene schema uses.
@@ -70,6 +77,8 @@ inline constexpr Dimension inverse_speed{0, -1, 1, 0};   ///< s/m
 inline constexpr Dimension angular_stiffness{1, 2, -2, -1};  ///< N m/rad (tilt stiffness)
 inline constexpr Dimension angular_damping{1, 2, -1, -1};    ///< N m s/rad (tilt damping)
 inline constexpr Dimension information{0, 0, 0, 0, 1};       ///< bytes (output sizes)
+inline constexpr Dimension temperature{0, 0, 0, 0, 0, 1};    ///< K (absolute; "degC" alone adds 273.15)
+inline constexpr Dimension kinematic_viscosity{0, 2, -1, 0}; ///< m^2/s (mm^2/s = cSt)
 }  // namespace dim
 
 /// A value in SI units with its dimension.

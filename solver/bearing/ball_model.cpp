@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "contact/laws/viscosity.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -155,6 +157,8 @@ contact::PointLubricant lubricant(const scene::Scene& scene) {
   lube.pressure_viscosity = scene.lubricant.pressure_viscosity;
   lube.limiting_shear_coefficient = scene.lubricant.limiting_shear_coefficient;
   lube.viscosity_exponent_cap = scene.lubricant.viscosity_exponent_cap;
+  if (scene.lubricant.roelands && lube.viscosity > 0 && lube.pressure_viscosity > 0)
+    lube.roelands_index = contact::roelands_index(lube.viscosity, lube.pressure_viscosity);
   return lube;
 }
 
@@ -213,6 +217,16 @@ contact::BallPocketSegment pocket_law(const Model& m, const scene::Scene& scene)
   p.clearance = cs.pocket_clearance;
   p.ball_radius = rb;
   p.shape = spherical ? contact::PocketShape::spherical : contact::PocketShape::cylindrical;
+  if (scene.ball_cage.normal.id == contact::LawId::pocket_film) {
+    // The pocket's film (contact/laws/pocket_film.hpp; cylindrical pockets, the scene's rule), collapsing to
+    // the dry law at 0.2 um, the combined roughness of ground surfaces (as the cage land's).
+    contact::PocketFilm film;
+    film.viscosity = scene.lubricant.viscosity;
+    film.ball_radius = rb;
+    film.clearance = 0.5 * cs.pocket_clearance;
+    film.film_floor = 0.2e-6;
+    p.film = film;
+  }
   return p;
 }
 
@@ -383,9 +397,12 @@ std::string describe_ball_model(const Model& m) {
                      sc.ball_race.damping.name(), sc.ball_race.traction.name(), sc.ball_race.traction.grid_x,
                      sc.ball_race.traction.grid_y, groove && m.law<contact::BallGrooveSegment>(*groove).rolling_resistance ? "on" : "off");
   out += describe_race_imperfections(m);
-  out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}\n",
+  out += fmt::format("  ball-pocket: Hertz in a {} pocket, clearance {:.4g} mm, friction {}{}\n",
                      sc.cage.pocket_shape == scene::PocketShape::spherical ? "spherical" : "cylindrical",
-                     1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name());
+                     1e3 * sc.cage.pocket_clearance, sc.ball_cage.traction.name(),
+                     sc.ball_cage.normal.id == contact::LawId::pocket_film
+                         ? ", Reynolds film (narrow strips, Reynolds cavitation) and Couette shear"
+                         : "");
   if (!land)
     out += "  cage-land: none (the cage is guided by the balls" + std::string(sc.cage.support.any() ? " and its spindle support)\n" : ")\n");
   else

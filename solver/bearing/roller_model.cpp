@@ -215,8 +215,20 @@ void add_land_segment(Model& m, const scene::Scene& scene, const CageGeometry& g
   const LineLaws laws{m};
   const auto law = laws.law(scene.cage_land, scene.material(cs.material), scene.material(scene.bearing.ring_material),
                             land_width);
-  const int index = add_law(m, contact::CageLandSegment{geo.land_radius, cs.land_clearance, outer, law,
-                                                        LineLaws::traction(scene.cage_land)});
+  contact::CageLandSegment land{geo.land_radius, cs.land_clearance, outer, law, LineLaws::traction(scene.cage_land),
+                                std::nullopt};
+  if (scene.cage_land.normal.id == contact::LawId::short_bearing) {
+    // The land's short-bearing film (contact/laws/short_bearing_film.hpp) over its width, collapsing to
+    // the dry law at 0.2 um, the combined roughness of ground surfaces (as the ball bearings' land).
+    contact::ShortBearingFilm film;
+    film.viscosity = scene.lubricant.viscosity;
+    film.radius = geo.land_radius;
+    film.width = land_width;
+    film.clearance = cs.land_clearance;
+    film.film_floor = 0.2e-6;
+    land.film = film;
+  }
+  const int index = add_law(m, land);
   m.segments.push_back({SegmentKind::cage_land, m.cage, outer ? m.outer_ring : m.inner_ring, index, -1,
                         outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
@@ -318,9 +330,10 @@ std::string describe_roller_model(const Model& m) {
   if (const Segment* land = m.first_segment(SegmentKind::cage_land)) {
     const auto& l = m.law<contact::CageLandSegment>(*land);
     out += fmt::format("  cage_land x{}: cage on the {} ring land (radius {:.4g} mm, clearance {:.4g} "
-                       "mm), K = {:.4g}, traction mu {:.3g}\n",
+                       "mm), K = {:.4g}, traction mu {:.3g}{}\n",
                        count(SegmentKind::cage_land), l.outer_land ? "outer" : "inner", 1e3 * l.land_radius,
-                       1e3 * l.clearance, l.law.stiffness, l.traction.friction_coefficient);
+                       1e3 * l.clearance, l.law.stiffness, l.traction.friction_coefficient,
+                       l.film ? ", short-bearing film (Ocvirk, half-Sommerfeld)" : "");
   } else {
     out += "  no cage_land segment: the cage is guided by the rollers\n";
   }

@@ -65,7 +65,8 @@ AnySegment make_segment(const SpatialCase& c, const LawOptions& o) {
           .pitch_radius = pitch_radius, .pocket_angle = pocket_angle, .clearance = pocket_clearance,
           .ball_radius = ball_radius, .shape = c.shape,
           .normal = {HertzTable(pocket_hertz(c.shape)), steel_brass(), damping, pocket_max_approach},
-          .friction = curve};
+          .friction = curve,
+          .film = std::nullopt};
     case Kind::land:
       return CageLandSegment3{
           .land_radius = c.outer ? outer_land_radius : inner_land_radius, .clearance = land_clearance,

@@ -44,7 +44,7 @@ AnySegment make_segment(const SegmentCase& c, const LawOptions& o) {
     case Kind::land:
       return CageLandSegment{.land_radius = c.internal ? outer_land_radius : inner_land_radius,
                              .clearance = land_clearance, .outer_land = c.internal, .law = law,
-                             .traction = traction};
+                             .traction = traction, .film = std::nullopt};
   }
   throw std::logic_error("make_segment: unknown kind");
 }

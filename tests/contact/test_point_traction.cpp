@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <cstdio>
 #include <stdexcept>
 #include <vector>
 
 #include "contact/laws/point_contact.hpp"
+#include "contact/laws/viscosity.hpp"
 
 namespace raceway::contact {
 namespace {
@@ -145,6 +147,28 @@ TEST(PointTraction, LimitingShearNewtonianAndSaturated) {
     EXPECT_LE(f, 0.08 * load * (1 + 1e-12));
     previous = f;
   }
+}
+
+// Roelands' viscosity (roelands_index > 0) rises with the same initial slope as Barus' but far less at
+// the contact's GPa: at small slip its traction lies between the isoviscous and the Barus one, nearer
+// the isoviscous at this load; saturated, both reach Lambda Q.
+TEST(PointTraction, RoelandsBelowBarus) {
+  PointTraction t = curve_traction(10);
+  t.model = TractionModel::limiting_shear;
+  const double h = 2e-7, slide = 1e-6;
+  PointLubricant roelands = oil();
+  roelands.roelands_index = roelands_index(roelands.viscosity, roelands.pressure_viscosity);
+  PointLubricant iso = oil();
+  iso.pressure_viscosity = 0;
+  const double f_iso = -integrate_traction(t, iso, load, ax, ay, h, {slide, 0, 0}).force_x;
+  const double f_barus = -integrate_traction(t, oil(), load, ax, ay, h, {slide, 0, 0}).force_x;
+  const double f_roelands = -integrate_traction(t, roelands, load, ax, ay, h, {slide, 0, 0}).force_x;
+  std::printf("[ roelands ] small-slip traction: isoviscous %.4g N, Roelands %.4g N, Barus %.4g N\n", f_iso,
+              f_roelands, f_barus);
+  EXPECT_GT(f_roelands, 10 * f_iso);
+  EXPECT_LT(f_roelands, 0.1 * f_barus);
+  const double saturated = -integrate_traction(t, roelands, load, ax, ay, h, {30.0, 0, 0}).force_x;
+  EXPECT_NEAR(saturated, 0.08 * load, 1e-6 * load);
 }
 
 // Isoviscous Newtonian spin: tau = eta0 omega r / h, so M = -(eta0 omega / h) J with J the polar

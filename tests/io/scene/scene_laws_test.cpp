@@ -42,6 +42,7 @@ constexpr Accepted kExpected[] = {
     {LawRole::traction, "ehd", LawId::ehd_traction, contact::roller_race_contact},
     {LawRole::normal, "hydrodynamic", LawId::hydrodynamic, contact::roller_cage_contact},
     {LawRole::normal, "short_bearing", LawId::short_bearing, contact::cage_land_contact},
+    {LawRole::normal, "pocket_film", LawId::pocket_film, contact::ball_cage_contact},
 };
 constexpr LawRole kRoles[] = {LawRole::normal, LawRole::damping, LawRole::traction};
 
@@ -101,9 +102,13 @@ TEST(LawRegistry, IdsNamesAndDefaults) {
 /// and one law set (EHD traction with the EHD film it needs).
 std::string scene_with_law(ContactKindBit contact, LawRole role, std::string_view name) {
   const bool planar = contact == contact::roller_race_contact || contact == contact::roller_cage_contact;
-  const std::string base =
+  std::string base =
       planar ? std::string(kPlanarMinimal) + "[lubricant]\nviscosity = \"30 mPa s\"\n"
              : spatial("", "[lubricant]\nviscosity = \"30 mPa s\"\nlimiting_shear_coefficient = 0.07\n");
+  if (name == "pocket_film" && !planar)  // a film of cylindrical pockets, whose cage a land guides
+    base = replaced(base, "guidance = \"rolling_element\"\npocket_clearance = \"0.4 mm\"\npocket_shape = \"spherical\"",
+                    "guidance = \"outer_land\"\nland_clearance = \"0.3 mm\"\npocket_clearance = \"0.4 mm\"\n"
+                    "pocket_shape = \"cylindrical\"");
   const std::string film = name == "ehd" && role == LawRole::traction && contact == contact::roller_race_contact
                                ? "normal = \"moes_ehd\"\n" : "";
   return base + "[contact." + std::string(contact::contact_name(contact)) + "]\n" + film +
@@ -208,9 +213,8 @@ TEST(SceneLaws, FilmLawsNeedALubricantAndEhdTractionTheEhdFilm) {
   EXPECT_NE(dry_film.reason().find("needs normal = \"moes_ehd\""), std::string::npos) << dry_film.what();
 }
 
-// The land film: a ball bearing's cage land with a lubricant; refused without one, and on a
-// cylindrical roller bearing (whose cage land has the dry law only), naming the key.
-TEST(SceneLaws, LandFilmNeedsALubricantAndABallBearing) {
+// The land film: a cage land with a lubricant, ball or roller bearing; refused without one, naming the key.
+TEST(SceneLaws, LandFilmNeedsALubricant) {
   const std::string land = "\n[contact.cage_land]\nnormal = \"short_bearing\"\n";
   const std::string guided = spatial("guidance = \"rolling_element\"", "guidance = \"inner_land\"\nland_clearance = \"0.3 mm\"");
   const SceneError dry = error_of(guided + land);
@@ -218,9 +222,52 @@ TEST(SceneLaws, LandFilmNeedsALubricantAndABallBearing) {
   EXPECT_NE(dry.reason().find("needs a lubricant"), std::string::npos) << dry.what();
   const Scene wet = parse(guided + "\n[lubricant]\nviscosity = \"20 mPa s\"\n" + land);
   EXPECT_EQ(wet.cage_land.normal.id, LawId::short_bearing);
-  const SceneError roller = error_of(std::string(kPlanarMinimal) + "\n[lubricant]\nviscosity = \"20 mPa s\"\n" + land);
-  EXPECT_EQ(roller.key(), "contact.cage_land.normal") << roller.what();
-  EXPECT_NE(roller.reason().find("ball bearing"), std::string::npos) << roller.what();
+  const Scene roller = parse(std::string(kPlanarMinimal) + "\n[lubricant]\nviscosity = \"20 mPa s\"\n" + land);
+  EXPECT_EQ(roller.cage_land.normal.id, LawId::short_bearing);
+  const SceneError roller_dry = error_of(std::string(kPlanarMinimal) + land);
+  EXPECT_EQ(roller_dry.key(), "contact.cage_land.normal") << roller_dry.what();
+}
+
+// An oil given by its data sheet: the viscosity at its temperature by Walther's equation (ASTM D341),
+// times its density; the mistakes refused naming the key.
+TEST(SceneLaws, LubricantFromItsDataSheet) {
+  const std::string sheet = "\n[lubricant]\nviscosity_40 = \"32 mm^2/s\"\nviscosity_100 = \"5.4 cSt\"\n"
+                            "density = \"870 kg/m^3\"\ntemperature = \"80 degC\"\n";
+  const Scene wet = parse(spatial() + sheet);
+  // ISO VG 32 at 80 degC: 8.533 mm^2/s (the published D341 example: 8.5, test_viscosity.cpp), x 870 kg/m^3.
+  EXPECT_NEAR(wet.lubricant.viscosity, 870 * 8.533e-6, 870 * 0.002e-6);
+  EXPECT_FALSE(wet.lubricant.roelands);
+  const Scene roelands = parse(spatial() + sheet + "pressure_viscosity_law = \"roelands\"\n");
+  EXPECT_TRUE(roelands.lubricant.roelands);
+  const SceneError both = error_of(spatial() + sheet + "viscosity = \"20 mPa s\"\n");
+  EXPECT_EQ(both.key(), "lubricant.viscosity") << both.what();
+  const SceneError no_density =
+      error_of(spatial() + "\n[lubricant]\nviscosity_40 = \"32 mm^2/s\"\nviscosity_100 = \"5.4 cSt\"\n"
+                           "temperature = \"80 degC\"\n");
+  EXPECT_EQ(no_density.key(), "lubricant.density") << no_density.what();
+  const SceneError thicker = error_of(replaced(spatial() + sheet, "5.4 cSt", "50 cSt"));
+  EXPECT_EQ(thicker.key(), "lubricant.viscosity_100") << thicker.what();
+  const SceneError alone = error_of(spatial() + "\n[lubricant]\nviscosity = \"20 mPa s\"\nviscosity_100 = \"5.4 cSt\"\n");
+  EXPECT_EQ(alone.key(), "lubricant.viscosity_100") << alone.what();
+}
+
+// The pocket film: cylindrical pockets with a lubricant; refused without one, and in spherical
+// pockets (not modelled), naming the key.
+TEST(SceneLaws, PocketFilmNeedsALubricantAndCylindricalPockets) {
+  const std::string pocket = "\n[contact.ball_cage]\nnormal = \"pocket_film\"\n";
+  const std::string lubricant = "\n[lubricant]\nviscosity = \"20 mPa s\"\n";
+  const std::string cylindrical =
+      spatial("pocket_shape = \"spherical\"", "pocket_shape = \"cylindrical\"\nguidance = \"outer_land\"\n"
+                                               "land_clearance = \"0.3 mm\"");
+  const std::string guided = replaced(cylindrical, "guidance = \"rolling_element\"\n", "");
+  const SceneError dry = error_of(guided + pocket);
+  EXPECT_EQ(dry.key(), "contact.ball_cage.normal") << dry.what();
+  EXPECT_NE(dry.reason().find("needs a lubricant"), std::string::npos) << dry.what();
+  const Scene wet = parse(guided + lubricant + pocket);
+  EXPECT_EQ(wet.ball_cage.normal.id, LawId::pocket_film);
+  const SceneError spherical = error_of(spatial() + lubricant + pocket);
+  EXPECT_EQ(spherical.key(), "contact.ball_cage.normal") << spherical.what();
+  EXPECT_NE(spherical.reason().find("cylindrical pocket"), std::string::npos) << spherical.what();
 }
 
 }  // namespace

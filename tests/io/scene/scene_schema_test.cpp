@@ -150,6 +150,7 @@ TEST(SceneSchema, DocumentListsEveryKeyAndLaw) {
         << law.name;
   EXPECT_NE(doc.find("| ball_race | hertz | hunt_crossley, none | tanh, none, limiting_shear |"), std::string::npos);
   EXPECT_NE(doc.find("| cage_land | palmgren, short_bearing | hunt_crossley, none | tanh, none |"), std::string::npos);
+  EXPECT_NE(doc.find("| ball_cage | hertz, pocket_film | hunt_crossley, none | tanh, none |"), std::string::npos);
 }
 
 }  // namespace

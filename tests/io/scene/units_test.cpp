@@ -172,6 +172,19 @@ TEST(Units, ExponentsAndMagnitudesAreBounded) {
   EXPECT_NEAR(si("1 m^9/m^8", dim::length), 1.0, 1e-15);
 }
 
+// Temperatures: kelvin, and Celsius as an absolute temperature where it stands alone; kinematic
+// viscosities in mm^2/s or cSt.
+TEST(Units, TemperaturesAndKinematicViscosities) {
+  EXPECT_DOUBLE_EQ(si("313.15 K", dim::temperature), 313.15);
+  EXPECT_NEAR(si("40 degC", dim::temperature), 313.15, 1e-12);
+  EXPECT_NEAR(si("-20 \xC2\xB0" "C", dim::temperature), 253.15, 1e-12);
+  EXPECT_NEAR(si("68 mm^2/s", dim::kinematic_viscosity), 68e-6, 1e-18);
+  EXPECT_NEAR(si("68 cSt", dim::kinematic_viscosity), 68e-6, 1e-18);
+  EXPECT_DOUBLE_EQ(si("2 W/K", Dimension{1, 2, -3, 0, 0, -1}), 2.0);
+  EXPECT_NE(error_of("2 W/degC", Dimension{1, 2, -3, 0, 0, -1}).find("stands alone"), std::string::npos);
+  EXPECT_NE(error_of("40 degC", dim::length).find("is a temperature; expected a length"), std::string::npos);
+}
+
 TEST(Units, DimensionNames) {
   EXPECT_EQ(si_unit(dim::pressure), "kg m^-1 s^-2");
   EXPECT_EQ(si_unit(dim::angular_speed), "s^-1 rad");
