@@ -41,10 +41,10 @@ constexpr LawEntry kLaws[] = {
      "[lubricant] viscosity)"},
 };
 
-constexpr std::array<ContactKindBit, 5> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,
-                                                     ball_cage_contact, cage_land_contact};
-constexpr std::array<std::string_view, 5> kContactNames = {"roller_race", "roller_cage", "ball_race", "ball_cage",
-                                                           "cage_land"};
+constexpr std::array<ContactKindBit, 6> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,
+                                                     ball_cage_contact,   cage_land_contact,   roller_flange_contact};
+constexpr std::array<std::string_view, 6> kContactNames = {"roller_race", "roller_cage", "ball_race",
+                                                           "ball_cage",   "cage_land",   "roller_flange"};
 
 std::string names_of(unsigned contacts) {
   std::string s;

@@ -34,6 +34,21 @@ std::optional<double> ring_width_default(const Bind& b) {
   return b.ball() ? std::nullopt : std::optional<double>(b.scene.bearing.roller_length);
 }
 std::optional<double> bar_width_default(const Bind& b) { return b.scene.bearing.roller_length; }
+// A spatial roller's race contact in 20 slices (a circular crown's load profile to about 1 % of
+// the peak, tilt and edge loading resolved) and its pocket bars in 4 (skew against the bar's ends);
+// planar: one (the planar model has no tilt).
+std::optional<double> slices_default(const Bind& b) {
+  if (!b.spatial_roller()) return 1;
+  if (b.contact_kind == contact::roller_race_contact) return 20;
+  return b.contact_kind == contact::roller_cage_contact ? 4 : 1;
+}
+// A flat end touches the rib with the rounding of its edge (the profile's corner, or a tenth of the
+// roller where the profile has none); a spherical end is a sphere of about the pitch radius.
+std::optional<double> end_radius_default(const Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  if (g.roller.end == RollerEnd::spherical) return 0.5 * g.pitch_diameter;
+  return g.roller.corner_radius > 0 ? g.roller.corner_radius : 0.1 * g.roller_diameter;
+}
 // Rollers: half the roller length rides on the land; balls: the land is the two ring shoulders
 // beside the groove, ring width - ball diameter in all.
 std::optional<double> land_width_default(const Bind& b) {
@@ -82,6 +97,19 @@ long max_order_limit(const Bind& b) { return orders_of(b.scene.solver.method).la
 
 // ---- conditions --------------------------------------------------------------------------------
 
+std::optional<std::string> circular_profile_only(const Section&, const Bind& b) {
+  if (b.scene.bearing.roller.profile == contact::RollerProfileKind::circular) return std::nullopt;
+  return "only for roller_profile = \"circular\"";
+}
+std::optional<std::string> logarithmic_profile_only(const Section&, const Bind& b) {
+  const auto p = b.scene.bearing.roller.profile;
+  if (p == contact::RollerProfileKind::lundberg || p == contact::RollerProfileKind::johns_gohar) return std::nullopt;
+  return "only for a logarithmic roller_profile (\"lundberg\" or \"johns_gohar\")";
+}
+std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
+  if (!b.spatial_roller()) return std::nullopt;
+  return "the planar model's crowning; a spatial roller's crown is bearing.roller_profile";
+}
 std::optional<std::string> four_point_only(const Section&, const Bind& b) {
   if (b.scene.bearing.type == BearingType::four_point_contact_ball) return std::nullopt;
   return "only for type = \"four_point_contact_ball\": a deep groove ball bearing's contact angle comes out of its "
@@ -220,12 +248,10 @@ void initial_step_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
-// Planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings, all six
-// directions. Ball-groove contacts are three-dimensional; a spatial roller model does not exist.
+// Planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings and
+// cylindrical roller bearings, all six directions. Ball-groove contacts are three-dimensional.
 void model_fits_bearing_type(const Row&, const Section&, Bind& b) {
   const bool spatial = b.scene.scene.model == ModelKind::spatial;
-  if (spatial && !b.ball())
-    b.info->fail("model", "spatial cylindrical roller bearings are not implemented; use model = \"planar\"");
   if (!spatial && b.ball())
     b.info->fail("model", fmt::format("a {} bearing needs model = \"spatial\": ball-groove contacts are three-"
                                       "dimensional (the planar model is for cylindrical roller bearings)",
@@ -437,6 +463,55 @@ void crown_drop_fits(const Row&, const Section& s, Bind& b) {
   });
 }
 
+// The spatial roller's profile as contact/laws/roller_profile.hpp checks it: roller_length is the
+// straight part, the corners add corner_radius at each end.
+void roller_profile_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  contact::RollerProfile p;
+  p.kind = g.roller.profile;
+  p.length = g.roller_length + 2 * g.roller.corner_radius;
+  p.corner_radius = g.roller.corner_radius;
+  p.crown_radius = g.roller.crown_radius;
+  p.flat_length = g.roller.flat_length;
+  p.design_load = g.roller.design_load;
+  p.reduced_modulus = 1e11;  // any positive value: the checks are on lengths and loads
+  p.rolling_radius = 0.25 * g.roller_diameter;
+  const std::string why = contact::validate_profile(p);
+  s.check(why.empty(), "roller_profile", [&] { return "the roller profile does not fit: " + why; });
+}
+
+void end_radius_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  if (g.roller.end == RollerEnd::flat)
+    s.check(g.roller.end_radius < 0.5 * g.roller_diameter, "end_radius", [&] {
+      return fmt::format("a flat end's edge rounding of {} must be smaller than the roller radius ({})",
+                         mm(g.roller.end_radius), mm(0.5 * g.roller_diameter));
+    });
+  else
+    s.check(g.roller.end_radius > 0.5 * g.roller_diameter, "end_radius", [&] {
+      return fmt::format("a spherical end's radius of {} must exceed the roller radius ({}): the end would not be a "
+                         "cap of the sphere",
+                         mm(g.roller.end_radius), mm(0.5 * g.roller_diameter));
+    });
+}
+
+void rib_angle_fits_end(const Row&, const Section& s, Bind& b) {
+  const RollerGeometry& r = b.scene.bearing.roller;
+  s.check(r.end == RollerEnd::spherical || r.rib_angle > 0, "rib_angle", [] {
+    return std::string("a flat roller end on a radial rib (rib_angle = 0) touches along a whole edge, not at a Hertz "
+                       "point: give the rib an angle (e.g. \"0.5 deg\") or the rollers spherical ends");
+  });
+}
+
+void end_clearance_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  s.check(g.roller.end_clearance < 0.1 * g.roller_length, "roller_end_clearance", [&] {
+    return fmt::format("an axial play of {} is more than a tenth of the roller length ({}); roller end play is "
+                       "some tens of micrometres",
+                       mm(g.roller.end_clearance), mm(g.roller_length));
+  });
+}
+
 // Limiting-shear traction integrates the film's shear stress; where there is no film (dry spots,
 // film collapse) it falls back on the friction curve.
 void limiting_shear_has_lubricant(const Row&, const Section& s, Bind& b) {
@@ -455,6 +530,10 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   const contact::LawId id = b.contact->normal.id;
   if (id != contact::LawId::moes_ehd && id != contact::LawId::hydrodynamic && id != contact::LawId::short_bearing)
     return;
+  if (b.spatial_roller() && id != contact::LawId::short_bearing)
+    s.fail("normal", fmt::format("normal = \"{}\" is a film of the planar roller bearing; the spatial model's roller "
+                                 "contacts are dry (palmgren)",
+                                 b.contact->normal.name()));
   if (id == contact::LawId::short_bearing && !b.scene.bearing.is_ball_bearing())
     s.fail("normal", "normal = \"short_bearing\" is the land film of a ball bearing's cage; a cylindrical roller "
                      "bearing's cage land has the dry law (palmgren) only");

@@ -35,6 +35,11 @@ StartupReport initial_state(const Model& model, double t0, double azimuth_offset
 /// at the epicyclic orbital speed), then velocities set to pure rolling.
 StartupReport seat_roller_bearing(const Model& model, double t0);
 
+/// Spatial cylindrical roller bearing: the planar seating of its planar restriction
+/// (Model::planar_restriction), its coordinates copied into the spatial state (axial, tilt and skew
+/// at zero): aligned and without axial load that is the spatial model's seating as well.
+StartupReport seat_spatial_roller_bearing(const Model& model, double t0);
+
 /// Spatial ball bearing, quasi-static seating with the same contact functions the dynamics use:
 /// unknowns are the free ring coordinates (translation, tilt) and each ball's radial and axial
 /// position in its azimuthal plane; Levenberg-Marquardt on the force balance (robust from open
