@@ -7,13 +7,16 @@
 //
 // Roller loads: each roller's inner-race load (the sum of its slices' normal forces, spatial)
 // averaged over the window, and the largest load at each sample; cage speed: its mean over the window.
-// Measured: mean loads 0.08 % of the largest, the largest load at each sample within 0.8 %, cage
-// speed 0.01 %.
+// Measured: mean loads 0.073 % of the largest, the largest load at each sample within 0.31 %, cage
+// speed 0.043 %.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "scheduler/executor.hpp"
@@ -21,11 +24,19 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/startup.hpp"
+#include "io/scene/scene_parser.hpp"
 #include "solver/numerics/integrator.hpp"
 #include "tests/support/solver_test_support.hpp"
 
 namespace raceway::bearing {
 namespace {
+
+std::string file_text(const char* path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 struct Window {
   std::vector<std::vector<double>> loads;  ///< per sample, per roller: inner-race normal force [N]
@@ -34,8 +45,8 @@ struct Window {
 
 /// Integrates the scene's model (planar or spatial) from its start and samples it every 0.25 ms
 /// from 5 to 15 ms.
-Window sample(scene::Scene scene, scene::ModelKind space) {
-  scene.scene.model = space;
+Window sample(const scene::Scene& scene) {
+  const scene::ModelKind space = scene.scene.model;
   const Model m = build_model(scene);
   scheduler::SerialExecutor executor;
   Equations eq(m, executor);
@@ -59,13 +70,21 @@ Window sample(scene::Scene scene, scene::ModelKind space) {
 }
 
 TEST(SpatialRollerRestriction, Seed002AgreesWithThePlanarModel) {
-  const scene::Scene scene = test::load_job_scene("seed002_40hz.toml");
-  const Window planar = sample(scene, scene::ModelKind::planar);
-  const Window spatial = sample(scene, scene::ModelKind::spatial);
-  const std::size_t samples = planar.loads.size(), rollers = planar.loads[0].size();
+  // The job file as it is, and the same text with model = "spatial" (every spatial key at its default:
+  // NU ribs, straight rollers, 20 slices per race).
+  const std::string text = file_text(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  const std::string planar_model = "model = \"planar\"";
+  const std::size_t at = text.find(planar_model);
+  ASSERT_NE(at, std::string::npos);
+  std::string spatial_text = text;
+  spatial_text.replace(at, planar_model.size(), "model = \"spatial\"");
+  const Window planar = sample(scene::parse_scene(text, "seed002_40hz.toml"));
+  const Window spatial = sample(scene::parse_scene(spatial_text, "seed002_40hz.toml (spatial)"));
+  const std::size_t rollers = planar.loads[0].size();
+  const double samples = static_cast<double>(planar.loads.size());
   double largest = 0, worst_peak = 0, planar_cage = 0, spatial_cage = 0;
   std::vector<double> mean_planar(rollers, 0.0), mean_spatial(rollers, 0.0);
-  for (std::size_t i = 0; i < samples; ++i) {
+  for (std::size_t i = 0; i < planar.loads.size(); ++i) {
     const double peak_planar = *std::max_element(planar.loads[i].begin(), planar.loads[i].end());
     const double peak_spatial = *std::max_element(spatial.loads[i].begin(), spatial.loads[i].end());
     largest = std::max(largest, peak_planar);
@@ -86,7 +105,7 @@ TEST(SpatialRollerRestriction, Seed002AgreesWithThePlanarModel) {
               100 * worst_mean, largest, 100 * worst_peak, 100 * cage, planar_cage, spatial_cage);
   EXPECT_GT(largest, 250.0);  // the load zone is there (Fr 1 kN on 13 rollers: about 310 N at its middle)
   EXPECT_LT(worst_mean, 5e-3);
-  EXPECT_LT(worst_peak, 1e-2);
+  EXPECT_LT(worst_peak, 5e-3);
   EXPECT_LT(cage, 2e-3);
 }
 
