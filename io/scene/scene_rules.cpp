@@ -438,6 +438,32 @@ void damper_has_spring(const Row& row, const Section& s, Bind&) {
   if (s.has(row.key) && !s.has(spring)) s.fail(row.key, fmt::format("a damper needs its spring: give {} too", spring));
 }
 
+// A spatial roller bearing carries an axial load between its rings only through ribs on both: NU
+// and N have ribs on one ring only (their rings float axially against each other: a locating
+// bearing elsewhere takes the load); NJ's inner rib (its -z side) takes an inner-ring load along
+// +z (an outer-ring load along -z); NUP takes both. The model's races are cylinders without edges:
+// a load nothing carries would slide the ring away for ever.
+void axial_load_carried_by_ribs(const Row&, const Section& s, Bind& b) {
+  if (!b.spatial_roller()) return;
+  const TimeFunction& fz = b.ring->load.fz;
+  double lo = 0, hi = 0;
+  for (const double v : fz.values) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (lo == 0 && hi == 0) return;
+  const RibArrangement ribs = b.scene.bearing.roller.ribs;
+  const bool inner = b.ring == &b.scene.inner_ring;
+  // The direction an NJ bearing carries on this ring: +z on the inner ring, -z on the outer.
+  const bool along_carried = inner ? lo >= 0 : hi <= 0;
+  const char* design = ribs == RibArrangement::nu ? "NU" : ribs == RibArrangement::n ? "N" : "NJ";
+  if (ribs == RibArrangement::nu || ribs == RibArrangement::n)
+    s.fail("fz", fmt::format("an {} bearing has ribs on one ring only and carries no axial load between its rings "
+                             "(bearing.ribs = \"NJ\" or \"NUP\" do)",
+                             design));
+  if (ribs == RibArrangement::nj && !along_carried)
+    s.fail("fz", fmt::format("an NJ bearing's single inner rib (its -z side) carries an axial load along {} on the "
+                             "{} ring only; bearing.ribs = \"NUP\" carries both directions",
+                             inner ? "+z" : "-z", inner ? "inner" : "outer"));
+}
+
 void fixed_ring_tilt_not_free(const Row&, const Section& s, Bind& b) {
   if (b.ring->motion == RingMotion::fixed && b.ring->tilt == RingTilt::free)
     s.fail("tilt", "a ring with motion = \"fixed\" cannot tilt freely; a misaligned housing is tilt = \"prescribed\"");

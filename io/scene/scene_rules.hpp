@@ -89,6 +89,7 @@ void roller_profile_fits(const Row& row, const Section& s, Bind& b);
 void end_radius_fits(const Row& row, const Section& s, Bind& b);
 void rib_angle_fits_end(const Row& row, const Section& s, Bind& b);
 void end_clearance_fits(const Row& row, const Section& s, Bind& b);
+void axial_load_carried_by_ribs(const Row& row, const Section& s, Bind& b);
 void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
 void film_law_has_lubricant(const Row& row, const Section& s, Bind& b);
 void traction_fits_normal_law(const Row& row, const Section& s, Bind& b);
