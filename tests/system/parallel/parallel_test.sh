@@ -56,7 +56,7 @@ sed -e 's/^end_time = .*/end_time = "6 ms"/' "$source_dir/jobs/scenes/seed002_40
 sed -e 's/^end_time = .*/end_time = "3 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
 sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fine_traction.toml" >"$work/cut.toml"
 # The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each).
-sed -e 's/^end_time = .*/end_time = "3 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
+sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
   "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/spatial_roller.toml"
 
 bitwise() {
