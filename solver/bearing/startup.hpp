@@ -22,7 +22,8 @@ struct StartupReport {
   std::string summary;
 };
 
-/// The consistent initial state of the model at t0. `azimuth_offset` (spatial) turns the whole
+/// The consistent initial state of the model at t0. `azimuth_offset` (spatial ball bearings; a
+/// spatial roller bearing starts from its planar seating and takes none) turns the whole
 /// ball set and the cage about z (ball k starts at offset + 2 pi k / Z): with the loads turned by
 /// the same angle, the same physical state. Throws std::runtime_error when no equilibrium is found.
 /// `equations` (spatial): where it has heavy contacts (cut into parts), the seating's contact
