@@ -45,10 +45,10 @@ constexpr LawEntry kLaws[] = {
      "once the film collapses to 0.2 um (cylindrical pockets; needs [lubricant] viscosity)"},
 };
 
-constexpr std::array<ContactKindBit, 5> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,
-                                                     ball_cage_contact, cage_land_contact};
-constexpr std::array<std::string_view, 5> kContactNames = {"roller_race", "roller_cage", "ball_race", "ball_cage",
-                                                           "cage_land"};
+constexpr std::array<ContactKindBit, 6> kContacts = {roller_race_contact, roller_cage_contact, ball_race_contact,
+                                                     ball_cage_contact,   cage_land_contact,   roller_flange_contact};
+constexpr std::array<std::string_view, 6> kContactNames = {"roller_race", "roller_cage", "ball_race",
+                                                           "ball_cage",   "cage_land",   "roller_flange"};
 
 std::string names_of(unsigned contacts) {
   std::string s;

@@ -37,10 +37,12 @@ enum ContactKindBit : unsigned {
   ball_race_contact = 1u << 2,    ///< [contact.ball_race]
   ball_cage_contact = 1u << 3,    ///< [contact.ball_cage]
   cage_land_contact = 1u << 4,    ///< [contact.cage_land]
+  roller_flange_contact = 1u << 5,  ///< [contact.roller_flange]: a roller's end on a rib (spatial roller bearings)
 };
-/// Line contacts (rollers on races and cage bars, the cage on its land) and point contacts (balls).
+/// Line contacts (rollers on races and cage bars, the cage on its land) and point contacts (balls,
+/// and a roller's end on a rib: a Hertz point, contact/segments/roller_flange_segment.hpp).
 inline constexpr unsigned line_contacts = roller_race_contact | roller_cage_contact | cage_land_contact;
-inline constexpr unsigned point_contacts = ball_race_contact | ball_cage_contact;
+inline constexpr unsigned point_contacts = ball_race_contact | ball_cage_contact | roller_flange_contact;
 inline constexpr unsigned all_contacts = line_contacts | point_contacts;
 
 struct LawEntry {
@@ -67,12 +69,12 @@ std::string known_law_names(LawRole role, ContactKindBit contact);
 
 /// "normal", "damping", "traction".
 std::string_view role_name(LawRole role);
-/// The five contacts, in the order of the ContactKindBit values.
+/// The six contacts, in the order of the ContactKindBit values.
 std::span<const ContactKindBit> contact_kinds();
-/// The scene's name of a contact: "roller_race", ..., "cage_land" (its [contact.NAME] section).
+/// The scene's name of a contact: "roller_race", ..., "roller_flange" (its [contact.NAME] section).
 std::string_view contact_name(ContactKindBit contact);
 /// The contacts of a mask in words: "line contacts (roller_race, roller_cage, cage_land)",
-/// "point contacts (ball_race, ball_cage)", "ball_race contacts".
+/// "point contacts (ball_race, ball_cage, roller_flange)", "ball_race contacts".
 std::string contacts_description(unsigned contacts);
 
 }  // namespace raceway::contact

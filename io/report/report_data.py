@@ -171,7 +171,10 @@ def read_bearing(out):
     run.geometry.update({k: v for k, v in out.bearing.items() if isinstance(v, (int, float))})
     for key in ("pitch_radius", "pocket_clearance", "land_clearance"):
         run.geometry.setdefault(key, math.nan)
-    groove = "ball_inner_groove" if kind == "spatial" else "roller_inner_race"
+    # A rolling element's load: its inner contacts added (a spatial roller's slices, a four-point
+    # ball's two arcs).
+    groove = ("ball_inner_groove" if group == "balls" else
+              "roller_inner_slice" if kind == "spatial" else "roller_inner_race")
     if f"segments/{groove}/normal_force" not in out:
         raise ReportInputError(f"{out.path}: dataset '/segments/{groove}/normal_force' is missing")
     run.element_load = element_loads(_need(out, f"segments/{groove}/normal_force"), _columns_element(out, groove, n), n)

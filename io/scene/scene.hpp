@@ -14,6 +14,7 @@
 
 #include "contact/laws/law_registry.hpp"
 #include "contact/laws/race_imperfections.hpp"
+#include "contact/laws/roller_profile.hpp"
 
 namespace raceway::scene {
 
@@ -73,6 +74,27 @@ struct BallGeometry {
   double free_contact_angle = 0;    ///< rad
 };
 
+/// Cylindrical roller bearing designs by their ribs (flanges): NU two ribs on the outer ring; NJ
+/// those and one on the inner ring, on its -z side (it carries an inner-ring axial load along +z);
+/// NUP two on each ring; N two on the inner ring.
+enum class RibArrangement { nu, nj, nup, n };
+enum class RollerEnd { flat, spherical };
+
+/// Spatial cylindrical roller bearings: the roller's profile along its length and its ends and ribs.
+/// roller_length is the straight part; the profile's rounded corners add corner_radius at each end.
+struct RollerGeometry {
+  RibArrangement ribs = RibArrangement::nu;
+  contact::RollerProfileKind profile = contact::RollerProfileKind::straight;
+  double corner_radius = 0;  ///< m, r_c of the profile
+  double crown_radius = 0;   ///< m, circular crown
+  double flat_length = 0;    ///< m, circular crown: its straight middle
+  double design_load = 0;    ///< N, logarithmic profiles
+  RollerEnd end = RollerEnd::flat;
+  double end_radius = 0;     ///< m: flat ends: the rounding of the face's edge; spherical ends: the sphere
+  double rib_angle = 0;      ///< rad, the rib face's opening angle (0: a radial face)
+  double end_clearance = 0;  ///< m, axial play of a roller between the two ribs of a ring
+};
+
 struct BearingGeometry {
   BearingType type = BearingType::cylindrical_roller;
   int rolling_elements = 0;
@@ -87,6 +109,7 @@ struct BearingGeometry {
   std::string roller_material;          ///< key into Scene::materials (rollers or balls)
   std::string ring_material;            ///< key into Scene::materials
   BallGeometry ball;                    ///< ball bearings (type != cylindrical_roller)
+  RollerGeometry roller;                ///< spatial cylindrical roller bearings
   bool is_ball_bearing() const { return type != BearingType::cylindrical_roller; }
   /// Diameter of the rolling element: roller or ball.
   double element_diameter() const { return is_ball_bearing() ? ball.ball_diameter : roller_diameter; }
@@ -334,12 +357,13 @@ struct Scene {
   RingSpec outer_ring;
   Lubricant lubricant;
   LifeSpec life;
-  ContactSpec roller_race;  ///< planar: roller-race
-  ContactSpec roller_cage;  ///< planar: roller-cage bar
+  ContactSpec roller_race;  ///< roller bearings: roller-race (spatial: per slice)
+  ContactSpec roller_cage;  ///< roller bearings: roller-cage bar
   ContactSpec ball_race;    ///< spatial: ball-groove
   ContactSpec ball_cage;    ///< spatial: ball-pocket
   ContactSpec cage_land;
-  HousingSpec housing;    ///< spatial: the outer ring in a housing (absent: the outer ring as its motion says)
+  ContactSpec roller_flange;  ///< spatial roller bearings: a roller's end on a rib
+  HousingSpec housing;        ///< spatial: the outer ring in a housing (absent: the outer ring as its motion says)
   CarrierSpec carrier;    ///< planar: the bearing on a rotating planet carrier (absent: inertial frame)
   SolverSpec solver;
   OutputSpec output;

@@ -28,8 +28,9 @@ roller bearings) and jobs/scenes/6309_R3.toml (spatial, ball bearings).
   [scene] allow_out_of_range names its key; the bounds below hold besides.
 - `*_ring` stands for `inner_ring` and `outer_ring`; `contact.*` for the contacts of [contact];
   `materials.*` for any material name.
-- Applies to: "roller" = cylindrical roller bearings (model = "planar"), "ball" = ball bearings
-  (model = "spatial"). A key given where it does not apply is an error, not ignored; so is a key
+- Applies to: "roller" = cylindrical roller bearings (model = "planar" or "spatial"), "planar
+  roller" and "spatial roller" = in that model only, "ball" = ball bearings (always model =
+  "spatial"), "spatial" = every spatial scene, ball or roller. A key given where it does not apply is an error, not ignored; so is a key
   whose setting makes it meaningless (a speed for a fixed ring, a damping factor without damping).
 - "required" holds where the key applies (see its meaning); bounds hold for given values. The
   rules that tie keys together (the rollers fit, clearances, ring motions, laws that need a
@@ -117,6 +118,9 @@ std::string applies_text(const Row& row) {
   switch (row.bearings) {
     case roller_bearings: return "roller";
     case ball_bearings: return "ball";
+    case planar_rollers: return "planar roller";
+    case spatial_rollers: return "spatial roller";
+    case spatial_bearings: return "spatial";
     default: return "all";
   }
 }

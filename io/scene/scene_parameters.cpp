@@ -12,7 +12,7 @@ namespace {
 using namespace schema;
 
 bool takes(const Row& row, const Bind& b) {
-  const unsigned bearing = b.ball() ? ball_bearings : roller_bearings;
+  const unsigned bearing = scene_bearing_bits(b);
   return (row.bearings & bearing) && (b.contact_kind == 0 || row.contacts == 0 || (row.contacts & b.contact_kind));
 }
 

@@ -61,7 +61,7 @@ void read_section(std::string_view section, const Section& s, Bind& b);
 
 /// Whether this bearing (and, in [contact.NAME], this contact) takes the row's key.
 bool takes(const Row& row, const Bind& b) {
-  const unsigned bearing = b.ball() ? ball_bearings : roller_bearings;
+  const unsigned bearing = scene_bearing_bits(b);
   const bool contact_takes_it = b.contact_kind == 0 || row.contacts == 0 || (row.contacts & b.contact_kind);
   return (row.bearings & bearing) && contact_takes_it;
 }

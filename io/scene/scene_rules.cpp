@@ -220,12 +220,10 @@ void initial_step_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
-// Planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings, all six
-// directions. Ball-groove contacts are three-dimensional; a spatial roller model does not exist.
+// Planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings and
+// cylindrical roller bearings, all six directions. Ball-groove contacts are three-dimensional.
 void model_fits_bearing_type(const Row&, const Section&, Bind& b) {
   const bool spatial = b.scene.scene.model == ModelKind::spatial;
-  if (spatial && !b.ball())
-    b.info->fail("model", "spatial cylindrical roller bearings are not implemented; use model = \"planar\"");
   if (!spatial && b.ball())
     b.info->fail("model", fmt::format("a {} bearing needs model = \"spatial\": ball-groove contacts are three-"
                                       "dimensional (the planar model is for cylindrical roller bearings)",
@@ -460,6 +458,10 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   if (id == contact::LawId::pocket_film && b.scene.cage.pocket_shape != PocketShape::cylindrical)
     s.fail("normal", "normal = \"pocket_film\" is the film of a ball in a cylindrical pocket (pocket_shape = "
                      "\"cylindrical\"); a spherical pocket's film is not modelled: give normal = \"hertz\"");
+  if (b.spatial_roller())
+    s.fail("normal", fmt::format("normal = \"{}\" is a film law; the spatial roller model's contacts, its cage land's "
+                                 "included, are dry (palmgren): films are modelled in the planar roller bearing",
+                                 b.contact->normal.name()));
   if (!(b.scene.lubricant.viscosity > 0))
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "
                                  "lubricant.pressure_viscosity for an EHD film)",

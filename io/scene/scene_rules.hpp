@@ -33,10 +33,15 @@ std::optional<double> ring_support_stiffness_default(const Bind& b);
 std::optional<double> friction_default(const Bind& b);
 std::optional<double> rolling_resistance_default(const Bind& b);
 std::optional<double> max_order_default(const Bind& b);
+std::optional<double> slices_default(const Bind& b);
+std::optional<double> end_radius_default(const Bind& b);
 long max_order_limit(const Bind& b);
 
 // ---- conditions: why a key does not apply here, or nullopt -------------------------------------
 std::optional<std::string> four_point_only(const Section& s, const Bind& b);
+std::optional<std::string> circular_profile_only(const Section& s, const Bind& b);
+std::optional<std::string> logarithmic_profile_only(const Section& s, const Bind& b);
+std::optional<std::string> planar_crown_only(const Section& s, const Bind& b);
 std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b);
 std::optional<std::string> axially_held_only(const Section& s, const Bind& b);
 std::optional<std::string> unless_ball_material(const Section& s, const Bind& b);
@@ -82,6 +87,11 @@ void fixed_ring_tilt_not_free(const Row& row, const Section& s, Bind& b);
 void misalignment_given(const Row& row, const Section& s, Bind& b);
 void ring_support_has_spring(const Row& row, const Section& s, Bind& b);
 void crown_drop_fits(const Row& row, const Section& s, Bind& b);
+void roller_profile_fits(const Row& row, const Section& s, Bind& b);
+void end_radius_fits(const Row& row, const Section& s, Bind& b);
+void rib_angle_fits_end(const Row& row, const Section& s, Bind& b);
+void end_clearance_fits(const Row& row, const Section& s, Bind& b);
+void axial_load_carried_by_ribs(const Row& row, const Section& s, Bind& b);
 void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
 void film_law_has_lubricant(const Row& row, const Section& s, Bind& b);
 void walther_points_fit(const Row& row, const Section& s, Bind& b);

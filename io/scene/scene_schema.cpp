@@ -24,24 +24,35 @@ constexpr Default empty_table = value(0);
 constexpr std::string_view kBallOnly =
     "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
 constexpr std::string_view kSpatialCage =
-    "only for spatial scenes (model = \"spatial\"): a planar cage moves in x, y and about z";
+    "only for ball bearings (model = \"spatial\"): a planar cage moves in x, y and about z, and a spatial roller "
+    "bearing's cage takes its section from the rollers as the planar one does";
 constexpr std::string_view kRollerCage =
-    "only for roller bearings: the bars between a roller cage's pockets (a ball cage's pockets are drilled)";
+    "only for planar roller bearings: the bars between a roller cage's pockets, flexible in the plane (a ball "
+    "cage's pockets are drilled; a spatial roller cage's bars are rigid)";
 constexpr std::string_view kSpatialRing =
     "only for spatial scenes (model = \"spatial\"): a planar ring moves in x, y and about z";
 constexpr std::string_view kSpatialDirection =
     "only for spatial scenes (model = \"spatial\"): a planar model has no axial direction and no tilt";
 constexpr std::string_view kRollerContact =
-    "roller-race and roller-cage contacts belong to planar roller bearings; a spatial ball bearing's are "
-    "[contact.ball_race] and [contact.ball_cage]";
+    "roller-race and roller-cage contacts belong to roller bearings; a ball bearing's are [contact.ball_race] and "
+    "[contact.ball_cage]";
+constexpr std::string_view kFlangeContact =
+    "roller-end on rib contacts belong to spatial roller bearings (model = \"spatial\"): a planar roller has no "
+    "axial direction";
 constexpr std::string_view kBallContact =
-    "ball-race and ball-cage contacts belong to spatial ball bearings; a planar roller bearing's are "
-    "[contact.roller_race] and [contact.roller_cage]";
+    "ball-race and ball-cage contacts belong to ball bearings; a roller bearing's are [contact.roller_race], "
+    "[contact.roller_cage] (and, spatial, [contact.roller_flange])";
 constexpr std::string_view kLineContact =
     "slices and crown_drop are for line contacts (roller bearings); a ball contact is a Hertz point contact";
 constexpr std::string_view kBallRaceContact =
     "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
     "at the contact centre";
+
+constexpr std::string_view kSpatialRoller =
+    "only for cylindrical roller bearings in the spatial model (model = \"spatial\"): the planar model's rollers have "
+    "no profile, ends or ribs";
+constexpr Bounds kRibAngle{.lo = 0, .hi = std::numbers::pi / 18, .hi_open = true, .unit = "deg",
+                           .note = " (ribs open by a fraction of a degree to a few degrees)"};
 
 constexpr std::string_view kPlanarCarrier =
     "only for planar roller bearings (model = \"planar\"): the carrier's frame terms act in the bearing's plane";
@@ -80,8 +91,8 @@ constexpr Row kRows[] = {
     {.section = "scene", .key = "name", .kind = text, .field = FIELD(scene.scene.name),
      .meaning = "label stored in the output"},
     {.section = "scene", .key = "model", .kind = choice, .field = FIELD(scene.scene.model), .options = kModels,
-     .meaning = "planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball bearings (all six "
-                "directions)"},
+     .meaning = "planar: cylindrical roller bearings (x, y, rotation about z); spatial: ball and cylindrical roller "
+                "bearings (all six directions; rollers sliced along their length, with ribs and tilt)"},
     {.section = "scene", .key = "allow_out_of_range", .kind = key_list, .field = FIELD(scene.scene.allow_out_of_range),
      .def = absent, .then = allowed_keys_in_scene,
      .meaning = "dotted keys (\"materials.rubber.youngs_modulus\") whose values may lie beyond the sane range of their "
@@ -110,7 +121,7 @@ constexpr Row kRows[] = {
                 "check` lists them"},
     {.section = "bearing", .key = "type", .kind = choice, .field = FIELD(scene.bearing.type),
      .then = model_fits_bearing_type, .options = kBearingTypes, .noun = "bearing type",
-     .meaning = "cylindrical_roller needs model = \"planar\", the ball bearings model = \"spatial\""},
+     .meaning = "cylindrical_roller: model = \"planar\" or \"spatial\"; the ball bearings need model = \"spatial\""},
     {.section = "bearing", .key = "rolling_elements", .kind = integer, .field = FIELD(scene.bearing.rolling_elements),
      .bounds = {.lo = 3, .hi = 1000}, .meaning = "number of rollers or balls (large slewing rings have a few hundred)"},
     {.section = "bearing", .key = "roller_diameter", .kind = number, .field = FIELD(scene.bearing.roller_diameter),
@@ -166,6 +177,50 @@ constexpr Row kRows[] = {
     {.section = "bearing", .key = "ring_material", .kind = material, .field = FIELD(scene.bearing.ring_material),
      .def = word("steel"), .meaning = "material of both rings"},
 
+    {.section = "bearing", .key = "roller_profile", .kind = choice, .field = FIELD(scene.bearing.roller.profile),
+     .def = word("straight"), .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .options = kRollerProfiles,
+     .noun = "roller profile", .meaning = "the roller's profile: straight, circular crown, logarithmic (lundberg, johns_gohar)"},
+    {.section = "bearing", .key = "corner_radius", .kind = number, .field = FIELD(scene.bearing.roller.corner_radius),
+     .dim = dim::length, .bounds = non_negative, .def = value(0), .bearings = spatial_rollers,
+     .elsewhere = kSpatialRoller,
+     .meaning = "r_c: the rounding of the roller's ends, beyond roller_length at each end (carries only when the "
+                "roller tilts into it)"},
+    {.section = "bearing", .key = "crown_radius", .kind = number, .field = FIELD(scene.bearing.roller.crown_radius),
+     .dim = dim::length, .bounds = positive, .bearings = spatial_rollers, .elsewhere = kSpatialRoller,
+     .when = circular_profile_only,
+     .missing = "required for roller_profile = \"circular\": the crown's radius, e.g. \"500 mm\"",
+     .example = "500 mm", .meaning = "circular crown: its radius R_c"},
+    {.section = "bearing", .key = "flat_length", .kind = number, .field = FIELD(scene.bearing.roller.flat_length),
+     .dim = dim::length, .bounds = non_negative, .def = value(0), .bearings = spatial_rollers, .elsewhere = kSpatialRoller,
+     .when = circular_profile_only, .meaning = "circular crown: the straight middle (0: crowned over the whole length)"},
+    {.section = "bearing", .key = "profile_design_load", .kind = number, .field = FIELD(scene.bearing.roller.design_load),
+     .dim = dim::force, .bounds = positive, .bearings = spatial_rollers, .elsewhere = kSpatialRoller,
+     .when = logarithmic_profile_only,
+     .missing = "required for a logarithmic roller_profile: the roller load it is designed for, e.g. \"5 kN\"",
+     .example = "5 kN", .meaning = "logarithmic profiles: the design load Q_d"},
+    {.section = "bearing", .key = "ribs", .kind = choice, .field = FIELD(scene.bearing.roller.ribs), .def = word("NU"),
+     .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .then = roller_profile_fits, .options = kRibArrangements,
+     .noun = "rib arrangement",
+     .meaning = "NU: two ribs on the outer ring; NJ: and one on the inner ring's -z side; NUP: two on each ring; N: two "
+                "on the inner ring"},
+    {.section = "bearing", .key = "roller_end", .kind = choice, .field = FIELD(scene.bearing.roller.end), .def = word("flat"),
+     .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .options = kRollerEnds, .noun = "roller end",
+     .meaning = "the roller's end faces: flat with a rounded edge, or spherical"},
+    {.section = "bearing", .key = "end_radius", .kind = number, .field = FIELD(scene.bearing.roller.end_radius),
+     .dim = dim::length, .bounds = positive,
+     .def = derived(end_radius_default, "flat: corner_radius, or D / 10 where that is 0; spherical: d_m / 2"),
+     .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .then = end_radius_fits,
+     .meaning = "flat ends: the rounding of the end face's edge, which touches the rib; spherical ends: the sphere's "
+                "radius"},
+    {.section = "bearing", .key = "rib_angle", .kind = number, .field = FIELD(scene.bearing.roller.rib_angle),
+     .dim = dim::angle, .bounds = kRibAngle, .def = value(0.5 * std::numbers::pi / 180), .bearings = spatial_rollers,
+     .elsewhere = kSpatialRoller, .then = rib_angle_fits_end,
+     .meaning = "the rib face's opening angle from a radial plane (a flat roller end needs one: a flat end on a flat "
+                "rib touches along an edge)"},
+    {.section = "bearing", .key = "roller_end_clearance", .kind = number,
+     .field = FIELD(scene.bearing.roller.end_clearance), .dim = dim::length, .bounds = non_negative,
+     .def = value(50e-6), .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .then = end_clearance_fits,
+     .meaning = "axial play of a centred roller between the two ribs of a ring"},
     // ---- [cage] ---------------------------------------------------------------------------------
     {.section = "cage", .key = "guidance", .kind = choice, .field = FIELD(scene.cage.guidance), .options = kGuidances,
      .meaning = "what guides the cage radially: a ring's land or the rolling elements"},
@@ -189,22 +244,22 @@ constexpr Row kRows[] = {
     {.section = "cage", .key = "inertia", .kind = number, .field = FIELD(scene.cage.inertia), .dim = dim::inertia,
      .bounds = positive, .def = value(0), .meaning = "about the bearing axis; 0: computed"},
     {.section = "cage", .key = "bridges", .kind = choice, .field = FIELD(scene.cage.bridges), .def = word("rigid"),
-     .bearings = roller_bearings, .elsewhere = kRollerCage, .options = kCageBridges, .noun = "bridge model",
+     .bearings = planar_rollers, .elsewhere = kRollerCage, .options = kCageBridges, .noun = "bridge model",
      .meaning = "the bars between the pockets: rigid with the cage, or flexible (each a clamped beam whose "
                 "tangential deflection is a state)"},
     {.section = "cage", .key = "bridge_stiffness", .kind = number, .field = FIELD(scene.cage.bridge_stiffness),
-     .dim = dim::stiffness, .bounds = positive, .def = value(0), .bearings = roller_bearings,
+     .dim = dim::stiffness, .bounds = positive, .def = value(0), .bearings = planar_rollers,
      .elsewhere = kRollerCage, .meaning = "flexible bridges: tangential stiffness under the pocket force; 0: "
                                          "720 E I / L^3 from the section (clamped beam, load along its length)"},
     {.section = "cage", .key = "bridge_thickness", .kind = number, .field = FIELD(scene.cage.bridge_thickness),
-     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: circumferential thickness; 0: d_m sin(pi / Z) - D - pocket_clearance"},
     {.section = "cage", .key = "bridge_height", .kind = number, .field = FIELD(scene.cage.bridge_height),
-     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: radial height; 0: the cage's radial section"},
     {.section = "cage", .key = "bridge_damping_ratio", .kind = number,
      .field = FIELD(scene.cage.bridge_damping_ratio), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
-     .def = value(0.02), .bearings = roller_bearings, .elsewhere = kRollerCage,
+     .def = value(0.02), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: damping ratio of a bridge's bending mode"},
     {.section = "cage", .key = "pocket_shape", .kind = choice, .field = FIELD(scene.cage.pocket_shape),
      .def = word("cylindrical"), .bearings = ball_bearings, .elsewhere = kSpatialCage, .options = kPocketShapes,
@@ -267,17 +322,17 @@ constexpr Row kRows[] = {
      .def = word("free"), .when = moving_ring_only, .options = kFreeOrFixed, .otherwise = 0,
      .meaning = "driven and free rings: centre free in x and y, or held"},
     {.section = "*_ring", .key = "axial", .kind = choice, .field = FIELD(ring->axial_free), .def = word("free"),
-     .bearings = ball_bearings, .elsewhere = kSpatialRing, .when = moving_ring_only, .options = kFreeOrFixed,
+     .bearings = spatial_bearings, .elsewhere = kSpatialRing, .when = moving_ring_only, .options = kFreeOrFixed,
      .otherwise = 0, .meaning = "driven and free rings: free along z, or held"},
     {.section = "*_ring", .key = "axial_position", .kind = number, .field = FIELD(ring->axial_position),
-     .dim = dim::length, .bounds = kAxialPosition, .def = value(0), .bearings = ball_bearings,
+     .dim = dim::length, .bounds = kAxialPosition, .def = value(0), .bearings = spatial_bearings,
      .elsewhere = kSpatialRing, .when = axially_held_only, .example = "20 um",
      .meaning = "rings held axially: where (preload by displacement: an angular contact bearing's inner ring held "
                 "at +z)"},
     {.section = "*_ring", .key = "tilt", .kind = choice, .field = FIELD(ring->tilt), .def = word("fixed"),
-     .bearings = ball_bearings, .elsewhere = kSpatialRing, .then = fixed_ring_tilt_not_free, .options = kRingTilts,
+     .bearings = spatial_bearings, .elsewhere = kSpatialRing, .then = fixed_ring_tilt_not_free, .options = kRingTilts,
      .meaning = "about x and y: held aligned, free (integrated), or prescribed (misalignment)"},
-    {.section = "*_ring", .key = "misalignment", .kind = table, .field = nullptr, .bearings = ball_bearings,
+    {.section = "*_ring", .key = "misalignment", .kind = table, .field = nullptr, .bearings = spatial_bearings,
      .elsewhere = kSpatialRing, .when = prescribed_tilt_only,
      .missing = "required with tilt = \"prescribed\": e.g. misalignment = { x = \"1.42 mrad\" } (rotations about "
                 "the x and y axes)",
@@ -293,28 +348,28 @@ constexpr Row kRows[] = {
     {.section = "*_ring", .key = "inertia", .kind = number, .field = FIELD(ring->inertia), .dim = dim::inertia,
      .bounds = positive, .def = value(0), .meaning = "about the bearing axis; 0: computed"},
     {.section = "*_ring", .key = "transverse_inertia", .kind = number, .field = FIELD(ring->transverse_inertia),
-     .dim = dim::inertia, .bounds = positive, .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialRing,
+     .dim = dim::inertia, .bounds = positive, .def = value(0), .bearings = spatial_bearings, .elsewhere = kSpatialRing,
      .meaning = "about a diameter; 0: computed"},
     {.section = "*_ring", .key = "flexibility", .kind = choice, .field = FIELD(ring->flexibility),
-     .def = word("rigid"), .bearings = roller_bearings, .elsewhere = kPlanarRim, .when = outer_ring_only,
+     .def = word("rigid"), .bearings = planar_rollers, .elsewhere = kPlanarRim, .when = outer_ring_only,
      .options = kRingFlexibilities, .noun = "ring flexibility",
      .meaning = "the outer ring's raceway: rigid, or ring_modes (a thin elastic rim whose in-plane inextensional "
                 "bending modes n = 2..modes are states: a planet gear's rim, seed 003 2.3)"},
     {.section = "*_ring", .key = "modes", .kind = integer, .field = FIELD(ring->modes), .bounds = {.lo = 2, .hi = 40},
-     .def = value(8), .bearings = roller_bearings, .elsewhere = kPlanarRim, .when = ring_modes_only,
+     .def = value(8), .bearings = planar_rollers, .elsewhere = kPlanarRim, .when = ring_modes_only,
      .meaning = "flexibility = \"ring_modes\": the highest bending mode number kept (the point-load deflection "
                 "converges as 1 / modes^3)"},
     {.section = "*_ring", .key = "rim_thickness", .kind = number, .field = FIELD(ring->rim_thickness),
-     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kPlanarRim,
+     .dim = dim::length, .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kPlanarRim,
      .when = ring_modes_only, .example = "8 mm",
      .meaning = "flexibility = \"ring_modes\": radial thickness of the rim's bending section; 0: (outside diameter "
                 "- outer race diameter) / 2"},
     {.section = "*_ring", .key = "rim_width", .kind = number, .field = FIELD(ring->rim_width), .dim = dim::length,
-     .bounds = positive, .def = value(0), .bearings = roller_bearings, .elsewhere = kPlanarRim,
+     .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kPlanarRim,
      .when = ring_modes_only, .meaning = "flexibility = \"ring_modes\": axial width of the rim's bending section; 0: "
                                         "the ring width"},
     {.section = "*_ring", .key = "rim_damping_ratio", .kind = number, .field = FIELD(ring->rim_damping_ratio),
-     .dim = dim::none, .bounds = {.lo = 0, .hi = 1}, .def = value(0.02), .bearings = roller_bearings,
+     .dim = dim::none, .bounds = {.lo = 0, .hi = 1}, .def = value(0.02), .bearings = planar_rollers,
      .elsewhere = kPlanarRim, .when = ring_modes_only,
      .meaning = "flexibility = \"ring_modes\": damping ratio of every bending mode"},
 
@@ -361,13 +416,14 @@ constexpr Row kRows[] = {
     {.section = "*_ring.load", .key = "fy", .kind = time_function, .field = FIELD(ring->load.fy), .dim = dim::force,
      .def = value(0), .when = force_needs_free_centre, .otherwise = 0, .meaning = "force along y"},
     {.section = "*_ring.load", .key = "fz", .kind = time_function, .field = FIELD(ring->load.fz), .dim = dim::force,
-     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
-     .when = axial_force_needs_axially_free, .otherwise = 0, .meaning = "axial force along z"},
+     .def = value(0), .bearings = spatial_bearings, .elsewhere = kSpatialDirection,
+     .when = axial_force_needs_axially_free, .then = axial_load_carried_by_ribs, .otherwise = 0,
+     .meaning = "axial force along z (spatial roller bearings: one their ribs carry)"},
     {.section = "*_ring.load", .key = "mx", .kind = time_function, .field = FIELD(ring->load.mx), .dim = dim::moment,
-     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .def = value(0), .bearings = spatial_bearings, .elsewhere = kSpatialDirection,
      .when = tilting_moment_needs_free_tilt, .otherwise = 0, .meaning = "tilting moment about x (tilt = \"free\")"},
     {.section = "*_ring.load", .key = "my", .kind = time_function, .field = FIELD(ring->load.my), .dim = dim::moment,
-     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .def = value(0), .bearings = spatial_bearings, .elsewhere = kSpatialDirection,
      .when = tilting_moment_needs_free_tilt, .otherwise = 0, .meaning = "tilting moment about y (tilt = \"free\")"},
     {.section = "*_ring.load", .key = "mz", .kind = time_function, .field = FIELD(ring->load.mz), .dim = dim::moment,
      .def = value(0), .when = moment_needs_free_ring, .otherwise = 0,
@@ -383,28 +439,28 @@ constexpr Row kRows[] = {
      .then = damper_has_spring, .meaning = "radial, in x and y"},
     {.section = "*_ring.support", .key = "axial_stiffness", .kind = number,
      .field = FIELD(ring->support.axial_stiffness), .dim = dim::stiffness, .bounds = positive, .def = value(0),
-     .bearings = ball_bearings, .elsewhere = kSpatialDirection, .when = axial_support_needs_axially_free,
+     .bearings = spatial_bearings, .elsewhere = kSpatialDirection, .when = axial_support_needs_axially_free,
      .meaning = "along z"},
     {.section = "*_ring.support", .key = "axial_damping", .kind = number, .field = FIELD(ring->support.axial_damping),
-     .dim = dim::damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings,
+     .dim = dim::damping, .bounds = non_negative, .def = value(0), .bearings = spatial_bearings,
      .elsewhere = kSpatialDirection, .when = axial_support_needs_axially_free, .then = damper_has_spring,
      .meaning = "along z"},
     {.section = "*_ring.support", .key = "tilt_stiffness", .kind = number,
      .field = FIELD(ring->support.tilt_stiffness), .dim = dim::angular_stiffness, .bounds = positive,
-     .def = value(0), .bearings = ball_bearings, .elsewhere = kSpatialDirection,
+     .def = value(0), .bearings = spatial_bearings, .elsewhere = kSpatialDirection,
      .when = tilt_support_needs_free_tilt, .meaning = "about x and y (tilt = \"free\")"},
     {.section = "*_ring.support", .key = "tilt_damping", .kind = number, .field = FIELD(ring->support.tilt_damping),
-     .dim = dim::angular_damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings,
+     .dim = dim::angular_damping, .bounds = non_negative, .def = value(0), .bearings = spatial_bearings,
      .elsewhere = kSpatialDirection, .when = tilt_support_needs_free_tilt, .then = damper_has_spring,
      .meaning = "about x and y (tilt = \"free\")"},
 
     // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
     {.section = "carrier", .key = "radius", .kind = number, .field = FIELD(scene.carrier.radius), .dim = dim::length,
-     .bounds = positive, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .then = carrier_without_gravity,
+     .bounds = positive, .bearings = planar_rollers, .elsewhere = kPlanarCarrier, .then = carrier_without_gravity,
      .example = "100 mm",
      .meaning = "R_c: distance from the sun (carrier) axis to the bearing axis, which lies on the carrier's +x"},
     {.section = "carrier", .key = "speed", .kind = time_function, .field = FIELD(scene.carrier.speed),
-     .dim = dim::angular_speed, .bearings = roller_bearings, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
+     .dim = dim::angular_speed, .bearings = planar_rollers, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
      .meaning = "the carrier's speed about z; ring speeds and loads are in the bearing frame, which turns with it"},
 
     // ---- [housing]: optional; the fixed outer ring in a housing on a pedestal (ball bearings) ---
@@ -507,6 +563,10 @@ constexpr Row kRows[] = {
     {.section = "contact", .key = "ball_cage", .kind = table, .field = FIELD(scene.ball_cage), .def = empty_table,
      .bearings = ball_bearings, .contacts = contact::ball_cage_contact, .elsewhere = kBallContact,
      .sub = "contact.*", .meaning = "ball in its pocket (point contact)"},
+    {.section = "contact", .key = "roller_flange", .kind = table, .field = FIELD(scene.roller_flange),
+     .def = empty_table, .bearings = spatial_rollers, .contacts = contact::roller_flange_contact,
+     .elsewhere = kFlangeContact, .sub = "contact.*",
+     .meaning = "a roller's end on a rib (flange) of its ring (point contact; spatial roller bearings with ribs)"},
     {.section = "contact", .key = "cage_land", .kind = table, .field = FIELD(scene.cage_land), .def = empty_table,
      .contacts = contact::cage_land_contact, .sub = "contact.*",
      .meaning = "cage on the guiding land (line contact, land-guided cages)"},
@@ -515,11 +575,12 @@ constexpr Row kRows[] = {
     {.section = "contact.*", .key = "normal", .kind = law, .field = FIELD(contact->normal), .def = registry,
      .then = film_law_has_lubricant, .role = LawRole::normal, .meaning = "normal force law"},
     {.section = "contact.*", .key = "slices", .kind = integer, .field = FIELD(contact->normal.slices),
-     .bounds = {.lo = 1, .hi = 200}, .def = value(1), .contacts = contact::line_contacts, .elsewhere = kLineContact,
-     .meaning = "slices along the roller length (for crowning)"},
+     .bounds = {.lo = 1, .hi = 200}, .def = derived(slices_default, "1; spatial roller bearings' roller_race 20, roller_cage 4"),
+     .contacts = contact::line_contacts, .elsewhere = kLineContact,
+     .meaning = "slices along the roller length (planar: for crowning; spatial: the profile, tilt and skew)"},
     {.section = "contact.*", .key = "crown_drop", .kind = number, .field = FIELD(contact->normal.crown_drop),
      .dim = dim::length, .bounds = non_negative, .def = value(0), .contacts = contact::line_contacts,
-     .elsewhere = kLineContact, .then = crown_drop_fits,
+     .elsewhere = kLineContact, .when = planar_crown_only, .then = crown_drop_fits,
      .meaning = "profile drop at the roller ends (circular crown); 0: straight"},
     {.section = "contact.*", .key = "damping", .kind = law, .field = FIELD(contact->damping), .def = registry,
      .role = LawRole::damping, .meaning = "damping law"},

@@ -34,12 +34,15 @@ struct Bind {
   Material* material = nullptr;            ///< [materials.NAME]
   bool bearing_known = false;              ///< [bearing] has been read: ball() is the scene's bearing
   bool ball() const { return scene.bearing.is_ball_bearing(); }
+  /// A cylindrical roller bearing in the spatial model.
+  bool spatial_roller() const { return !ball() && scene.scene.model == ModelKind::spatial; }
 };
+
 
 /// Where a row's value goes.
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
-                           BearingType*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
+                           BearingType*, RibArrangement*, RollerEnd*, contact::RollerProfileKind*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
                            LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*,
                            contact::SpallEdge*, std::vector<double>*, std::vector<int>*>;
 
@@ -59,8 +62,23 @@ enum class ValueKind {
   integer_list,   ///< an array of integers, each within the row's bounds
 };
 
-/// The bearings that take a key (planar scenes are roller bearings, spatial scenes ball bearings).
-enum BearingBit : unsigned { roller_bearings = 1u, ball_bearings = 2u, any_bearing = 3u };
+/// The bearings that take a key. A scene is a ball bearing (always spatial) or a roller bearing,
+/// planar or spatial: its bits (scene_bearing_bits) are ball_bearings, or roller_bearings with
+/// planar_rollers or spatial_rollers. A row takes a key where its mask shares a bit with them.
+enum BearingBit : unsigned {
+  roller_bearings = 1u,   ///< cylindrical roller bearings, planar or spatial
+  ball_bearings = 2u,
+  any_bearing = 3u,
+  spatial_rollers = 4u,   ///< cylindrical roller bearings in the spatial model only
+  planar_rollers = 8u,    ///< cylindrical roller bearings in the planar model only
+  spatial_bearings = ball_bearings | spatial_rollers,  ///< every spatial scene (axial direction, tilt)
+};
+
+/// The BearingBit mask of the scene being read: ball_bearings, or roller_bearings with its space's bit.
+inline unsigned scene_bearing_bits(const Bind& b) {
+  if (b.ball()) return ball_bearings;
+  return roller_bearings | (b.spatial_roller() ? spatial_rollers : planar_rollers);
+}
 
 /// Allowed values of a number or integer, in SI. Infinite = no bound; checked on given values only.
 struct Bounds {
@@ -104,6 +122,15 @@ inline constexpr Option kBearingTypes[] = {{"cylindrical_roller", int(BearingTyp
                                            {"deep_groove_ball", int(BearingType::deep_groove_ball)},
                                            {"four_point_contact_ball", int(BearingType::four_point_contact_ball)},
                                            {"angular_contact_ball", int(BearingType::angular_contact_ball)}};
+inline constexpr Option kRibArrangements[] = {{"NU", int(RibArrangement::nu)},
+                                              {"NJ", int(RibArrangement::nj)},
+                                              {"NUP", int(RibArrangement::nup)},
+                                              {"N", int(RibArrangement::n)}};
+inline constexpr Option kRollerEnds[] = {{"flat", int(RollerEnd::flat)}, {"spherical", int(RollerEnd::spherical)}};
+inline constexpr Option kRollerProfiles[] = {{"straight", int(contact::RollerProfileKind::straight)},
+                                             {"circular", int(contact::RollerProfileKind::circular)},
+                                             {"lundberg", int(contact::RollerProfileKind::lundberg)},
+                                             {"johns_gohar", int(contact::RollerProfileKind::johns_gohar)}};
 inline constexpr Option kGuidances[] = {{"inner_land", int(CageGuidance::inner_land)},
                                         {"outer_land", int(CageGuidance::outer_land)},
                                         {"rolling_element", int(CageGuidance::rolling_element)}};

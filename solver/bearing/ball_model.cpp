@@ -27,9 +27,11 @@ double annulus_transverse_inertia(double mass, double r_in, double r_out, double
   return mass * (3.0 * (r_in * r_in + r_out * r_out) + width * width) / 12.0;
 }
 
+}  // namespace
+
 /// Ring states: positions (x, y, z, tilts) then velocities (vx, vy, vz, tilt rates, spin).
-void add_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& spec, double r_in,
-              double r_out, double width, double density) {
+void add_spatial_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& spec, double r_in,
+                      double r_out, double width, double density) {
   Body b;
   b.name = name;
   b.kind = kind;
@@ -54,6 +56,8 @@ void add_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& 
   b.size = m.state_size - b.offset;
   m.bodies.push_back(b);
 }
+
+namespace {
 
 /// The cage annulus: bore and outside radius, axial width.
 struct CageGeometry {
@@ -318,9 +322,9 @@ void add_rings(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double D = g.ball.ball_diameter, width = ring_width(scene);
   const double density = scene.material(g.ring_material).density;
-  add_ring(m, BodyKind::inner_ring, "inner_ring", m.params().inner_ring, 0.5 * g.inner_bore_diameter,
+  add_spatial_ring(m, BodyKind::inner_ring, "inner_ring", m.params().inner_ring, 0.5 * g.inner_bore_diameter,
            0.5 * g.inner_race_diameter() + 0.25 * D, width, density);
-  add_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
+  add_spatial_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, 0.5 * g.outer_race_diameter() - 0.25 * D,
            0.5 * g.outer_outside_diameter, width, density);
   add_housing(m, scene);
 }

@@ -28,6 +28,9 @@ const char* segment_kind_name(SegmentKind k) {
     case SegmentKind::cage_land: return "cage_land";
     case SegmentKind::cage_bridge: return "cage_bridge";
     case SegmentKind::outer_ring_mode: return "outer_ring_mode";
+    case SegmentKind::roller_inner_slice: return "roller_inner_slice";
+    case SegmentKind::roller_outer_slice: return "roller_outer_slice";
+    case SegmentKind::roller_flange: return "roller_flange";
   }
   return "?";
 }
@@ -51,7 +54,9 @@ std::shared_ptr<const ModelParameters> copy_parameters(const scene::Scene& scene
 
 }  // namespace
 
-Model build_model(const scene::Scene& scene) { return build_model(scene, builder_for(scene.bearing.type)); }
+Model build_model(const scene::Scene& scene) {
+  return build_model(scene, builder_for(scene.bearing.type, scene.scene.model));
+}
 
 Model build_model(const scene::Scene& scene, const ModelBuilder& builder) {
   builder.check(scene);
@@ -205,6 +210,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
   k.velocity = Vec3(v[svx], v[svy], v[svz]);
   switch (body.kind) {
     case BodyKind::rolling_element:
+      if (body.slot[sax] >= 0) k.rotation = cardan_rotation(v[sax], v[say], 0.0);  // a spatial roller's axis
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:

@@ -24,7 +24,10 @@
 #include <vector>
 
 #include "contact/segments/ball_segments.hpp"
+#include "contact/segments/roller_flange_segment.hpp"
+#include "contact/segments/roller_pocket_segment.hpp"
 #include "contact/segments/roller_segments.hpp"
+#include "contact/segments/roller_slice_segment.hpp"
 #include "io/scene/scene.hpp"
 #include "solver/bearing/internal_springs.hpp"
 #include "solver/bearing/marker.hpp"
@@ -34,8 +37,10 @@ namespace raceway::bearing {
 
 /// Generalized coordinates of a body: the full spatial set; Body::slot[c] is the state index of
 /// coordinate c or -1 (not a state). Angles: ring tilts (sax, say) or the cage's Cardan angles.
-/// Angular velocities: balls in the bearing frame; rings (swx, swy) tilt rates and swz the spin
-/// about the ring's axis; the cage in its own frame. A planar body uses sx, sy, saz, svx, svy, swz.
+/// Angular velocities: balls and spatial rollers in the bearing frame; rings (swx, swy) tilt rates
+/// and swz the spin about the ring's axis; the cage in its own frame. A spatial roller's angles are
+/// sax, say: the direction of its axis R e_z, R = Rx(ax) Ry(ay) (its angle about its own axis is
+/// not a state). A planar body uses sx, sy, saz, svx, svy, swz.
 enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, swz };
 inline constexpr int coordinate_count = 12;
 
@@ -61,9 +66,10 @@ struct Body {
 /// The closed set of segment kinds (each is one dataset group in the output, in this order).
 enum class SegmentKind {
   roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear,
-  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge, outer_ring_mode
+  ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge, outer_ring_mode,
+  roller_inner_slice, roller_outer_slice, roller_flange  ///< spatial roller bearings: race slices, roller end on a rib
 };
-inline constexpr int segment_kind_count = 10;
+inline constexpr int segment_kind_count = 13;
 const char* segment_kind_name(SegmentKind k);
 
 /// The laws an element can evaluate, with their parameters: the contact laws of contact/segments
@@ -71,7 +77,8 @@ const char* segment_kind_name(SegmentKind k);
 /// Dispatched once per element evaluation by std::visit: a jump table, no virtual call per contact.
 using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
                                 contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3,
-                                CageBridgeSpring, RingModeSpring>;
+                                CageBridgeSpring, RingModeSpring, contact::RollerSliceSegment,
+                                contact::RollerPocketBarSegment, contact::RollerFlangeSegment>;
 
 /// An element: a contact or an internal spring between two markers (A, B as in contact/segments),
 /// with its law in Model::laws. `body_a`, `body_b`: the rigid bodies the markers move with (for
@@ -134,6 +141,9 @@ struct Model {
   int arcs_per_ring = 1;                                ///< 2 for a four-point bearing
   double gravity = 0;                                   ///< m/s^2 along -y
   const char* element_group = "rollers";                ///< output group of the rolling elements
+  /// Spatial roller bearings: the planar model of the same scene (the spatial one restricted to the
+  /// plane), whose seating starts the spatial one (spatial_roller_startup.cpp).
+  std::shared_ptr<const Model> planar_restriction;
 
   const ModelParameters& params() const { return *parameters; }
   template <class Law>
@@ -215,8 +225,14 @@ struct ModelBuilder {
 };
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
-/// The builder of a bearing type (the registry: builders.cpp).
-const ModelBuilder& builder_for(scene::BearingType type);
+const ModelBuilder& spatial_roller_model_builder();  ///< spatial cylindrical roller bearing (spatial_roller_model.cpp)
+/// The builder of a bearing type in a space (the registry: builders.cpp).
+const ModelBuilder& builder_for(scene::BearingType type, scene::ModelKind space);
+
+/// A ring of a spatial model (ball_model.cpp): translation, axial position, tilt and spin as its
+/// motion makes them states (positions, then velocities); inertias of a hollow cylinder unless given.
+void add_spatial_ring(Model& m, BodyKind kind, const char* name, const scene::RingSpec& spec, double r_in,
+                      double r_out, double width, double density);
 
 /// The largest magnitude a time function takes (its table's values; it interpolates linearly).
 double max_abs(const scene::TimeFunction& f);

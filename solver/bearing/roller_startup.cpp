@@ -319,7 +319,28 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
   return rep;
 }
 
+StartupReport seat_spatial_roller_bearing(const Model& m, double t0) {
+  if (!m.planar_restriction) throw std::logic_error("start-up: a spatial roller model without its planar restriction");
+  const Model& planar = *m.planar_restriction;
+  StartupReport planar_start = seat_roller_bearing(planar, t0);
+  StartupReport rep;
+  rep.state.assign(static_cast<std::size_t>(m.state_size), 0.0);
+  // The same bodies in the same order: every coordinate both models have is copied (x, y, the
+  // angle and rate about z); the rest (axial, tilt, skew) starts at zero.
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    for (int c = 0; c < coordinate_count; ++c) {
+      const int from = planar.bodies[b].slot[c], to = m.bodies[b].slot[c];
+      if (from >= 0 && to >= 0) rep.state[static_cast<std::size_t>(to)] = planar_start.state[static_cast<std::size_t>(from)];
+    }
+  rep.iterations = planar_start.iterations;
+  rep.residual = planar_start.residual;
+  rep.summary = planar_start.summary + " (the planar seating, lifted into space: aligned, axially centred)";
+  return rep;
+}
+
 StartupReport initial_state(const Model& model, double t0, double azimuth_offset, Equations* equations) {
+  if (model.kind == scene::ModelKind::spatial && model.bearing_type == scene::BearingType::cylindrical_roller)
+    return seat_spatial_roller_bearing(model, t0);
   if (model.kind == scene::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);
   return seat_roller_bearing(model, t0);
 }

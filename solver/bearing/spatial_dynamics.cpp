@@ -1,5 +1,9 @@
 // Spatial body dynamics: Newton for translation in the inertial bearing frame (centrifugal forces
-// come out of the equations); balls are spheres (I dw/dt = M); the cage uses Euler's equations in
+// come out of the equations); balls are spheres (I dw/dt = M); rollers are bodies of revolution
+// whose axis a = R e_z (R = Rx(ax) Ry(ay)) turns with their angular velocity w (bearing frame):
+// Euler's equations in the bearing frame, I dw/dt = M - w x (I w) with I = I_t (1 - a a^T) + I_a a a^T,
+// and the angles' rates from w (their angle about their own axis is no state: nothing depends on
+// it); the cage uses Euler's equations in
 // its principal frame (I = diag(I_t, I_t, I_z)), exact for any tilt short of 90 degrees; rings the
 // small-tilt rotor equations with the gyroscopic coupling of their spin.
 #include <cmath>
@@ -31,6 +35,10 @@ class SpatialDynamics final : public BodyDynamics {
       if (sl[sx + d] >= 0) zdot[sl[sx + d]] = z[sl[svx + d]], zdot[sl[svx + d]] = r[svx + d];
     switch (body.kind) {
       case BodyKind::rolling_element:
+        if (sl[sax] >= 0) {
+          roller_rates(body, z, r, zdot);
+          break;
+        }
         for (int d = 0; d < 3; ++d) zdot[sl[swx + d]] = r[swx + d];
         break;
       case BodyKind::cage: cage_rates(body, z, r, zdot); break;
@@ -46,6 +54,13 @@ class SpatialDynamics final : public BodyDynamics {
     for (int d = 0; d < 3; ++d) rates[svx + d] = w.force[d] / body.mass;
     switch (body.kind) {
       case BodyKind::rolling_element:
+        if (body.slot[sax] >= 0) {
+          const Vec3 a = roller_axis(body, z);
+          const Vec3 along = a.dot(w.moment) * a;  // I^-1 M, I = I_t (1 - a a^T) + I_a a a^T
+          const Vec3 alpha = (w.moment - along) / body.transverse_inertia + along / body.axial_inertia;
+          for (int d = 0; d < 3; ++d) rates[swx + d] = alpha[d];
+          break;
+        }
         for (int d = 0; d < 3; ++d) rates[swx + d] = w.moment[d] / body.axial_inertia;
         break;
       case BodyKind::cage: {
@@ -177,6 +192,26 @@ class SpatialDynamics final : public BodyDynamics {
     return -body.mass * w.cross(w.cross(rho));
   }
 
+  static Vec3 roller_axis(const Body& body, const double* z) {
+    return cardan_rotation(z[body.slot[sax]], z[body.slot[say]], 0.0).col(2);
+  }
+
+  /// A roller: its axis angles' rates from w (bearing frame), and Euler's gyroscopic term
+  /// w x (I w) = (I_a - I_t) (a . w) (w x a), taken through I^-1 (r holds I^-1 M).
+  static void roller_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
+    const auto& sl = body.slot;
+    const Mat3 rotation = cardan_rotation(z[sl[sax]], z[sl[say]], 0.0);
+    const Vec3 a = rotation.col(2);
+    const Vec3 w(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
+    const Vec3 angle_rates = cardan_rates(z[sl[say]], 0.0, rotation.transpose() * w);
+    zdot[sl[sax]] = angle_rates.x();
+    zdot[sl[say]] = angle_rates.y();
+    const Vec3 gyro = (body.axial_inertia - body.transverse_inertia) * a.dot(w) * w.cross(a);
+    const Vec3 along = a.dot(gyro) * a;
+    const Vec3 correction = (gyro - along) / body.transverse_inertia + along / body.axial_inertia;
+    for (int d = 0; d < 3; ++d) zdot[sl[swx + d]] = r[swx + d] - correction[d];
+  }
+
   /// Cardan x-y-z angle rates from the body-frame angular velocity, and Euler's equations.
   static void cage_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
     const auto& sl = body.slot;
@@ -210,7 +245,11 @@ class SpatialDynamics final : public BodyDynamics {
     const Vec3 x(state(sx), state(sy), state(sz)), v(state(svx), state(svy), state(svz));
     e += 0.5 * body.mass * v.squaredNorm();
     if (sl[svy] >= 0) e += body.mass * m_.gravity * x.y();
-    if (body.kind == BodyKind::rolling_element) {
+    if (body.kind == BodyKind::rolling_element && sl[sax] >= 0) {
+      const Vec3 w(state(swx), state(swy), state(swz));
+      const double spin = roller_axis(body, z).dot(w);
+      e += 0.5 * body.transverse_inertia * (w.squaredNorm() - spin * spin) + 0.5 * body.axial_inertia * spin * spin;
+    } else if (body.kind == BodyKind::rolling_element) {
       e += 0.5 * body.axial_inertia * Vec3(state(swx), state(swy), state(swz)).squaredNorm();
     } else {
       e += 0.5 * body.transverse_inertia * (state(swx) * state(swx) + state(swy) * state(swy));

@@ -22,7 +22,8 @@ struct StartupReport {
   std::string summary;
 };
 
-/// The consistent initial state of the model at t0. `azimuth_offset` (spatial) turns the whole
+/// The consistent initial state of the model at t0. `azimuth_offset` (spatial ball bearings; a
+/// spatial roller bearing starts from its planar seating and takes none) turns the whole
 /// ball set and the cage about z (ball k starts at offset + 2 pi k / Z): with the loads turned by
 /// the same angle, the same physical state. Throws std::runtime_error when no equilibrium is found.
 /// `equations` (spatial): where it has heavy contacts (cut into parts), the seating's contact
@@ -34,6 +35,11 @@ StartupReport initial_state(const Model& model, double t0, double azimuth_offset
 /// (each roller's radial position balancing its inner and outer contact and its centrifugal force
 /// at the epicyclic orbital speed), then velocities set to pure rolling.
 StartupReport seat_roller_bearing(const Model& model, double t0);
+
+/// Spatial cylindrical roller bearing: the planar seating of its planar restriction
+/// (Model::planar_restriction), its coordinates copied into the spatial state (axial, tilt and skew
+/// at zero): aligned and without axial load that is the spatial model's seating as well.
+StartupReport seat_spatial_roller_bearing(const Model& model, double t0);
 
 /// Spatial ball bearing, quasi-static seating with the same contact functions the dynamics use:
 /// unknowns are the free ring coordinates (translation, tilt) and each ball's radial and axial

@@ -53,7 +53,7 @@ const std::vector<BodySeries>& border_series(scene::ModelKind kind) {
   return kind == scene::ModelKind::spatial ? spatial : planar;
 }
 
-const std::vector<BodySeries>& element_series(scene::ModelKind kind) {
+const std::vector<BodySeries>& element_series(const bearing::Model& m) {
   static const std::vector<BodySeries> planar = {
       {"position", Quantity::position, {0, 1}, "m", "roller centres x, y"},
       {"velocity", Quantity::velocity, {0, 1}, "m/s", "roller centre velocities"},
@@ -65,7 +65,17 @@ const std::vector<BodySeries>& element_series(scene::ModelKind kind) {
       {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "ball angular velocities, bearing frame"},
       {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
        "ball centre acceleration and angular acceleration, bearing frame"}};
-  return kind == scene::ModelKind::spatial ? spatial : planar;
+  // Spatial rollers: the balls' series, said of rollers, and the angles of their axes.
+  static const std::vector<BodySeries> spatial_rollers = {
+      {"position", Quantity::position, {0, 1, 2}, "m", "roller centres"},
+      {"angles", Quantity::angles, {0, 1}, "rad",
+       "the roller axis's Cardan angles about x and y (axis = Rx Ry e_z: its tilt and skew at the roller's azimuth)"},
+      {"velocity", Quantity::velocity, {0, 1, 2}, "m/s", "roller centre velocities"},
+      {"angular_velocity", Quantity::angular_velocity, {0, 1, 2}, "rad/s", "roller angular velocities, bearing frame"},
+      {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
+       "roller centre acceleration and angular acceleration, bearing frame"}};
+  if (m.kind != scene::ModelKind::spatial) return planar;
+  return m.bearing_type == scene::BearingType::cylindrical_roller ? spatial_rollers : spatial;
 }
 
 /// The `components` attribute of a series: what each of its columns is ("x", "about z", ...).
@@ -166,7 +176,7 @@ constexpr double kIndexShare = 0.01;
 /// The datasets the writer defines for `m` (OutputWriter's constructor and define_segment_groups).
 double dataset_count(const bearing::Model& m, bool segments) {
   double n = 2 + static_cast<double>(m.first_element * static_cast<int>(border_series(m.kind).size())) +
-             static_cast<double>(element_series(m.kind).size()) + PocketSteps::quantities;
+             static_cast<double>(element_series(m).size()) + PocketSteps::quantities;
   n += 2;  // /cage/epicyclic_speed, /cage/rolling_speed (both kinds)
   if (!segments) return n;
   std::set<std::pair<int, bool>> kinds;  // (kind, line family)
@@ -204,7 +214,7 @@ OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scen
   // As run_scene counts them: t = 0 and every whole interval up to end_time. Held as a double
   // first: a scene that passed the sane ranges can still ask for 1e17 samples.
   const double samples = std::floor(end / dt + 1e-9) + 1;
-  long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m.kind));
+  long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m));
   values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   if (const bearing::Housing* housing = bearing::housing_of(m)) values += HousingSensor::quantities * housing->sensor_samples();
@@ -344,7 +354,7 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
                         "epicyclic speed");
   }
   const auto n = static_cast<std::size_t>(m.element_count);
-  for (const BodySeries& s : element_series(m.kind)) {
+  for (const BodySeries& s : element_series(m)) {
     const std::string path = std::string("/") + m.element_group + "/" + s.name;
     file_.define_series(path, row_shape(s, {n}), s.unit, s.meaning);
     file_.set_attribute(path, "components", component_names(s));
@@ -357,7 +367,7 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
     for (const BodySeries& s : border_series(m.kind))
       border_ids_.push_back(file_.series_id("/" + m.bodies[static_cast<std::size_t>(b)].name + "/" + s.name));
   epicyclic_ = file_.series_id("/cage/epicyclic_speed"), rolling_ = file_.series_id("/cage/rolling_speed");
-  for (const BodySeries& s : element_series(m.kind))
+  for (const BodySeries& s : element_series(m))
     element_ids_.push_back(file_.series_id(std::string("/") + m.element_group + "/" + s.name));
   file_.set_time_scale("/time", "time");
   file_.set_attribute("/", "state_names", m.state_name);
@@ -460,7 +470,7 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
   file_.append(epicyclic_, std::span<const double>(&epi, 1));
   const double rolling = rolling_cage_speed(m_, eq, t);
   file_.append(rolling_, std::span<const double>(&rolling, 1));
-  const auto& all = element_series(m_.kind);
+  const auto& all = element_series(m_);
   std::vector<BodySample> samples;
   for (int k = 0; k < m_.element_count; ++k) {
     const int b = m_.first_element + k;

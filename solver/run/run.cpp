@@ -56,7 +56,7 @@ json::JsonObject RunSummary::to_json() const {
   j.add("driven_ring_revolutions", driven_ring_revolutions);
   j.add("inner_ring_contact_force_n", inner_ring_contact_force_n);
   j.add("inner_ring_load_n", inner_ring_load_n);
-  if (model_kind == "spatial") j.add("max_ball_load_n", max_ball_load_n);
+  if (model_kind == "spatial") j.add(spatial_rollers ? "max_roller_load_n" : "max_ball_load_n", max_ball_load_n);
   j.add("model_kind", model_kind);
   j.add("energy_initial_j", energy_initial_j);
   j.add("energy_final_j", energy_final_j);
@@ -318,6 +318,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   drain_output(rethrow);
   RunSummary sum;
   sum.model_kind = model_.kind == scene::ModelKind::spatial ? "spatial" : "planar";
+  sum.spatial_rollers = model_.kind == scene::ModelKind::spatial && model_.bearing_type == scene::BearingType::cylindrical_roller;
   totals_.summarize(sum, t, integrator_->statistics(), eq_, executor_, wall());
   // The integrator since the last restart (a checkpoint restarts it): its method, the states that
   // limit its step and the split of its time.

@@ -99,7 +99,8 @@ struct RunSummary {
   double driven_ring_revolutions = 0;
   std::vector<double> inner_ring_contact_force_n;  ///< mean over the second half, from the rolling elements
   std::vector<double> inner_ring_load_n;           ///< applied, mean over the same samples
-  double max_ball_load_n = 0;       ///< spatial: largest inner-groove ball load, second half
+  double max_ball_load_n = 0;       ///< spatial: largest inner-groove ball (or roller: its slices) load, second half
+  bool spatial_rollers = false;     ///< a spatial roller bearing: the summary says max_roller_load_n
   std::string model_kind = "planar";
   double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
   int output_samples = 0;

@@ -70,7 +70,8 @@ void RunTotals::record(double t, const std::vector<double>& z, const bearing::Eq
   constexpr int normal_force = contact::field_index(contact::point_diagnostic_fields, "normal_force");
   std::vector<double> element_load(static_cast<std::size_t>(m_.element_count), 0.0);
   for (std::size_t s = 0; s < m_.segments.size(); ++s)
-    if (m_.segments[s].kind == bearing::SegmentKind::ball_inner_groove)
+    if (m_.segments[s].kind == bearing::SegmentKind::ball_inner_groove ||
+        m_.segments[s].kind == bearing::SegmentKind::roller_inner_slice)  // a spatial roller: its slices added
       element_load[static_cast<std::size_t>(m_.segments[s].element)] += eq.diagnostic(s, normal_force);
   for (double q : element_load) max_element_load_ = std::max(max_element_load_, q);
   const std::vector<double> none(z.size(), 0.0);

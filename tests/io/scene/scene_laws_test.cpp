@@ -26,8 +26,14 @@ struct Accepted {
   unsigned contacts;
 };
 constexpr unsigned kLine = contact::roller_race_contact | contact::roller_cage_contact | contact::cage_land_contact;
-constexpr unsigned kPoint = contact::ball_race_contact | contact::ball_cage_contact;
+constexpr unsigned kPoint = contact::ball_race_contact | contact::ball_cage_contact | contact::roller_flange_contact;
 constexpr unsigned kAll = kLine | kPoint;
+
+/// kPlanarMinimal in the spatial model, its outer ring held axially.
+std::string spatial_roller_minimal() {
+  return replaced(replaced(kPlanarMinimal, "model = \"planar\"", "model = \"spatial\""), "translation = \"fixed\"",
+                  "translation = \"fixed\"\naxial = \"fixed\"");
+}
 
 /// What each contact accepts today, written out independently of the registry's table.
 constexpr Accepted kExpected[] = {
@@ -55,7 +61,7 @@ bool expected(LawRole role, std::string_view name, ContactKindBit contact) {
 TEST(LawRegistry, EachContactAcceptsExactlyTheListedLaws) {
   std::set<std::string_view> names = {"bogus", "", "Hertz", "palmgren "};
   for (const Accepted& a : kExpected) names.insert(a.name);
-  ASSERT_EQ(contact::contact_kinds().size(), 5u);
+  ASSERT_EQ(contact::contact_kinds().size(), 6u);
   for (const ContactKindBit contact : contact::contact_kinds())
     for (const LawRole role : kRoles)
       for (const std::string_view name : names) {
@@ -92,19 +98,26 @@ TEST(LawRegistry, IdsNamesAndDefaults) {
   EXPECT_EQ(contact::known_law_names(LawRole::traction, contact::ball_race_contact), "tanh, none, limiting_shear");
   EXPECT_EQ(contact::known_law_names(LawRole::traction, contact::ball_cage_contact), "tanh, none");
   EXPECT_EQ(contact::known_law_names(LawRole::normal, contact::roller_cage_contact), "palmgren, hydrodynamic");
+  EXPECT_EQ(contact::known_law_names(LawRole::normal, contact::roller_flange_contact), "hertz");
+  EXPECT_EQ(contact::known_law_names(LawRole::traction, contact::roller_flange_contact), "tanh, none");
+  EXPECT_EQ(contact::default_law(LawRole::normal, contact::roller_flange_contact).id, LawId::hertz);
+  EXPECT_EQ(contact::contact_name(contact::roller_flange_contact), "roller_flange");
+  EXPECT_EQ(contact::contacts_description(kPoint), "point contacts (ball_race, ball_cage, roller_flange)");
   EXPECT_EQ(contact::contacts_description(kLine), "line contacts (roller_race, roller_cage, cage_land)");
   EXPECT_EQ(contact::contacts_description(contact::ball_race_contact), "ball_race contacts");
 }
 
 // ---- the laws through the scene parser ---------------------------------------------------------
 
-/// A planar or spatial scene (with a lubricant that limiting-shear traction and the film laws need)
-/// and one law set (EHD traction with the EHD film it needs).
+/// A planar roller, spatial roller or spatial ball scene (with a lubricant that limiting-shear
+/// traction and the film laws need) and one law set (EHD traction with the EHD film it needs).
 std::string scene_with_law(ContactKindBit contact, LawRole role, std::string_view name) {
   const bool planar = contact == contact::roller_race_contact || contact == contact::roller_cage_contact;
-  std::string base =
-      planar ? std::string(kPlanarMinimal) + "[lubricant]\nviscosity = \"30 mPa s\"\n"
-             : spatial("", "[lubricant]\nviscosity = \"30 mPa s\"\nlimiting_shear_coefficient = 0.07\n");
+  const std::string lubricant = "[lubricant]\nviscosity = \"30 mPa s\"\n";
+  std::string base = planar ? std::string(kPlanarMinimal) + lubricant
+                     : contact == contact::roller_flange_contact
+                         ? spatial_roller_minimal() + lubricant
+                         : spatial("", lubricant + "limiting_shear_coefficient = 0.07\n");
   if (name == "pocket_film" && !planar)  // a film of cylindrical pockets, whose cage a land guides
     base = replaced(base, "guidance = \"rolling_element\"\npocket_clearance = \"0.4 mm\"\npocket_shape = \"spherical\"",
                     "guidance = \"outer_land\"\nland_clearance = \"0.3 mm\"\npocket_clearance = \"0.4 mm\"\n"
@@ -121,6 +134,7 @@ const ContactSpec& contact_of(const Scene& s, ContactKindBit contact) {
     case contact::roller_cage_contact: return s.roller_cage;
     case contact::ball_race_contact: return s.ball_race;
     case contact::ball_cage_contact: return s.ball_cage;
+    case contact::roller_flange_contact: return s.roller_flange;
     default: return s.cage_land;
   }
 }
@@ -175,12 +189,27 @@ TEST(SceneLaws, MisplacedOrMisspeltNamesGetAHint) {
   EXPECT_EQ(error_of(scene_with_law(contact::ball_cage_contact, LawRole::traction, "limiting_shear")).reason(),
             "unknown traction law 'limiting_shear'; known: tanh, none ('limiting_shear' is for ball_race contacts)");
   EXPECT_EQ(error_of(scene_with_law(contact::roller_race_contact, LawRole::normal, "hertz")).reason(),
-            "unknown normal law 'hertz'; known: palmgren, moes_ehd ('hertz' is for point contacts (ball_race, ball_cage))");
+            "unknown normal law 'hertz'; known: palmgren, moes_ehd ('hertz' is for point contacts (ball_race, ball_cage, "
+            "roller_flange))");
   EXPECT_EQ(error_of(scene_with_law(contact::ball_race_contact, LawRole::damping, "hunt_crosley")).reason(),
             "unknown damping law 'hunt_crosley' (did you mean 'hunt_crossley'?); known: hunt_crossley, none");
   // a name of another role is unknown in this one
   EXPECT_EQ(error_of(scene_with_law(contact::ball_race_contact, LawRole::normal, "none")).reason(),
             "unknown normal law 'none'; known: hertz");
+}
+
+// The rib contact is a spatial roller bearing's: refused, naming the section, on a planar roller
+// bearing and on a ball bearing.
+TEST(SceneLaws, FlangeContactOnlyInSpatialRollerBearings) {
+  const std::string flange = "\n[contact.roller_flange]\nfriction_coefficient = 0.05\n";
+  const Scene s = parse(spatial_roller_minimal() + flange);
+  EXPECT_EQ(s.roller_flange.normal.id, LawId::hertz);
+  EXPECT_EQ(s.roller_flange.traction.friction_coefficient, 0.05);
+  for (const std::string& text : {std::string(kPlanarMinimal) + flange, spatial("", flange)}) {
+    const SceneError e = error_of(text);
+    EXPECT_EQ(e.key(), "contact.roller_flange") << e.what();
+    EXPECT_NE(e.reason().find("spatial roller bearings"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SceneLaws, LimitingShearNeedsALubricant) {

@@ -55,6 +55,9 @@ mpi() {
 sed -e 's/^end_time = .*/end_time = "6 ms"/' "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/planar.toml"
 sed -e 's/^end_time = .*/end_time = "3 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
 sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fine_traction.toml" >"$work/cut.toml"
+# The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each).
+sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
+  "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/spatial_roller.toml"
 
 bitwise() {
   local scene=$1
@@ -273,6 +276,7 @@ output_disk_full) output_disk_full ;;
 killed_worker) killed_worker ;;
 bitwise_planar) bitwise "$work/planar.toml" ;;
 bitwise_spatial) bitwise "$work/spatial.toml" ;;
+bitwise_spatial_roller) bitwise "$work/spatial_roller.toml" ;;
 bitwise_cut)
   bitwise "$work/cut.toml"
   # Segments were really cut over ranks in some plan (the 13 blocks of a loaded contact).

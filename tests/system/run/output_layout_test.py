@@ -5,7 +5,7 @@ and the root carries the layout version, the build and the bearing attributes. T
 with the raceway package (io/report/raceway, the reader users are pointed to).
 
     output_layout_test.py CASE RACEWAY SOURCE_DIR [BUILD_DIR]
-        CASE: planar, spatial, planar_bridges   one run each against the documented tables
+        CASE: planar, spatial, spatial_rollers, planar_bridges   one run each against the documented tables
               shared_names                      a planar and a spatial run speak one dialect
               previous                          the committed layout version 2 files
                                                 (tests/system/run/layout_v2) read under version 3's names
@@ -96,11 +96,14 @@ def shape_matches(tokens, shape, bound, scope):
 def check_file(path, sections, doc):
     with RacewayOutput(path) as f:
         documented = {}
+        # A spatial roller run writes the spatial layout with /rollers in place of /balls.
+        skip = "/balls/" if f.attrs.get("rolling_element") == "roller" else None
         for title in sections:
             for paths, tokens, units in documented_tables(doc)[title]:
                 for p in paths:
                     for q in expand(p, f):
-                        documented[q] = (tokens, units, title)
+                        if not (skip and q.startswith(skip)):
+                            documented[q] = (tokens, units, title)
         in_file = set(f.datasets())
         bound = {"T": len(f["time"])}
         for p in sorted(in_file):
@@ -308,6 +311,8 @@ def main():
         "spatial": ("6309_R3.toml", "1 ms", ["Spatial (ball-bearing) runs"]),
         "housing": ("cwru_6205_outer_race_007.toml", "2 ms",
                     ["Spatial (ball-bearing) runs", "Housing (spatial runs with a `[housing]`)"]),
+        "spatial_rollers": ("nj_heavy_spatial_roller.toml", "1 ms",
+                            ["Spatial (ball-bearing) runs", "Spatial roller-bearing runs"]),
         "planar_bridges": ("seed003_flexible_bridges.toml", "0.3 ms",
                            ["Planar (roller-bearing) runs",
                             'Flexible cage bridges (planar runs with `[cage] bridges = "flexible"`)']),

@@ -1,0 +1,123 @@
+// The rules of the spatial cylindrical roller bearing's keys (scene_rules.hpp): its profile, roller
+// ends and ribs, the slices of its contacts, and which axial loads its ribs carry.
+#include <algorithm>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "io/scene/scene_rules.hpp"
+
+namespace raceway::scene::schema::rules {
+
+// ---- defaults ------------------------------------------------------------------------------------
+
+// A spatial roller's race contact in 20 slices (a circular crown's load profile to about 1 % of
+// the peak, tilt and edge loading resolved) and its pocket bars in 4 (skew against the bar's ends);
+// planar: one (the planar model has no tilt).
+std::optional<double> slices_default(const Bind& b) {
+  if (!b.spatial_roller()) return 1;
+  if (b.contact_kind == contact::roller_race_contact) return 20;
+  return b.contact_kind == contact::roller_cage_contact ? 4 : 1;
+}
+// A flat end touches the rib with the rounding of its edge (the profile's corner, or a tenth of the
+// roller where the profile has none); a spherical end is a sphere of about the pitch radius.
+std::optional<double> end_radius_default(const Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  if (g.roller.end == RollerEnd::spherical) return 0.5 * g.pitch_diameter;
+  return g.roller.corner_radius > 0 ? g.roller.corner_radius : 0.1 * g.roller_diameter;
+}
+
+// ---- conditions ----------------------------------------------------------------------------------
+
+std::optional<std::string> circular_profile_only(const Section&, const Bind& b) {
+  if (b.scene.bearing.roller.profile == contact::RollerProfileKind::circular) return std::nullopt;
+  return "only for roller_profile = \"circular\"";
+}
+std::optional<std::string> logarithmic_profile_only(const Section&, const Bind& b) {
+  const auto p = b.scene.bearing.roller.profile;
+  if (p == contact::RollerProfileKind::lundberg || p == contact::RollerProfileKind::johns_gohar) return std::nullopt;
+  return "only for a logarithmic roller_profile (\"lundberg\" or \"johns_gohar\")";
+}
+std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
+  if (!b.spatial_roller()) return std::nullopt;
+  return "the planar model's crowning; a spatial roller's crown is bearing.roller_profile";
+}
+
+// ---- checks --------------------------------------------------------------------------------------
+
+// The spatial roller's profile as contact/laws/roller_profile.hpp checks it: roller_length is the
+// straight part, the corners add corner_radius at each end.
+void roller_profile_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  contact::RollerProfile p;
+  p.kind = g.roller.profile;
+  p.length = g.roller_length + 2 * g.roller.corner_radius;
+  p.corner_radius = g.roller.corner_radius;
+  p.crown_radius = g.roller.crown_radius;
+  p.flat_length = g.roller.flat_length;
+  p.design_load = g.roller.design_load;
+  p.reduced_modulus = 1e11;  // any positive value: the checks are on lengths and loads
+  p.rolling_radius = 0.25 * g.roller_diameter;
+  const std::string why = contact::validate_profile(p);
+  s.check(why.empty(), "roller_profile", [&] { return "the roller profile does not fit: " + why; });
+}
+
+void end_radius_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  if (g.roller.end == RollerEnd::flat)
+    s.check(g.roller.end_radius < 0.5 * g.roller_diameter, "end_radius", [&] {
+      return fmt::format("a flat end's edge rounding of {} must be smaller than the roller radius ({})",
+                         mm(g.roller.end_radius), mm(0.5 * g.roller_diameter));
+    });
+  else
+    s.check(g.roller.end_radius > 0.5 * g.roller_diameter, "end_radius", [&] {
+      return fmt::format("a spherical end's radius of {} must exceed the roller radius ({}): the end would not be a "
+                         "cap of the sphere",
+                         mm(g.roller.end_radius), mm(0.5 * g.roller_diameter));
+    });
+}
+
+void rib_angle_fits_end(const Row&, const Section& s, Bind& b) {
+  const RollerGeometry& r = b.scene.bearing.roller;
+  s.check(r.end == RollerEnd::spherical || r.rib_angle > 0, "rib_angle", [] {
+    return std::string("a flat roller end on a radial rib (rib_angle = 0) touches along a whole edge, not at a Hertz "
+                       "point: give the rib an angle (e.g. \"0.5 deg\") or the rollers spherical ends");
+  });
+}
+
+void end_clearance_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  s.check(g.roller.end_clearance < 0.1 * g.roller_length, "roller_end_clearance", [&] {
+    return fmt::format("an axial play of {} is more than a tenth of the roller length ({}); roller end play is "
+                       "some tens of micrometres",
+                       mm(g.roller.end_clearance), mm(g.roller_length));
+  });
+}
+
+// A spatial roller bearing carries an axial load between its rings only through ribs on both: NU
+// and N have ribs on one ring only (their rings float axially against each other: a locating
+// bearing elsewhere takes the load); NJ's inner rib (its -z side) takes an inner-ring load along
+// +z (an outer-ring load along -z); NUP takes both. The model's races are cylinders without edges:
+// a load nothing carries would slide the ring away for ever.
+void axial_load_carried_by_ribs(const Row&, const Section& s, Bind& b) {
+  if (!b.spatial_roller()) return;
+  const TimeFunction& fz = b.ring->load.fz;
+  double lo = 0, hi = 0;
+  for (const double v : fz.values) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (lo == 0 && hi == 0) return;
+  const RibArrangement ribs = b.scene.bearing.roller.ribs;
+  const bool inner = b.ring == &b.scene.inner_ring;
+  // The direction an NJ bearing carries on this ring: +z on the inner ring, -z on the outer.
+  const bool along_carried = inner ? lo >= 0 : hi <= 0;
+  const char* design = ribs == RibArrangement::nu ? "NU" : ribs == RibArrangement::n ? "N" : "NJ";
+  if (ribs == RibArrangement::nu || ribs == RibArrangement::n)
+    s.fail("fz", fmt::format("an {} bearing has ribs on one ring only and carries no axial load between its rings "
+                             "(bearing.ribs = \"NJ\" or \"NUP\" do)",
+                             design));
+  if (ribs == RibArrangement::nj && !along_carried)
+    s.fail("fz", fmt::format("an NJ bearing's single inner rib (its -z side) carries an axial load along {} on the "
+                             "{} ring only; bearing.ribs = \"NUP\" carries both directions",
+                             inner ? "+z" : "-z", inner ? "inner" : "outer"));
+}
+
+}  // namespace raceway::scene::schema::rules
