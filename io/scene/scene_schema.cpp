@@ -1,90 +1,21 @@
-// The scene schema table (scene_schema.hpp): every key of a scene file, in reading order.
+// The scene schema table (scene_schema.hpp): every key of a scene file, in reading order. This
+// file holds [scene] to [*_ring.support]; scene_schema_run.cpp the rest.
 #include "io/scene/scene_schema.hpp"
 
 #include <algorithm>
-#include <numbers>
+#include <vector>
 
 #include "io/scene/scene_rules.hpp"
+#include "io/scene/scene_schema_rows.hpp"
 
 namespace raceway::scene::schema {
 
+namespace table {
 namespace {
 
 using contact::LawRole;
 using enum ValueKind;
 using namespace rules;
-
-/// Where a row's value goes, as a path from the Bind: FIELD(scene.bearing.pitch_diameter).
-#define FIELD(path) [](Bind& b) -> Field { return &b.path; }
-
-/// Tables: an absent one is read as empty, every key at its default.
-constexpr Default empty_table = value(0);
-
-// Why a key is rejected where the bearing or contact does not take it.
-constexpr std::string_view kBallOnly =
-    "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
-constexpr std::string_view kSpatialCage =
-    "only for ball bearings (model = \"spatial\"): a planar cage moves in x, y and about z, and a spatial roller "
-    "bearing's cage takes its section from the rollers as the planar one does";
-constexpr std::string_view kRollerCage =
-    "only for planar roller bearings: the bars between a roller cage's pockets, flexible in the plane (a ball "
-    "cage's pockets are drilled; a spatial roller cage's bars are rigid)";
-constexpr std::string_view kSpatialRing =
-    "only for spatial scenes (model = \"spatial\"): a planar ring moves in x, y and about z";
-constexpr std::string_view kSpatialDirection =
-    "only for spatial scenes (model = \"spatial\"): a planar model has no axial direction and no tilt";
-constexpr std::string_view kRollerContact =
-    "roller-race and roller-cage contacts belong to roller bearings; a ball bearing's are [contact.ball_race] and "
-    "[contact.ball_cage]";
-constexpr std::string_view kFlangeContact =
-    "roller-end on rib contacts belong to spatial roller bearings (model = \"spatial\"): a planar roller has no "
-    "axial direction";
-constexpr std::string_view kBallContact =
-    "ball-race and ball-cage contacts belong to ball bearings; a roller bearing's are [contact.roller_race], "
-    "[contact.roller_cage] (and, spatial, [contact.roller_flange])";
-constexpr std::string_view kLineContact =
-    "slices and crown_drop are for line contacts (roller bearings); a ball contact is a Hertz point contact";
-constexpr std::string_view kBallRaceContact =
-    "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
-    "at the contact centre";
-
-constexpr std::string_view kSpatialRoller =
-    "only for cylindrical roller bearings in the spatial model (model = \"spatial\"): the planar model's rollers have "
-    "no profile, ends or ribs";
-constexpr Bounds kRibAngle{.lo = 0, .hi = std::numbers::pi / 18, .hi_open = true, .unit = "deg",
-                           .note = " (ribs open by a fraction of a degree to a few degrees)"};
-
-constexpr std::string_view kPlanarCarrier =
-    "only for planar roller bearings (model = \"planar\"): the carrier's frame terms act in the bearing's plane";
-
-constexpr std::string_view kPlanarRim =
-    "only for planar roller bearings (model = \"planar\"): the rim's in-plane bending modes";
-
-constexpr std::string_view kMaxOrderText = "5 (bdf), 12 (adams), 8 (erk), 5 (ark)";
-constexpr std::string_view kMaxOrderDefaultText = "5 (bdf), 12 (adams), 5 (erk), 4 (ark)";
-
-constexpr Bounds kConformity{.lo = 0.5, .hi = 0.6, .lo_open = true,
-                             .note = " (conformity = groove radius / ball diameter: the groove radius must exceed the "
-                                     "ball radius; ball bearing grooves are 0.505 to 0.58)"};
-constexpr Bounds kArcAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg"};
-constexpr std::string_view kContactAngleMissing =
-    "required for type = \"angular_contact_ball\": its free contact angle, e.g. \"40 deg\" (or give the groove "
-    "geometry's radial_clearance, from which it follows)";
-constexpr Bounds kFreeContactAngle{.lo = 0, .hi = std::numbers::pi / 3, .lo_open = true, .hi_open = true, .unit = "deg",
-                                   .note = " (angular contact bearings are made with 15 to 40 deg)"};
-constexpr Bounds kAxialPosition{.lo = -1e-3, .hi = 1e-3, .unit = "um",
-                                .note = " (preload displacements are micrometres to some tens of them)"};
-constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
-                               .note = " (a sanity limit: ball bearings run at a few mrad)"};
-
-constexpr Bounds kMassEccentricity{.lo = 0, .hi = 1e-3, .unit = "um",
-                                   .note = " (machined cages are balanced to some micrometres; 1 mm is a sanity limit)"};
-
-constexpr Bounds kSpallAngle{.lo = -2 * std::numbers::pi, .hi = 2 * std::numbers::pi, .unit = "deg"};
-constexpr Bounds kSpallSize{.lo = 0, .hi = 0.01, .lo_open = true, .unit = "mm",
-                            .note = " (a spall is a fraction of a millimetre to some millimetres)"};
-constexpr Bounds kWavinessAmplitude{.lo = 0, .hi = 1e-4, .unit = "um",
-                                    .note = " (waviness is some tenths of a micrometre to some micrometres)"};
 
 constexpr Row kRows[] = {
     // ---- [scene] --------------------------------------------------------------------------------
@@ -453,235 +384,15 @@ constexpr Row kRows[] = {
      .dim = dim::angular_damping, .bounds = non_negative, .def = value(0), .bearings = spatial_bearings,
      .elsewhere = kSpatialDirection, .when = tilt_support_needs_free_tilt, .then = damper_has_spring,
      .meaning = "about x and y (tilt = \"free\")"},
-
-    // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
-    {.section = "carrier", .key = "radius", .kind = number, .field = FIELD(scene.carrier.radius), .dim = dim::length,
-     .bounds = positive, .bearings = planar_rollers, .elsewhere = kPlanarCarrier, .then = carrier_without_gravity,
-     .example = "100 mm",
-     .meaning = "R_c: distance from the sun (carrier) axis to the bearing axis, which lies on the carrier's +x"},
-    {.section = "carrier", .key = "speed", .kind = time_function, .field = FIELD(scene.carrier.speed),
-     .dim = dim::angular_speed, .bearings = planar_rollers, .elsewhere = kPlanarCarrier, .example = "3000 rpm",
-     .meaning = "the carrier's speed about z; ring speeds and loads are in the bearing frame, which turns with it"},
-
-    // ---- [housing]: optional; the fixed outer ring in a housing on a pedestal (ball bearings) ---
-    {.section = "housing", .key = "mass", .kind = number, .field = FIELD(scene.housing.mass), .dim = dim::mass,
-     .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly, .when = housing_holds_fixed_outer_ring,
-     .meaning = "the housing's mass (the outer ring's is added: they move together in x and y)"},
-    {.section = "housing", .key = "stiffness", .kind = number, .field = FIELD(scene.housing.stiffness),
-     .dim = dim::stiffness, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
-     .when = housing_holds_fixed_outer_ring, .meaning = "radial, in x and y, to ground"},
-    {.section = "housing", .key = "damping", .kind = number, .field = FIELD(scene.housing.damping),
-     .dim = dim::damping, .bounds = non_negative, .def = value(0), .bearings = ball_bearings, .elsewhere = kBallOnly,
-     .when = housing_holds_fixed_outer_ring, .meaning = "radial, in x and y, to ground"},
-    {.section = "housing", .key = "sensor_interval", .kind = number, .field = FIELD(scene.housing.sensor_interval),
-     .dim = dim::time, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
-     .when = housing_holds_fixed_outer_ring, .then = sensor_interval_within_output, .example = "20 us",
-     .meaning = "time between the sensor's samples (displacement, velocity, acceleration of the housing)"},
-
-    // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
-    {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
-     .meaning = "label"},
-    {.section = "lubricant", .key = "viscosity_40", .kind = number, .field = FIELD(scene.lubricant.viscosity_40),
-     .dim = dim::kinematic_viscosity, .bounds = positive, .def = absent, .example = "68 mm^2/s",
-     .meaning = "kinematic viscosity at 40 degC, as oil data sheets give it (with viscosity_100, density and "
-                "temperature: the viscosity by Walther's equation, ASTM D341)"},
-    {.section = "lubricant", .key = "viscosity_100", .kind = number, .field = FIELD(scene.lubricant.viscosity_100),
-     .dim = dim::kinematic_viscosity, .bounds = positive, .def = derived(walther_point_default, "required with viscosity_40"),
-     .then = walther_points_fit, .example = "8.5 mm^2/s", .meaning = "kinematic viscosity at 100 degC"},
-    {.section = "lubricant", .key = "density", .kind = number, .field = FIELD(scene.lubricant.density),
-     .dim = dim::density, .bounds = positive, .def = derived(walther_point_default, "required with viscosity_40"),
-     .example = "870 kg/m^3", .meaning = "the oil's density (dynamic viscosity = density x kinematic viscosity)"},
-    {.section = "lubricant", .key = "temperature", .kind = number, .field = FIELD(scene.lubricant.temperature),
-     .dim = dim::temperature, .bounds = positive, .def = derived(walther_point_default, "required with viscosity_40"),
-     .example = "70 degC", .meaning = "the oil's temperature, where viscosity_40 and viscosity_100 give the viscosity"},
-    {.section = "lubricant", .key = "viscosity", .kind = number, .field = FIELD(scene.lubricant.viscosity),
-     .dim = dim::viscosity, .bounds = positive,
-     .def = derived(walther_viscosity_default, "from viscosity_40, viscosity_100, density and temperature where given"),
-     .then = viscosity_given_once, .meaning = "dynamic viscosity at the bearing temperature"},
-    {.section = "lubricant", .key = "pressure_viscosity", .kind = number,
-     .field = FIELD(scene.lubricant.pressure_viscosity), .dim = dim::inverse_pressure, .bounds = non_negative,
-     .def = value(0), .meaning = "pressure-viscosity coefficient alpha (Barus' exponent; Roelands' initial slope)"},
-    {.section = "lubricant", .key = "pressure_viscosity_law", .kind = choice,
-     .field = FIELD(scene.lubricant.roelands), .def = word("barus"), .options = kPressureViscosityLaws,
-     .noun = "pressure-viscosity law",
-     .meaning = "the viscosity's rise with pressure in the limiting-shear traction: barus (exp(alpha p)) or roelands "
-                "(below Barus at high pressure, the same initial slope)"},
-    {.section = "lubricant", .key = "limiting_shear_coefficient", .kind = number,
-     .field = FIELD(scene.lubricant.limiting_shear_coefficient), .dim = dim::none,
-     .bounds = {.lo = 0, .hi = 0.5, .note = " (0.02 to 0.1 for mineral oils)"}, .def = value(0),
-     .meaning = "limiting shear stress / pressure (limiting_shear traction needs it); 0: none given"},
-    {.section = "lubricant", .key = "viscosity_exponent_cap", .kind = number,
-     .field = FIELD(scene.lubricant.viscosity_exponent_cap), .dim = dim::none,
-     .bounds = {.lo = 0, .hi = 40, .lo_open = true, .note = " (exp(40) times the viscosity is beyond any lubricant)"},
-     .def = value(12),
-     .meaning = "largest alpha p in the Barus law (contact/laws/point_contact.hpp); 12 gives measured traction-curve "
-                "shapes and practical steps"},
-
-    // ---- [life]: optional; what the rating lives take besides the geometry and the run's loads ---
-    // (computed by the report, io/report/report_life.py; docs/life.md). Absent keys store nothing:
-    // the report uses the defaults named here.
-    {.section = "life", .key = "reliability", .kind = number, .field = FIELD(scene.life.reliability), .dim = dim::none,
-     .bounds = {.lo = 90, .hi = 99.95, .note = " (percent: ISO 281's a_1 table runs from 90 to 99.95)"},
-     .def = {.kind = Default::Kind::absent, .text = "90"}, .example = "99",
-     .meaning = "reliability in percent of the modified lives (ISO 281 life modification factor a_1)"},
-    {.section = "life", .key = "contamination_factor", .kind = number, .field = FIELD(scene.life.contamination_factor),
-     .dim = dim::none,
-     .bounds = {.lo = 0, .hi = 1, .lo_open = true,
-                .note = " (ISO 281: 1 extreme cleanliness, 0.5 to 0.6 normal, 0.1 to 0.3 typical contamination; "
-                        "docs/life.md)"},
-     .def = {.kind = Default::Kind::absent, .text = "0.5 (normal cleanliness)"}, .example = "0.5",
-     .meaning = "contamination factor e_C of ISO 281 (docs/life.md gives the standard's guidance)"},
-    {.section = "life", .key = "dynamic_load_rating", .kind = number, .field = FIELD(scene.life.dynamic_load_rating),
-     .dim = dim::force, .bounds = positive,
-     .def = {.kind = Default::Kind::absent, .text = "the catalogue's published value, else ISO 281 from the geometry"},
-     .example = "14.8 kN", .meaning = "published basic dynamic load rating C (the one the lives use)"},
-    {.section = "life", .key = "static_load_rating", .kind = number, .field = FIELD(scene.life.static_load_rating),
-     .dim = dim::force, .bounds = positive,
-     .def = {.kind = Default::Kind::absent, .text = "the catalogue's published value, else ISO 76 from the geometry"},
-     .example = "7.8 kN", .meaning = "published basic static load rating C_0 (axial load factors, fatigue load limit)"},
-    {.section = "life", .key = "fatigue_load_limit", .kind = number, .field = FIELD(scene.life.fatigue_load_limit),
-     .dim = dim::force, .bounds = positive,
-     .def = {.kind = Default::Kind::absent,
-             .text = "the catalogue's published value, else estimated from C_0 (ISO 281)"},
-     .example = "0.335 kN", .meaning = "published fatigue load limit C_u (a_ISO)"},
-    {.section = "life", .key = "lubricant_density", .kind = number, .field = FIELD(scene.life.lubricant_density),
-     .dim = dim::density, .bounds = positive,
-     .def = {.kind = Default::Kind::absent, .text = "870 kg/m^3 (a mineral oil)"}, .example = "870 kg/m^3",
-     .meaning = "lubricant density: the kinematic viscosity nu = [lubricant] viscosity / density of the viscosity "
-                "ratio"},
-
-    // ---- [contact]: one table per contact of the bearing ----------------------------------------
-    {.section = "contact", .key = "roller_race", .kind = table, .field = FIELD(scene.roller_race), .def = empty_table,
-     .bearings = roller_bearings, .contacts = contact::roller_race_contact, .elsewhere = kRollerContact,
-     .sub = "contact.*", .meaning = "roller on the races (line contacts)"},
-    {.section = "contact", .key = "roller_cage", .kind = table, .field = FIELD(scene.roller_cage), .def = empty_table,
-     .bearings = roller_bearings, .contacts = contact::roller_cage_contact, .elsewhere = kRollerContact,
-     .sub = "contact.*", .meaning = "roller on a cage bar (line contacts)"},
-    {.section = "contact", .key = "ball_race", .kind = table, .field = FIELD(scene.ball_race), .def = empty_table,
-     .bearings = ball_bearings, .contacts = contact::ball_race_contact, .elsewhere = kBallContact,
-     .sub = "contact.*", .meaning = "ball in a groove (point contacts)"},
-    {.section = "contact", .key = "ball_cage", .kind = table, .field = FIELD(scene.ball_cage), .def = empty_table,
-     .bearings = ball_bearings, .contacts = contact::ball_cage_contact, .elsewhere = kBallContact,
-     .sub = "contact.*", .meaning = "ball in its pocket (point contact)"},
-    {.section = "contact", .key = "roller_flange", .kind = table, .field = FIELD(scene.roller_flange),
-     .def = empty_table, .bearings = spatial_rollers, .contacts = contact::roller_flange_contact,
-     .elsewhere = kFlangeContact, .sub = "contact.*",
-     .meaning = "a roller's end on a rib (flange) of its ring (point contact; spatial roller bearings with ribs)"},
-    {.section = "contact", .key = "cage_land", .kind = table, .field = FIELD(scene.cage_land), .def = empty_table,
-     .contacts = contact::cage_land_contact, .sub = "contact.*",
-     .meaning = "cage on the guiding land (line contact, land-guided cages)"},
-
-    // ---- [contact.NAME]: laws from the law registry (contact/laws/law_registry.hpp) -------------
-    {.section = "contact.*", .key = "normal", .kind = law, .field = FIELD(contact->normal), .def = registry,
-     .then = film_law_has_lubricant, .role = LawRole::normal, .meaning = "normal force law"},
-    {.section = "contact.*", .key = "slices", .kind = integer, .field = FIELD(contact->normal.slices),
-     .bounds = {.lo = 1, .hi = 200}, .def = derived(slices_default, "1; spatial roller bearings' roller_race 20, roller_cage 4"),
-     .contacts = contact::line_contacts, .elsewhere = kLineContact,
-     .meaning = "slices along the roller length (planar: for crowning; spatial: the profile, tilt and skew)"},
-    {.section = "contact.*", .key = "crown_drop", .kind = number, .field = FIELD(contact->normal.crown_drop),
-     .dim = dim::length, .bounds = non_negative, .def = value(0), .contacts = contact::line_contacts,
-     .elsewhere = kLineContact, .when = planar_crown_only, .then = crown_drop_fits,
-     .meaning = "profile drop at the roller ends (circular crown); 0: straight"},
-    {.section = "contact.*", .key = "damping", .kind = law, .field = FIELD(contact->damping), .def = registry,
-     .role = LawRole::damping, .meaning = "damping law"},
-    {.section = "contact.*", .key = "damping_factor", .kind = number, .field = FIELD(contact->damping.factor),
-     .dim = dim::inverse_speed, .bounds = non_negative, .def = value(0.5), .when = damping_law_on, .otherwise = 0,
-     .meaning = "F = F_elastic (1 + factor d(delta)/dt); 0.5 s/m: restitution about 0.93 at a 0.2 m/s impact"},
-    {.section = "contact.*", .key = "traction", .kind = law, .field = FIELD(contact->traction), .def = registry,
-     .then = traction_fits_normal_law, .role = LawRole::traction, .meaning = "traction (friction) law"},
-    {.section = "contact.*", .key = "friction_coefficient", .kind = number,
-     .field = FIELD(contact->traction.friction_coefficient), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
-     .def = derived(friction_default, "0.1; cage_land 0.05"), .when = traction_law_on,
-     .meaning = "limit of the traction curve"},
-    {.section = "contact.*", .key = "slip_velocity_scale", .kind = number,
-     .field = FIELD(contact->traction.slip_velocity_scale), .dim = dim::speed, .bounds = positive, .def = value(0.05),
-     .when = traction_law_on, .otherwise = 0.05,
-     .meaning = "u_s of the tanh curve: 70 % of the limit at about 1 % slide-to-roll at a few m/s"},
-    {.section = "contact.*", .key = "grid", .kind = cell_grid, .field = FIELD(contact->traction),
-     .def = {.kind = Default::Kind::absent, .text = "[5, 5]"}, .contacts = contact::ball_race_contact, .elsewhere = kBallRaceContact, .when = traction_law_on,
-     .meaning = "traction cells over the contact ellipse (rolling, transverse); 5 x 5 keeps cage speed and loads "
-                "within 0.1 % of a fine grid, but a spinning contact's net traction force is 43 % off (64 x 64: "
-                "0.1 %; 6309_R3_fine_traction.toml)"},
-    {.section = "contact.*", .key = "rolling_resistance", .kind = boolean,
-     .field = FIELD(contact->traction.rolling_resistance),
-     .def = derived(rolling_resistance_default, "true with a [lubricant], else false"),
-     .contacts = contact::ball_race_contact, .elsewhere = kBallRaceContact, .then = rolling_resistance_has_film,
-     .meaning = "EHL rolling resistance (needs a film)"},
-
-    // ---- [solver]: CVODE --------------------------------------------------------------------------
-    {.section = "solver", .key = "method", .kind = choice, .field = FIELD(scene.solver.method), .def = word("bdf"),
-     .options = kMethods,
-     .meaning = "bdf (stiff) or adams (non-stiff) multistep methods of CVODE; erk: explicit Runge-Kutta pairs, ark: "
-                "diagonally implicit Runge-Kutta with the Newton solve (ARKODE)"},
-    {.section = "solver", .key = "max_order", .kind = integer, .field = FIELD(scene.solver.max_order),
-     .bounds = {.lo = 1, .hi_of = max_order_limit, .hi_text = kMaxOrderText}, .def = derived(max_order_default, kMaxOrderDefaultText),
-     .then = order_exists_for_method,
-     .meaning = "bdf, adams: largest order; erk: order of the pair (2, 3, 4, 5 Dormand-Prince, 6 Verner, 8 Fehlberg); "
-                "ark: order of the implicit pair (2 to 5)"},
-    {.section = "solver", .key = "stability_limit_detection", .kind = boolean,
-     .field = FIELD(scene.solver.stability_limit_detection), .def = value(0), .when = bdf_only, .otherwise = 0,
-     .meaning = "CVODE's BDF stability-limit detection: lowers the order where order 3 to 5 is unstable"},
-    {.section = "solver", .key = "pocket_tolerance_factor", .kind = number,
-     .field = FIELD(scene.solver.pocket_tolerance_factor), .dim = dim::none, .bounds = {.lo = 1, .hi = 1e6},
-     .def = value(1),
-     .meaning = "while a rolling element touches its cage pocket (or is within 1e-4 of its radius of it), the "
-                "tolerances of its states and the cage's are this many times tighter (a pocket contact's approach, "
-                "nanometres, lies far below rtol times the pitch radius); 1: off"},
-    {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
-     .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
-    {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",
-     .meaning = "absolute tolerances per kind of variable; 0 or absent: chosen from the physical scales"},
-    {.section = "solver", .key = "linear_solver", .kind = choice, .field = FIELD(scene.solver.linear_solver),
-     .def = word("auto"), .options = kLinearSolvers, .noun = "linear solver",
-     .meaning = "Newton linear solver; auto picks by the number of rolling elements (README \"Newton linear "
-                "solvers\"); bordered and dense are older names"},
-    {.section = "solver", .key = "petsc_options", .kind = text, .field = FIELD(scene.solver.petsc_options),
-     .def = word(""), .then = remember_petsc_options_place,
-     .meaning = "PETSc options for petsc-bordered, checked when the run starts"},
-    {.section = "solver", .key = "max_step", .kind = number, .field = FIELD(scene.solver.max_step), .dim = dim::time,
-     .bounds = non_negative, .def = value(0), .meaning = "largest time step; 0: no limit"},
-    {.section = "solver", .key = "initial_step", .kind = number, .field = FIELD(scene.solver.initial_step),
-     .dim = dim::time, .bounds = non_negative, .def = value(0), .then = initial_step_within_run,
-     .meaning = "first time step (at most end_time); 0: CVODE's estimate"},
-    {.section = "solver", .key = "max_steps", .kind = integer, .field = FIELD(scene.solver.max_steps),
-     .bounds = {.lo = 1}, .def = value(500000000), .meaning = "step budget of the run"},
-    {.section = "solver", .key = "max_wall_time", .kind = number, .field = FIELD(scene.solver.max_wall_time),
-     .dim = dim::time, .bounds = non_negative, .def = value(0), .example = "2 h",
-     .meaning = "wall-clock budget of the integration: past it the run ends with a diagnosis (exit 3); 0: no limit"},
-    {.section = "solver", .key = "jacobian_perturbation", .kind = number,
-     .field = FIELD(scene.solver.jacobian_perturbation), .dim = dim::none, .bounds = {.lo = 1e-12, .hi = 1e-2},
-     .def = value(1e-7), .meaning = "relative finite-difference increment"},
-
-    // ---- [solver.atol] --------------------------------------------------------------------------
-    {.section = "solver.atol", .key = "position", .kind = number, .field = FIELD(scene.solver.atol_position),
-     .dim = dim::length, .bounds = positive, .def = value(0), .meaning = "positions"},
-    {.section = "solver.atol", .key = "angle", .kind = number, .field = FIELD(scene.solver.atol_angle),
-     .dim = dim::angle, .bounds = positive, .def = value(0), .meaning = "angles"},
-    {.section = "solver.atol", .key = "velocity", .kind = number, .field = FIELD(scene.solver.atol_velocity),
-     .dim = dim::speed, .bounds = positive, .def = value(0), .meaning = "velocities"},
-    {.section = "solver.atol", .key = "angular_velocity", .kind = number,
-     .field = FIELD(scene.solver.atol_angular_velocity), .dim = dim::angular_speed, .bounds = positive,
-     .def = value(0), .meaning = "angular velocities"},
-
-    // ---- [output] -------------------------------------------------------------------------------
-    {.section = "output", .key = "segments", .kind = boolean, .field = FIELD(scene.output.segments), .def = value(1),
-     .meaning = "per-segment (per-contact) diagnostics"},
-    {.section = "output", .key = "max_size", .kind = number, .field = FIELD(scene.output.max_size),
-     .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
-     .meaning = "largest output file (its series uncompressed, samples x values x 8 bytes, plus a bound of names, "
-                "attributes and indexes, estimated by `raceway check`); a larger run is refused before it starts; the "
-                "`/scheduler` log is thinned to what is left"},
-    {.section = "output", .key = "checkpoint_interval", .kind = number, .field = FIELD(scene.output.checkpoint_interval),
-     .dim = dim::time, .bounds = non_negative, .def = value(0),
-     .meaning = "simulated time between checkpoints, rounded to whole output intervals; CVODE restarts at each, so a "
-                "resumed run repeats the uninterrupted one bitwise (0: none)"},
-    {.section = "output", .key = "checkpoint_wall_interval", .kind = number,
-     .field = FIELD(scene.output.checkpoint_wall_interval), .dim = dim::time, .bounds = non_negative, .def = value(300),
-     .meaning = "wall-clock time after which a checkpoint is also written at the next output time (no restart of "
-                "CVODE: a resume from it agrees with an uninterrupted run to the tolerances, not bitwise; 0: none)"},
 };
 
-#undef FIELD
+}  // namespace
+
+std::span<const Row> bearing_rows() { return kRows; }
+
+}  // namespace table
+
+namespace {
 
 constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "housing",
                                              "carrier", "lubricant", "life",    "contact", "solver",     "output"};
@@ -694,10 +405,17 @@ std::string_view option_name(std::span<const Option> options, int value) {
   return "";
 }
 
-std::span<const Row> scene_rows() { return kRows; }
+std::span<const Row> scene_rows() {
+  static const std::vector<Row> rows = [] {
+    std::vector<Row> all(table::bearing_rows().begin(), table::bearing_rows().end());
+    all.insert(all.end(), table::run_rows().begin(), table::run_rows().end());
+    return all;
+  }();
+  return rows;
+}
 
 std::span<const Row> rows_of(std::string_view section) {
-  const std::span<const Row> all = kRows;
+  const std::span<const Row> all = scene_rows();
   const auto first = std::find_if(all.begin(), all.end(), [&](const Row& r) { return r.section == section; });
   const auto last = std::find_if(first, all.end(), [&](const Row& r) { return r.section != section; });
   return {first, last};
