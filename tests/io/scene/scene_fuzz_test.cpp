@@ -153,6 +153,7 @@ struct StoredNumber {
   std::string key;
   Dimension dim;
   std::vector<double> values;
+  bool may_be_absent = false;  ///< a Default::absent row: NaN stands for "not given" ([life]'s published ratings)
 };
 
 std::vector<StoredNumber> stored_numbers(Scene& scene) {
@@ -166,7 +167,8 @@ std::vector<StoredNumber> stored_numbers(Scene& scene) {
     if (!row.field) return;
     const std::string key = section + "." + std::string(row.key);
     const Field f = row.field(b);
-    if (const auto* d = std::get_if<double*>(&f)) out.push_back({key, row.dim, {**d}});
+    if (const auto* d = std::get_if<double*>(&f))
+      out.push_back({key, row.dim, {**d}, row.def.kind == Default::Kind::absent});
     if (const auto* t = std::get_if<TimeFunction*>(&f)) {
       out.push_back({key, row.dim, (*t)->values});
       out.push_back({key + ".time", dim::time, (*t)->times});
@@ -205,6 +207,7 @@ std::string unsound(Scene& scene) {
       return n.key == a || n.key.starts_with(a + ".");
     });
     for (const double v : n.values) {
+      if (std::isnan(v) && n.may_be_absent && scene.line_of(n.key) == 0) continue;  // not given
       if (!std::isfinite(v)) return n.key + " holds a non-finite value";
       // Values the file gives (defaults are the schema's) lie within their sane range.
       if (!unchecked && scene.line_of(n.key) > 0 && !within_sane_range(v, n.dim))

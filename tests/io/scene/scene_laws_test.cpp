@@ -118,7 +118,8 @@ std::string scene_with_law(ContactKindBit contact, LawRole role, std::string_vie
                      : contact == contact::roller_flange_contact
                          ? spatial_roller_minimal() + lubricant
                          : spatial("", lubricant + "limiting_shear_coefficient = 0.07\n");
-  if (name == "pocket_film" && !planar)  // a film of cylindrical pockets, whose cage a land guides
+  // The pocket film is a film of cylindrical pockets, whose cage a land guides.
+  if (name == "pocket_film" && !planar && contact != contact::roller_flange_contact)
     base = replaced(base, "guidance = \"rolling_element\"\npocket_clearance = \"0.4 mm\"\npocket_shape = \"spherical\"",
                     "guidance = \"outer_land\"\nland_clearance = \"0.3 mm\"\npocket_clearance = \"0.4 mm\"\n"
                     "pocket_shape = \"cylindrical\"");
