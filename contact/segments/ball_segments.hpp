@@ -22,6 +22,7 @@
 //    non-finite input gives valid = false and no force at all (never garbage).
 #pragma once
 
+#include <cmath>
 #include <Eigen/Dense>
 #include <memory>
 #include <optional>
@@ -47,7 +48,23 @@ struct SpatialKinematics {
   /// A ring's angle about its own axis, which `rotation` leaves out (its grooves are surfaces of
   /// revolution): read only where the race is not (a spall, waviness). 0 for other bodies.
   double spin_angle = 0;
+
+  bool all_finite() const {
+    return position.allFinite() && rotation.allFinite() && velocity.allFinite() && angular_velocity.allFinite() &&
+           std::isfinite(spin_angle);
+  }
 };
+
+/// Coulomb friction smoothed on a slip-velocity scale u: the force -mu tanh(|s|/u) Q s/|s| on the
+/// body that slips at s, written -(mu / u) (tanh(x) / x) Q s with x = |s|/u so that it is smooth
+/// through zero slip (tanh(x) / x by its series below 1e-4: error under 1e-17).
+inline Vec3 tanh_slip_traction(double friction_coefficient, double slip_velocity_scale, double normal_force,
+                               const Vec3& slip) {
+  if (friction_coefficient == 0) return Vec3::Zero();
+  const double x = slip.norm() / slip_velocity_scale;
+  const double tanh_ratio = std::abs(x) < 1e-4 ? 1.0 - x * x / 3.0 : std::tanh(x) / x;
+  return -(friction_coefficient / slip_velocity_scale) * tanh_ratio * normal_force * slip;
+}
 
 /// Force [N] and moment [N m] on a body at its centre, bearing frame.
 struct SpatialWrench {

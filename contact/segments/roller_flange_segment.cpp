@@ -25,10 +25,6 @@ double face_distance(const RollerFlangeGeometry& g, const Vec3& p, double azimut
   return face_normal(g, azimuth).dot(p - face_point);
 }
 
-bool finite(const SpatialKinematics& k) {
-  return k.position.allFinite() && k.rotation.allFinite() && k.velocity.allFinite() &&
-         k.angular_velocity.allFinite();
-}
 
 // The point C of the roller's end nearest the face, in the ring frame; false if there is none.
 bool nearest_end_point(const RollerFlangeGeometry& g, const Vec3& centre, const Vec3& axis, Vec3& c) {
@@ -109,7 +105,7 @@ RollerFlangeSegment make_roller_flange_segment(const RollerFlangeGeometry& g, do
 SpatialSegmentResult evaluate(const RollerFlangeSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& roller) {
   SpatialSegmentResult out;
-  if (!finite(ring) || !finite(roller)) {
+  if (!ring.all_finite() || !roller.all_finite()) {
     out.valid = false;
     return out;
   }

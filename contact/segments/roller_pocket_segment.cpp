@@ -9,18 +9,6 @@
 
 namespace raceway::contact {
 
-namespace {
-
-bool finite(const SpatialKinematics& k) {
-  return k.position.allFinite() && k.rotation.allFinite() && k.velocity.allFinite() &&
-         k.angular_velocity.allFinite();
-}
-
-// tanh(x) / x, smooth through 0 (its series below 1e-4: error under 1e-17).
-double tanh_ratio(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 3.0 : std::tanh(x) / x; }
-
-}  // namespace
-
 RollerPocketBarSegment make_roller_pocket_bar_segment(double reduced_modulus, double bar_width, int slices,
                                                       double pitch_radius, double pocket_angle, double half_clearance,
                                                       double roller_radius, int side, double damping_factor,
@@ -50,7 +38,7 @@ RollerPocketBarSegment make_roller_pocket_bar_segment(double reduced_modulus, do
 SpatialSegmentResult evaluate(const RollerPocketBarSegment& s, const SpatialKinematics& cage,
                               const SpatialKinematics& roller) {
   SpatialSegmentResult out;
-  if (!finite(cage) || !finite(roller)) {
+  if (!cage.all_finite() || !roller.all_finite()) {
     out.valid = false;
     return out;
   }
@@ -79,8 +67,7 @@ SpatialSegmentResult evaluate(const RollerPocketBarSegment& s, const SpatialKine
     const DampedForce q = hunt_crossley(elastic, s.damping_factor, -n.dot(relative));
     const Vec3 slip = relative - n.dot(relative) * n;
     const double speed = slip.norm();
-    // Force -mu tanh(|s|/u) Q s/|s| = -(mu / u) tanh_ratio(|s|/u) Q s: smooth through zero slip.
-    const Vec3 traction = mu == 0 ? Vec3::Zero() : Vec3(-(mu / scale) * tanh_ratio(speed / scale) * q.force * slip);
+    const Vec3 traction = tanh_slip_traction(mu, scale, q.force, slip);
     const Vec3 force = q.force * n + traction;
     out.on_b.force += force;
     out.on_b.moment += (point - roller.position).cross(force);

@@ -6,18 +6,6 @@
 
 namespace raceway::contact {
 
-namespace {
-
-bool finite(const SpatialKinematics& k) {
-  return k.position.allFinite() && k.rotation.allFinite() && k.velocity.allFinite() &&
-         k.angular_velocity.allFinite();
-}
-
-// tanh(x) / x, smooth through 0 (its series below 1e-4: error under 1e-17).
-double tanh_ratio(double x) { return std::abs(x) < 1e-4 ? 1.0 - x * x / 3.0 : std::tanh(x) / x; }
-
-}  // namespace
-
 RollerSliceSegment make_roller_slice_segment(const SlicedLineContact& c, std::size_t j, double race_radius,
                                              double roller_radius, bool outer, const TractionCurve& traction) {
   RollerSliceSegment s;
@@ -36,7 +24,7 @@ RollerSliceSegment make_roller_slice_segment(const SlicedLineContact& c, std::si
 SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& roller) {
   SpatialSegmentResult out;
-  if (!finite(ring) || !finite(roller)) {
+  if (!ring.all_finite() || !roller.all_finite()) {
     out.valid = false;
     return out;
   }
@@ -68,8 +56,7 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
   const double speed = slip.norm();
   const double mu = s.traction.friction_coefficient;
   const double scale = s.traction.slip_velocity_scale;
-  // Force -mu tanh(|s|/u) Q s/|s| = -(mu / u) tanh_ratio(|s|/u) Q s: smooth through zero slip.
-  const Vec3 traction = mu == 0 ? Vec3::Zero() : Vec3(-(mu / scale) * tanh_ratio(speed / scale) * q.force * slip);
+  const Vec3 traction = tanh_slip_traction(mu, scale, q.force, slip);
   const Vec3 force = q.force * n + traction;
   out.on_b.force = force;
   out.on_b.moment = (point - roller.position).cross(force);
