@@ -467,7 +467,7 @@ refused_resume)
   ;;
 check_fuzz)
   "$python" - "$raceway" "$small" "$source_dir" "$work" <<'PY' || fail "fuzz"
-import random, re, subprocess, sys
+import concurrent.futures, random, re, subprocess, sys
 raceway, small, source, work = sys.argv[1:]
 lines = open(small).read().replace('"../../../jobs', f'"{source}/jobs').splitlines()
 # The mistakes users found, then random ones: a line dropped, doubled, swapped or given an extreme value.
@@ -490,22 +490,30 @@ for _ in range(30):
         elif op == 2: m[i], m[j] = m[j], m[i]
         elif " = " in m[i]: m[i] = m[i].split(" = ")[0] + " = " + rng.choice(extremes)
     cases.append(m)
-bad = passed = refused = 0
-for n, m in enumerate(cases):
+def check(n, m):  # (exit code, output) of `campaign check`, or None when it did not answer
     path = f"{work}/fuzz{n}.toml"
     open(path, "w").write("\n".join(m) + "\n")
     try:
         p = subprocess.run([raceway, "campaign", "check", path], capture_output=True, text=True, timeout=30)
     except subprocess.TimeoutExpired:
+        return None
+    return p.returncode, p.stdout + p.stderr
+# Four at a time: a check costs little CPU, most of its wall time is MPI's start-up.
+with concurrent.futures.ThreadPoolExecutor(4) as pool:
+    answers = list(pool.map(check, range(len(cases)), cases))
+bad = passed = refused = 0
+for n, (m, answer) in enumerate(zip(cases, answers)):
+    path = f"{work}/fuzz{n}.toml"
+    if answer is None:
         print(f"{path}: no answer within 30 s:\n" + "\n".join(m)); bad += 1; continue
-    out = p.stdout + p.stderr
-    if p.returncode == 0 and "campaign OK" in out:
+    rc, out = answer
+    if rc == 0 and "campaign OK" in out:
         passed += 1
-    elif p.returncode == 2 and re.search(r"\.toml:\d+: ", out):
+    elif rc == 2 and re.search(r"\.toml:\d+: ", out):
         refused += 1
     else:
-        print(f"{path}: exit {p.returncode}: {out[-500:]}\n" + "\n".join(m)); bad += 1
-    if n < len(found) and p.returncode != 2:
+        print(f"{path}: exit {rc}: {out[-500:]}\n" + "\n".join(m)); bad += 1
+    if n < len(found) and rc != 2:
         print(f"{path}: a mistake users found was accepted:\n" + "\n".join(m)); bad += 1
 print(f"{len(cases)} campaign files: {passed} passed check, {refused} refused with exit 2")
 sys.exit(1 if bad or passed == 0 else 0)
