@@ -2,20 +2,20 @@
 //
 // The mixture (Harris & Kotzalas, vol. 2, the fluid drag on the balls of a high-speed bearing): a
 // fraction X of the cavity's volume is oil, the rest air, and the mixture's effective density is
-// X rho_oil, air's own density neglected (about 1/700 of an oil's). The effective viscosity is taken by
-// the same volume weighting, X eta_oil; the kinematic viscosity, which sets the Reynolds number, is
-// then the oil's. X = 0: no mixture, no drag.
+// X rho_oil, air's own density neglected (about 1/700 of an oil's). The effective viscosity is raceway's
+// assumption, the same volume weighting, X eta_oil; the kinematic viscosity, which sets the Reynolds
+// number, is then the oil's. X = 0: no mixture, no drag.
 //
 // A sphere of diameter d moving at v relative to the mixture feels the drag
 //   F = 0.5 rho_e C_D(Re) (pi d^2 / 4) |v| v,  Re = rho_e |v| d / eta_e,
 // opposite v, with Schiller and Naumann's correlation C_D = 24/Re (1 + 0.15 Re^0.687), written for
-// Re <= 1000, and Newton's regime C_D = 0.44 above (Clift, Grace & Weber 1978, table 5.2). Taken as
+// Re <= 1000, and Newton's regime C_D = 0.44 above (as Clift, Grace & Weber give them). Taken as
 // max(Schiller-Naumann, 0.44), which is continuous (the two meet at Re = 989) and tends to Stokes'
 // F = 3 pi eta d v as Re -> 0. Valid below the drag crisis (Re about 2e5).
 //
 // A ring (the cage) turning at omega relative to the mixture: each of its two annular faces feels
 // von Karman's laminar wall shear of a disc turning in a fluid at rest, tau = 0.616 rho r sqrt(nu omega^3)
-// (Schlichting & Gersten, ch. 5; on both faces of a full disc of radius r it gives the moment
+// (von Karman's similarity solution, as Schlichting & Gersten give it; on both faces of a full disc of radius r it gives the moment
 // 0.5 rho omega^2 r^5 C_M with C_M = 3.87 Re^-1/2, Re = omega r^2 / nu), integrated over the annulus
 // between its bore and outside radii: per face
 //   M = (pi / 2) 0.616 rho sqrt(nu) |omega|^(3/2) (r_o^4 - r_i^4),
