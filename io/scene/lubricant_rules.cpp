@@ -39,4 +39,10 @@ void viscosity_given_once(const Row&, const Section& s, Bind& b) {
                         "temperature), not both");
 }
 
+// The mixture's drag takes the oil's density (its effective density is the fraction times it).
+void drag_has_oil_density(const Row&, const Section& s, Bind& b) {
+  if (b.scene.lubricant.oil_volume_fraction > 0 && !(b.scene.lubricant.density > 0))
+    s.fail("oil_volume_fraction", "the oil-air mixture's drag needs the oil's density: give [lubricant] density");
+}
+
 }  // namespace raceway::scene::schema::rules

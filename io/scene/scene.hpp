@@ -268,6 +268,7 @@ struct Lubricant {
   double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure
   double viscosity_exponent_cap = 12;     ///< - : largest alpha p in the Barus law (contact/laws/point_contact.hpp);
                                           ///< 12 gives measured traction-curve shapes and practical steps
+  double oil_volume_fraction = 0;  ///< - : oil's share of the cavity's oil-air mixture (drag and churning); 0: none
 };
 
 /// [life]: what the rating lives of ISO 281 and ISO/TS 16281 take besides the geometry and the run's

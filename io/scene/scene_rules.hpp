@@ -96,6 +96,7 @@ void limiting_shear_has_lubricant(const Row& row, const Section& s, Bind& b);
 void film_law_has_lubricant(const Row& row, const Section& s, Bind& b);
 void walther_points_fit(const Row& row, const Section& s, Bind& b);
 void viscosity_given_once(const Row& row, const Section& s, Bind& b);
+void drag_has_oil_density(const Row& row, const Section& s, Bind& b);
 void traction_fits_normal_law(const Row& row, const Section& s, Bind& b);
 void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
 void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);

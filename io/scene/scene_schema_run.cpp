@@ -73,6 +73,12 @@ constexpr Row kRows[] = {
      .def = value(12),
      .meaning = "largest alpha p in the Barus law (contact/laws/point_contact.hpp); 12 gives measured traction-curve "
                 "shapes and practical steps"},
+    {.section = "lubricant", .key = "oil_volume_fraction", .kind = number,
+     .field = FIELD(scene.lubricant.oil_volume_fraction), .dim = dim::none,
+     .bounds = {.lo = 0, .hi = 1, .note = " (jet and mist lubrication: about 0.01 to 0.1)"}, .def = value(0),
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .then = drag_has_oil_density, .example = "0.05",
+     .meaning = "oil's share of the oil-air mixture in the bearing's cavity: each ball's drag and the cage's churning "
+                "(docs/lubrication.md); 0: no drag"},
 
     // ---- [life]: optional; what the rating lives take besides the geometry and the run's loads ---
     // (computed by the report, io/report/report_life.py; docs/life.md). Absent keys store nothing:

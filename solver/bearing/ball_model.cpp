@@ -293,6 +293,23 @@ void add_land_segment(Model& m, const scene::Scene& scene, const CageGeometry& g
                         static_cast<int>(m.laws.size()) - 1, -1, outer ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
+// Drag and churning in the oil-air mixture (contact/segments/drag_segments.hpp), where the scene gives
+// an oil volume fraction: a drag element per ball and the cage's churning, each against the outer ring
+// (the mixture moves with it). None otherwise: the model is then the same as without the key.
+void add_mixture_drag(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
+  const scene::Lubricant& oil = scene.lubricant;
+  if (!(oil.oil_volume_fraction > 0)) return;
+  const contact::OilAirMixture mixture = contact::oil_air_mixture(oil.density, oil.viscosity, oil.oil_volume_fraction);
+  m.laws.push_back(contact::BallDragSegment{mixture, scene.bearing.ball.ball_diameter});
+  const int ball_law = static_cast<int>(m.laws.size()) - 1;
+  for (int k = 0; k < m.element_count; ++k)
+    m.segments.push_back({SegmentKind::ball_drag, m.outer_ring, m.first_element + k, ball_law, k,
+                          fmt::format("ball[{}]/drag", k)});
+  m.laws.push_back(contact::CageChurningSegment{mixture, geo.r_in, geo.r_out});
+  m.segments.push_back({SegmentKind::cage_churning, m.outer_ring, m.cage, static_cast<int>(m.laws.size()) - 1, -1,
+                        "cage/churning"});
+}
+
 void check_scene(const scene::Scene& scene) {
   if (scene.scene.model != scene::ModelKind::spatial || !scene.bearing.is_ball_bearing())
     throw std::runtime_error("scene.model: the spatial model needs a ball bearing (bearing.type)");
@@ -340,6 +357,7 @@ CageGeometry cage_geometry(const Model& m, const scene::Scene& scene) {
 void add_segments(Model& m, const scene::Scene& scene) {
   add_ball_segments(m, scene);
   add_land_segment(m, scene, cage_geometry(m, scene));
+  add_mixture_drag(m, scene, cage_geometry(m, scene));
   attach_outer_ring_to_housing(m);
 }
 
@@ -414,6 +432,11 @@ std::string describe_ball_model(const Model& m) {
                        m.law<contact::CageLandSegment3>(*land).outer_land ? "outer-ring" : "inner-ring",
                        1e3 * m.law<contact::CageLandSegment3>(*land).clearance,
                        m.law<contact::CageLandSegment3>(*land).film ? ", short-bearing film (Ocvirk, half-Sommerfeld)" : "");
+  if (const Segment* drag = m.first_segment(SegmentKind::ball_drag))
+    out += fmt::format("  drag: oil-air mixture {:.4g} kg/m^3, {:.4g} Pa s; sphere drag (Schiller-Naumann) on each "
+                       "ball, von Karman's disc moment on the cage's faces\n",
+                       m.law<contact::BallDragSegment>(*drag).mixture.density,
+                       m.law<contact::BallDragSegment>(*drag).mixture.viscosity);
   out += fmt::format("state layout: border {} states (rings, cage), then {} blocks of {} (balls)\n", m.border_size,
                      m.element_count, m.block_size);
   return out;

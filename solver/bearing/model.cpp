@@ -31,6 +31,8 @@ const char* segment_kind_name(SegmentKind k) {
     case SegmentKind::roller_inner_slice: return "roller_inner_slice";
     case SegmentKind::roller_outer_slice: return "roller_outer_slice";
     case SegmentKind::roller_flange: return "roller_flange";
+    case SegmentKind::ball_drag: return "ball_drag";
+    case SegmentKind::cage_churning: return "cage_churning";
   }
   return "?";
 }

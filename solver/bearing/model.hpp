@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "contact/segments/ball_segments.hpp"
+#include "contact/segments/drag_segments.hpp"
 #include "contact/segments/roller_flange_segment.hpp"
 #include "contact/segments/roller_pocket_segment.hpp"
 #include "contact/segments/roller_segments.hpp"
@@ -67,9 +68,10 @@ struct Body {
 enum class SegmentKind {
   roller_inner_race, roller_outer_race, cage_bar_front, cage_bar_rear,
   ball_inner_groove, ball_outer_groove, ball_pocket, cage_land, cage_bridge, outer_ring_mode,
-  roller_inner_slice, roller_outer_slice, roller_flange  ///< spatial roller bearings: race slices, roller end on a rib
+  roller_inner_slice, roller_outer_slice, roller_flange,  ///< spatial roller bearings: race slices, roller end on a rib
+  ball_drag, cage_churning  ///< ball bearings in an oil-air mixture: a ball's drag, the cage's churning moment
 };
-inline constexpr int segment_kind_count = 13;
+inline constexpr int segment_kind_count = 15;
 const char* segment_kind_name(SegmentKind k);
 
 /// The laws an element can evaluate, with their parameters: the contact laws of contact/segments
@@ -78,7 +80,8 @@ const char* segment_kind_name(SegmentKind k);
 using SegmentLaw = std::variant<contact::RollerRaceSegment, contact::CageBarSegment, contact::CageLandSegment,
                                 contact::BallGrooveSegment, contact::BallPocketSegment, contact::CageLandSegment3,
                                 CageBridgeSpring, RingModeSpring, contact::RollerSliceSegment,
-                                contact::RollerPocketBarSegment, contact::RollerFlangeSegment>;
+                                contact::RollerPocketBarSegment, contact::RollerFlangeSegment,
+                                contact::BallDragSegment, contact::CageChurningSegment>;
 
 /// An element: a contact or an internal spring between two markers (A, B as in contact/segments),
 /// with its law in Model::laws. `body_a`, `body_b`: the rigid bodies the markers move with (for
