@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""The roller section of `raceway report` (io/report/report_rollers.py) for spatial roller runs.
+
+    report_rollers_test.py CASE RACEWAY_EXECUTABLE SOURCE_DIR
+
+Cases:
+- heat_map: a short run of small_spatial_roller.toml (beside this file: 10 rollers, 8 slices, the
+  outer ring misaligned 1 mrad about x); summary.json's per-roller-and-slice window means, the load
+  by slice, one slice's azimuth bins, the rib means and the tilt/skew window means against values
+  this test computes from the file with h5py alone (its own column parsing and trapezoid means).
+- edge_loading: the same scene with the misalignment +1 and -1 mrad. The load acts towards -y; the
+  outer ring turned by +theta about x moves its raceway at the bottom (y = -R) to y = -R - z theta:
+  away from the rollers at +z, so the -z end (slice 0) carries more; -theta the +z end. Checked on
+  both races' load by slice and on the most loaded roller.
+- tilt_skew: tilt_skew() against axes made by hand: e_z turned about e_t by the tilt, then about e_r
+  by the skew (Rodrigues' formula), at several azimuths, its Cardan angles about x, y solved here.
+Whether ball and planar runs have no roller section is checked in report_runs_test.py and report_test.py.
+
+Exit codes: 0 pass, 1 fail, 77 skipped (numpy or h5py missing).
+"""
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+try:
+    import h5py
+    import numpy as np
+except ImportError as err:
+    print(f"SKIP: {err}", file=sys.stderr)
+    sys.exit(77)
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print(f"FAIL: {what}", file=sys.stderr)
+
+
+def close(value, expected, rel, what, abs_tol=1e-9):
+    v, e = np.asarray(value, dtype=float), np.asarray(expected, dtype=float)
+    ok = v.shape == e.shape and bool(np.all(np.abs(v - e) <= rel * np.abs(e) + abs_tol))
+    check(ok, f"{what}: {value} against {expected}")
+
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run_and_report(raceway, source, folder, misalignment="1 mrad"):
+    """The small scene with the outer ring's misalignment about x; returns (h5 path, summary)."""
+    with open(os.path.join(source, "tests/io/report/small_spatial_roller.toml")) as fh:
+        text = fh.read()
+    text, count = re.subn(r'misalignment = \{ x = "[^"]*" \}', f'misalignment = {{ x = "{misalignment}" }}', text)
+    assert count == 1, "small_spatial_roller.toml: no misalignment line"
+    stem = os.path.join(folder, "m" + misalignment.replace(" ", "").replace("-", "neg"))
+    with open(stem + ".toml", "w") as fh:
+        fh.write(text)
+    subprocess.run([raceway, "run", stem + ".toml", "-o", stem + ".h5"], check=True, env=ENV,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    subprocess.run([raceway, "report", stem + ".h5", "--no-plots", "-o", stem + "_report"], check=True, env=ENV,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(os.path.join(stem + "_report", "summary.json")) as fh:
+        return stem + ".h5", json.load(fh)
+
+
+def text(x):
+    return x.decode() if isinstance(x, bytes) else str(x)
+
+
+def trapezoid_mean(t, v, start):
+    """Trapezoid time mean over t >= start along axis 0 (computed here, not with the report's code)."""
+    keep = t >= start - 1e-12
+    t, v = t[keep], v[keep]
+    return np.trapz(v, t, axis=0) / (t[-1] - t[0])
+
+
+def per_roller_slice(f, kind, n):
+    names = [text(x) for x in f[f"segments/{kind}/names"][:]]
+    q = f[f"segments/{kind}/normal_force"][:]
+    slices = 1 + max(int(re.search(r"slice\[(\d+)\]", s).group(1)) for s in names)
+    table = np.zeros((q.shape[0], n, slices))
+    for c, name in enumerate(names):
+        k, j = re.match(r"roller\[(\d+)\]/\w+/slice\[(\d+)\]$", name).groups()
+        table[:, int(k), int(j)] += q[:, c]
+    return table
+
+
+def case_heat_map(raceway, source, folder):
+    h5, s = run_and_report(raceway, source, folder)
+    r = s.get("rollers")
+    check(r is not None, "a spatial roller run's summary has a rollers section")
+    if r is None:
+        return
+    start = r["window"]["start_s"]
+    with h5py.File(h5, "r") as f:
+        t = f["time"][:]
+        xy = f["rollers/position"][:][..., :2]
+        n = xy.shape[1]
+        check(abs(start - (t[0] + 0.5 * (t[-1] - t[0]))) < 1e-12, "the window is the run's second half")
+        for race in ("inner", "outer"):
+            q = per_roller_slice(f, f"roller_{race}_slice", n)
+            mean = trapezoid_mean(t, q, start)
+            e = r["slices"][race]
+            close(e["load_mean_per_roller_slice_n"], mean, 1e-9, f"{race}: window mean per roller and slice")
+            close(e["load_by_slice_mean_n"], mean.sum(axis=0), 1e-9, f"{race}: window mean by slice")
+            # The azimuth bins of slice 0: the plain mean of the window's samples whose roller is in the bin.
+            keep = t >= start - 1e-12
+            az = np.degrees(np.mod(np.arctan2(xy[keep, :, 1], xy[keep, :, 0]), 2 * math.pi))
+            width = r["bin_centre_deg"][1] - r["bin_centre_deg"][0]
+            b = np.floor(az / width).astype(int)
+            got = np.array([np.nan if v is None else v for v in e["load_bin_mean_n"][0]])
+            for k in np.unique(b):
+                close(got[k], np.mean(q[keep, :, 0][b == k]), 1e-9, f"{race}: slice 0, bin {k}")
+            check(int(np.count_nonzero(np.isfinite(got))) == len(np.unique(b)), f"{race}: empty bins are NaN")
+            check(e["slice_load_peak_n"] == float(np.max(q[keep])), f"{race}: peak slice load")
+        g = f["segments/roller_flange"]
+        names = [text(x).split("/", 1)[1] for x in g["names"][:]]
+        for rib in set(names):
+            cols = [c for c, name in enumerate(names) if name == rib]
+            close(r["ribs"][rib]["force_mean_n"], trapezoid_mean(t, g["normal_force"][:, cols].sum(axis=1), start),
+                  1e-9, f"rib {rib}: force mean")
+            close(r["ribs"][rib]["power_loss_mean_w"], trapezoid_mean(t, g["power_loss"][:, cols].sum(axis=1), start),
+                  1e-9, f"rib {rib}: power mean")
+        check(sum(e["force_mean_n"] for e in r["ribs"].values()) > 0, "the ribs carry some load")
+        # Tilt and skew at small angles: the axis's radial and tangential components (first order).
+        a = f["rollers/angles"][:]
+        axis = np.stack([np.sin(a[..., 1]), -np.sin(a[..., 0]) * np.cos(a[..., 1]), np.cos(a[..., 0]) * np.cos(a[..., 1])], -1)
+        psi = np.arctan2(xy[..., 1], xy[..., 0])
+        tilt = np.arcsin(axis[..., 0] * np.cos(psi) + axis[..., 1] * np.sin(psi))
+        close(r["tilt"]["mean_per_roller_mrad"], 1e3 * trapezoid_mean(t, tilt, start), 1e-9, "tilt: window means",
+              abs_tol=1e-9)
+        check(0 < r["skew"]["max_abs_mrad"] < 50 and 0 < r["tilt"]["max_abs_mrad"] < 50, "tilt and skew in mrad, small")
+
+
+def case_edge_loading(raceway, source, folder):
+    for misalignment, loaded_end in (("1 mrad", 0), ("-1 mrad", -1)):
+        _, s = run_and_report(raceway, source, folder, misalignment)
+        for race in ("inner", "outer"):
+            e = s["rollers"]["slices"][race]
+            by_slice = e["load_by_slice_mean_n"]
+            other = -1 - loaded_end
+            check(by_slice[loaded_end] > 2.0 * by_slice[other],
+                  f"{misalignment}, {race}: the {'-z' if loaded_end == 0 else '+z'} end carries more: {by_slice}")
+            check(e["slice_load_peak_slice"] == (loaded_end % e["slices"]),
+                  f"{misalignment}, {race}: the peak slice {e['slice_load_peak_slice']} is at the loaded end")
+            ratio = e["edge_load_ratio_minus_z" if loaded_end == 0 else "edge_load_ratio_plus_z"]
+            check(ratio > 1.3, f"{misalignment}, {race}: edge load ratio {ratio}")
+            per = np.asarray(e["load_mean_per_roller_slice_n"])
+            top = int(np.argmax(per.sum(axis=1)))
+            check(per[top, loaded_end] > per[top, other], f"{misalignment}, {race}: the most loaded roller's end")
+
+
+def rotation(axis, angle):
+    """Rodrigues' formula."""
+    k = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
+
+
+def case_tilt_skew(source):
+    sys.path.insert(0, os.path.join(source, "io/report"))
+    from report_rollers import tilt_skew
+    for psi_deg in (0.0, 37.0, 90.0, 200.0, 315.0):
+        psi = math.radians(psi_deg)
+        e_r, e_t = np.array([math.cos(psi), math.sin(psi), 0.0]), np.array([-math.sin(psi), math.cos(psi), 0.0])
+        for tilt, skew in ((2e-3, 0.0), (0.0, -3e-3), (1.5e-3, 2.5e-3), (0.2, -0.3)):
+            axis = rotation(e_r, skew) @ rotation(e_t, tilt) @ np.array([0.0, 0.0, 1.0])
+            beta = math.asin(axis[0])                      # axis = Rx(alpha) Ry(beta) e_z
+            alpha = math.atan2(-axis[1], axis[2])
+            xy = 0.03 * np.array([[math.cos(psi), math.sin(psi)]])
+            t, s = tilt_skew(np.array([[alpha, beta]]), xy)
+            close([t[0], s[0]], [tilt, skew], 1e-9, f"psi {psi_deg} deg: tilt {tilt}, skew {skew}", abs_tol=1e-12)
+    # A pure tilt turns the axis's end outwards (towards e_r): at psi = 90 deg the axis leans to +y.
+    t, s = tilt_skew(np.array([[-1e-3, 0.0]]), np.array([[0.0, 0.03]]))
+    close([t[0], s[0]], [1e-3, 0.0], 1e-6, "psi 90 deg: Rx(-1 mrad) is a tilt of +1 mrad", abs_tol=1e-12)
+
+
+def main():
+    case, raceway, source = sys.argv[1:4]
+    with tempfile.TemporaryDirectory() as folder:
+        if case == "heat_map":
+            case_heat_map(raceway, source, folder)
+        elif case == "edge_loading":
+            case_edge_loading(raceway, source, folder)
+        elif case == "tilt_skew":
+            case_tilt_skew(source)
+        else:
+            print(f"unknown case {case}", file=sys.stderr)
+            return 2
+    print(f"{case}: {'FAIL' if failures else 'pass'}" + (f" ({len(failures)} checks)" if failures else ""))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
