@@ -7,11 +7,14 @@ Cases:
 - heat_map: a short run of small_spatial_roller.toml (beside this file: 10 rollers, 8 slices, the
   outer ring misaligned 1 mrad about x); summary.json's per-roller-and-slice window means, the load
   by slice, one slice's azimuth bins, the rib means and the tilt/skew window means against values
-  this test computes from the file with h5py alone (its own column parsing and trapezoid means).
+  this test computes from the file with h5py alone (its own column parsing and trapezoid means); the
+  ISO/TS 16281 life with one lamina per slice by hand from the same loads.
 - edge_loading: the same scene with the misalignment +1 and -1 mrad. The load acts towards -y; the
   outer ring turned by +theta about x moves its raceway at the bottom (y = -R) to y = -R - z theta:
   away from the rollers at +z, so the -z end (slice 0) carries more; -theta the +z end. Checked on
   both races' load by slice and on the most loaded roller.
+- lamina_split: report_life.reference_life on made-up loads: a roller cut into equal laminae, each
+  carrying its share of a uniform line load, has the life of the roller as one whole-length contact.
 - tilt_skew: tilt_skew() against axes made by hand: e_z turned about e_t by the tilt, then about e_r
   by the skew (Rodrigues' formula), at several azimuths, its Cardan angles about x, y solved here.
 Whether ball and planar runs have no roller section is checked in report_runs_test.py and report_test.py.
@@ -135,6 +138,31 @@ def case_heat_map(raceway, source, folder):
         close(r["tilt"]["mean_per_roller_mrad"], 1e3 * trapezoid_mean(t, tilt, start), 1e-9, "tilt: window means",
               abs_tol=1e-9)
         check(0 < r["skew"]["max_abs_mrad"] < 50 and 0 < r["tilt"]["max_abs_mrad"] < 50, "tilt and skew in mrad, small")
+        check_lamina_life(f, s, n, start)
+
+
+def check_lamina_life(f, s, n, start):
+    """ISO/TS 16281 with one lamina per slice, by hand from the file's slice loads: per slice the power
+    mean over the rollers and the window's samples (exponent 4 on the rotating inner ring, 9/2 on the
+    outer), lamina ratings q_c = Q_c (w / L_we)^(7/9) with w = (L_we + 2 r_c) / slices."""
+    life = s["life"]
+    c, z, gamma = life["dynamic_load_rating_n"], 10, 10.0 / 60.0
+    term = 1.038 * ((1 - gamma) / (1 + gamma)) ** (143 / 108)
+    share = (12.0 + 2 * 0.5) / (8 * 12.0)
+    q_ci = c / (0.83 * 0.378 * z) * (1 + term ** 4.5) ** (2 / 9) * share ** (7 / 9)
+    q_ce = c / (0.83 * 0.364 * z) * (1 + term ** -4.5) ** (2 / 9) * share ** (7 / 9)
+    t = f["time"][:]
+    keep = t >= start - 1e-12
+    total = 0.0
+    for race, q_c, p in (("inner", q_ci, 4.0), ("outer", q_ce, 4.5)):
+        q = per_roller_slice(f, f"roller_{race}_slice", n)[keep]
+        for j in range(q.shape[2]):
+            q_e = np.mean(q[:, :, j] ** p) ** (1 / p)
+            total += (q_c / q_e) ** -4.5
+    tracks = life["reference"]["tracks"]
+    check(len(tracks) == 16, f"one track per slice and race: {len(tracks)}")
+    close([tracks[0]["rating_n"], tracks[8]["rating_n"]], [q_ci, q_ce], 1e-9, "lamina ratings")
+    close(life["reference"]["l10r_mrev"], total ** (-8 / 9), 1e-9, "L10r from the laminae")
 
 
 def case_edge_loading(raceway, source, folder):
@@ -180,6 +208,29 @@ def case_tilt_skew(source):
     close([t[0], s[0]], [1e-3, 0.0], 1e-6, "psi 90 deg: Rx(-1 mrad) is a tilt of +1 mrad", abs_tol=1e-12)
 
 
+def case_lamina_split(source):
+    sys.path.insert(0, os.path.join(source, "io/report"))
+    import report_life
+    rng = np.random.default_rng(7)
+    inner, outer = 100 + 900 * rng.random((40, 12)), 100 + 900 * rng.random((40, 12))
+    g = {"ball": False, "z": 12, "alpha": 0.0, "fi": None, "fe": None, "rows": 1, "lwe": 12.0}
+    args = (slice(0, 40), g, 40e3, 0.18, True, 10 / 3, 3000.0, 1.0, 0.5, 4e3, None)
+    zero = np.zeros_like(inner)
+    whole = report_life.reference_life({"tracks": {"inner": [(inner, zero)], "outer": [(outer, zero)]}}, *args)
+    check(math.isfinite(whole["l10r_mrev"]) and whole["l10r_mrev"] > 0, "the whole roller's life")
+    # Each lamina of width w carries w / L_we of the roller's load. Without corners (S w = L_we) the
+    # laminae give the whole roller's life; slices over the corners too (S w = L_we + 2 r_c) carry
+    # (S w / L_we) times the load in all, and each lamina's term (q_c / q_e)^(-9/2) scales by w / L_we:
+    # L10r = whole (S w / L_we)^(-8/9).
+    for slices, corner in ((1, 0.0), (5, 0.0), (8, 0.5e-3), (20, 1.5e-3)):
+        share = (12.0 + 2e3 * corner) / slices / 12.0
+        li = {"tracks": {"inner": [(inner * share, zero)] * slices, "outer": [(outer * share, zero)] * slices},
+              "laminae": {"inner": slices, "outer": slices}, "parameters": {"bearing.corner_radius": {"value": corner}}}
+        laminae = report_life.reference_life(li, *args)
+        close(laminae["l10r_mrev"], whole["l10r_mrev"] * (slices * share) ** (-8 / 9), 1e-9,
+              f"{slices} laminae, corners {corner} m")
+
+
 def main():
     case, raceway, source = sys.argv[1:4]
     with tempfile.TemporaryDirectory() as folder:
@@ -187,6 +238,8 @@ def main():
             case_heat_map(raceway, source, folder)
         elif case == "edge_loading":
             case_edge_loading(raceway, source, folder)
+        elif case == "lamina_split":
+            case_lamina_split(source)
         elif case == "tilt_skew":
             case_tilt_skew(source)
         else:
