@@ -74,7 +74,9 @@ def contact_fields(run, w):
         if not np.any(q[w.slice] > 0):
             continue
         entry = {}
-        if "max_pressure" in seg:
+        # A kind whose segments leave max_pressure at 0 (a spatial roller's slices: the report's
+        # `rollers` section estimates theirs) has no pressure here.
+        if "max_pressure" in seg and np.any(seg["max_pressure"][w.slice] > 0):
             largest = np.max(np.where(q > 0, seg["max_pressure"], 0.0), axis=1)
             entry["max_pressure_largest_mean_pa"] = float(rm.time_mean(run.time, largest, w))
             entry["max_pressure_peak_pa"] = float(np.max(largest[w.slice]))
