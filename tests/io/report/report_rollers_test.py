@@ -130,9 +130,11 @@ def case_heat_map(raceway, source, folder):
             close(r["ribs"][rib]["power_loss_mean_w"], trapezoid_mean(t, g["power_loss"][:, cols].sum(axis=1), start),
                   1e-9, f"rib {rib}: power mean")
         check(sum(e["force_mean_n"] for e in r["ribs"].values()) > 0, "the ribs carry some load")
-        # Tilt and skew at small angles: the axis's radial and tangential components (first order).
+        # The tilt's window means per roller: asin of the axis's radial component (the conversion
+        # itself against hand-made rotations in tilt_skew).
         a = f["rollers/angles"][:]
-        axis = np.stack([np.sin(a[..., 1]), -np.sin(a[..., 0]) * np.cos(a[..., 1]), np.cos(a[..., 0]) * np.cos(a[..., 1])], -1)
+        ax, ay = a[..., 0], a[..., 1]
+        axis = np.stack([np.sin(ay), -np.sin(ax) * np.cos(ay), np.cos(ax) * np.cos(ay)], -1)
         psi = np.arctan2(xy[..., 1], xy[..., 0])
         tilt = np.arcsin(axis[..., 0] * np.cos(psi) + axis[..., 1] * np.sin(psi))
         close(r["tilt"]["mean_per_roller_mrad"], 1e3 * trapezoid_mean(t, tilt, start), 1e-9, "tilt: window means",
