@@ -147,12 +147,15 @@ def _race(run, w, bins, q, pressure, azimuth):
     heat = [rm.bin_by_azimuth(azimuth[w.slice], q[w.slice, :, j], bins)["mean"] for j in range(slices)]
     qw = q[w.slice]
     i, k, j = np.unravel_index(int(np.argmax(qw)), qw.shape)
-    average = float(np.mean(by_slice))
+    total = float(np.sum(by_slice))
+    centre = (np.arange(slices) + 0.5) / slices * 2.0 - 1.0   # slice centres, -1 .. 1 over the sliced length
+    half = slices // 2  # the middle slice of an odd count counts half to each side
+    minus = float(np.sum(by_slice[:half])) + (0.5 * float(by_slice[half]) if slices % 2 else 0.0)
     out = {"slices": slices,
            "load_mean_per_roller_slice_n": mean.tolist(),
            "load_by_slice_mean_n": by_slice.tolist(),
-           "edge_load_ratio_minus_z": rm.ratio_or_nan(float(by_slice[0]), average),
-           "edge_load_ratio_plus_z": rm.ratio_or_nan(float(by_slice[-1]), average),
+           "load_centre_offset": rm.ratio_or_nan(float(np.sum(by_slice * centre)), total),
+           "minus_z_half_share": rm.ratio_or_nan(minus, total),
            "load_bin_mean_n": [list(h) for h in heat],
            "slice_load_peak_n": float(qw[i, k, j]), "slice_load_peak_roller": int(k), "slice_load_peak_slice": int(j),
            "slice_load_peak_azimuth_deg": float(azimuth[w.begin + i, k]) * DEG,
@@ -198,7 +201,9 @@ def summarize_rollers(run, w, bins):
     out = {"window": {"start_s": w.t_begin, "end_s": w.t_end},
            "note": ("window means (trapezoid time means) unless a key says peak or max; slices numbered from the "
                     "roller's -z end; heat maps (load_bin_mean_n [slice][bin]) the mean of the samples whose roller "
-                    "is in the azimuth bin (NaN: none); edge_load_ratio: the end slice's load over the mean slice's; "
+                    "is in the azimuth bin (NaN: none); load_centre_offset: the load's centre along the roller, -1 at "
+                    "the -z end, 0 the middle, +1 the +z end; minus_z_half_share: the -z half's share of the load "
+                    "(0.5 when even); "
                     "max_pressure: Hertz line-contact pressure of the slice's mean line load (report_rollers.py)"),
            "bin_centre_deg": (centres * DEG).tolist(), "slices": {}}
     for race, t in s["slices"].items():
@@ -225,8 +230,8 @@ def rows(summary):
         out.append((f"{race} race: largest slice load (peak; roller, slice from -z)",
                     f"{fmt(e['slice_load_peak_n'], unit=' N')} (roller {e['slice_load_peak_roller']}, slice "
                     f"{e['slice_load_peak_slice']} of {e['slices']})"))
-        out.append((f"{race} race: end slice load / mean slice load (-z end / +z end)",
-                    f"{fmt(e['edge_load_ratio_minus_z'])} / {fmt(e['edge_load_ratio_plus_z'])}"))
+        out.append((f"{race} race: load centre along the roller (-1 the -z end, +1 the +z end); -z half's share",
+                    f"{fmt(e['load_centre_offset'])}; {fmt(e['minus_z_half_share'], 100.0, ' %')}"))
         if "max_pressure_largest_mean_pa" in e:
             out.append((f"{race} race: largest slice pressure (mean / peak)",
                         f"{fmt(e['max_pressure_largest_mean_pa'], 1e-9, ' GPa')} / "

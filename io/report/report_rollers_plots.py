@@ -32,8 +32,9 @@ def slice_heatmap(run, s, folder):
         ax.grid(False)
         ax.set_xlabel("roller azimuth [deg] (0 = +x, counter-clockwise)")
         ax.set_ylabel("slice (0: roller's -z end)")
-        ax.set_title(f"{race} race: peak slice load {e['slice_load_peak_n']:.4g} N; end/mean "
-                     f"{e['edge_load_ratio_minus_z']:.3g} (-z), {e['edge_load_ratio_plus_z']:.3g} (+z)", fontsize=11)
+        ax.set_title(f"{race} race: peak slice load {e['slice_load_peak_n']:.4g} N; load centre "
+                     f"{e['load_centre_offset']:+.3g} (-1: -z end), -z half {100 * e['minus_z_half_share']:.3g} %",
+                     fontsize=11)
     return save(fig, folder, "slice_load_heatmap.png")
 
 
@@ -69,7 +70,7 @@ def tilt_skew(run, s, folder):
         scale_to_window(ax, run, s, values)
         ax.set_xlabel("time [s]")
         ax.set_ylabel(f"{what} [mrad]")
-        ax.legend(loc="upper right", fontsize=9)
+        ax.legend(loc="lower right", fontsize=9)
     return save(fig, folder, "roller_tilt_skew.png")
 
 

@@ -110,7 +110,11 @@ def case_heat_map(raceway, source, folder):
             mean = trapezoid_mean(t, q, start)
             e = r["slices"][race]
             close(e["load_mean_per_roller_slice_n"], mean, 1e-9, f"{race}: window mean per roller and slice")
-            close(e["load_by_slice_mean_n"], mean.sum(axis=0), 1e-9, f"{race}: window mean by slice")
+            by_slice = mean.sum(axis=0)
+            close(e["load_by_slice_mean_n"], by_slice, 1e-9, f"{race}: window mean by slice")
+            x = np.linspace(-1, 1, 2 * len(by_slice) + 1)[1::2]
+            close(e["load_centre_offset"], np.sum(by_slice * x) / by_slice.sum(), 1e-9, f"{race}: load centre")
+            close(e["minus_z_half_share"], by_slice[:4].sum() / by_slice.sum(), 1e-9, f"{race}: -z half's share")
             # The azimuth bins of slice 0: the plain mean of the window's samples whose roller is in the bin.
             keep = t >= start - 1e-12
             az = np.degrees(np.mod(np.arctan2(xy[keep, :, 1], xy[keep, :, 0]), 2 * math.pi))
@@ -178,8 +182,9 @@ def case_edge_loading(raceway, source, folder):
                   f"{misalignment}, {race}: the {'-z' if loaded_end == 0 else '+z'} end carries more: {by_slice}")
             check(e["slice_load_peak_slice"] == (loaded_end % e["slices"]),
                   f"{misalignment}, {race}: the peak slice {e['slice_load_peak_slice']} is at the loaded end")
-            ratio = e["edge_load_ratio_minus_z" if loaded_end == 0 else "edge_load_ratio_plus_z"]
-            check(ratio > 1.3, f"{misalignment}, {race}: edge load ratio {ratio}")
+            sign = -1 if loaded_end == 0 else 1
+            check(sign * e["load_centre_offset"] > 0.1, f"{misalignment}, {race}: load centre {e['load_centre_offset']}")
+            check(sign * (0.5 - e["minus_z_half_share"]) > 0.1, f"{misalignment}, {race}: -z half {e['minus_z_half_share']}")
             per = np.asarray(e["load_mean_per_roller_slice_n"])
             top = int(np.argmax(per.sum(axis=1)))
             check(per[top, loaded_end] > per[top, other], f"{misalignment}, {race}: the most loaded roller's end")
