@@ -54,6 +54,7 @@ class BearingRun:
     contact: dict = field(default_factory=dict)  # kind -> {names, element, normal_force, ...} (spatial)
     power_loss: dict = field(default_factory=dict)  # segment kind -> [T] W (sum over its segments)
     geometry: dict = field(default_factory=dict)     # pitch_radius, clearances, radii (m)
+    roller_angles: np.ndarray = None  # [T x n x 2] rad, spatial rollers' Cardan angles (report_rollers.py)
     life_input: dict = None  # what the rating lives need (report_life.read_life_input)
     notes: list = field(default_factory=list)
     build: dict = field(default_factory=dict)
@@ -180,6 +181,8 @@ def read_bearing(out):
     run.element_load = element_loads(_need(out, f"segments/{groove}/normal_force"), _columns_element(out, groove, n), n)
     if kind == "spatial":
         _contacts(out, run, n)
+        if group == "rollers" and "rollers/angles" in out:
+            run.roller_angles = _need(out, "rollers/angles")
     _bars(out, run, n)
     if "segments/cage_land/normal_force" in out:
         run.land_force = np.sum(_need(out, "segments/cage_land/normal_force"), axis=1)

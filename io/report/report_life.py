@@ -22,7 +22,9 @@ import life_tables as lt
 DEFAULT_RELIABILITY = 90.0        # percent: L10
 DEFAULT_CONTAMINATION = 0.5       # e_C: ISO 281's "normal cleanliness"
 DEFAULT_LUBRICANT_DENSITY = 870.0  # kg/m^3: a mineral oil
-RACE_KINDS = {"inner": ("ball_inner_groove", "roller_inner_race"), "outer": ("ball_outer_groove", "roller_outer_race")}
+RACE_KINDS = {"inner": ("ball_inner_groove", "roller_inner_race", "roller_inner_slice"),
+              "outer": ("ball_outer_groove", "roller_outer_race", "roller_outer_slice")}
+SLICE_KINDS = ("roller_inner_slice", "roller_outer_slice")  # a spatial roller's slices: one lamina each
 
 
 def read_life_input(out, n):
@@ -52,6 +54,8 @@ def read_life_input(out, n):
                     tracks.append((np.zeros((q.shape[0], n)), np.zeros((q.shape[0], n))))
                 tracks[k][0][:, j], tracks[k][1][:, j] = q[:, col], a[:, col]
             found["tracks"][ring] = tracks
+            if kind in SLICE_KINDS:
+                found.setdefault("laminae", {})[ring] = len(tracks)
     for ring in ("inner_ring", "outer_ring"):
         if f"{ring}/angular_velocity" in out:
             found["speeds"][ring] = np.asarray(out.component(f"{ring}/angular_velocity", "about z"), dtype=float)
@@ -205,10 +209,26 @@ def summarize_life(run, w):
     return out
 
 
+def lamina_share(li, g):
+    """A spatial roller's slice as a lamina: its width over L_we (the slices cut the roller's
+    length with its corners, roller_length + 2 r_c, into equal parts); None for whole-length
+    contacts (planar rollers, balls)."""
+    counts = set(li.get("laminae", {}).values())
+    if not counts:
+        return None
+    if len(counts) != 1:
+        raise ValueError(f"the inner and outer race slices differ in number ({sorted(counts)})")
+    corner = _value(li.get("parameters", {}), "bearing.corner_radius") or 0.0
+    return (g["lwe"] + 2e3 * corner) / (counts.pop() * g["lwe"])
+
+
 def reference_life(li, s, g, c, gamma, inner_rotating, exponent, rpm, a1, e_c, cu, kappa):
     """ISO/TS 16281 over the window: every track's rating and equivalent load, L10r, L10mr."""
     ball = g["ball"]
     qci, qce = lt.contact_ratings(ball, c, g["z"], gamma, g["alpha"], g["fi"], g["fe"], g["rows"])
+    share = lamina_share(li, g)
+    if share is not None:  # ISO/TS 16281's lamina rating q_c = Q_c (w / L_we)^(7/9)
+        qci, qce = qci * share ** (7 / 9), qce * share ** (7 / 9)
     tracks, pairs = [], []
     for ring, qc, rotating in (("inner", qci, inner_rotating), ("outer", qce, not inner_rotating)):
         for k, (q, _) in enumerate(li["tracks"][ring]):
@@ -226,8 +246,9 @@ def reference_life(li, s, g, c, gamma, inner_rotating, exponent, rpm, a1, e_c, c
             "tracks": tracks,
             "mean": "per track, the power mean of its contact loads over its rolling elements and the window's samples "
                     "(exponent 3 / 4 for balls / rollers on the ring rotating relative to the load, 10/3 / 9/2 on "
-                    "the other); rollers: whole-length contacts (the output has no per-slice loads), which a "
-                    "lamina calculation with equal slices reproduces"}
+                    "the other); planar rollers: whole-length contacts, which a lamina calculation with equal "
+                    "slices reproduces; spatial rollers: one track per slice (a lamina, numbered from the roller's -z "
+                    "end), rated q_c = Q_c (w / L_we)^(7/9)"}
 
 
 def life_rows(life):

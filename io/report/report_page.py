@@ -6,6 +6,8 @@ import math
 import os
 
 from report_life import life_rows
+from report_rollers import rows as roller_rows
+from report_rollers_plots import CAPTIONS as ROLLER_CAPTIONS
 
 CAPTIONS = {
     "cage_speed.png": "Cage speed about the bearing axis against the kinematic cage speed; the slip is over the shaded "
@@ -21,6 +23,7 @@ CAPTIONS = {
     "contact_pressure.png": "Largest Hertz pressure of each contact kind.",
     "film_thickness.png": "Thinnest central film thickness of the loaded contacts of each kind.",
     "cage_land_force.png": "Normal force between the cage and its guiding land.",
+    **ROLLER_CAPTIONS,
     "friction.png": "Friction torque on the driven ring (the contacts' moment against its rotation) and the power "
                     "loss of each contact kind.",
 }
@@ -131,6 +134,12 @@ def write_page(run, summary, folder, pngs, name="report.html"):
              "window shaded; their vertical axes are scaled to the window.</p>",
              "<h2>Numbers</h2><table><tr><th>quantity</th><th>value</th></tr>"]
     parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in rows(summary, run.element)]
+    if summary.get("rollers"):
+        w = summary["rollers"]["window"]
+        parts.append(f"</table><h2>Rollers: slices, ribs, tilt and skew</h2><p>Window {w['start_s']:.6g} .. "
+                     f"{w['end_s']:.6g} s; slices numbered from the roller's -z end.</p>"
+                     "<table><tr><th>quantity</th><th>value</th></tr>")
+        parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in roller_rows(summary)]
     parts.append("</table><h2>Rating life</h2><table><tr><th>quantity</th><th>value</th></tr>")
     parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in life_rows(summary.get("life", {}))]
     parts.append("</table><p>docs/life.md: the standards' formulas and what is estimated.</p>"

@@ -331,6 +331,8 @@ def draw_all(run, summary, folder):
         plots.append(cage_land)
     if "friction" in summary:
         plots.append(friction)
+    import report_rollers_plots  # imports this module's helpers
+    plots += report_rollers_plots.plots(summary)
     written, failures = [], []
     for plot in plots:
         try:

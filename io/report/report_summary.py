@@ -10,6 +10,7 @@ import numpy as np
 import report_metrics as rm
 from report_bridges import summarize_bridges
 from report_life import summarize_life
+from report_rollers import summarize_rollers
 
 DEG = 180.0 / math.pi
 
@@ -73,7 +74,9 @@ def contact_fields(run, w):
         if not np.any(q[w.slice] > 0):
             continue
         entry = {}
-        if "max_pressure" in seg:
+        # A kind whose segments leave max_pressure at 0 (a spatial roller's slices: the report's
+        # `rollers` section estimates theirs) has no pressure here.
+        if "max_pressure" in seg and np.any(seg["max_pressure"][w.slice] > 0):
             largest = np.max(np.where(q > 0, seg["max_pressure"], 0.0), axis=1)
             entry["max_pressure_largest_mean_pa"] = float(rm.time_mean(run.time, largest, w))
             entry["max_pressure_peak_pa"] = float(np.max(largest[w.slice]))
@@ -230,6 +233,9 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
         s["friction"] = fr
         if "power_loss_mean_w" in fr:
             s["power_loss"] = {"total_mean_w": fr["power_loss_mean_w"]}
+    rollers = summarize_rollers(run, w, bins)
+    if rollers:
+        s["rollers"] = rollers
     s["life"] = summarize_life(run, w)
     if run.notes:
         s["notes"] = "; ".join(run.notes)

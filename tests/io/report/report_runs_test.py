@@ -5,7 +5,7 @@
 
 Runs jobs/scenes/SCENE.toml cut short (END_TIMES below), then `raceway report --xdmf --vtk` and checks:
 - the page, the figures (PNG, at least 1200 px wide) and summary.json exist; the page embeds every
-  figure and names the scene;
+  figure and names the scene; none of these runs (ball, planar roller) has a roller section;
 - summary.json's numbers against values this test computes from the output file itself through the
   reader (the raceway package) and against the run's own summary (summary_json, written by the C++
   run loop): the cage speed window mean, the kinematic speed (spatial: /cage/rolling_speed mean;
@@ -256,6 +256,9 @@ def main():
             page = fh.read()
         check(page.count("data:image/png;base64,") == len(pngs), "the page embeds every figure")
         check(s["scene_name"] in page and "<pre>" in page, "the page names the scene and holds its text")
+        # Ball and planar runs have no roller section (only spatial roller runs do: report_rollers_test.py).
+        check("rollers" not in s and "Rollers: slices" not in page and "slice_load_heatmap.png" not in pngs,
+              "no roller section, figure or page rows for a ball or planar run")
         impacts = check_summary(s, h5, element)
         slip = s["cage_speed"]["slip"]
         check(run_line is not None and abs(float(run_line.group(1)) - 100 * slip) <= 0.0005 + 1e-9,

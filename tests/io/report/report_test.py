@@ -161,6 +161,7 @@ def check_summary(s, window_samples=300, direction=1, rolling=True):
     """The numbers of write_spatial(), by hand (rolling=False: a file without /cage/rolling_speed,
     as written before it existed: no rolling keys)."""
     near(s["window"]["samples"], window_samples, 0, "window samples")
+    check("rollers" not in s, "a ball run has no roller section")
     cs = s["cage_speed"]
     near(cs["mean_rad_s"], direction * W_CAGE, 1e-9, "cage speed")
     near(cs["mean_rpm"], direction * W_CAGE * 60 / (2 * math.pi), 1e-7, "cage rpm")
