@@ -1,9 +1,11 @@
-// The rules of a race's imperfections (spall, waviness) and of the housing (scene_rules.hpp).
+// The rules of a race's imperfections (spall, waviness), of the balls' and pockets' scatter and of the
+// housing (scene_rules.hpp).
 #include <cmath>
 #include <numbers>
 
 #include <fmt/format.h>
 
+#include "io/scene/scatter_draws.hpp"
 #include "io/scene/scene_rules.hpp"
 
 namespace raceway::scene::schema::rules {
@@ -52,6 +54,68 @@ void waviness_lists_match(const Row&, const Section& s, Bind& b) {
                        w.orders.size());
   });
   table.check(!w.orders.empty(), "orders", [] { return std::string("give at least one order"); });
+}
+
+namespace {
+std::string um(double metres) { return fmt::format("{:.4g} um", metres * 1e6); }
+
+/// A given list of deviations has one value per rolling element.
+void one_per_element(const Section& s, std::string_view key, const std::vector<double>& list, const Bind& b,
+                     const char* what) {
+  const int count = b.scene.bearing.rolling_elements;
+  s.check(static_cast<int>(list.size()) == count, key, [&] {
+    return fmt::format("{} values for {} balls; give one per {} ({} first)", list.size(), count, what,
+                       std::string(what) == "ball" ? "ball[0]" : "pocket 0");
+  });
+}
+
+/// A scatter draws the list of deviations, unless the list is given (then the scatter must be 0).
+void draw_unless_given(const Section& s, std::string_view key, std::string_view list_key, double scatter,
+                       std::vector<double>& list, const Bind& b, ScatterStream stream) {
+  if (scatter == 0) return;
+  s.check(list.empty(), key, [&] {
+    return fmt::format("give either {} or {}, not both (the list already sets every value)", key, list_key);
+  });
+  const int count = b.scene.bearing.rolling_elements;
+  list = standard_normal_draws(static_cast<std::uint64_t>(b.scene.bearing.scatter_seed), stream, count);
+  for (double& d : list) d *= scatter;
+}
+}  // namespace
+
+void ball_deviations_per_ball(const Row& row, const Section& s, Bind& b) {
+  one_per_element(s, row.key, b.scene.bearing.ball_diameter_deviations, b, "ball");
+}
+
+void ball_diameters_drawn(const Row& row, const Section& s, Bind& b) {
+  BearingGeometry& g = b.scene.bearing;
+  draw_unless_given(s, row.key, "ball_diameter_deviations", g.ball_diameter_scatter, g.ball_diameter_deviations, b,
+                    ScatterStream::element_diameter);
+}
+
+void pocket_deviations_per_pocket(const Row& row, const Section& s, Bind& b) {
+  one_per_element(s, row.key, b.scene.cage.pocket_clearance_deviations, b, "pocket");
+}
+
+void pocket_clearances_drawn(const Row& row, const Section& s, Bind& b) {
+  CageSpec& cage = b.scene.cage;
+  draw_unless_given(s, row.key, "pocket_clearance_deviations", cage.pocket_clearance_scatter,
+                    cage.pocket_clearance_deviations, b, ScatterStream::pocket_clearance);
+  // Every pocket must still hold its ball with play: the pocket's diameter (ball_diameter +
+  // its clearance) exceeds its ball's.
+  const std::vector<double>& balls = b.scene.bearing.ball_diameter_deviations;
+  for (int k = 0; k < b.scene.bearing.rolling_elements; ++k) {
+    const double pocket = cage.pocket_clearance + (cage.pocket_clearance_deviations.empty()
+                                                       ? 0.0 : cage.pocket_clearance_deviations[std::size_t(k)]);
+    const double ball = balls.empty() ? 0.0 : balls[std::size_t(k)];
+    const std::string_view key = cage.pocket_clearance_scatter > 0             ? row.key
+                                 : !cage.pocket_clearance_deviations.empty() ? "pocket_clearance_deviations"
+                                                                             : "pocket_clearance";
+    s.check(pocket - ball > 0, key, [&] {
+      return fmt::format("pocket {} leaves its ball no play: its clearance {} less the ball's oversize {} is {} (a "
+                         "smaller scatter, another scatter_seed or a larger pocket_clearance)",
+                         k, um(pocket), um(ball), um(pocket - ball));
+    });
+  }
 }
 
 std::optional<std::string> housing_holds_fixed_outer_ring(const Section&, const Bind& b) {

@@ -108,6 +108,12 @@ struct BearingGeometry {
   double ring_width = 0;                ///< m, width of both rings (default: roller_length)
   std::string roller_material;          ///< key into Scene::materials (rollers or balls)
   std::string ring_material;            ///< key into Scene::materials
+  long scatter_seed = 1;                ///< seed of the drawn scatter (ball diameters, pocket clearances)
+  /// Ball bearings, the balls' diameter scatter (docs/vibration.md): ball k's diameter is
+  /// ball.ball_diameter + ball_diameter_deviations[k]; the list is given or drawn from a normal
+  /// distribution of standard deviation ball_diameter_scatter (scatter_seed). Empty: every ball nominal.
+  double ball_diameter_scatter = 0;              ///< m, standard deviation
+  std::vector<double> ball_diameter_deviations;  ///< m, one per ball, or empty
   BallGeometry ball;                    ///< ball bearings (type != cylindrical_roller)
   RollerGeometry roller;                ///< spatial cylindrical roller bearings
   bool is_ball_bearing() const { return type != BearingType::cylindrical_roller; }
@@ -134,6 +140,10 @@ struct CageSpec {
   CageGuidance guidance = CageGuidance::inner_land;
   PocketShape pocket_shape = PocketShape::cylindrical;  ///< ball bearings
   double pocket_clearance = 0;  ///< m, pocket width (diameter) minus roller (ball) diameter
+  /// Ball bearings: pocket k's clearance is pocket_clearance + pocket_clearance_deviations[k] (given,
+  /// or drawn with standard deviation pocket_clearance_scatter); empty: every pocket nominal.
+  double pocket_clearance_scatter = 0;             ///< m, standard deviation
+  std::vector<double> pocket_clearance_deviations;  ///< m, one per pocket, or empty
   double land_clearance = 0;    ///< m, radial clearance between cage and the guiding land
   double bar_width = 0;         ///< m, axial length of the roller-bar contact (default roller_length)
   double land_width = 0;        ///< m, axial width of the guiding land contact

@@ -105,6 +105,12 @@ void order_exists_for_method(const Row& row, const Section& s, Bind& b);
 // ---- the race's imperfections and the housing (imperfection_rules.cpp) -------------------------
 void spall_given(const Row& row, const Section& s, Bind& b);
 void waviness_lists_match(const Row& row, const Section& s, Bind& b);
+/// Scatter of the balls' diameters and the pockets' clearances (imperfection_rules.cpp): a given
+/// list has one value per ball (pocket); a scatter draws that list (scatter_draws.hpp).
+void ball_deviations_per_ball(const Row& row, const Section& s, Bind& b);
+void ball_diameters_drawn(const Row& row, const Section& s, Bind& b);
+void pocket_deviations_per_pocket(const Row& row, const Section& s, Bind& b);
+void pocket_clearances_drawn(const Row& row, const Section& s, Bind& b);
 std::optional<std::string> housing_holds_fixed_outer_ring(const Section& s, const Bind& b);
 void sensor_interval_within_output(const Row& row, const Section& s, Bind& b);
 

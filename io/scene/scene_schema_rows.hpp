@@ -75,6 +75,12 @@ inline constexpr Bounds kAxialPosition{.lo = -1e-3, .hi = 1e-3, .unit = "um",
 inline constexpr Bounds kMisalignment{.lo = -0.05, .hi = 0.05, .unit = "mrad",
                                .note = " (a sanity limit: ball bearings run at a few mrad)"};
 
+// The scatter of the balls' diameters and the pockets' clearances (a sanity limit: ISO 3290 ball
+// grades hold a lot's diameter variation to a fraction of a micrometre up to a few).
+inline constexpr Bounds kScatter{.lo = 0, .hi = 20e-6, .unit = "um",
+                          .note = " (a sanity limit: ground balls and pockets scatter by micrometres)"};
+inline constexpr Bounds kScatterDeviation{.lo = -20e-6, .hi = 20e-6, .unit = "um",
+                                   .note = " (a sanity limit: ground balls and pockets scatter by micrometres)"};
 inline constexpr Bounds kMassEccentricity{.lo = 0, .hi = 1e-3, .unit = "um",
                                    .note = " (machined cages are balanced to some micrometres; 1 mm is a sanity limit)"};
 

@@ -100,6 +100,13 @@ void add_balls(Model& m, const scene::Scene& scene) {
     add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
     add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
   });
+  // A scattered ball's mass and inertia follow its own diameter (a solid sphere).
+  for (Body& b : m.bodies) {
+    if (b.kind != BodyKind::rolling_element || m.element_radii.empty()) continue;
+    const double r = m.radius_of_element(b.index), scale = r / rb;
+    b.mass = ball_mass * scale * scale * scale;
+    b.axial_inertia = b.transverse_inertia = 0.4 * b.mass * r * r;
+  }
 }
 
 double e_star(const scene::Material& a, const scene::Material& b) {
@@ -168,8 +175,8 @@ contact::PointLubricant lubricant(const scene::Scene& scene) {
 
 /// The ball-groove law of one arc: Hertz constants over cos(contact angle) in [0.2, 1]: ball 1/R_b
 /// both ways; groove -1/r_g across; race +-cos(a)/rho along the rolling direction, rho = r_p -+ R_b cos(a).
-contact::BallGrooveSegment groove_law(const Model& m, const scene::Scene& scene, const Arc& arc) {
-  const double rb = m.element_radius, rp = m.pitch_radius;
+contact::BallGrooveSegment groove_law(const Model& m, const scene::Scene& scene, const Arc& arc, double rb) {
+  const double rp = m.pitch_radius;
   const double e_race = e_star(scene.material(scene.bearing.roller_material), scene.material(scene.bearing.ring_material));
   contact::BallGrooveSegment s;
   s.centre_radius = arc.centre_radius;
@@ -234,16 +241,50 @@ contact::BallPocketSegment pocket_law(const Model& m, const scene::Scene& scene)
   return p;
 }
 
+/// The ball-groove laws of each arc: one for every ball alike, or with a diameter scatter one per ball
+/// and arc (the arcs are the rings' and stay where the nominal ball puts them; a larger ball's
+/// surface reaches further into them). law_of[k][a]: ball k's law on arc a.
+std::vector<std::vector<int>> add_groove_laws(Model& m, const scene::Scene& scene, const std::vector<Arc>& arcs) {
+  std::vector<std::vector<int>> law_of(static_cast<std::size_t>(m.element_count));
+  for (int k = 0; k < m.element_count; ++k) {
+    if (k > 0 && m.element_radii.empty()) {
+      law_of[std::size_t(k)] = law_of[0];
+      continue;
+    }
+    for (const Arc& arc : arcs) {
+      m.laws.push_back(groove_law(m, scene, arc, m.radius_of_element(k)));
+      law_of[std::size_t(k)].push_back(static_cast<int>(m.laws.size()) - 1);
+    }
+  }
+  return law_of;
+}
+
+/// Pocket k of a scattered cage or holding a scattered ball: the pocket's diameter is the nominal
+/// ball's plus its own clearance; the clearance the law sees is that less its ball's diameter.
+void scatter_pocket(contact::BallPocketSegment& p, const Model& m, const scene::Scene& scene, int k,
+                    double clearance_deviation) {
+  const double rb = m.radius_of_element(k);
+  const double pocket_r = m.element_radius + 0.5 * (scene.cage.pocket_clearance + clearance_deviation);
+  p.ball_radius = rb;
+  p.clearance = 2.0 * (pocket_r - rb);
+  const bool spherical = p.shape == contact::PocketShape::spherical;
+  const double conformal = 1.0 / rb - 1.0 / pocket_r;
+  p.normal.hertz = contact::HertzTable(
+      contact::hertz_point_contact(spherical ? conformal : 1.0 / rb, conformal, p.normal.reduced_modulus));
+  if (p.film) {
+    p.film->ball_radius = rb;
+    p.film->clearance = 0.5 * p.clearance;
+  }
+}
+
 void add_ball_segments(Model& m, const scene::Scene& scene) {
   const std::vector<Arc> arcs = groove_arcs(m, scene);
-  std::vector<int> arc_law;
-  for (const Arc& arc : arcs) {
-    m.laws.push_back(groove_law(m, scene, arc));
-    arc_law.push_back(static_cast<int>(m.laws.size()) - 1);
-  }
+  const std::vector<std::vector<int>> law_of = add_groove_laws(m, scene, arcs);
   const contact::BallPocketSegment pocket = pocket_law(m, scene);
+  const auto& pocket_deviations = scene.cage.pocket_clearance_deviations;
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
+    const std::vector<int>& arc_law = law_of[std::size_t(k)];
     for (std::size_t a = 0; a < arcs.size(); ++a) {
       const bool outer = arcs[a].outer;
       m.segments.push_back({outer ? SegmentKind::ball_outer_groove : SegmentKind::ball_inner_groove,
@@ -252,6 +293,8 @@ void add_ball_segments(Model& m, const scene::Scene& scene) {
     }
     contact::BallPocketSegment p = pocket;
     p.pocket_angle = 2.0 * pi * k / m.element_count;
+    if (!m.element_radii.empty() || !pocket_deviations.empty())
+      scatter_pocket(p, m, scene, k, pocket_deviations.empty() ? 0.0 : pocket_deviations[std::size_t(k)]);
     m.laws.push_back(std::move(p));
     m.segments.push_back({SegmentKind::ball_pocket, m.cage, body, static_cast<int>(m.laws.size()) - 1, k,
                           fmt::format("ball[{}]/pocket", k)});
@@ -323,6 +366,8 @@ void set_geometry(Model& m, const scene::Scene& scene) {
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.ball.ball_diameter;
+  m.element_radii.clear();
+  for (const double deviation : g.ball_diameter_deviations) m.element_radii.push_back(0.5 * (g.ball.ball_diameter + deviation));
   m.nominal_contact_angle = four_point                                    ? g.ball.arc_contact_angle
                             : g.type == scene::BearingType::angular_contact_ball ? g.ball.free_contact_angle
                                                                               : 0.0;
@@ -365,6 +410,30 @@ void add_segments(Model& m, const scene::Scene& scene) {
 
 std::string describe_ball_model(const Model& m);
 
+namespace {
+/// Lines for the balls' diameter and the pockets' clearance scatter, each value in micrometres.
+std::string describe_scatter(const Model& m, const ModelParameters& sc) {
+  std::string out;
+  const auto list = [](const std::vector<double>& deviations) {
+    std::string values;
+    for (const double d : deviations) values += fmt::format("{}{:+.4g}", values.empty() ? "" : " ", 1e6 * d);
+    return values;
+  };
+  const auto how = [&](double scatter) {
+    return scatter > 0 ? fmt::format("drawn, standard deviation {:.4g} um, scatter_seed {}", 1e6 * scatter,
+                                     sc.bearing.scatter_seed)
+                       : std::string("given");
+  };
+  if (!m.element_radii.empty())
+    out += fmt::format("  ball diameters ({}): D + [{}] um\n", how(sc.bearing.ball_diameter_scatter),
+                       list(sc.bearing.ball_diameter_deviations));
+  if (!sc.cage.pocket_clearance_deviations.empty())
+    out += fmt::format("  pocket clearances ({}): {:.4g} um + [{}] um\n", how(sc.cage.pocket_clearance_scatter),
+                       1e6 * sc.cage.pocket_clearance, list(sc.cage.pocket_clearance_deviations));
+  return out;
+}
+}  // namespace
+
 const ModelBuilder& ball_model_builder() {
   static const ModelBuilder builder{
       check_scene, set_geometry, add_rings,
@@ -385,6 +454,7 @@ std::string describe_ball_model(const Model& m) {
                                                                                     : "deep groove",
                      2e3 * m.element_radius,
                      2e3 * m.pitch_radius, m.nominal_contact_angle * 180 / std::numbers::pi);
+  out += describe_scatter(m, sc);
   out += "bodies (states integrated; prescribed motions are functions of time, not states):\n";
   for (const auto& b : m.bodies) {
     if (b.kind == BodyKind::rolling_element && b.index > 0) continue;

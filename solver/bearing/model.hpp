@@ -138,7 +138,11 @@ struct Model {
   std::vector<RateFollower> rate_followers;
 
   // Geometry, kept for start-up, output and diagnostics.
-  double pitch_radius = 0, element_radius = 0;
+  double pitch_radius = 0, element_radius = 0;  ///< element_radius: the nominal one
+  /// Ball bearings with a diameter scatter: each ball's radius (ball[k]); empty: every ball nominal.
+  std::vector<double> element_radii;
+  /// The radius of rolling element k.
+  double radius_of_element(int k) const { return element_radii.empty() ? element_radius : element_radii[std::size_t(k)]; }
   double inner_race_radius = 0, outer_race_radius = 0;  ///< planar: race radii
   double nominal_contact_angle = 0;                     ///< rad (spatial): 0 deep groove, the arc angle four-point
   int arcs_per_ring = 1;                                ///< 2 for a four-point bearing

@@ -265,6 +265,16 @@ void write_bearing_attributes(h5::H5SeriesWriter& file, const bearing::Model& m,
   file.set_attribute("/", "element_count", static_cast<long long>(m.element_count));
   file.set_attribute("/", "pitch_radius", m.pitch_radius);
   file.set_attribute("/", "element_radius", m.element_radius);
+  if (!m.element_radii.empty()) {
+    std::vector<double> diameters;
+    for (const double r : m.element_radii) diameters.push_back(2.0 * r);
+    file.set_attribute("/", "element_diameters", diameters);
+  }
+  if (!scene.cage.pocket_clearance_deviations.empty()) {
+    std::vector<double> clearances;
+    for (const double d : scene.cage.pocket_clearance_deviations) clearances.push_back(scene.cage.pocket_clearance + d);
+    file.set_attribute("/", "pocket_clearances", clearances);
+  }
   file.set_attribute("/", "inner_race_radius", 0.5 * g.inner_race_diameter());
   file.set_attribute("/", "outer_race_radius", 0.5 * g.outer_race_diameter());
   file.set_attribute("/", "diametral_clearance", g.radial_clearance);

@@ -33,6 +33,7 @@ struct QuasiStaticBearing {
   double r_inner_arc = 0, r_outer_arc = 0;
   double z_inner_arc = 0, z_outer_arc = 0;
   int z = 0;
+  std::vector<double> ball_oversize;  ///< per ball (diameter less the nominal one); empty: all nominal
 
   explicit QuasiStaticBearing(const scene::Scene& s) {
     const auto& g = s.bearing;
@@ -57,10 +58,12 @@ struct QuasiStaticBearing {
   }
 
   /// Hertz stiffness K (Q = K delta^1.5) of the inner or outer contact at contact angle alpha.
-  double stiffness(bool outer, double cos_alpha) const {
-    const double rho = outer ? rp + rb * cos_alpha : rp - rb * cos_alpha;
-    const double kx = 1.0 / rb + (outer ? -cos_alpha : cos_alpha) / rho;
-    const double ky = 1.0 / rb - 1.0 / (outer ? rgo : rgi);
+  /// r: the ball's radius (default the nominal one).
+  double stiffness(bool outer, double cos_alpha, double r = 0) const {
+    if (r == 0) r = rb;
+    const double rho = outer ? rp + r * cos_alpha : rp - r * cos_alpha;
+    const double kx = 1.0 / r + (outer ? -cos_alpha : cos_alpha) / rho;
+    const double ky = 1.0 / r - 1.0 / (outer ? rgo : rgi);
     return contact::hertz_point_contact(kx, ky, e_star).stiffness;
   }
 
@@ -76,7 +79,10 @@ struct QuasiStaticBearing {
   /// ball sits on the line between the outer arc centre (at psi) and the inner arc centre (at the
   /// ball's azimuth about the inner ring's axis); total approach delta = |C_i - C_o| - (r_gi - R_b)
   /// - (r_go - R_b); Q = K_eff delta^1.5, K_eff = (K_i^-2/3 + K_o^-2/3)^-3/2.
-  Ball ball(double psi, const Vec3& c) const {
+  /// oversize: the ball's diameter less the nominal one (its surface reaches oversize / 2 further
+  /// into each groove).
+  Ball ball(double psi, const Vec3& c, double oversize = 0) const {
+    const double r = rb + 0.5 * oversize;
     const Vec3 e(std::cos(psi), std::sin(psi), 0.0);
     Ball b;
     b.position = rp * e;
@@ -89,12 +95,12 @@ struct QuasiStaticBearing {
       const Vec3 u = d / length;  // from the outer arc centre through the ball to the inner one
       b.cos_alpha = std::hypot(u.x(), u.y());
       b.sin_alpha = u.z();
-      const double ki = stiffness(false, b.cos_alpha), ko = stiffness(true, b.cos_alpha);
+      const double ki = stiffness(false, b.cos_alpha, r), ko = stiffness(true, b.cos_alpha, r);
       const double k_eff = std::pow(std::pow(ki, -2.0 / 3.0) + std::pow(ko, -2.0 / 3.0), -1.5);
-      const double delta = length - (rgi - rb) - (rgo - rb);
+      const double delta = length - (rgi - r) - (rgo - r);
       b.load = delta > 0 ? k_eff * std::pow(delta, 1.5) : 0.0;
       const double delta_o = b.load > 0 ? std::pow(b.load / ko, 2.0 / 3.0) : 0.0;
-      b.position = co + ((rgo - rb) + delta_o) * u;
+      b.position = co + ((rgo - r) + delta_o) * u;
       // The inner contact's normal points from the ball centre away from the inner arc centre's side:
       // the ball pushes the inner ring along -u.
       b.force_on_inner = -b.load * u;
@@ -105,7 +111,7 @@ struct QuasiStaticBearing {
   /// Sum of the balls' forces on the inner ring plus the applied load.
   Vec3 residual(const std::vector<double>& psi, const Vec3& c, const Vec3& load) const {
     Vec3 f = load;
-    for (double p : psi) f += ball(p, c).force_on_inner;
+    for (std::size_t k = 0; k < psi.size(); ++k) f += ball(psi[k], c, ball_oversize.empty() ? 0.0 : ball_oversize[k]).force_on_inner;
     return f;
   }
 

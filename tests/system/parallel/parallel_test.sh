@@ -53,7 +53,10 @@ mpi() {
 
 # Short scenes from the job files (the physics of the full runs, fewer revolutions).
 sed -e 's/^end_time = .*/end_time = "6 ms"/' "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/planar.toml"
-sed -e 's/^end_time = .*/end_time = "3 ms"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
+# The spatial scene with its balls' diameters and its pockets' clearances scattered (drawn from a
+# seed while the scene is read: the same on every rank).
+sed -e 's/^end_time = .*/end_time = "3 ms"/' -e 's/^\[bearing\]$/[bearing]\nball_diameter_scatter = "1 um"\nscatter_seed = 11/' \
+  -e 's/^\[cage\]$/[cage]\npocket_clearance_scatter = "5 um"/' "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
 sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fine_traction.toml" >"$work/cut.toml"
 # The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each).
 sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
@@ -275,7 +278,10 @@ busy_master_messages) busy_master --exchange messages ;;
 output_disk_full) output_disk_full ;;
 killed_worker) killed_worker ;;
 bitwise_planar) bitwise "$work/planar.toml" ;;
-bitwise_spatial) bitwise "$work/spatial.toml" ;;
+bitwise_spatial)
+  "$raceway" check "$work/spatial.toml" 2>&1 | grep -q "ball diameters (drawn" || fail "the scene's balls are not scattered"
+  bitwise "$work/spatial.toml"
+  ;;
 bitwise_spatial_roller) bitwise "$work/spatial_roller.toml" ;;
 bitwise_cut)
   bitwise "$work/cut.toml"
