@@ -64,7 +64,7 @@ void one_per_element(const Section& s, std::string_view key, const std::vector<d
                      const char* what) {
   const int count = b.scene.bearing.rolling_elements;
   s.check(static_cast<int>(list.size()) == count, key, [&] {
-    return fmt::format("{} values for {} balls; give one per {} ({} first)", list.size(), count, what,
+    return fmt::format("{} values for {} {}s; give one per {} ({} first)", list.size(), count, what, what,
                        std::string(what) == "ball" ? "ball[0]" : "pocket 0");
   });
 }
