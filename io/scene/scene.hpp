@@ -117,6 +117,20 @@ struct BearingGeometry {
   BallGeometry ball;                    ///< ball bearings (type != cylindrical_roller)
   RollerGeometry roller;                ///< spatial cylindrical roller bearings
   bool is_ball_bearing() const { return type != BearingType::cylindrical_roller; }
+  /// The spatial roller's profile: roller_length is its straight part, the corners add
+  /// corner_radius at each end; the modulus and rolling radius are the caller's.
+  contact::RollerProfile roller_profile(double reduced_modulus, double rolling_radius) const {
+    contact::RollerProfile p;
+    p.kind = roller.profile;
+    p.length = roller_length + 2 * roller.corner_radius;
+    p.corner_radius = roller.corner_radius;
+    p.crown_radius = roller.crown_radius;
+    p.flat_length = roller.flat_length;
+    p.design_load = roller.design_load;
+    p.reduced_modulus = reduced_modulus;
+    p.rolling_radius = rolling_radius;
+    return p;
+  }
   /// Diameter of the rolling element: roller or ball.
   double element_diameter() const { return is_ball_bearing() ? ball.ball_diameter : roller_diameter; }
   /// Race (groove bottom) diameters: d_m -/+ D -/+ P_d/2.

@@ -45,20 +45,11 @@ std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
 
 // ---- checks --------------------------------------------------------------------------------------
 
-// The spatial roller's profile as contact/laws/roller_profile.hpp checks it: roller_length is the
-// straight part, the corners add corner_radius at each end.
+// The spatial roller's profile as contact/laws/roller_profile.hpp checks it.
 void roller_profile_fits(const Row&, const Section& s, Bind& b) {
   const BearingGeometry& g = b.scene.bearing;
-  contact::RollerProfile p;
-  p.kind = g.roller.profile;
-  p.length = g.roller_length + 2 * g.roller.corner_radius;
-  p.corner_radius = g.roller.corner_radius;
-  p.crown_radius = g.roller.crown_radius;
-  p.flat_length = g.roller.flat_length;
-  p.design_load = g.roller.design_load;
-  p.reduced_modulus = 1e11;  // any positive value: the checks are on lengths and loads
-  p.rolling_radius = 0.25 * g.roller_diameter;
-  const std::string why = contact::validate_profile(p);
+  // Any positive modulus: the checks are on lengths and loads.
+  const std::string why = contact::validate_profile(g.roller_profile(1e11, 0.25 * g.roller_diameter));
   s.check(why.empty(), "roller_profile", [&] { return "the roller profile does not fit: " + why; });
 }
 

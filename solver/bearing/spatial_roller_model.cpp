@@ -141,20 +141,11 @@ void add_rollers(Model& m, const scene::Scene& scene) {
                        });
 }
 
-/// The roller's profile: roller_length is its straight part, the corners add r_c at each end.
+/// The roller's profile (BearingGeometry::roller_profile) with the races' modulus.
 contact::RollerProfile roller_profile(const Model& m, const scene::Scene& scene, double e_race) {
-  const auto& g = scene.bearing;
-  contact::RollerProfile p;
-  p.kind = g.roller.profile;
-  p.length = g.roller_length + 2 * g.roller.corner_radius;
-  p.corner_radius = g.roller.corner_radius;
-  p.crown_radius = g.roller.crown_radius;
-  p.flat_length = g.roller.flat_length;
-  p.design_load = g.roller.design_load;
-  p.reduced_modulus = e_race;
   // Johns-Gohar's rolling radius: the inner contact's, the more curved one.
-  p.rolling_radius = m.element_radius * m.inner_race_radius / (m.element_radius + m.inner_race_radius);
-  return p;
+  return scene.bearing.roller_profile(
+      e_race, m.element_radius * m.inner_race_radius / (m.element_radius + m.inner_race_radius));
 }
 
 /// The ribs of a design: (ring, side) pairs, ring 0 inner, 1 outer; side +1 the rib on the +z side.
