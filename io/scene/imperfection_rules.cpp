@@ -125,6 +125,30 @@ std::optional<std::string> housing_holds_fixed_outer_ring(const Section&, const 
                      option_name(kRingMotions, int(b.scene.outer_ring.motion)));
 }
 
+void housing_mode_lists_match(const Row&, const Section& s, Bind& b) {
+  HousingSpec& h = b.scene.housing;
+  const Section table = s.sub("modes");
+  const std::size_t n = h.mode_masses.size();
+  table.check(n > 0, "masses", [] { return std::string("give at least one further mode"); });
+  table.check(h.mode_stiffnesses.size() == n, "stiffnesses", [&] {
+    return fmt::format("{} stiffnesses for {} masses; give one stiffness per mode", h.mode_stiffnesses.size(), n);
+  });
+  if (h.mode_dampings.empty()) h.mode_dampings.assign(n, 0.0);
+  table.check(h.mode_dampings.size() == n, "dampings", [&] {
+    return fmt::format("{} dampings for {} masses; give one damping per mode (or none: all 0)", h.mode_dampings.size(),
+                       n);
+  });
+}
+
+void sensor_participation_per_mode(const Row&, const Section& s, Bind& b) {
+  const HousingSpec& h = b.scene.housing;
+  const std::size_t modes = 1 + h.mode_masses.size();
+  s.check(h.sensor_participation.size() == modes, "sensor_participation", [&] {
+    return fmt::format("{} values for {} modes of the housing (its own and {} in [housing.modes]); give one per mode",
+                       h.sensor_participation.size(), modes, modes - 1);
+  });
+}
+
 void sensor_interval_within_output(const Row&, const Section& s, Bind& b) {
   const double sensor = b.scene.housing.sensor_interval, output = b.scene.scene.output_interval;
   s.check(sensor <= output, "sensor_interval", [&] {

@@ -242,7 +242,8 @@ struct RingSpec {
 };
 
 /// The fixed outer ring mounted in a housing (ball bearings): the housing and ring move together
-/// in x and y on the housing's spring and damper (one mode per radial direction); a sensor on it
+/// in x and y on the housing's spring and damper (its first mode per radial direction), with
+/// optional further modes of the housing seen at the bearing seat ([housing.modes]); a sensor on it
 /// is sampled every sensor_interval (solver/bearing/housing.hpp).
 struct HousingSpec {
   bool present = false;    ///< a [housing] section was given
@@ -250,6 +251,11 @@ struct HousingSpec {
   double stiffness = 0;    ///< N/m, radial (x and y)
   double damping = 0;      ///< N s/m, radial
   double sensor_interval = 0;  ///< s, between the sensor's samples
+  /// Further modes at the seat ([housing.modes]): modal mass kg, stiffness N/m, damping N s/m each.
+  std::vector<double> mode_masses, mode_stiffnesses, mode_dampings;
+  /// The sensor's displacement per unit of each mode's (the first mode's first); empty: all 1, the
+  /// sensor at the seat.
+  std::vector<double> sensor_participation;
 };
 
 /// Contact laws, chosen by name in the scene. The parser looks every name up in the law registry

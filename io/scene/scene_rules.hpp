@@ -113,6 +113,8 @@ void pocket_deviations_per_pocket(const Row& row, const Section& s, Bind& b);
 void pocket_clearances_drawn(const Row& row, const Section& s, Bind& b);
 std::optional<std::string> housing_holds_fixed_outer_ring(const Section& s, const Bind& b);
 void sensor_interval_within_output(const Row& row, const Section& s, Bind& b);
+void housing_mode_lists_match(const Row& row, const Section& s, Bind& b);
+void sensor_participation_per_mode(const Row& row, const Section& s, Bind& b);
 
 // ---- across sections ---------------------------------------------------------------------------
 /// The rolling elements fit on the pitch circle (with room for ball-cage bars), and the rings are

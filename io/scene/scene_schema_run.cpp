@@ -34,6 +34,25 @@ constexpr Row kRows[] = {
      .dim = dim::time, .bounds = positive, .bearings = ball_bearings, .elsewhere = kBallOnly,
      .when = housing_holds_fixed_outer_ring, .then = sensor_interval_within_output, .example = "20 us",
      .meaning = "time between the sensor's samples (displacement, velocity, acceleration of the housing)"},
+    {.section = "housing", .key = "modes", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
+     .elsewhere = kBallOnly, .when = housing_holds_fixed_outer_ring, .then = housing_mode_lists_match,
+     .sub = "housing.modes",
+     .meaning = "further modes of the housing at the bearing seat: the seat moves by the sum of the modes' "
+                "displacements (docs/vibration.md)"},
+    {.section = "housing", .key = "sensor_participation", .kind = number_list,
+     .field = FIELD(scene.housing.sensor_participation), .dim = dim::none, .bounds = {.lo = -100, .hi = 100},
+     .def = absent, .bearings = ball_bearings, .elsewhere = kBallOnly, .when = housing_holds_fixed_outer_ring,
+     .then = sensor_participation_per_mode, .example = "[1.0, -0.4]",
+     .meaning = "the sensor's displacement per unit displacement of each mode (the first mode's first, then "
+                "[housing.modes]' in order); absent: all 1, the sensor at the seat"},
+    {.section = "housing.modes", .key = "masses", .kind = number_list, .field = FIELD(scene.housing.mode_masses),
+     .dim = dim::mass, .bounds = positive, .example = "[\"0.8 kg\"]", .meaning = "modal mass of each further mode"},
+    {.section = "housing.modes", .key = "stiffnesses", .kind = number_list,
+     .field = FIELD(scene.housing.mode_stiffnesses), .dim = dim::stiffness, .bounds = positive,
+     .example = "[\"2000 MN/m\"]", .meaning = "modal stiffness of each further mode"},
+    {.section = "housing.modes", .key = "dampings", .kind = number_list, .field = FIELD(scene.housing.mode_dampings),
+     .dim = dim::damping, .bounds = non_negative, .def = absent, .example = "[\"400 N s/m\"]",
+     .meaning = "modal damping of each further mode; absent: all 0"},
 
     // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
     {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),

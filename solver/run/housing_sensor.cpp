@@ -26,9 +26,9 @@ void HousingSensor::observe(numerics::Integrator& integrator) {
     std::array<double, quantities> s{};
     s[0] = t;
     for (int i = 0; i < 2; ++i) {
-      s[1 + i] = z_[static_cast<std::size_t>(housing_->state(i))];
-      s[3 + i] = z_[static_cast<std::size_t>(housing_->state(2 + i))];
-      s[5 + i] = zdot_[static_cast<std::size_t>(housing_->state(2 + i))];
+      s[1 + i] = housing_->sensor(z_.data(), i);
+      s[3 + i] = housing_->sensor(z_.data(), 2 + i);
+      s[5 + i] = housing_->sensor(zdot_.data(), 2 + i);
     }
     pending_[next_] = s;
   }

@@ -418,7 +418,14 @@ void OutputWriter::define_housing_sensor() {
   file_.set_attribute("/housing", "mass", housing->mass());
   file_.set_attribute("/housing", "stiffness", housing->stiffness());
   file_.set_attribute("/housing", "damping", housing->damping());
-  file_.set_attribute("/housing", "natural_frequency", housing->natural_frequency());
+  // The lowest resonance (the report's envelope band is about it), and every one with more modes.
+  file_.set_attribute("/housing", "natural_frequency", housing->frequencies().front());
+  if (housing->mode_count() > 1) {
+    file_.set_attribute("/housing", "mode_frequencies", housing->frequencies());
+    std::vector<double> participation;
+    for (const bearing::Housing::Mode& mode : housing->modes()) participation.push_back(mode.sensor);
+    file_.set_attribute("/housing", "sensor_participation", participation);
+  }
 }
 
 void OutputWriter::define_segment_groups() {

@@ -50,8 +50,17 @@ std::string scene_text(bool spall) {
   return text;
 }
 
+/// The scene without its spall and with a second housing mode at the seat (7.1 kHz alone), the sensor
+/// off the seat (it reads the second mode at -0.5).
+std::string two_mode_scene_text() {
+  return scene_text(false) +
+         "sensor_participation = [1.0, -0.5]\n"
+         "modes = { masses = [\"0.5 kg\"], stiffnesses = [\"1000 MN/m\"], dampings = [\"2000 N s/m\"] }\n";
+}
+
 struct HousedBearing {
-  explicit HousedBearing(bool spall = true) : scene(scene::parse_scene(scene_text(spall), "housing_test")) {
+  explicit HousedBearing(bool spall = true) : HousedBearing(scene_text(spall)) {}
+  explicit HousedBearing(const std::string& text) : scene(scene::parse_scene(text, "housing_test")) {
     executor.attach(eq.task_catalogue());
   }
   scene::Scene scene;
@@ -131,6 +140,58 @@ TEST(Housing, StaticDeflectionIsTheLoadOverTheStiffness) {
   const double expected = -(375.0 + weight) / 500e6;
   EXPECT_NEAR(sum / n, expected, 0.01 * std::abs(expected));
   EXPECT_NEAR(h->mass(), 2.0 + b.model.bodies[static_cast<std::size_t>(b.model.outer_ring)].mass, 1e-12);
+}
+
+// Two modes: the Jacobian through the seat (the sum of the modes) and the modes' coupling through the
+// ring's mass riding on the seat.
+TEST(HousingModes, JacobianMatchesCentralDifferences) {
+  HousedBearing b(two_mode_scene_text());
+  ASSERT_EQ(housing_of(b.model)->mode_count(), 2);
+  EXPECT_LT(jacobian_error(b.eq, b.model, 0.0, b.start), 1e-3);
+  EXPECT_LT(jacobian_error(b.eq, b.model, 4e-3, b.after(4e-3)), 1e-3);
+}
+
+// Settled, each mode carries the seat's force on its own spring: the seat sinks by F (1/k_1 + 1/k_2)
+// (the compliances add) and the sensor reads F (psi_1/k_1 + psi_2/k_2). Window as in the one-mode test.
+TEST(HousingModes, StaticDeflectionAddsTheCompliances) {
+  HousedBearing b(two_mode_scene_text());
+  const Housing* h = housing_of(b.model);
+  numerics::Integrator integrator(b.eq, b.scene.solver, 0.0, b.start);
+  std::vector<double> z;
+  double seat = 0, sensor = 0;
+  int n = 0;
+  for (double t = 8e-3; t <= 10e-3 + 1e-12; t += 1e-5, ++n) {
+    integrator.advance_to(t, z);
+    seat += h->seat(z.data(), 1), sensor += h->sensor(z.data(), 1);
+  }
+  double weight = 0;
+  for (const Body& body : b.model.bodies)
+    if (body.kind != BodyKind::outer_ring) weight += body.mass * 9.80665;
+  const double force = -(375.0 + weight);
+  const double expected_seat = force * (1 / 500e6 + 1 / 1e9), expected_sensor = force * (1 / 500e6 - 0.5 / 1e9);
+  EXPECT_NEAR(seat / n, expected_seat, 0.01 * std::abs(expected_seat));
+  EXPECT_NEAR(sensor / n, expected_sensor, 0.01 * std::abs(expected_sensor));
+  EXPECT_NEAR(h->mass(), 2.0, 1e-12);  // with more than one mode the ring rides on the seat
+}
+
+// The undamped frequencies of two modes with the ring on the seat: det(K - w^2 M) = 0 with
+// M = [[m1 + mr, mr], [mr, m2 + mr]], K = diag(k1, k2), a quadratic in w^2 solved here by hand.
+TEST(HousingModes, FrequenciesSolveTheTwoDegreeOfFreedomProblem) {
+  HousedBearing b(two_mode_scene_text());
+  const Housing* h = housing_of(b.model);
+  const double mr = b.model.bodies[static_cast<std::size_t>(b.model.outer_ring)].mass;
+  const double m1 = 2.0, m2 = 0.5, k1 = 500e6, k2 = 1e9;
+  const double qa = (m1 + mr) * (m2 + mr) - mr * mr, qb = -(k1 * (m2 + mr) + k2 * (m1 + mr)), qc = k1 * k2;
+  const double root = std::sqrt(qb * qb - 4 * qa * qc);
+  const double low = std::sqrt((-qb - root) / (2 * qa)) / (2 * std::numbers::pi);
+  const double high = std::sqrt((-qb + root) / (2 * qa)) / (2 * std::numbers::pi);
+  const std::vector<double> f = h->frequencies();
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_NEAR(f[0], low, 1e-9 * low);
+  EXPECT_NEAR(f[1], high, 1e-9 * high);
+  // One mode: the one-degree-of-freedom frequency with the ring's mass.
+  HousedBearing one(false);
+  EXPECT_NEAR(housing_of(one.model)->frequencies().front(), std::sqrt(500e6 / (2.0 + mr)) / (2 * std::numbers::pi), 1e-6);
 }
 
 // A ball outside the spall may step to its edge at its speed relative to the race, not further; one
