@@ -508,10 +508,6 @@ int main(int argc, char** argv) {
   const bool campaign = argc > 1 && std::string_view(argv[1]) == "campaign";
   // Otherwise rank 0 has threads that never call MPI (the output thread, the chunk compressor).
   int threads = 0;
-  // A process started without mpirun (a singleton) need not start Open MPI's runtime daemon: about
-  // 0.2 s less at every start, a refusal included. Set only where the user has not; under mpirun the
-  // launcher's own environment decides.
-  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   MPI_Init_thread(&argc, &argv, campaign ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED, &threads);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
