@@ -1,7 +1,11 @@
 // A flexible outer ring (seed 003 2.3): the rim of a planet gear, whose bending widens the loaded
 // zone. Seed 003 condenses a finite-element model of the rim onto the raceway's nodes and balances
-// the roller forces against that compliance quasi-statically. Here the rim is a thin circular ring
-// and its deflection is a sum of in-plane inextensional bending modes n = 2..N,
+// the roller forces against that compliance quasi-statically. Here the rim's deflection is a sum of
+// in-plane modes. With [outer_ring] rim_theory = "timoshenko" (the default) the rim is a thick ring
+// that bends, stretches and shears (thick_ring.hpp: modes n = 0, 1, 2..N, each with its own shape,
+// RimRing below); a seed 003 rim is 13 mm thick at a 63.5 mm radius, and the roller loads stretch
+// it by more than the bearing's radial play. With "euler_bernoulli" it is the thin inextensional
+// ring described next, the model the rest of this comment derives (modes n = 2..N),
 //
 //   w(theta) = sum_n a_n cos(n theta) + b_n sin(n theta)          (radial, outward)
 //   v(theta) = sum_n (b_n cos(n theta) - a_n sin(n theta)) / n    (tangential: dv/dtheta = -w, no stretch)
