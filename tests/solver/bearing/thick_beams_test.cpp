@@ -106,7 +106,7 @@ TEST(ThickRing, ThinSectionIsLovesRing) {
   for (int n = 2; n <= 8; ++n) {
     const RingHarmonic h = thick_ring_harmonic(thin, n);
     const double nn = n * n, love = pi * ei * (nn - 1) * (nn - 1) / std::pow(thin.radius, 3);
-    EXPECT_NEAR(h.stiffness, love, 1e-5 * love) << n;
+    EXPECT_NEAR(h.stiffness, love, 1e-4 * love) << n;  // shear and extension: ~ n^2 (t / R)^2 = 6e-5 at n = 8
     EXPECT_NEAR(h.tangential, -1.0 / n, 1e-6) << n;
     EXPECT_NEAR(h.mass, pi * thin.radius * (1 + 1 / nn), 1e-5 * h.mass) << n;
   }
@@ -172,6 +172,7 @@ BarModel bar_model(const BridgeBeam& b, double density, int elements) {
 TEST(TimoshenkoBar, StiffnessAndFrequencyMatchTheFiniteElementBar) {
   scene::Scene s = test::load_job_scene("seed003_flexible_bridges.toml");
   s.cage.bridge_damping_ratio = 0;
+  s.cage.bridge_height = 7.4e-3;  // the scene's bars: the cage's radial section
   const BridgeBeam bar = bridge_beam(s, 0.0);
   s.cage.bridge_theory = scene::BeamTheory::euler_bernoulli;
   const BridgeBeam slender = bridge_beam(s, 0.0);
