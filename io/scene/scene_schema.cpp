@@ -205,7 +205,8 @@ constexpr Row kRows[] = {
     {.section = "cage", .key = "bridge_stiffness", .kind = number, .field = FIELD(scene.cage.bridge_stiffness),
      .dim = dim::stiffness, .bounds = positive, .def = value(0), .bearings = planar_rollers,
      .elsewhere = kRollerCage, .meaning = "flexible bridges: tangential stiffness under the pocket force; 0: "
-                                         "720 E I / L^3 from the section (clamped beam, load along its length)"},
+                                         "from the section (clamped beam, load along its length: 720 E I / L^3, "
+                                         "with shear by bridge_theory)"},
     {.section = "cage", .key = "bridge_thickness", .kind = number, .field = FIELD(scene.cage.bridge_thickness),
      .dim = dim::length, .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: circumferential thickness; 0: d_m sin(pi / Z) - D - pocket_clearance"},
