@@ -142,6 +142,9 @@ enum class CageGuidance { inner_land, outer_land, rolling_element };
 enum class PocketShape { cylindrical, spherical };
 /// Roller cages: the bars between the pockets rigid with the cage, or each a clamped beam.
 enum class CageBridges { rigid, flexible };
+/// The beam theory of a flexible part (cage bridges, the outer ring's rim): Timoshenko's (bending,
+/// shear and, for the rim, extension) or Euler-Bernoulli's (bending only; the rim inextensional).
+enum class BeamTheory { timoshenko, euler_bernoulli };
 
 struct CageSupport {          ///< cage on a spindle (seed 000's aerostatic spindle); 0 = none
   double radial_stiffness = 0, radial_damping = 0;  ///< N/m, N s/m (x and y)
@@ -176,6 +179,7 @@ struct CageSpec {
   double bridge_thickness = 0;  ///< m, circumferential thickness of a bridge; 0 = computed
   double bridge_height = 0;     ///< m, radial height of a bridge; 0 = computed
   double bridge_damping_ratio = 0;  ///< structural damping of a bridge's bending
+  BeamTheory bridge_theory = BeamTheory::timoshenko;  ///< flexible bridges: with shear, or bending only
 };
 
 enum class RingMotion { fixed, driven, free };
@@ -237,6 +241,7 @@ struct RingSpec {
   double rim_thickness = 0;      ///< m, radial, of the rim's bending section; 0 = outside - race radius
   double rim_width = 0;          ///< m, axial, of the rim's bending section; 0 = ring width
   double rim_damping_ratio = 0;  ///< ring_modes: modal damping ratio of every bending mode
+  BeamTheory rim_theory = BeamTheory::timoshenko;  ///< ring_modes: thick ring, or thin inextensional
   SpallSpec spall;               ///< ball bearings: a spall on this ring's race
   WavinessSpec waviness;         ///< ball bearings: this ring's race's waviness
 };

@@ -205,7 +205,8 @@ constexpr Row kRows[] = {
     {.section = "cage", .key = "bridge_stiffness", .kind = number, .field = FIELD(scene.cage.bridge_stiffness),
      .dim = dim::stiffness, .bounds = positive, .def = value(0), .bearings = planar_rollers,
      .elsewhere = kRollerCage, .meaning = "flexible bridges: tangential stiffness under the pocket force; 0: "
-                                         "720 E I / L^3 from the section (clamped beam, load along its length)"},
+                                         "from the section (clamped beam, load along its length: 720 E I / L^3, "
+                                         "with shear by bridge_theory)"},
     {.section = "cage", .key = "bridge_thickness", .kind = number, .field = FIELD(scene.cage.bridge_thickness),
      .dim = dim::length, .bounds = positive, .def = value(0), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: circumferential thickness; 0: d_m sin(pi / Z) - D - pocket_clearance"},
@@ -216,6 +217,11 @@ constexpr Row kRows[] = {
      .field = FIELD(scene.cage.bridge_damping_ratio), .dim = dim::none, .bounds = {.lo = 0, .hi = 1},
      .def = value(0.02), .bearings = planar_rollers, .elsewhere = kRollerCage,
      .meaning = "flexible bridges: damping ratio of a bridge's bending mode"},
+    {.section = "cage", .key = "bridge_theory", .kind = choice, .field = FIELD(scene.cage.bridge_theory),
+     .def = word("timoshenko"), .bearings = planar_rollers, .elsewhere = kRollerCage, .options = kBeamTheories,
+     .noun = "bridge theory",
+     .meaning = "flexible bridges: timoshenko (bending and shear, Cowper's shear coefficient: a stubby bar) or "
+                "euler_bernoulli (bending only: a slender bar)"},
     {.section = "cage", .key = "pocket_shape", .kind = choice, .field = FIELD(scene.cage.pocket_shape),
      .def = word("cylindrical"), .bearings = ball_bearings, .elsewhere = kSpatialCage, .options = kPocketShapes,
      .noun = "pocket shape", .meaning = "cylindrical (drilled radially: machined cages) or spherical (pressed, snap)"},
@@ -327,6 +333,11 @@ constexpr Row kRows[] = {
      .dim = dim::none, .bounds = {.lo = 0, .hi = 1}, .def = value(0.02), .bearings = planar_rollers,
      .elsewhere = kPlanarRim, .when = ring_modes_only,
      .meaning = "flexibility = \"ring_modes\": damping ratio of every bending mode"},
+    {.section = "*_ring", .key = "rim_theory", .kind = choice, .field = FIELD(ring->rim_theory),
+     .def = word("timoshenko"), .bearings = planar_rollers, .elsewhere = kPlanarRim, .when = ring_modes_only,
+     .options = kBeamTheories, .noun = "rim theory",
+     .meaning = "flexibility = \"ring_modes\": timoshenko (a thick ring: bending, extension and shear; modes n = "
+                "0, 1, 2..modes) or euler_bernoulli (a thin inextensional ring: bending modes n = 2..modes)"},
 
     {.section = "*_ring", .key = "spall", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
      .elsewhere = kBallOnly, .then = spall_given, .sub = "*_ring.spall",

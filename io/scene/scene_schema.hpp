@@ -42,7 +42,7 @@ struct Bind {
 /// Where a row's value goes.
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
-                           BearingType*, RibArrangement*, RollerEnd*, contact::RollerProfileKind*, CageGuidance*, PocketShape*, CageBridges*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
+                           BearingType*, RibArrangement*, RollerEnd*, contact::RollerProfileKind*, CageGuidance*, PocketShape*, CageBridges*, BeamTheory*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
                            LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*,
                            contact::SpallEdge*, std::vector<double>*, std::vector<int>*>;
 
@@ -138,6 +138,8 @@ inline constexpr Option kPocketShapes[] = {{"cylindrical", int(PocketShape::cyli
                                            {"spherical", int(PocketShape::spherical)}};
 inline constexpr Option kCageBridges[] = {{"rigid", int(CageBridges::rigid)},
                                           {"flexible", int(CageBridges::flexible)}};
+inline constexpr Option kBeamTheories[] = {{"timoshenko", int(BeamTheory::timoshenko)},
+                                           {"euler_bernoulli", int(BeamTheory::euler_bernoulli)}};
 inline constexpr Option kRingMotions[] = {
     {"fixed", int(RingMotion::fixed)}, {"driven", int(RingMotion::driven)}, {"free", int(RingMotion::free)}};
 inline constexpr Option kRingFlexibilities[] = {{"rigid", int(RingFlexibility::rigid)},

@@ -12,6 +12,30 @@
 
 namespace raceway::bearing {
 
+namespace {
+
+/// A Timoshenko bar's stiffness for its mean deflection and its modal mass over the bar's mass.
+struct TimoshenkoBar {
+  double stiffness = 0, mass_ratio = 0;
+};
+
+// The static shape per unit pocket force, w = B xi^2 (1 - xi)^2 + S xi (1 - xi) (xi = x / L) with
+// B = L^3 / (24 E I), S = L / (2 kappa G A): its mean u = B / 30 + S / 6, the mean of its square
+// B^2 / 630 + B S / 70 + S^2 / 30 (Beta integrals), and the mean square of the sections' rotation
+// L w_b' = 2 B xi (1 - xi) (1 - 2 xi), 4 B^2 / 210, weighted by the section's (t / L)^2 / 12.
+TimoshenkoBar timoshenko_bar(const BridgeBeam& b) {
+  const double length3 = b.span * b.span * b.span;
+  const double bend = length3 / (24.0 * b.youngs_modulus * b.area_moment);
+  const double shear = b.span / (2.0 * b.shear_coefficient * b.shear_modulus * b.thickness * b.height);
+  const double mean = bend / 30.0 + shear / 6.0;
+  const double slender = b.thickness * b.thickness / (12.0 * b.span * b.span);
+  const double square = bend * bend / 630.0 + bend * shear / 70.0 + shear * shear / 30.0 +
+                        slender * 4.0 * bend * bend / 210.0;
+  return {1.0 / mean, square / (mean * mean)};
+}
+
+}  // namespace
+
 BridgeBeam bridge_beam(const scene::Scene& scene, double cage_height) {
   const auto& g = scene.bearing;
   const auto& cs = scene.cage;
@@ -28,10 +52,19 @@ BridgeBeam bridge_beam(const scene::Scene& scene, double cage_height) {
         1e3 * b.thickness));
   b.youngs_modulus = material.youngs_modulus;
   b.area_moment = b.height * b.thickness * b.thickness * b.thickness / 12.0;
-  b.stiffness = cs.bridge_stiffness > 0 ? cs.bridge_stiffness
-                                        : 720.0 * b.youngs_modulus * b.area_moment / (b.span * b.span * b.span);
   b.mass = material.density * b.thickness * b.height * b.span;
-  b.modal_mass = 10.0 / 7.0 * b.mass;
+  if (cs.bridge_theory == scene::BeamTheory::euler_bernoulli) {
+    b.stiffness = cs.bridge_stiffness > 0 ? cs.bridge_stiffness
+                                          : 720.0 * b.youngs_modulus * b.area_moment / (b.span * b.span * b.span);
+    b.modal_mass = 10.0 / 7.0 * b.mass;
+  } else {
+    const double nu = material.poisson_ratio;
+    b.shear_modulus = b.youngs_modulus / (2.0 * (1.0 + nu));
+    b.shear_coefficient = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
+    const TimoshenkoBar bar = timoshenko_bar(b);
+    b.stiffness = cs.bridge_stiffness > 0 ? cs.bridge_stiffness : bar.stiffness;
+    b.modal_mass = bar.mass_ratio * b.mass;
+  }
   b.damping = 2.0 * cs.bridge_damping_ratio * std::sqrt(b.stiffness * b.modal_mass);
   return b;
 }

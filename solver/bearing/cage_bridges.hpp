@@ -23,6 +23,8 @@ struct BridgeBeam {
   double span = 0;       ///< m, between the cage's side rings (the roller-bar contact length)
   double youngs_modulus = 0;  ///< Pa
   double area_moment = 0;     ///< m^4, height thickness^3 / 12
+  double shear_modulus = 0;      ///< Pa, E / (2 (1 + nu))
+  double shear_coefficient = 0;  ///< Cowper's for a rectangle, 10 (1 + nu) / (12 + 11 nu); 0: no shear
   double stiffness = 0;       ///< N/m, pocket force over the mean deflection along the span
   double mass = 0;            ///< kg, of the bar
   double modal_mass = 0;      ///< kg, for the mean deflection as coordinate
@@ -30,11 +32,16 @@ struct BridgeBeam {
 };
 
 /// The beam of the scene's bridges. Clamped at both ends and loaded uniformly along its span (the
-/// roller's line contact), a beam bends as w(x) = q x^2 (L - x)^2 / (24 E I); the pocket force
-/// F = q L does work on the mean deflection u = F L^3 / (720 E I), hence k = 720 E I / L^3 (or
-/// the scene's bridge_stiffness). With that static shape as the mode, the mass for u is 10/7 of
-/// the bar's (Rayleigh), which puts the first bending frequency 0.4 % above the exact
-/// 22.37 sqrt(E I / (m L^3)). `cage_height`: the cage's radial section.
+/// roller's line contact, q = F / L), a beam bends as w_b(x) = q x^2 (L - x)^2 / (24 E I) and, with
+/// [cage] bridge_theory = "timoshenko", shears as w_s(x) = q x (L - x) / (2 kappa G A) (the shear
+/// force q (L/2 - x) over the shear stiffness; Cowper's kappa for the rectangle). The pocket force
+/// does work on the mean deflection u = F L^3 / (720 E I) + F L / (12 kappa G A), hence k = F / u
+/// (or the scene's bridge_stiffness): the shear part is 60 E I / (kappa G A L^2) = 5 (E / kappa G)
+/// (t / L)^2 of the bending part, 0.7 for seed 003's brass bars (L / t = 4.7). With that static
+/// shape as the mode the mass for u follows from Rayleigh's kinetic energy, the bar's translation
+/// and (Timoshenko) its sections' rotation w_b' (rotary inertia rho I): 10/7 of the bar's mass for
+/// bending alone, which puts the first frequency 0.4 % above the exact 22.37 sqrt(E I / (m L^3)).
+/// `cage_height`: the cage's radial section.
 BridgeBeam bridge_beam(const scene::Scene& scene, double cage_height);
 
 /// A bridge's bending: its angle and rate relative to the cage (two border states), the moment on it

@@ -10,6 +10,7 @@
 
 #include "solver/bearing/segment_record.hpp"
 #include "solver/bearing/equations.hpp"
+#include "solver/bearing/thick_ring.hpp"
 
 namespace raceway::bearing {
 
@@ -17,10 +18,44 @@ namespace {
 constexpr double pi = std::numbers::pi;
 }
 
-double RimRing::frequency(int n) const {
-  const auto i = static_cast<std::size_t>(n - 2);
+double RimRing::frequency(int k) const {
+  const auto i = static_cast<std::size_t>(k);
   return std::sqrt(stiffness[i] / mass[i]);
 }
+
+namespace {
+
+void add_mode(RimRing& r, int n, double k, double mass, double tangential, double stretch, double damping_ratio) {
+  r.order.push_back(n);
+  r.stiffness.push_back(k);
+  r.mass.push_back(mass);
+  r.tangential.push_back(tangential);
+  r.stretch.push_back(stretch);
+  r.damping.push_back(2.0 * damping_ratio * std::sqrt(k * mass));
+}
+
+// Love's thin inextensional ring (ring_modes.hpp).
+void add_thin_modes(RimRing& r, double damping_ratio) {
+  for (int n = 2; n <= r.highest_mode; ++n) {
+    const double nn = static_cast<double>(n) * n;
+    const double k = pi * r.bending_stiffness * (nn - 1) * (nn - 1) / (r.radius * r.radius * r.radius);
+    const double mass = pi * r.mass_per_length * r.radius * (1.0 + 1.0 / nn);
+    add_mode(r, n, k, mass, 1.0 / n, 0.0, damping_ratio);
+  }
+}
+
+// The thick ring (thick_ring.hpp): the shape's tangential part is -V sin for the cos family.
+void add_thick_modes(RimRing& r, const scene::Material& material, double damping_ratio) {
+  const ThickRingSection section = rectangular_ring(r.radius, r.thickness, r.width, material.youngs_modulus,
+                                                    material.poisson_ratio, r.mass_per_length);
+  for (int n = 0; n <= r.highest_mode; ++n) {
+    const RingHarmonic h = thick_ring_harmonic(section, n);
+    const double tangential = -h.tangential;
+    add_mode(r, n, h.stiffness, h.mass, tangential, 1.0 - n * tangential, damping_ratio);
+  }
+}
+
+}  // namespace
 
 RimRing rim_ring(const scene::Scene& scene, double race_radius, double ring_mass) {
   const scene::RingSpec& spec = scene.outer_ring;
@@ -33,20 +68,18 @@ RimRing rim_ring(const scene::Scene& scene, double race_radius, double ring_mass
                                          "radius = {:.4g} mm); give rim_thickness",
                                          1e3 * r.thickness));
   r.radius = race_radius + 0.5 * r.thickness;
-  r.bending_stiffness = scene.material(g.ring_material).youngs_modulus * r.width * r.thickness * r.thickness *
+  const scene::Material& material = scene.material(g.ring_material);
+  r.bending_stiffness = material.youngs_modulus * r.width * r.thickness * r.thickness *
                         r.thickness / 12.0;
   r.mass_per_length = ring_mass / (2.0 * pi * r.radius);
   r.highest_mode = spec.modes;
   if (r.highest_mode > ModeShapes::max_modes)
     throw std::runtime_error(fmt::format("outer_ring.modes: at most {}", ModeShapes::max_modes));
-  for (int n = 2; n <= r.highest_mode; ++n) {
-    const double nn = static_cast<double>(n) * n;
-    const double k = pi * r.bending_stiffness * (nn - 1) * (nn - 1) / (r.radius * r.radius * r.radius);
-    const double mass = pi * r.mass_per_length * r.radius * (1.0 + 1.0 / nn);
-    r.stiffness.push_back(k);
-    r.mass.push_back(mass);
-    r.damping.push_back(2.0 * spec.rim_damping_ratio * std::sqrt(k * mass));
-  }
+  r.theory = spec.rim_theory;
+  if (r.theory == scene::BeamTheory::euler_bernoulli)
+    add_thin_modes(r, spec.rim_damping_ratio);
+  else
+    add_thick_modes(r, material, spec.rim_damping_ratio);
   return r;
 }
 
@@ -97,7 +130,7 @@ std::string RingModes::describe(const Model&) const {
   for (int k = 0; k < count(); ++k) {
     if (k > 0 && k < count() - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n",
-                       fmt::format("outer_ring_mode[{}]", k + 2), rim_.mass[static_cast<std::size_t>(k)], 0.0, 4,
+                       fmt::format("outer_ring_mode[{}]", rim_.order[static_cast<std::size_t>(k)]), rim_.mass[static_cast<std::size_t>(k)], 0.0, 4,
                        state(k, 0), state(k, 0) + 4, "the outer ring's bending mode: amplitudes and rates, border states");
     if (k == 0 && count() > 2) out += fmt::format("  ... ({} more modes alike)\n", count() - 2);
   }
@@ -198,16 +231,23 @@ void RimPointMarker::add_jacobian_terms(const JacobianAssembly& a, const Segment
   if (!kind || kind->get() != this) throw std::logic_error("a rim point is marker A of its contact (the ring's side)");
   const RimPoint p = rim_point(modes, m.planar_kinematics(body(), a.t, a.z), partner_planar(m, seg, true, a.t, a.z), a.z);
   const double co = p.cos_theta, si = p.sin_theta;
-  const ModeShapes shape(co, si, modes.count() + 1);
+  const RimRing& rim = modes.rim();
+  const ModeShapes shape(co, si, rim.highest_mode);
   const double radial = rec[SegmentRecord::on_a] * co + rec[SegmentRecord::on_a + 1] * si;
+  const double tangential = -rec[SegmentRecord::on_a] * si + rec[SegmentRecord::on_a + 1] * co;
   // The modes' rows from a column: d (force on the ring) and d theta.
   auto add_mode_rows = [&](int state, const double* d, double dtheta) {
     const double dr = d[0] * co + d[1] * si, dt = -d[0] * si + d[1] * co;
     for (int k = 0; k < modes.count(); ++k) {
-      const int n = k + 2;
-      const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n, turn = (n - inv_n) * radial * dtheta;
-      modes.add_force_derivative(k, state, dr * c - dt * s * inv_n - turn * s, dr * s + dt * c * inv_n + turn * c,
-                                 a.jac);
+      const auto i = static_cast<std::size_t>(k);
+      const int n = rim.order[i];
+      const double c = shape.c[n], s = shape.s[n], inv_n = rim.tangential[i], turn = (n - inv_n) * radial * dtheta;
+      double dq_a = dr * c - dt * s * inv_n - turn * s, dq_b = dr * s + dt * c * inv_n + turn * c;
+      if (rim.stretch[i] != 0.0) {  // an extensible shape turns its tangential part too
+        const double twist = rim.stretch[i] * tangential * dtheta;
+        dq_a += twist * c, dq_b += twist * s;
+      }
+      modes.add_force_derivative(k, state, dq_a, dq_b, a.jac);
     }
   };
   for (std::size_t i = 0; i < columns.size(); ++i) {
@@ -218,8 +258,8 @@ void RimPointMarker::add_jacobian_terms(const JacobianAssembly& a, const Segment
   }
   const double* shift = rec + SegmentRecord::size + SegmentRecord::wrench_rows * columns.size();
   for (int k = 0; k < modes.count(); ++k) {
-    const int n = k + 2;
-    const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n;
+    const int n = rim.order[static_cast<std::size_t>(k)];
+    const double c = shape.c[n], s = shape.s[n], inv_n = rim.tangential[static_cast<std::size_t>(k)];
     // phi_a = c e_r - (s / n) e_t, phi_b = s e_r + (c / n) e_t, as x, y components.
     const double phi[2][2] = {{c * co + s * inv_n * si, c * si - s * inv_n * co},
                               {s * co - c * inv_n * si, s * si + c * inv_n * co}};
@@ -247,7 +287,7 @@ void add_ring_modes(Model& m, const scene::Scene& scene) {
   const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
   RimRing rim = rim_ring(scene, m.outer_race_radius, ring.mass);
   const int first = m.state_size;
-  for (int n = 2; n <= rim.highest_mode; ++n) {
+  for (const int n : rim.order) {
     const std::string name = fmt::format("outer_ring_mode[{}]", n);
     add_state(m, VariableClass::position, name + ".cos_amplitude");
     add_state(m, VariableClass::position, name + ".sin_amplitude");
@@ -292,7 +332,7 @@ void add_ring_mode_segments(Model& m) {
     const int marker =
         m.add_marker(std::shared_ptr<const MarkerKind>(std::make_shared<ModeMarker>(modes, k, m.node_planning_id(node))));
     Segment seg{SegmentKind::outer_ring_mode, m.outer_ring, m.outer_ring, static_cast<int>(m.laws.size()) - 1, -1,
-                fmt::format("outer_ring_mode[{}]", k + 2)};
+                fmt::format("outer_ring_mode[{}]", rim.order[i])};
     seg.marker_b = marker;
     m.segments.push_back(seg);
   }
@@ -302,12 +342,16 @@ std::string describe_ring_mode_segments(const Model& m) {
   const RingModes* modes = ring_modes_of(m);
   if (!modes) return "";
   const RimRing& rim = modes->rim();
-  return fmt::format("  outer_ring_mode x{}: flexible outer ring, thin rim of mean radius {:.4g} mm, section {:.4g} x "
-                     "{:.4g} mm, E I = {:.4g} N m^2, {:.4g} kg/m; modes n = 2..{}: k_2 = {:.4g} N/m, f_2 = {:.4g} Hz, "
+  const bool thick = rim.theory == scene::BeamTheory::timoshenko;
+  const int second = thick ? 2 : 0, last = modes->count() - 1;  // the indices of n = 2 and the highest
+  const auto i2 = static_cast<std::size_t>(second);
+  return fmt::format("  outer_ring_mode x{}: flexible outer ring, {} rim of mean radius {:.4g} mm, section {:.4g} x "
+                     "{:.4g} mm, E I = {:.4g} N m^2, {:.4g} kg/m; modes n = {}..{}: k_2 = {:.4g} N/m, f_2 = {:.4g} Hz, "
                      "f_{} = {:.4g} Hz; the outer-race contacts see the rim's displacement\n",
-                     modes->count(), 1e3 * rim.radius, 1e3 * rim.thickness, 1e3 * rim.width, rim.bending_stiffness,
-                     rim.mass_per_length, rim.highest_mode, rim.stiffness[0], rim.frequency(2) / (2 * pi),
-                     rim.highest_mode, rim.frequency(rim.highest_mode) / (2 * pi));
+                     modes->count(), thick ? "thick (bending, extension, shear)" : "thin", 1e3 * rim.radius,
+                     1e3 * rim.thickness, 1e3 * rim.width, rim.bending_stiffness, rim.mass_per_length, rim.order[0],
+                     rim.highest_mode, rim.stiffness[i2], rim.frequency(second) / (2 * pi), rim.highest_mode,
+                     rim.frequency(last) / (2 * pi));
 }
 
 ModeShapes::ModeShapes(double cos_theta, double sin_theta, int highest) {
@@ -324,11 +368,12 @@ RimPoint rim_point(const RingModes& modes, const contact::PlanarKinematics& ring
   const double dx = roller.x - ring.x, dy = roller.y - ring.y;
   p.distance = std::hypot(dx, dy);
   p.cos_theta = dx / p.distance, p.sin_theta = dy / p.distance;
-  const ModeShapes shape(p.cos_theta, p.sin_theta, modes.count() + 1);
+  const RimRing& rim = modes.rim();
+  const ModeShapes shape(p.cos_theta, p.sin_theta, rim.highest_mode);
   double w = 0, v = 0, w_rate = 0, v_rate = 0;
   for (int k = 0; k < modes.count(); ++k) {
-    const int n = k + 2;
-    const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n;
+    const int n = rim.order[static_cast<std::size_t>(k)];
+    const double c = shape.c[n], s = shape.s[n], inv_n = rim.tangential[static_cast<std::size_t>(k)];
     const double a = z[modes.state(k, 0)], b = z[modes.state(k, 1)];
     const double a_rate = z[modes.state(k, 2)], b_rate = z[modes.state(k, 3)];
     w += a * c + b * s;
@@ -345,10 +390,11 @@ RimPoint rim_point(const RingModes& modes, const contact::PlanarKinematics& ring
 void add_modal_forces(const RingModes& modes, const RimPoint& p, const double* on_ring, double* forces) {
   const double radial = on_ring[0] * p.cos_theta + on_ring[1] * p.sin_theta;
   const double tangential = -on_ring[0] * p.sin_theta + on_ring[1] * p.cos_theta;
-  const ModeShapes shape(p.cos_theta, p.sin_theta, modes.count() + 1);
+  const RimRing& rim = modes.rim();
+  const ModeShapes shape(p.cos_theta, p.sin_theta, rim.highest_mode);
   for (int k = 0; k < modes.count(); ++k) {
-    const int n = k + 2;
-    const double c = shape.c[n], s = shape.s[n], inv_n = 1.0 / n;
+    const int n = rim.order[static_cast<std::size_t>(k)];
+    const double c = shape.c[n], s = shape.s[n], inv_n = rim.tangential[static_cast<std::size_t>(k)];
     forces[2 * k] += radial * c - tangential * s * inv_n;      // f . d u / d a_n
     forces[2 * k + 1] += radial * s + tangential * c * inv_n;  // f . d u / d b_n
   }

@@ -1,7 +1,11 @@
 // A flexible outer ring (seed 003 2.3): the rim of a planet gear, whose bending widens the loaded
 // zone. Seed 003 condenses a finite-element model of the rim onto the raceway's nodes and balances
-// the roller forces against that compliance quasi-statically. Here the rim is a thin circular ring
-// and its deflection is a sum of in-plane inextensional bending modes n = 2..N,
+// the roller forces against that compliance quasi-statically. Here the rim's deflection is a sum of
+// in-plane modes. With [outer_ring] rim_theory = "timoshenko" (the default) the rim is a thick ring
+// that bends, stretches and shears (thick_ring.hpp: modes n = 0, 1, 2..N, each with its own shape,
+// RimRing below); a seed 003 rim is 13 mm thick at a 63.5 mm radius, and the roller loads stretch
+// it by more than the bearing's radial play. With "euler_bernoulli" it is the thin inextensional
+// ring described next, the model the rest of this comment derives (modes n = 2..N),
 //
 //   w(theta) = sum_n a_n cos(n theta) + b_n sin(n theta)          (radial, outward)
 //   v(theta) = sum_n (b_n cos(n theta) - a_n sin(n theta)) / n    (tangential: dv/dtheta = -w, no stretch)
@@ -55,16 +59,25 @@
 
 namespace raceway::bearing {
 
-/// The rim as a thin ring: section, what follows from it, and its modes n = 2..highest_mode.
+/// The rim's section and its modes: with [outer_ring] rim_theory = "euler_bernoulli" a thin
+/// inextensional ring, modes n = 2..highest_mode; with "timoshenko" a thick ring (thick_ring.hpp),
+/// modes n = 0, 1, 2..highest_mode. Mode k's shapes, as radial and tangential displacement:
+/// phi_a = cos(n theta) e_r - tangential_k sin(n theta) e_t, phi_b = sin(n theta) e_r +
+/// tangential_k cos(n theta) e_t (Love's ring: tangential = 1/n; n = 0's phi_b vanishes, a rigid
+/// rotation being the ring body's: its sin states stay at rest).
 struct RimRing {
   double radius = 0;           ///< m, mean radius of the bending section
   double thickness = 0, width = 0;  ///< m, radial and axial, of the section
   double bending_stiffness = 0;     ///< N m^2, E I
   double mass_per_length = 0;       ///< kg/m, the ring's mass spread round the rim
   int highest_mode = 0;
-  std::vector<double> stiffness, mass, damping;  ///< per mode n = 2..highest_mode (index n - 2)
-  /// Natural frequency of mode n [rad/s].
-  double frequency(int n) const;
+  scene::BeamTheory theory = scene::BeamTheory::euler_bernoulli;
+  std::vector<int> order;                        ///< per mode: its n
+  std::vector<double> stiffness, mass, damping;  ///< per mode
+  std::vector<double> tangential;  ///< per mode: the shape's tangential over radial amplitude
+  std::vector<double> stretch;     ///< per mode: 1 - n tangential, exactly 0 for Love's ring
+  /// Natural frequency of mode index k [rad/s].
+  double frequency(int k) const;
 };
 
 /// The rim of the scene's outer ring (flexibility = "ring_modes"); `ring_mass` its body's mass.
@@ -76,7 +89,7 @@ class RingModes final : public Node {
  public:
   RingModes(RimRing rim, int ring_body, int first_state);
   int count() const { return static_cast<int>(rim_.mass.size()); }
-  /// State i (0: a, 1: b, 2: a', 3: b') of mode index k (n = k + 2).
+  /// State i (0: a, 1: b, 2: a', 3: b') of mode index k (n = rim().order[k]).
   int state(int k, int i) const { return first_state_ + 4 * k + i; }
   const RimRing& rim() const { return rim_; }
   int ring_body() const { return ring_body_; }
@@ -110,7 +123,7 @@ const RingModes* ring_modes_of(const Model& m);
 /// The model description's line for the modes' elements.
 std::string describe_ring_mode_segments(const Model& m);
 
-/// The mode shapes at an azimuth: cos(n theta) and sin(n theta) for n = 2..highest, by the
+/// The mode shapes at an azimuth: cos(n theta) and sin(n theta) for n = 0..highest, by the
 /// angle-sum recurrence from cos(theta), sin(theta) (no trigonometric call per mode).
 struct ModeShapes {
   static constexpr int max_modes = 40;

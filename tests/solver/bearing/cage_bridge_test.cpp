@@ -30,10 +30,12 @@ namespace {
 
 constexpr double thickness = 3.0e-3, height = 7.0e-3;  // the bridge section in the test scene
 
-/// Seed 003's bearing without the carrier, flexible bridges of a given section, a dry bar contact.
+/// Seed 003's bearing without the carrier, flexible slender (Euler-Bernoulli) bridges of a given section, a dry
+/// bar contact (the Timoshenko bar: thick_beams_test.cpp).
 scene::Scene bridge_scene() {
   scene::Scene s = test::load_job_scene("seed003_no_carrier.toml");
   s.cage.bridges = scene::CageBridges::flexible;
+  s.cage.bridge_theory = scene::BeamTheory::euler_bernoulli;
   s.cage.bridge_thickness = thickness;
   s.cage.bridge_height = height;
   s.roller_cage.normal.id = contact::LawId::palmgren;

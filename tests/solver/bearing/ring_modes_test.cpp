@@ -32,9 +32,11 @@ namespace raceway::bearing {
 namespace {
 
 /// Seed 003's bearing without the carrier, its outer ring a modal rim, dry race contacts.
-scene::Scene rim_scene(int modes, bool conservative) {
+/// Love's thin ring unless `theory` says otherwise.
+scene::Scene rim_scene(int modes, bool conservative, scene::BeamTheory theory = scene::BeamTheory::euler_bernoulli) {
   scene::Scene s = test::load_job_scene("seed003_no_carrier.toml");
   s.outer_ring.flexibility = scene::RingFlexibility::ring_modes;
+  s.outer_ring.rim_theory = theory;
   s.outer_ring.modes = modes;
   s.outer_ring.rim_damping_ratio = conservative ? 0.0 : 0.02;
   s.roller_race.normal.id = contact::LawId::palmgren;
@@ -54,7 +56,8 @@ scene::Scene rim_scene(int modes, bool conservative) {
 
 /// A rim scene's model and equations.
 struct RimBearing {
-  RimBearing(int modes, bool conservative) : scene(rim_scene(modes, conservative)), m(build_model(scene)), eq(m, ex) {}
+  RimBearing(int modes, bool conservative, scene::BeamTheory theory = scene::BeamTheory::euler_bernoulli)
+      : scene(rim_scene(modes, conservative, theory)), m(build_model(scene)), eq(m, ex) {}
   scene::Scene scene;
   Model m;
   scheduler::SerialExecutor ex;
@@ -94,6 +97,18 @@ Mode mode(const Model& m, int k) {
   return {at(0), at(1), at(2), at(3), modes.rim().mass[static_cast<std::size_t>(k)]};
 }
 int mode_count(const Model& m) { return ring_modes_of(m) ? ring_modes_of(m)->count() : 0; }
+/// Mode index k's n and stiffness; the index of mode n.
+int order(const Model& m, int k) { return ring_modes_of(m)->rim().order[static_cast<std::size_t>(k)]; }
+double stiffness_of_mode(const Model& m, int k) { return modal_stiffness(m, order(m, k)); }
+int mode_index(const Model& m, int n) {
+  for (int k = 0; k < mode_count(m); ++k)
+    if (order(m, k) == n) return k;
+  ADD_FAILURE() << "no mode " << n;
+  return 0;
+}
+/// The tests of the modes' coupling run for the thin ring and the thick one (n = 0, 1 as well).
+constexpr scene::BeamTheory both_theories[] = {scene::BeamTheory::euler_bernoulli, scene::BeamTheory::timoshenko};
+const char* theory_name(scene::BeamTheory t) { return t == scene::BeamTheory::timoshenko ? "thick" : "thin"; }
 
 /// At rest: every velocity zero, the rim round.
 std::vector<double> rest_state(const Model& m) {
@@ -124,8 +139,8 @@ TEST(RingModes, DiametralPinchMatchesTheThinRingAndConverges) {
     std::vector<double> z(static_cast<std::size_t>(m.state_size), 0.0);
     for (int k = 0; k < mode_count(m); ++k) {
       const Mode md = mode(m, k);
-      z[md.a] = q[2 * static_cast<std::size_t>(k)] / modal_stiffness(m, k + 2);
-      z[md.b] = q[2 * static_cast<std::size_t>(k) + 1] / modal_stiffness(m, k + 2);
+      z[md.a] = q[2 * static_cast<std::size_t>(k)] / stiffness_of_mode(m, k);
+      z[md.b] = q[2 * static_cast<std::size_t>(k) + 1] / stiffness_of_mode(m, k);
     }
     // The rim's radial displacement at both loads, as a contact there sees it.
     contact::PlanarKinematics centre;
@@ -197,137 +212,146 @@ std::vector<double> pinched_state(const Model& m) {
 }
 
 TEST(RingModes, GeneralizedForceIsTheWorkConjugate) {
-  RimBearing rb(6, true);
-  const Model& m = rb.m;
-  Equations& eq = rb.eq;
-  std::vector<double> z = pinched_state(m), zdot(z.size());
-  constexpr int energy_field = contact::field_index(contact::line_diagnostic_fields, "elastic_energy");
-  auto race_energy = [&](const std::vector<double>& zz) {
-    std::vector<double> f(zz.size());
-    EXPECT_EQ(eq.rhs(0.0, zz.data(), f.data()), 0);
-    double e = 0;
-    for (std::size_t s = 0; s < m.segments.size(); ++s)
-      if (m.segments[s].kind == SegmentKind::roller_outer_race) e += eq.diagnostic(s, energy_field);
-    return e;
-  };
-  ASSERT_GT(race_energy(z), 1e-3);  // roller 0 is loaded (some kN)
-  std::vector<std::pair<double, double>> forces;  // generalized, -dU/da
-  for (int k = 0; k < mode_count(m); ++k) {
-    const Mode md = mode(m, k);
-    for (Coordinate c : {sx, sy}) {
-      ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
-      // The contacts' generalized force: the mode's acceleration times its mass, less its spring.
-      const std::size_t amplitude = c == sx ? md.a : md.b;
-      const double rate = zdot[c == sx ? md.va : md.vb];
-      const double generalized = md.mass * rate + modal_stiffness(m, k + 2) * z[amplitude];
-      const double h = 1e-9, a = z[amplitude];
-      std::vector<double> zp = z;
-      zp[amplitude] = a + h;
-      const double ep = race_energy(zp);
-      zp[amplitude] = a - h;
-      const double em = race_energy(zp);
-      const double conjugate = -(ep - em) / (2 * h);
-      std::printf("[ rim ] mode %d %s: generalized force %.6f N, -dU/da %.6f N\n", k + 2, c == sx ? "cos" : "sin",
-                  generalized, conjugate);
-      forces.emplace_back(generalized, conjugate);
+  for (const scene::BeamTheory theory : both_theories) {
+    SCOPED_TRACE(theory_name(theory));
+    RimBearing rb(6, true, theory);
+    const Model& m = rb.m;
+    Equations& eq = rb.eq;
+    std::vector<double> z = pinched_state(m), zdot(z.size());
+    constexpr int energy_field = contact::field_index(contact::line_diagnostic_fields, "elastic_energy");
+    auto race_energy = [&](const std::vector<double>& zz) {
+      std::vector<double> f(zz.size());
+      EXPECT_EQ(eq.rhs(0.0, zz.data(), f.data()), 0);
+      double e = 0;
+      for (std::size_t s = 0; s < m.segments.size(); ++s)
+        if (m.segments[s].kind == SegmentKind::roller_outer_race) e += eq.diagnostic(s, energy_field);
+      return e;
+    };
+    ASSERT_GT(race_energy(z), 1e-3);  // roller 0 is loaded (some kN)
+    std::vector<std::pair<double, double>> forces;  // generalized, -dU/da
+    for (int k = 0; k < mode_count(m); ++k) {
+      const Mode md = mode(m, k);
+      for (Coordinate c : {sx, sy}) {
+        ASSERT_EQ(eq.rhs(0.0, z.data(), zdot.data()), 0);
+        // The contacts' generalized force: the mode's acceleration times its mass, less its spring.
+        const std::size_t amplitude = c == sx ? md.a : md.b;
+        const double rate = zdot[c == sx ? md.va : md.vb];
+        const double generalized = md.mass * rate + stiffness_of_mode(m, k) * z[amplitude];
+        const double h = 1e-9, a = z[amplitude];
+        std::vector<double> zp = z;
+        zp[amplitude] = a + h;
+        const double ep = race_energy(zp);
+        zp[amplitude] = a - h;
+        const double em = race_energy(zp);
+        const double conjugate = -(ep - em) / (2 * h);
+        std::printf("[ rim ] mode %d %s: generalized force %.6f N, -dU/da %.6f N\n", order(m, k),
+                    c == sx ? "cos" : "sin", generalized, conjugate);
+        forces.emplace_back(generalized, conjugate);
+      }
     }
+    double largest = 0;
+    for (const auto& [g, c] : forces) largest = std::max(largest, std::abs(c));
+    ASSERT_GT(largest, 1000.0);
+    for (const auto& [g, c] : forces) EXPECT_NEAR(g, c, 1e-7 * largest);
   }
-  double largest = 0;
-  for (const auto& [g, c] : forces) largest = std::max(largest, std::abs(c));
-  ASSERT_GT(largest, 1000.0);
-  for (const auto& [g, c] : forces) EXPECT_NEAR(g, c, 1e-7 * largest);
 }
 
 TEST(RingModes, FreeVibrationConservesEnergy) {
-  RimBearing rb(6, true);
-  const Model& m = rb.m;
-  Equations& eq = rb.eq;
-  std::vector<double> z = centred_rest_state(m);
-  // Pinch the rim inward at the azimuth of roller 0 and its opposite (mode 2 alone).
-  const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
-  const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
-  const Mode mode2 = mode(m, 0);
-  z[mode2.a] = -20e-6 * std::cos(2 * theta), z[mode2.b] = -20e-6 * std::sin(2 * theta);
-  const std::size_t n = z.size();
-  std::vector<double> k1(n);
-  auto f = [&](double t, const std::vector<double>& y, std::vector<double>& out) {
-    ASSERT_EQ(eq.rhs(t, y.data(), out.data()), 0);
-  };
-  auto mode_energy = [&](const std::vector<double>& y) {
-    double e = 0;
-    for (int k = 0; k < mode_count(m); ++k) {
-      const Mode md = mode(m, k);
-      const double a = y[md.a], bb = y[md.b], va = y[md.va], vb = y[md.vb];
-      e += 0.5 * modal_stiffness(m, k + 2) * (a * a + bb * bb) + 0.5 * md.mass * (va * va + vb * vb);
+  for (const scene::BeamTheory theory : both_theories) {
+    SCOPED_TRACE(theory_name(theory));
+    RimBearing rb(6, true, theory);
+    const Model& m = rb.m;
+    Equations& eq = rb.eq;
+    std::vector<double> z = centred_rest_state(m);
+    // Pinch the rim inward at the azimuth of roller 0 and its opposite (mode 2 alone).
+    const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
+    const double theta = std::atan2(state(z, roller, sy), state(z, roller, sx));
+    const Mode mode2 = mode(m, mode_index(m, 2));
+    z[mode2.a] = -20e-6 * std::cos(2 * theta), z[mode2.b] = -20e-6 * std::sin(2 * theta);
+    const std::size_t n = z.size();
+    std::vector<double> k1(n);
+    auto f = [&](double t, const std::vector<double>& y, std::vector<double>& out) {
+      ASSERT_EQ(eq.rhs(t, y.data(), out.data()), 0);
+    };
+    auto mode_energy = [&](const std::vector<double>& y) {
+      double e = 0;
+      for (int k = 0; k < mode_count(m); ++k) {
+        const Mode md = mode(m, k);
+        const double a = y[md.a], bb = y[md.b], va = y[md.va], vb = y[md.vb];
+        e += 0.5 * stiffness_of_mode(m, k) * (a * a + bb * bb) + 0.5 * md.mass * (va * va + vb * vb);
+      }
+      return e;
+    };
+    f(0.0, z, k1);
+    const double e0 = eq.energy(0.0, z.data()), rim0 = mode_energy(z);
+    double largest_drift = 0, exchanged = 0;
+    const double dt = 5e-8;
+    double t = 0;
+    for (int step = 0; step < 10000; ++step) {  // 0.5 ms: half a period of mode 2
+      test::runge_kutta_step(f, t, dt, z);
+      t += dt;
+      if (step % 100 == 99) {
+        f(t, z, k1);
+        largest_drift = std::max(largest_drift, std::abs(eq.energy(t, z.data()) - e0));
+        exchanged = std::max(exchanged, std::abs(mode_energy(z) - rim0));
+      }
     }
-    return e;
-  };
-  f(0.0, z, k1);
-  const double e0 = eq.energy(0.0, z.data()), rim0 = mode_energy(z);
-  double largest_drift = 0, exchanged = 0;
-  const double dt = 5e-8;
-  double t = 0;
-  for (int step = 0; step < 10000; ++step) {  // 0.5 ms: half a period of mode 2
-    test::runge_kutta_step(f, t, dt, z);
-    t += dt;
-    if (step % 100 == 99) {
-      f(t, z, k1);
-      largest_drift = std::max(largest_drift, std::abs(eq.energy(t, z.data()) - e0));
-      exchanged = std::max(exchanged, std::abs(mode_energy(z) - rim0));
-    }
+    std::printf("[ rim ] free vibration over %.2f ms: energy %.6g J, largest drift %.3g J; the rim's energy %.4g J "
+                "changed by up to %.4g J (exchanged with the rollers)\n",
+                1e3 * t, e0, largest_drift, rim0, exchanged);
+    ASSERT_GT(exchanged, 1e-3 * rim0);  // the rim and the rollers exchange energy
+    EXPECT_LT(largest_drift, 1e-3 * exchanged);
   }
-  std::printf("[ rim ] free vibration over %.2f ms: energy %.6g J, largest drift %.3g J; the rim's energy %.4g J "
-              "changed by up to %.4g J (exchanged with the rollers)\n",
-              1e3 * t, e0, largest_drift, rim0, exchanged);
-  ASSERT_GT(exchanged, 1e-3 * rim0);  // the rim and the rollers exchange energy
-  EXPECT_LT(largest_drift, 1e-3 * exchanged);
 }
 
 TEST(RingModes, JacobianMatchesCentralDifferences) {
-  RimBearing rb(5, false);
-  const Model& m = rb.m;
-  const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
-  std::vector<double> z = pinched_state(m);
-  Equations& eq = rb.eq;
-  state(z, roller, svx) = 0.02, state(z, roller, svy) = -0.03, state(z, roller, swz) = 5.0;  // sliding, approaching
-  for (int k = 0; k < mode_count(m); ++k) {
-    const Mode md = mode(m, k);
-    z[md.va] = 0.004 / (k + 1), z[md.vb] = 0.003;
+  for (const scene::BeamTheory theory : both_theories) {
+    SCOPED_TRACE(theory_name(theory));
+    RimBearing rb(5, false, theory);
+    const Model& m = rb.m;
+    const Body& roller = m.bodies[static_cast<std::size_t>(m.first_element)];
+    std::vector<double> z = pinched_state(m);
+    Equations& eq = rb.eq;
+    state(z, roller, svx) = 0.02, state(z, roller, svy) = -0.03, state(z, roller, swz) = 5.0;  // sliding, approaching
+    for (int k = 0; k < mode_count(m); ++k) {
+      const Mode md = mode(m, k);
+      z[md.va] = 0.004 / (k + 1), z[md.vb] = 0.003;
+    }
+    numerics::BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
+    ASSERT_EQ(eq.jacobian(0.0, z.data(), jac), 0);
+    const Eigen::MatrixXd model = jac.to_dense();
+    const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, 0.0, z);
+    // The border (ring, modes, cage) and roller 0's block, which presses on the rim.
+    const int n = roller.offset + roller.size;
+    const double scale = fd.topLeftCorner(n, n).cwiseAbs().maxCoeff();
+    Eigen::Index worst_row = 0, worst_col = 0;
+    const double error = (model - fd).topLeftCorner(n, n).cwiseAbs().maxCoeff(&worst_row, &worst_col);
+    std::printf("[ rim ] Jacobian: largest entry %.4g, largest error %.3g at d %s / d %s (%.6g against %.6g)\n", scale,
+                error, m.state_name[static_cast<std::size_t>(worst_row)].c_str(),
+                m.state_name[static_cast<std::size_t>(worst_col)].c_str(), model(worst_row, worst_col),
+                fd(worst_row, worst_col));
+    // The blocks that carry the rim, each against its own scale: the modes' rows from the roller's
+    // states (its force and its azimuth) and from the modes' (through the contact); the roller's and
+    // the ring's rows from the modes' states (through the rim's displacement at the contact).
+    const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
+    const int modes_begin = static_cast<int>(mode(m, 0).a), modes_size = 4 * mode_count(m);
+    struct Block {
+      const char* name;
+      int row, rows, col, cols;
+    };
+    for (const Block& b : {Block{"modes / roller", modes_begin, modes_size, roller.offset, roller.size},
+                           Block{"modes / modes", modes_begin, modes_size, modes_begin, modes_size},
+                           Block{"roller / modes", roller.offset, roller.size, modes_begin, modes_size},
+                           Block{"ring / modes", ring.offset, ring.size, modes_begin, modes_size}}) {
+      const Eigen::MatrixXd f = fd.block(b.row, b.col, b.rows, b.cols);
+      const Eigen::MatrixXd d = model.block(b.row, b.col, b.rows, b.cols) - f;
+      const double block_scale = f.cwiseAbs().maxCoeff(), block_error = d.cwiseAbs().maxCoeff();
+      std::printf("[ rim ] %s: largest entry %.4g, largest error %.3g\n", b.name, block_scale, block_error);
+      EXPECT_GT(block_scale, 1e3) << b.name;
+      EXPECT_LT(block_error, 1e-5 * block_scale) << b.name;
+    }
+    EXPECT_LT(error, 1e-5 * scale);
   }
-  numerics::BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
-  ASSERT_EQ(eq.jacobian(0.0, z.data(), jac), 0);
-  const Eigen::MatrixXd model = jac.to_dense();
-  const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, 0.0, z);
-  // The border (ring, modes, cage) and roller 0's block, which presses on the rim.
-  const int n = roller.offset + roller.size;
-  const double scale = fd.topLeftCorner(n, n).cwiseAbs().maxCoeff();
-  Eigen::Index worst_row = 0, worst_col = 0;
-  const double error = (model - fd).topLeftCorner(n, n).cwiseAbs().maxCoeff(&worst_row, &worst_col);
-  std::printf("[ rim ] Jacobian: largest entry %.4g, largest error %.3g at d %s / d %s (%.6g against %.6g)\n", scale,
-              error, m.state_name[static_cast<std::size_t>(worst_row)].c_str(),
-              m.state_name[static_cast<std::size_t>(worst_col)].c_str(), model(worst_row, worst_col),
-              fd(worst_row, worst_col));
-  // The blocks that carry the rim, each against its own scale: the modes' rows from the roller's
-  // states (its force and its azimuth) and from the modes' (through the contact); the roller's and
-  // the ring's rows from the modes' states (through the rim's displacement at the contact).
-  const Body& ring = m.bodies[static_cast<std::size_t>(m.outer_ring)];
-  const int modes_begin = static_cast<int>(mode(m, 0).a), modes_size = 4 * mode_count(m);
-  struct Block {
-    const char* name;
-    int row, rows, col, cols;
-  };
-  for (const Block& b : {Block{"modes / roller", modes_begin, modes_size, roller.offset, roller.size},
-                         Block{"modes / modes", modes_begin, modes_size, modes_begin, modes_size},
-                         Block{"roller / modes", roller.offset, roller.size, modes_begin, modes_size},
-                         Block{"ring / modes", ring.offset, ring.size, modes_begin, modes_size}}) {
-    const Eigen::MatrixXd f = fd.block(b.row, b.col, b.rows, b.cols);
-    const Eigen::MatrixXd d = model.block(b.row, b.col, b.rows, b.cols) - f;
-    const double block_scale = f.cwiseAbs().maxCoeff(), block_error = d.cwiseAbs().maxCoeff();
-    std::printf("[ rim ] %s: largest entry %.4g, largest error %.3g\n", b.name, block_scale, block_error);
-    EXPECT_GT(block_scale, 1e3) << b.name;
-    EXPECT_LT(block_error, 1e-5 * block_scale) << b.name;
-  }
-  EXPECT_LT(error, 1e-5 * scale);
 }
 
 }  // namespace
