@@ -149,6 +149,39 @@ def case_waviness(raceway, work):
               f"({a:.3g} < 3 x floor {floor:.3g})")
 
 
+def case_ball_spall(raceway, work):
+    """A spall on ball[0] meets the inner and the outer race once each per turn of the ball relative to
+    the cage: impacts at 2 BSF, and with the load zone turning at the cage's speed, sidebands at FTF."""
+    ball = 'spall = { element = 0, angle = "180 deg", length = "0.5 mm", width = "2 mm", depth = "0.1 mm" }'
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "ball", end="80 ms", extra="[rolling_element]\n" + ball),
+                                    os.path.join(work, "ball.h5")))
+    print(f"BSF {f['BSF']:.2f} Hz (kinematic {f['kinematic']['BSF']:.2f}), FTF {f['FTF']:.2f} Hz", file=sys.stderr)
+    a, _ = line(vib, freq, amp, 2 * f["BSF"], "2 BSF", 0.01, 3.0)
+    for sign, name in ((-1, "2 BSF - FTF"), (1, "2 BSF + FTF")):
+        line(vib, freq, amp, 2 * f["BSF"] + sign * f["FTF"], name, 0.01, 2.0)
+
+
+def case_ball_waviness(raceway, work):
+    """Waviness of order n round one ball's equator under an axial load: an even order changes the ball's
+    diameter n times a turn relative to the cage, a radial force turning with the cage: the housing
+    vibrates at n BSF -+ FTF; an odd order moves the ball's surface in and out on opposite sides alike
+    and leaves its diameter, so nothing stands there."""
+    for order, even in ((2, True), (3, False)):
+        extra = f'[rolling_element]\nwaviness = {{ element = 0, orders = [{order}], amplitudes = ["0.5 um"] }}'
+        scene = write_scene(work, f"ballwav{order}", load='fz = "500 N"', extra=extra)
+        vib, f, freq, amp = analyse(run(raceway, scene, os.path.join(work, f"ballwav{order}.h5")), envelope=False,
+                                    axis=0)
+        for sign in (-1, 1):
+            f0 = order * f["BSF"] + sign * f["FTF"]
+            name = f"ball waviness order {order}: {order} BSF {'+' if sign > 0 else '-'} FTF"
+            if even:
+                line(vib, freq, amp, f0, name, 0.001, 10.0)
+            else:
+                at, a = vib.peak_near(freq, amp, f0, 0.01)
+                floor = vib.noise_floor(freq, amp, f0)
+                check(a < 3.0 * floor, f"{name}: nothing at {f0:.1f} Hz ({a:.3g} < 3 x floor {floor:.3g})")
+
+
 def case_clean(raceway, work):
     vib, f, freq, amp = analyse(run(raceway, write_scene(work, "clean", end="80 ms"), os.path.join(work, "clean.h5")))
     _, fo, freq_o, amp_o = analyse(run(raceway, write_scene(work, "outer", end="80 ms", outer=SPALL % "-90 deg"),
@@ -240,7 +273,8 @@ def main():
             case_ranks(raceway, mpiexec, work)
         else:
             {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
-             "report": case_report}[case](raceway, work)
+             "report": case_report, "ball_spall": case_ball_spall,
+             "ball_waviness": case_ball_waviness}[case](raceway, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
         return 1
