@@ -90,7 +90,8 @@ void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   m.bodies.push_back(c);
 }
 
-/// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation.
+/// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation; with a ball's
+/// own defect in the scene, every ball's orientation too (12 states).
 void add_balls(Model& m, const scene::Scene& scene) {
   const double rb = m.element_radius;
   const double ball_mass = scene.material(scene.bearing.roller_material).density * 4.0 / 3.0 * pi * rb * rb * rb;
@@ -484,7 +485,11 @@ std::string describe_ball_model(const Model& m) {
       }
       case BodyKind::cage: why = "full pose and body-frame angular velocity: its pockets are not symmetric"; break;
       case BodyKind::rolling_element:
-        why = fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)", m.element_count);
+        why = b.ball_orientation
+                  ? fmt::format("each of the {} balls: position, orientation (a ball's defect turns with it), velocity, "
+                                "angular velocity", m.element_count)
+                  : fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)",
+                                m.element_count);
         break;
     }
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
