@@ -142,7 +142,9 @@ TEST(ElementHeight, TheDefectTurnsWithTheBall) {
   for (const double beta : {0.0, 1.0, -2.5, 4.0}) {
     const Mat3 turned = Eigen::AngleAxisd(beta, Vec3::UnitZ()).toRotationMatrix();
     EXPECT_NEAR(element_height(e, turned, direction(0.3 + beta), zero, zero).height, -peak, 1e-15) << beta;
-    if (beta != 0.0) EXPECT_EQ(element_height(e, turned, direction(0.3), zero, zero).height, 0.0) << beta;
+    if (beta != 0.0) {
+      EXPECT_EQ(element_height(e, turned, direction(0.3), zero, zero).height, 0.0) << beta;
+    }
     EXPECT_NEAR(element_spall_distance(e, turned, direction(0.3 + beta)), 0.0, 1e-7) << beta;
   }
   // Tilted about x by 90 deg: the equator stands in the bearing's (x, z) plane; the spall at

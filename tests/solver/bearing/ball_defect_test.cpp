@@ -71,7 +71,9 @@ TEST(BallDefect, OrientationStatesOnlyWithABallDefect) {
     if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
     const auto& e = spalled.law<contact::BallGrooveSegment>(seg).element_imperfections;
     EXPECT_EQ(e != nullptr, seg.element == 4) << seg.name;
-    if (e) EXPECT_NEAR(e->spall.angle, std::numbers::pi / 6, 1e-15);
+    if (e) {
+      EXPECT_NEAR(e->spall.angle, std::numbers::pi / 6, 1e-15);
+    }
   }
   EXPECT_TRUE(has_spall(spalled));
   EXPECT_FALSE(has_spall(plain));
