@@ -3,7 +3,8 @@
 
     raceway_life.py OUT.h5 LIFE.json
 
-writes to LIFE.json the `life` object that `raceway report` puts into its summary.json
+writes to LIFE.json the `life` object (a `note` where the file lacks what it needs, as the race
+contacts' loads of a run with [output] segments = false) that `raceway report` puts into its summary.json
 (report_life.summarize_life over the report's default window, the run's second half): ISO 281 C,
 P, L10, L_nm and ISO/TS 16281 L10r, L10mr from the window's race contact loads. The run command
 finds this script beside the report's (io/report/life.cpp) and adds the object to its summary.
@@ -25,7 +26,7 @@ except ImportError as err:
     sys.exit(3)
 
 import report_metrics as rm  # noqa: E402
-from report_data import read_run  # noqa: E402
+from report_data import ReportInputError, read_run  # noqa: E402
 from report_life import summarize_life  # noqa: E402
 
 
@@ -50,6 +51,8 @@ def main():
     try:
         run = read_run(path)
         life = summarize_life(run, rm.select_window(run.time))
+    except ReportInputError as err:  # what the file lacks (the race contacts: [output] segments = false)
+        life = {"note": f"no life: {err}"}
     except (OSError, KeyError, ValueError) as err:
         print(f"[raceway] life: {path}: {err}", file=sys.stderr)
         return 2
