@@ -23,8 +23,12 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
     of the spalled bearings' lines (printed: the spectrum's median, the numerical noise floor).
   report: `raceway report` on the outer-race run: summary.json's vibration part (BPFO x2 among the lines
     that carry energy, BPFI not), the log's sensor line, and sensor.csv holding the window's samples.
-  ranks: the outer-race run at np = 2 against np = 1, and a run killed (SIGKILL) after a checkpoint and
-    resumed against an uninterrupted one with the same checkpoint interval: /housing bitwise.
+  ranks: the outer-race run (with a ball's spall and waviness besides) at np = 2 against np = 1, and a run
+    killed (SIGKILL) after a checkpoint and resumed against an uninterrupted one with the same
+    checkpoint interval: /housing bitwise.
+  ball_spall: a spall on ball[0]: the envelope spectrum's line at 2 BSF and the sidebands 2 BSF -+ FTF.
+  ball_waviness: ball[0]'s waviness of order 2: its contact forces at 2 BSF, the housing at 2 BSF -+ FTF;
+    of order 3: its contact forces silent at 3 BSF.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
 """
@@ -273,15 +277,21 @@ def same(a, b, what):
     check(equal, what)
 
 
+BALL_DEFECTS = ('[rolling_element]\nspall = { element = 0, angle = "180 deg", length = "0.5 mm", width = "2 mm", '
+                'depth = "0.1 mm" }\nwaviness = { element = 3, orders = [2], amplitudes = ["1 um"] }')
+
+
 def case_ranks(raceway, mpiexec, work):
-    scene = write_scene(work, "outer", end="30 ms", outer=SPALL % "-90 deg")
+    # The outer race's spall, and a ball's spall and waviness (the balls' orientations are states).
+    scene = write_scene(work, "outer", end="30 ms", outer=SPALL % "-90 deg", extra=BALL_DEFECTS)
     one = housing_series(run(raceway, scene, os.path.join(work, "np1.h5")))
     two = housing_series(run(raceway, scene, os.path.join(work, "np2.h5"), 2, mpiexec))
     same(one, two, "np = 2 writes the np = 1 run's /housing bitwise")
     check(np.isfinite(one["acceleration"][1:]).all(), "every sensor sample after t = 0 is written")
     # Killed after a checkpoint and resumed: the same bits as the uninterrupted run (which restarts
     # its integrator at the same checkpoints).
-    ckpt = write_scene(work, "ckpt", end="60 ms", outer=SPALL % "-90 deg", extra='checkpoint_interval = "5 ms"')
+    ckpt = write_scene(work, "ckpt", end="60 ms", outer=SPALL % "-90 deg",
+                       extra='checkpoint_interval = "5 ms"\n' + BALL_DEFECTS)
     whole = housing_series(run(raceway, ckpt, os.path.join(work, "whole.h5")))
     out = os.path.join(work, "killed.h5")
     proc = subprocess.Popen([raceway, "run", ckpt, "-o", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
