@@ -5,16 +5,27 @@
 //  2. the angles turn with the ball: the rates the dynamics give move R = Rx Ry Rz as dR/dt = [w]x R
 //     (against a finite difference of the rotation), so a point fixed on the ball follows the ball;
 //  3. the step limit: a ball's spall turning towards a contact limits the step to the time it takes
-//     to reach the contact's edge at the ball's spin.
+//     to reach the contact's edge at the ball's spin;
+//  4. the Jacobian with a ball's waviness under load against central differences of the right-hand
+//     side, the ball's angle columns among them.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "io/scene/scene_parser.hpp"
+#include "scheduler/executor.hpp"
 #include "solver/bearing/body_dynamics.hpp"
+#include "solver/bearing/equations.hpp"
+#include "solver/bearing/startup.hpp"
+#include "solver/numerics/bordered_matrix.hpp"
+#include "solver/numerics/integrator.hpp"
+#include "tests/support/solver_test_support.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/race_defects.hpp"
 
@@ -125,6 +136,60 @@ TEST(BallDefect, StepLimitStopsAtTheContact) {
   EXPECT_NEAR(spall_step_limit(m, 0.0, z.data()), (behind - half) / spin, 1e-12);
   z[std::size_t(ball.slot[saz])] = psi - std::numbers::pi / 6;  // the spall at the outer contact
   EXPECT_NEAR(spall_step_limit(m, 0.0, z.data()), 2 * half / spin / steps_within_spall, 1e-12);
+}
+
+// Ball 6 starts near the bottom of the load zone (fy = -500 N on the inner ring); its waviness of
+// order 2 (1 um) changes its contacts' approach with its angles. 2 ms into the run, the Jacobian
+// (each element's block by forward differences through the ball's angle columns, and the bodies'
+// own terms) against central differences of the whole right-hand side; ball 6's angle columns are
+// not zero.
+TEST(BallDefect, JacobianMatchesCentralDifferences) {
+  const scene::Scene scene = scene::parse_scene(
+      std::string(kScene) + "[rolling_element]\nwaviness = { element = 6, orders = [2], amplitudes = [\"1 um\"] }\n",
+      "test");
+  const Model m = build_model(scene);
+  scheduler::SerialExecutor executor;
+  Equations eq{m, executor};
+  executor.attach(eq.task_catalogue());
+  std::vector<double> z;
+  const double t = 2e-3;  // past the start, whose spin accelerations are large
+  numerics::Integrator integrator(eq, scene.solver, 0.0, initial_state(m, 0.0).state);
+  integrator.advance_to(t, z);
+  const Eigen::MatrixXd fd = test::central_difference_jacobian(eq, m, t, z);
+  numerics::BorderedMatrix jac(m.border_size, m.element_count, m.block_size);
+  ASSERT_EQ(eq.jacobian(t, z.data(), jac), 0);
+  const Eigen::MatrixXd dense = jac.to_dense();
+  double class_norm[4] = {0, 0, 0, 0};  // a near-zero column is measured against its class's largest
+  for (int j = 0; j < m.state_size; ++j) {
+    double& c = class_norm[static_cast<int>(m.state_class[std::size_t(j)])];
+    c = std::max(c, fd.col(j).norm());
+  }
+  // A ball's angle columns: its spin rows (the moment about its centre, a sum of contact moments of
+  // some 1e6 rad/s^2 that nearly cancel) carry the forward difference's round-off over its 1e-10 rad
+  // step, some 50 rad/s^2 per rad against columns of some 3000: those rows within 5 %, the others
+  // (positions, velocities, the other bodies) within 1e-3 as every other column.
+  double worst = 0, worst_spin = 0;
+  int worst_column = 0;
+  for (int j = 0; j < m.state_size; ++j) {
+    const double c = class_norm[static_cast<int>(m.state_class[std::size_t(j)])];
+    Eigen::VectorXd diff = dense.col(j) - fd.col(j);
+    const double ref = fd.col(j).norm(), scale = ref > 1e-9 * c ? ref : c;
+    for (int k = m.first_element; k < static_cast<int>(m.bodies.size()); ++k) {
+      const Body& b = m.bodies[std::size_t(k)];
+      if (j < b.slot[sax] || j > b.slot[saz]) continue;
+      for (int d = 0; d < 3; ++d) {
+        worst_spin = std::max(worst_spin, std::abs(diff(b.slot[swx + d])) / scale);
+        diff(b.slot[swx + d]) = 0.0;
+      }
+    }
+    if (diff.norm() / scale > worst) worst = diff.norm() / scale, worst_column = j;
+  }
+  std::printf("[ ball defect ] worst column error %.3g (%s); a ball's spin rows over its angles: %.3g\n", worst,
+              m.state_name[std::size_t(worst_column)].c_str(), worst_spin);
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worst_spin, 5e-2);
+  const Body& ball = m.bodies[std::size_t(m.first_element + 6)];
+  EXPECT_GT(fd.col(ball.slot[saz]).norm(), 0.0) << "the waviness turns with the ball";
 }
 
 }  // namespace
