@@ -31,7 +31,8 @@ from report_life import summarize_life  # noqa: E402
 
 
 def _finite(value):
-    """NaN and infinities as None (JSON null), numpy scalars as numbers: as the report's summary.json (raceway_report.finite_json)."""
+    """NaN and infinities as None (JSON null), numpy scalars as numbers: as the report's summary.json
+    (raceway_report.finite_json)."""
     if isinstance(value, dict):
         return {k: _finite(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):

@@ -267,7 +267,8 @@ std::vector<std::vector<int>> add_groove_laws(Model& m, const scene::Scene& scen
     }
     for (const Arc& arc : arcs) {
       m.laws.push_back(groove_law(m, scene, arc, m.radius_of_element(k)));
-      std::get<contact::BallGrooveSegment>(m.laws.back()).element_imperfections = element_imperfections(scene, k, m.radius_of_element(k));
+      std::get<contact::BallGrooveSegment>(m.laws.back()).element_imperfections =
+          element_imperfections(scene, k, m.radius_of_element(k));
       law_of[std::size_t(k)].push_back(static_cast<int>(m.laws.size()) - 1);
     }
   }

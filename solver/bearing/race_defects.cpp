@@ -25,7 +25,8 @@ std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene
 
 std::shared_ptr<const contact::RaceImperfections> element_imperfections(const scene::Scene& scene, int k, double r) {
   const scene::RollingElementSpec& e = scene.rolling_element;
-  const bool spall = e.spall.present && e.spall_element == k, waviness = e.waviness.present() && e.waviness_element == k;
+  const bool spall = e.spall.present && e.spall_element == k;
+  const bool waviness = e.waviness.present() && e.waviness_element == k;
   if (!spall && !waviness) return nullptr;
   auto out = std::make_shared<contact::RaceImperfections>();
   out->race_radius = r;

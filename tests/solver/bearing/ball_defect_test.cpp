@@ -64,7 +64,9 @@ motion = "fixed"
 constexpr const char* kSpall =
     "[rolling_element]\nspall = { element = 4, angle = \"30 deg\", length = \"0.5 mm\", width = \"1 mm\", depth = \"0.1 mm\" }\n";
 
-Model model_of(const std::string& extra) { return build_model(scene::parse_scene(std::string(kScene) + extra, "test")); }
+Model model_of(const std::string& extra) {
+  return build_model(scene::parse_scene(std::string(kScene) + extra, "test"));
+}
 
 TEST(BallDefect, OrientationStatesOnlyWithABallDefect) {
   const Model plain = model_of("");
