@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "contact/laws/damping.hpp"
+#include "contact/laws/element_imperfections.hpp"
 
 namespace raceway::contact {
 namespace {
@@ -150,8 +151,15 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
     const double contact_axial = len > 0 ? s.centre_axial + s.groove_radius * d_ax / len : 0.0;
     surface = race_height(*s.imperfections, std::atan2(p.y(), p.x()) - ring.spin_angle, contact_axial);
   }
-  const double approach = s.imperfections ? len - (s.groove_radius - s.ball_radius) + surface.height
-                                          : len - (s.groove_radius - s.ball_radius);
+  double approach = s.imperfections ? len - (s.groove_radius - s.ball_radius) + surface.height
+                                    : len - (s.groove_radius - s.ball_radius);
+  // The ball's own imperfections (element_imperfections.hpp) at the contact's place on the ball.
+  ElementHeight ball_surface;
+  if (s.element_imperfections && len > 0) {
+    const GrooveContactFrame frame = groove_contact_frame(s, ring, ball);
+    ball_surface = element_height(*s.element_imperfections, ball.rotation, frame.n, frame.rate, ball.angular_velocity);
+    approach += ball_surface.height;
+  }
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) {
     r = invalid_result(approach);
@@ -176,6 +184,7 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
     const Vec3 rel_dot = rot.transpose() * (ball.velocity - ring.velocity - ring.angular_velocity.cross(rel));
     approach_rate += surface.per_azimuth * rel_dot.dot(e_t) / rho_ball;
   }
+  if (s.element_imperfections) approach_rate += ball_surface.rate;
 
   // Hertz at s = cos(contact angle); relative curvatures for the film.
   const double cos_angle = std::abs(n_rad);
@@ -486,6 +495,25 @@ SpatialSegmentResult evaluate(const CageLandSegment3& s, const SpatialKinematics
   dg.traction_force = friction_sum.norm();
   check_finite(r);
   return r;
+}
+
+GrooveContactFrame groove_contact_frame(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                        const SpatialKinematics& ball) {
+  GrooveContactFrame f;
+  const Mat3& rot = ring.rotation;
+  const Vec3 rel = ball.position - ring.position;
+  const Vec3 p = rot.transpose() * rel;
+  const double rho = length(p.x(), p.y());
+  if (!(rho > 0)) return f;
+  const Vec3 e_r(p.x() / rho, p.y() / rho, 0.0);
+  const double d_rad = rho - s.centre_radius, d_ax = p.z() - s.centre_axial, len = length(d_rad, d_ax);
+  if (!(len > 0)) return f;
+  f.n = rot * ((d_rad / len) * e_r + (d_ax / len) * unit_z);
+  const Vec3 p_dot = rot.transpose() * (ball.velocity - ring.velocity - ring.angular_velocity.cross(rel));
+  const double azimuth_rate = (p.x() * p_dot.y() - p.y() * p_dot.x()) / (rho * rho);
+  f.rate = ring.angular_velocity + azimuth_rate * rot.col(2);
+  f.valid = true;
+  return f;
 }
 
 }  // namespace raceway::contact

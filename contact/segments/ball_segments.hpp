@@ -150,9 +150,23 @@ struct BallGrooveSegment {
   /// They add a height to the approach at the contact's azimuth in the ring frame (and its rate to
   /// the approach rate); the normal stays the groove's.
   std::shared_ptr<const RaceImperfections> imperfections;
+  /// The ball's own spall and waviness (element_imperfections.hpp: round the ball's equator, in its
+  /// own frame, race_radius = ball_radius = the ball's); null: a perfect ball. Its height at the
+  /// contact adds to the approach (and its rate to the approach rate), as the race's.
+  std::shared_ptr<const RaceImperfections> element_imperfections;
 };
 SpatialSegmentResult evaluate(const BallGrooveSegment& s, const SpatialKinematics& ring,
                               const SpatialKinematics& ball);
+
+/// The contact frame of a ball in a groove: the normal n (bearing frame, from the ball's centre
+/// towards the groove's contact point, apart or not) and the frame's angular velocity (the ring's
+/// plus the ball centre's azimuth rate about the ring's axis). Not valid on the axis or the arc centre.
+struct GrooveContactFrame {
+  Vec3 n = Vec3::Zero(), rate = Vec3::Zero();
+  bool valid = false;
+};
+GrooveContactFrame groove_contact_frame(const BallGrooveSegment& s, const SpatialKinematics& ring,
+                                        const SpatialKinematics& ball);
 
 /// evaluate(BallGrooveSegment) in parts, for a contact whose traction grid is shared out between
 /// processes: block k of the traction (integrate_traction_block at this contact's load, ellipse,

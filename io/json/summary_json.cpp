@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <cctype>
 #include <variant>
 
 #include <fmt/format.h>
@@ -14,9 +15,15 @@
 
 namespace raceway::json {
 
+namespace {
+struct RawJson {
+  std::string text;
+};
+}  // namespace
+
 struct JsonObject::Entry {
   std::string key;
-  std::variant<double, long long, bool, std::string, std::vector<double>, JsonObject> value;
+  std::variant<double, long long, bool, std::string, std::vector<double>, JsonObject, RawJson> value;
 };
 
 JsonObject::JsonObject() = default;
@@ -45,6 +52,10 @@ JsonObject& JsonObject::add(const std::string& key, std::string v) { return put(
 JsonObject& JsonObject::add(const std::string& key, const char* v) { return add(key, std::string(v)); }
 JsonObject& JsonObject::add(const std::string& key, std::vector<double> v) { return put(key, Entry{key, std::move(v)}); }
 JsonObject& JsonObject::add(const std::string& key, JsonObject v) { return put(key, Entry{key, std::move(v)}); }
+JsonObject& JsonObject::add_raw(const std::string& key, std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  return put(key, Entry{key, RawJson{std::move(text)}});
+}
 
 namespace {
 
@@ -114,6 +125,12 @@ void JsonObject::dump_to(std::string& out, int indent, int depth) const {
               append_double(out, v[k]);
             }
             out += ']';
+          } else if constexpr (std::is_same_v<T, RawJson>) {
+            for (const char c : v.text) {
+              if (c == '\n' && !pretty) continue;
+              out += c;
+              if (c == '\n') out += pad;
+            }
           } else {
             v.dump_to(out, indent, depth + 1);
           }

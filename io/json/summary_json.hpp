@@ -34,6 +34,9 @@ class JsonObject {
   JsonObject& add(const std::string& key, const char* value);  // else a literal would pick bool
   JsonObject& add(const std::string& key, std::vector<double> value);
   JsonObject& add(const std::string& key, JsonObject value);
+  /// A value given as JSON text (a complete JSON value from a trusted writer, as the life script's
+  /// object): written as it is, its lines indented to the member's depth.
+  JsonObject& add_raw(const std::string& key, std::string json_text);
   /// Any other integer type (int, std::size_t, ...); out of the range of long long: invalid_argument.
   template <std::integral T>
     requires(!std::same_as<T, bool> && !std::same_as<T, long long>)

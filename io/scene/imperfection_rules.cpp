@@ -40,10 +40,9 @@ void spall_given(const Row&, const Section& s, Bind& b) {
   });
 }
 
-void waviness_lists_match(const Row&, const Section& s, Bind& b) {
-  ring_angle_known(s, b, "waviness");
-  WavinessSpec& w = b.ring->waviness;
-  const Section table = s.sub("waviness");
+namespace {
+/// One amplitude (and phase, or none) per order, at least one order.
+void waviness_terms_match(WavinessSpec& w, const Section& table) {
   table.check(w.amplitudes.size() == w.orders.size(), "amplitudes", [&] {
     return fmt::format("{} amplitudes for {} orders; give one amplitude per order", w.amplitudes.size(),
                        w.orders.size());
@@ -54,6 +53,30 @@ void waviness_lists_match(const Row&, const Section& s, Bind& b) {
                        w.orders.size());
   });
   table.check(!w.orders.empty(), "orders", [] { return std::string("give at least one order"); });
+}
+}  // namespace
+
+void waviness_lists_match(const Row&, const Section& s, Bind& b) {
+  ring_angle_known(s, b, "waviness");
+  waviness_terms_match(b.ring->waviness, s.sub("waviness"));
+}
+
+void element_spall_given(const Row&, const Section& s, Bind& b) {
+  SpallSpec& spall = b.scene.rolling_element.spall;
+  spall.present = true;
+  const double quarter = 0.25 * std::numbers::pi * b.scene.bearing.ball.ball_diameter;
+  const Section table = s.sub("spall");
+  for (const auto& [key, size] : {std::pair{"length", spall.length}, std::pair{"width", spall.width}}) {
+    table.check(size < quarter, key, [&] {
+      return fmt::format("a ball's spall {} of {} reaches over a quarter of the ball's circumference ({}); the "
+                         "ball's two race contacts, half a circumference apart, meet it one at a time",
+                         key, mm(size), mm(quarter));
+    });
+  }
+}
+
+void element_waviness_given(const Row&, const Section& s, Bind& b) {
+  waviness_terms_match(b.scene.rolling_element.waviness, s.sub("waviness"));
 }
 
 namespace {

@@ -246,6 +246,16 @@ struct RingSpec {
   WavinessSpec waviness;         ///< ball bearings: this ring's race's waviness
 };
 
+/// A rolling element's own imperfections (ball bearings, [rolling_element]): a spall and waviness
+/// on one ball each, round the ball's equator in its own frame (contact/laws/element_imperfections.hpp).
+struct RollingElementSpec {
+  SpallSpec spall;               ///< angle: the spall's centre round the ball's equator
+  int spall_element = 0;         ///< the ball that carries it (ball[k])
+  WavinessSpec waviness;
+  int waviness_element = 0;
+  bool any() const { return spall.present || waviness.present(); }
+};
+
 /// The fixed outer ring mounted in a housing (ball bearings): the housing and ring move together
 /// in x and y on the housing's spring and damper (its first mode per radial direction), with
 /// optional further modes of the housing seen at the bearing seat ([housing.modes]); a sensor on it
@@ -399,6 +409,7 @@ struct Scene {
   ContactSpec ball_cage;    ///< spatial: ball-pocket
   ContactSpec cage_land;
   ContactSpec roller_flange;  ///< spatial roller bearings: a roller's end on a rib
+  RollingElementSpec rolling_element;  ///< ball bearings: a ball's spall and waviness (absent: perfect balls)
   HousingSpec housing;        ///< spatial: the outer ring in a housing (absent: the outer ring as its motion says)
   CarrierSpec carrier;    ///< planar: the bearing on a rotating planet carrier (absent: inertial frame)
   SolverSpec solver;

@@ -32,6 +32,8 @@ void add_row(const Row& row, const std::string& prefix, Bind& b, std::vector<Sce
     // A race's imperfections are listed only where given (a perfect race lists nothing new).
     if (row.sub == "*_ring.spall" && !b.ring->spall.present) return;
     if (row.sub == "*_ring.waviness" && !b.ring->waviness.present()) return;
+    if (row.sub == "rolling_element.spall" && !b.scene.rolling_element.spall.present) return;
+    if (row.sub == "rolling_element.waviness" && !b.scene.rolling_element.waviness.present()) return;
     Bind inner = b;
     if (auto* const* c = std::get_if<ContactSpec*>(&field)) {
       inner.contact = *c;
@@ -107,7 +109,8 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
       Bind on_ring = b;
       on_ring.ring = section == "inner_ring" ? &s.inner_ring : &s.outer_ring;
       walk("*_ring", prefix, on_ring, out);
-    } else if (section != "housing" || s.housing.present) {
+    } else if ((section != "housing" || s.housing.present) &&
+               (section != "rolling_element" || s.rolling_element.any())) {
       walk(section, prefix, b, out);
     }
   }

@@ -368,6 +368,8 @@ Scene parse_table(toml::table& root, const std::string& source_name) {
     on_ring.ring = ring;
     read_section("*_ring", *section, on_ring);
   }
+  if (const Section element = top(file, root, "rolling_element", false); element.present())
+    read_section("rolling_element", element, b);
   if (const Section housing = top(file, root, "housing", false); housing.present()) {
     read_section("housing", housing, b);
     scene.housing.present = true;

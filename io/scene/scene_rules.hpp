@@ -105,6 +105,10 @@ void order_exists_for_method(const Row& row, const Section& s, Bind& b);
 // ---- the race's imperfections and the housing (imperfection_rules.cpp) -------------------------
 void spall_given(const Row& row, const Section& s, Bind& b);
 void waviness_lists_match(const Row& row, const Section& s, Bind& b);
+/// A ball's spall and waviness ([rolling_element]): the spall shorter than a quarter of the ball's
+/// circumference (the two race contacts lie half a circumference apart), the lists matched.
+void element_spall_given(const Row& row, const Section& s, Bind& b);
+void element_waviness_given(const Row& row, const Section& s, Bind& b);
 /// Scatter of the balls' diameters and the pockets' clearances (imperfection_rules.cpp): a given
 /// list has one value per ball (pocket); a scatter draws that list (scatter_draws.hpp).
 void ball_deviations_per_ball(const Row& row, const Section& s, Bind& b);

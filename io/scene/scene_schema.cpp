@@ -368,6 +368,47 @@ constexpr Row kRows[] = {
     {.section = "*_ring.waviness", .key = "phases", .kind = number_list, .field = FIELD(ring->waviness.phases),
      .dim = dim::angle, .def = absent, .example = "[\"0 deg\", \"90 deg\"]", .meaning = "of each term; absent: all 0"},
 
+    // ---- [rolling_element]: optional; a ball's own spall and waviness (ball bearings) -----------
+    {.section = "rolling_element", .key = "spall", .kind = table, .field = nullptr, .def = absent,
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .then = element_spall_given, .sub = "rolling_element.spall",
+     .meaning = "a spall on one ball, round its equator; it turns with the ball (docs/vibration.md)"},
+    {.section = "rolling_element", .key = "waviness", .kind = table, .field = nullptr, .def = absent,
+     .bearings = ball_bearings, .elsewhere = kBallOnly, .then = element_waviness_given,
+     .sub = "rolling_element.waviness",
+     .meaning = "one ball's waviness round its equator: radius deviation sum A_k cos(n_k phi + phase_k)"},
+    {.section = "rolling_element.spall", .key = "element", .kind = integer,
+     .field = FIELD(scene.rolling_element.spall_element), .bounds = kElementIndex, .example = "0",
+     .meaning = "the ball that carries it: ball[element]"},
+    {.section = "rolling_element.spall", .key = "angle", .kind = number,
+     .field = FIELD(scene.rolling_element.spall.angle), .dim = dim::angle, .bounds = kSpallAngle, .def = value(0),
+     .example = "90 deg",
+     .meaning = "the spall's centre round the ball's equator, in the ball's frame (at the start the bearing's: 0 "
+                "along x)"},
+    {.section = "rolling_element.spall", .key = "length", .kind = number,
+     .field = FIELD(scene.rolling_element.spall.length), .dim = dim::length, .bounds = kSpallSize,
+     .example = "0.178 mm", .meaning = "along the equator"},
+    {.section = "rolling_element.spall", .key = "width", .kind = number,
+     .field = FIELD(scene.rolling_element.spall.width), .dim = dim::length, .bounds = kSpallSize,
+     .example = "0.178 mm", .meaning = "across the equator (the contacts' track must cross it)"},
+    {.section = "rolling_element.spall", .key = "depth", .kind = number,
+     .field = FIELD(scene.rolling_element.spall.depth), .dim = dim::length, .bounds = kSpallSize,
+     .example = "0.28 mm", .meaning = "depth; a race reaches at most r - sqrt(r^2 - (length/2)^2) into it"},
+    {.section = "rolling_element.spall", .key = "edge", .kind = choice,
+     .field = FIELD(scene.rolling_element.spall.edge), .def = word("sharp"), .options = kSpallEdges,
+     .noun = "spall edge", .meaning = "sharp: the race pivots on the edges; smooth: a raised cosine"},
+    {.section = "rolling_element.waviness", .key = "element", .kind = integer,
+     .field = FIELD(scene.rolling_element.waviness_element), .bounds = kElementIndex, .example = "0",
+     .meaning = "the ball that carries it: ball[element]"},
+    {.section = "rolling_element.waviness", .key = "orders", .kind = integer_list,
+     .field = FIELD(scene.rolling_element.waviness.orders), .bounds = {.lo = 1, .hi = 1000}, .example = "[2, 4]",
+     .meaning = "lobes round the ball's equator, one per term"},
+    {.section = "rolling_element.waviness", .key = "amplitudes", .kind = number_list,
+     .field = FIELD(scene.rolling_element.waviness.amplitudes), .dim = dim::length, .bounds = kWavinessAmplitude,
+     .example = "[\"0.5 um\", \"0.2 um\"]", .meaning = "radius deviation of each term"},
+    {.section = "rolling_element.waviness", .key = "phases", .kind = number_list,
+     .field = FIELD(scene.rolling_element.waviness.phases), .dim = dim::angle, .def = absent,
+     .example = "[\"0 deg\", \"90 deg\"]", .meaning = "of each term; absent: all 0"},
+
     // ---- [*_ring.misalignment] ------------------------------------------------------------------
     {.section = "*_ring.misalignment", .key = "x", .kind = time_function, .field = FIELD(ring->misalignment_x),
      .dim = dim::angle, .bounds = kMisalignment, .def = value(0), .example = "1.42 mrad",
@@ -429,7 +470,7 @@ std::span<const Row> bearing_rows() { return kRows; }
 
 namespace {
 
-constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "housing",
+constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "rolling_element", "housing",
                                              "carrier", "lubricant", "life",    "contact", "solver",     "output"};
 
 }  // namespace

@@ -90,6 +90,10 @@ inline constexpr Bounds kSpallSize{.lo = 0, .hi = 0.01, .lo_open = true, .unit =
 inline constexpr Bounds kWavinessAmplitude{.lo = 0, .hi = 1e-4, .unit = "um",
                                     .note = " (waviness is some tenths of a micrometre to some micrometres)"};
 
+/// A rolling element's index: 0 to rolling_elements - 1.
+inline long last_element_index(const Bind& b) { return b.scene.bearing.rolling_elements - 1; }
+inline constexpr Bounds kElementIndex{.lo = 0, .hi_of = last_element_index, .hi_text = "rolling_elements - 1"};
+
 /// The rows of [scene] to [*_ring.support], then those of [carrier] to [output], in reading order.
 std::span<const Row> bearing_rows();
 std::span<const Row> run_rows();

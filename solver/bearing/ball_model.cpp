@@ -90,16 +90,29 @@ void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   m.bodies.push_back(c);
 }
 
-/// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation.
+/// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation; with a ball's
+/// own defect in the scene, every ball's orientation too (12 states).
 void add_balls(Model& m, const scene::Scene& scene) {
   const double rb = m.element_radius;
   const double ball_mass = scene.material(scene.bearing.roller_material).density * 4.0 / 3.0 * pi * rb * rb * rb;
   const double inertia = 0.4 * ball_mass * rb * rb;
-  add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
-    add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
-    add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
-    add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
-  });
+  if (!scene.rolling_element.any()) {
+    add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
+      add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
+      add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+      add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
+    });
+  } else {
+    // A ball's own defect turns with it: every ball's orientation is a state (equal blocks), its
+    // Cardan angles after its position, starting at 0 (the ball's frame is the bearing's).
+    add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
+      add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
+      add_states(model, b, sax, VariableClass::angle, {"angle_x", "angle_y", "angle_z"});
+      add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+      add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
+      b.ball_orientation = true;
+    });
+  }
   // A scattered ball's mass and inertia follow its own diameter (a solid sphere).
   for (Body& b : m.bodies) {
     if (b.kind != BodyKind::rolling_element || m.element_radii.empty()) continue;
@@ -246,13 +259,16 @@ contact::BallPocketSegment pocket_law(const Model& m, const scene::Scene& scene)
 /// surface reaches further into them). law_of[k][a]: ball k's law on arc a.
 std::vector<std::vector<int>> add_groove_laws(Model& m, const scene::Scene& scene, const std::vector<Arc>& arcs) {
   std::vector<std::vector<int>> law_of(static_cast<std::size_t>(m.element_count));
+  const bool alike = m.element_radii.empty() && !scene.rolling_element.any();
   for (int k = 0; k < m.element_count; ++k) {
-    if (k > 0 && m.element_radii.empty()) {
+    if (k > 0 && alike) {
       law_of[std::size_t(k)] = law_of[0];
       continue;
     }
     for (const Arc& arc : arcs) {
       m.laws.push_back(groove_law(m, scene, arc, m.radius_of_element(k)));
+      std::get<contact::BallGrooveSegment>(m.laws.back()).element_imperfections =
+          element_imperfections(scene, k, m.radius_of_element(k));
       law_of[std::size_t(k)].push_back(static_cast<int>(m.laws.size()) - 1);
     }
   }
@@ -470,7 +486,11 @@ std::string describe_ball_model(const Model& m) {
       }
       case BodyKind::cage: why = "full pose and body-frame angular velocity: its pockets are not symmetric"; break;
       case BodyKind::rolling_element:
-        why = fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)", m.element_count);
+        why = b.ball_orientation
+                  ? fmt::format("each of the {} balls: position, orientation (a ball's defect turns with it), velocity, "
+                                "angular velocity", m.element_count)
+                  : fmt::format("each of the {} balls: position, velocity, angular velocity; no orientation (a sphere)",
+                                m.element_count);
         break;
     }
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",

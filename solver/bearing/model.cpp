@@ -212,7 +212,10 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
   k.velocity = Vec3(v[svx], v[svy], v[svz]);
   switch (body.kind) {
     case BodyKind::rolling_element:
-      if (body.slot[sax] >= 0) k.rotation = cardan_rotation(v[sax], v[say], 0.0);  // a spatial roller's axis
+      if (body.ball_orientation)
+        k.rotation = cardan_rotation(v[sax], v[say], v[saz]);  // a ball that carries a defect
+      else if (body.slot[sax] >= 0)
+        k.rotation = cardan_rotation(v[sax], v[say], 0.0);  // a spatial roller's axis
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:

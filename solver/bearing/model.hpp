@@ -60,6 +60,11 @@ struct Body {
   int offset = 0, size = 0;       ///< contiguous block of this body's states
   /// Rings: motion, drive, loads, support (in the model's own parameters, never the scene's).
   const scene::RingSpec* ring = nullptr;
+  /// A ball whose orientation is a state (a ball's own defect turns with it): the Cardan angles
+  /// sax, say, saz of R = Rx Ry Rz, which are a spatial roller's axis angles otherwise.
+  bool ball_orientation = false;
+  /// A spatial roller: its axis angles sax, say are states.
+  bool is_roller_axis() const { return kind == BodyKind::rolling_element && slot[3] >= 0 && !ball_orientation; }
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };

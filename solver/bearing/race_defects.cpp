@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "contact/laws/element_imperfections.hpp"
 #include "solver/bearing/element_traits.hpp"
 
 namespace raceway::bearing {
@@ -20,6 +21,20 @@ std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene
   r->spall = {ring.spall.angle, ring.spall.length, ring.spall.width, ring.spall.depth, ring.spall.edge};
   r->waviness = {ring.waviness.orders, ring.waviness.amplitudes, ring.waviness.phases};
   return r;
+}
+
+std::shared_ptr<const contact::RaceImperfections> element_imperfections(const scene::Scene& scene, int k, double r) {
+  const scene::RollingElementSpec& e = scene.rolling_element;
+  const bool spall = e.spall.present && e.spall_element == k;
+  const bool waviness = e.waviness.present() && e.waviness_element == k;
+  if (!spall && !waviness) return nullptr;
+  auto out = std::make_shared<contact::RaceImperfections>();
+  out->race_radius = r;
+  out->ball_radius = r;
+  out->has_spall = spall;
+  if (spall) out->spall = {e.spall.angle, e.spall.length, e.spall.width, e.spall.depth, e.spall.edge};
+  if (waviness) out->waviness = {e.waviness.orders, e.waviness.amplitudes, e.waviness.phases};
+  return out;
 }
 
 namespace {
@@ -55,6 +70,19 @@ double ball_limit(const contact::RaceImperfections& race, const contact::Spatial
   return std::max(within, distance / speed);
 }
 
+/// The step limit for a ball's own spall at one race contact.
+double element_limit(const contact::BallGrooveSegment& law, const contact::SpatialKinematics& ring,
+                     const contact::SpatialKinematics& ball) {
+  const contact::GrooveContactFrame frame = contact::groove_contact_frame(law, ring, ball);
+  const double speed = (ball.angular_velocity - frame.rate).norm();
+  if (!frame.valid || !(speed > 0)) return std::numeric_limits<double>::infinity();
+  const contact::RaceImperfections& e = *law.element_imperfections;
+  const double half = contact::spall_half_angle(e);
+  const double within = 2.0 * half / speed / steps_within_spall;
+  const double distance = contact::element_spall_distance(e, ball.rotation, frame.n) - half;
+  return distance <= 0 ? within : std::max(within, distance / speed);
+}
+
 }  // namespace
 
 std::string describe_race_imperfections(const Model& m) {
@@ -78,14 +106,32 @@ std::string describe_race_imperfections(const Model& m) {
       out += fmt::format("  {} race: waviness of order {}, amplitude {:.4g} um, phase {:.4g} deg\n", ring, w.orders[k],
                          1e6 * w.amplitudes[k], w.phases[k] * 180 / std::numbers::pi);
   }
+  for (const Segment& seg : m.segments) {  // a ball's own defect: its inner groove's law holds it
+    if (seg.kind != SegmentKind::ball_inner_groove) continue;
+    const auto& e = m.law<contact::BallGrooveSegment>(seg).element_imperfections;
+    if (!e || (!seg.name.ends_with("groove") && !seg.name.ends_with("groovea"))) continue;
+    if (e->has_spall)
+      out += fmt::format("  ball[{}]: spall at {:.4g} deg round its equator (ball frame), {:.4g} x {:.4g} mm, {:.4g} mm "
+                         "deep, {} edges: a race reaches at most {:.4g} um into it; the balls' orientations are states\n",
+                         seg.element, e->spall.angle * 180 / std::numbers::pi, 1e3 * e->spall.length,
+                         1e3 * e->spall.width, 1e3 * e->spall.depth,
+                         e->spall.edge == contact::SpallEdge::sharp ? "sharp" : "smooth",
+                         1e6 * contact::spall_effective_depth(e->spall, e->ball_radius));
+    for (std::size_t k = 0; k < e->waviness.orders.size(); ++k)
+      out += fmt::format("  ball[{}]: waviness of order {} round its equator, amplitude {:.4g} um, phase {:.4g} deg\n",
+                         seg.element, e->waviness.orders[k], 1e6 * e->waviness.amplitudes[k],
+                         e->waviness.phases[k] * 180 / std::numbers::pi);
+  }
   return out;
 }
 
 bool has_spall(const Model& m) {
   for (const Segment& seg : m.segments) {
     if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
-    const auto& race = m.law<contact::BallGrooveSegment>(seg).imperfections;
-    if (race && race->has_spall) return true;
+    const auto& law = m.law<contact::BallGrooveSegment>(seg);
+    if ((law.imperfections && law.imperfections->has_spall) ||
+        (law.element_imperfections && law.element_imperfections->has_spall))
+      return true;
   }
   return false;
 }
@@ -95,10 +141,14 @@ double spall_step_limit(const Model& m, double t, const double* z) {
   bool any = false;
   for (const Segment& seg : m.segments) {
     if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
-    const auto& race = m.law<contact::BallGrooveSegment>(seg).imperfections;
-    if (!race || !race->has_spall) continue;
+    const auto& law = m.law<contact::BallGrooveSegment>(seg);
+    const auto& race = law.imperfections;
+    const bool element = law.element_imperfections && law.element_imperfections->has_spall;
+    if ((!race || !race->has_spall) && !element) continue;
     any = true;
-    limit = std::min(limit, ball_limit(*race, m.kinematics(seg.body_a, t, z), m.kinematics(seg.body_b, t, z)));
+    const contact::SpatialKinematics ring = m.kinematics(seg.body_a, t, z), ball = m.kinematics(seg.body_b, t, z);
+    if (race && race->has_spall) limit = std::min(limit, ball_limit(*race, ring, ball));
+    if (element) limit = std::min(limit, element_limit(law, ring, ball));
   }
   return any ? limit : 0.0;
 }

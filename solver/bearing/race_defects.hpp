@@ -7,7 +7,8 @@
 // before each step the step is limited (Equations::step_limit): a ball outside a spall may step at
 // most to the spall's leading edge at its present angular speed relative to the race; a ball
 // within it, a tenth of its passage time. The limit is a function of (t, z) alone, so it is the
-// same at every rank count and after a resume.
+// same at every rank count and after a resume. A ball's own spall (solver/bearing/ball_model.cpp:
+// the ball's orientation is then a state) is limited alike, as it turns towards a race contact.
 #pragma once
 
 #include <memory>
@@ -23,6 +24,10 @@ namespace raceway::bearing {
 std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene::RingSpec& ring, double race_radius,
                                                                      double ball_radius);
 
+/// Ball k's own imperfections ([rolling_element]: round its equator, race_radius = ball_radius = its
+/// radius r) for its ball-groove laws; null when ball k is perfect.
+std::shared_ptr<const contact::RaceImperfections> element_imperfections(const scene::Scene& scene, int k, double r);
+
 /// Lines for the model's description (raceway check): each race's spall and waviness, or "".
 std::string describe_race_imperfections(const Model& m);
 
@@ -32,7 +37,8 @@ inline constexpr double steps_within_spall = 10;
 /// Whether a ball-groove law of the model has a spall.
 bool has_spall(const Model& m);
 /// The largest step at (t, z) that lets no ball enter or cross a spall unseen [s]; 0 when the model
-/// has no spall (no limit).
+/// has no spall (no limit). A ball's own spall: at most the step that turns it to the nearer
+/// contact's edge at the ball's spin relative to the contact frame; a tenth of its passage within.
 double spall_step_limit(const Model& m, double t, const double* z);
 
 }  // namespace raceway::bearing

@@ -35,10 +35,11 @@ class SpatialDynamics final : public BodyDynamics {
       if (sl[sx + d] >= 0) zdot[sl[sx + d]] = z[sl[svx + d]], zdot[sl[svx + d]] = r[svx + d];
     switch (body.kind) {
       case BodyKind::rolling_element:
-        if (sl[sax] >= 0) {
+        if (body.is_roller_axis()) {
           roller_rates(body, z, r, zdot);
           break;
         }
+        if (body.ball_orientation) ball_angle_rates(body, z, zdot);
         for (int d = 0; d < 3; ++d) zdot[sl[swx + d]] = r[swx + d];
         break;
       case BodyKind::cage: cage_rates(body, z, r, zdot); break;
@@ -54,7 +55,7 @@ class SpatialDynamics final : public BodyDynamics {
     for (int d = 0; d < 3; ++d) rates[svx + d] = w.force[d] / body.mass;
     switch (body.kind) {
       case BodyKind::rolling_element:
-        if (body.slot[sax] >= 0) {
+        if (body.is_roller_axis()) {
           const Vec3 a = roller_axis(body, z);
           const Vec3 along = a.dot(w.moment) * a;  // I^-1 M, I = I_t (1 - a a^T) + I_a a a^T
           const Vec3 alpha = (w.moment - along) / body.transverse_inertia + along / body.axial_inertia;
@@ -212,6 +213,16 @@ class SpatialDynamics final : public BodyDynamics {
     for (int d = 0; d < 3; ++d) zdot[sl[swx + d]] = r[swx + d] - correction[d];
   }
 
+  /// A ball's Cardan x-y-z angles turn with its angular velocity w (bearing frame; a sphere has no
+  /// gyroscopic term): their rates from the body-frame w, R^T w.
+  static void ball_angle_rates(const Body& body, const double* z, double* zdot) {
+    const auto& sl = body.slot;
+    const Mat3 rotation = cardan_rotation(z[sl[sax]], z[sl[say]], z[sl[saz]]);
+    const Vec3 w(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
+    const Vec3 angle_rates = cardan_rates(z[sl[say]], z[sl[saz]], rotation.transpose() * w);
+    for (int d = 0; d < 3; ++d) zdot[sl[sax + d]] = angle_rates[d];
+  }
+
   /// Cardan x-y-z angle rates from the body-frame angular velocity, and Euler's equations.
   static void cage_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
     const auto& sl = body.slot;
@@ -245,7 +256,7 @@ class SpatialDynamics final : public BodyDynamics {
     const Vec3 x(state(sx), state(sy), state(sz)), v(state(svx), state(svy), state(svz));
     e += 0.5 * body.mass * v.squaredNorm();
     if (sl[svy] >= 0) e += body.mass * m_.gravity * x.y();
-    if (body.kind == BodyKind::rolling_element && sl[sax] >= 0) {
+    if (body.is_roller_axis()) {
       const Vec3 w(state(swx), state(swy), state(swz));
       const double spin = roller_axis(body, z).dot(w);
       e += 0.5 * body.transverse_inertia * (w.squaredNorm() - spin * spin) + 0.5 * body.axial_inertia * spin * spin;

@@ -41,6 +41,7 @@
 #include "io/scene/scene_override.hpp"
 #include "io/scene/scene_parser.hpp"
 #include "io/json/summary_json.hpp"
+#include "io/report/life.hpp"
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/driver/plan_command.hpp"
@@ -146,6 +147,20 @@ struct RunRequest {
   driver::OutputThreadPlace output_thread{true, -1, ""};  ///< driver::place_output_thread
 };
 
+/// The rating lives of the finished output (io/report/life.hpp: the report's calculation over its
+/// window, the second half), or a note why there are none.
+void add_life(json::JsonObject& summary, const std::string& output, const std::string& summary_json) {
+  std::string why;
+  const std::string life = report::life_json(output, summary_json + ".life", why);
+  if (!life.empty()) {
+    summary.add_raw("life", life);
+    return;
+  }
+  json::JsonObject note;
+  note.add("note", "no life: " + why);
+  summary.add("life", std::move(note));
+}
+
 int run_command(const scene::Scene& scene, const RunRequest& request, scheduler::Executor& executor) {
   spdlog::info("scene '{}' from {}", scene.scene.name, scene.source);
   for (const std::string& o : scene.overrides) spdlog::info("--set {}", o);
@@ -172,7 +187,7 @@ int run_command(const scene::Scene& scene, const RunRequest& request, scheduler:
   const auto sum = run::run_scene(scene, options);
   progress.finish();
   executor.stop();
-  const auto json = sum.to_json();
+  auto json = sum.to_json();
   spdlog::info("done: {:.4g} s simulated ({:.2f} revolutions) in {:.2f} s wall; {} steps, {} rhs, {} jacobians, "
                "{} newton failures, {} error-test failures",
                sum.simulated_time_s, sum.driven_ring_revolutions, sum.wall_time_s, sum.stats.steps,
@@ -189,6 +204,7 @@ int run_command(const scene::Scene& scene, const RunRequest& request, scheduler:
   }
   spdlog::info("output written to {}", output);
   if (!summary_json.empty()) {
+    add_life(json, output, summary_json);
     json::write_json_file(summary_json, json);
     spdlog::info("summary written to {}", summary_json);
   }

@@ -58,7 +58,8 @@ AnySegment make_segment(const SpatialCase& c, const LawOptions& o) {
           .traction = {.model = o.traction ? TractionModel::curve : TractionModel::none,
                        .friction_coefficient = friction, .slip_velocity_scale = slip_scale},
           .lubricant = o.traction ? PointLubricant{viscosity, pressure_viscosity, limiting_shear} : PointLubricant{},
-          .rolling_resistance = o.traction, .groove_side = 0, .imperfections = nullptr};
+          .rolling_resistance = o.traction, .groove_side = 0, .imperfections = nullptr,
+          .element_imperfections = nullptr};
     }
     case Kind::pocket:
       return BallPocketSegment{

@@ -9,7 +9,9 @@
 #include <numbers>
 
 #include "ball_cases.hpp"
+#include "contact/laws/element_imperfections.hpp"
 #include "contact/laws/race_imperfections.hpp"
+#include <Eigen/Geometry>
 
 namespace raceway::contact::test {
 namespace {
@@ -123,6 +125,79 @@ TEST(RaceHeight, GrooveContactApproachFollowsTheRace) {
   const SpatialSegmentResult clean = evaluate(perfect, ring, ball_at(0.4, 0.0));
   EXPECT_EQ(beside.diagnostics.approach, clean.diagnostics.approach);
   EXPECT_EQ(beside.diagnostics.normal_force, clean.diagnostics.normal_force);
+}
+
+// A ball's own spall (element_imperfections.hpp) sits in the ball's frame and turns with the ball: a
+// ball turned by beta about its z axis carries a spall at longitude alpha to the bearing-frame
+// direction alpha + beta; the contact there sees the spall's full drop, the contact at alpha does not
+// (any more), and a spall turned away from every contact leaves the height 0.
+TEST(ElementHeight, TheDefectTurnsWithTheBall) {
+  RaceImperfections e;
+  e.race_radius = e.ball_radius = r;
+  e.has_spall = true;
+  e.spall = {.angle = 0.3, .length = 0.4e-3, .width = 0.4e-3, .depth = 0.1e-3, .edge = SpallEdge::smooth};
+  const double peak = spall_effective_depth(e.spall, r);
+  const Vec3 zero = Vec3::Zero();
+  auto direction = [](double a) { return Vec3(std::cos(a), std::sin(a), 0.0); };
+  for (const double beta : {0.0, 1.0, -2.5, 4.0}) {
+    const Mat3 turned = Eigen::AngleAxisd(beta, Vec3::UnitZ()).toRotationMatrix();
+    EXPECT_NEAR(element_height(e, turned, direction(0.3 + beta), zero, zero).height, -peak, 1e-15) << beta;
+    if (beta != 0.0) {
+      EXPECT_EQ(element_height(e, turned, direction(0.3), zero, zero).height, 0.0) << beta;
+    }
+    EXPECT_NEAR(element_spall_distance(e, turned, direction(0.3 + beta)), 0.0, 1e-7) << beta;
+  }
+  // Tilted about x by 90 deg: the equator stands in the bearing's (x, z) plane; the spall at
+  // longitude 0.3 is at (cos 0.3, 0, sin 0.3) in the bearing frame.
+  const Mat3 tilted = Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_NEAR(element_height(e, tilted, Vec3(std::cos(0.3), 0.0, std::sin(0.3)), zero, zero).height, -peak, 1e-15);
+  EXPECT_EQ(element_height(e, tilted, direction(0.3), zero, zero).height, 0.0);  // off its track (latitude 0.3)
+}
+
+// The height's rate as the ball turns under a fixed contact: d/dt h(R(t)^T n) against central
+// differences of the height over the ball's rotation, for waviness round the equator (with a tilt
+// of the ball's spin axis) and a contact frame that turns as well.
+TEST(ElementHeight, RateIsTheDerivativeAlongTheMotion) {
+  RaceImperfections e;
+  e.race_radius = e.ball_radius = r;
+  e.waviness = {.orders = {2, 5}, .amplitudes = {1e-6, 0.3e-6}, .phases = {0.2, -1.0}};
+  const Vec3 w(30.0, -50.0, 900.0), frame(0.0, 0.0, 40.0);
+  const Mat3 r0 = Eigen::AngleAxisd(0.7, Vec3(0.2, 0.1, 1.0).normalized()).toRotationMatrix();
+  const Vec3 n0 = Vec3(0.6, -0.8, 0.05).normalized();
+  auto at = [&](double t) {
+    const Mat3 rot = Eigen::AngleAxisd(w.norm() * t, w.normalized()).toRotationMatrix() * r0;
+    const Vec3 n = Eigen::AngleAxisd(frame.norm() * t, frame.normalized()).toRotationMatrix() * n0;
+    return element_height(e, rot, n, frame, w).height;
+  };
+  const double h = 1e-7;
+  const double rate = element_height(e, r0, n0, frame, w).rate;
+  EXPECT_NEAR(rate, (at(h) - at(-h)) / (2 * h), 1e-6 * std::abs(rate) + 1e-12);
+  EXPECT_GT(std::abs(rate), 1e-4);  // the waviness does pass the contact
+}
+
+// The groove contact's approach takes the ball's own height at the ball's side facing the race.
+TEST(ElementHeight, GrooveContactApproachFollowsTheBall) {
+  using namespace ball;
+  const SpatialCase c{"inner", Kind::groove, false, 0, PocketShape::cylindrical};
+  const BallGrooveSegment perfect = std::get<BallGrooveSegment>(make_segment(c, {.damping = false, .traction = false}));
+  const Groove g = groove_of(c);
+  BallGrooveSegment defective = perfect;
+  auto e = std::make_shared<RaceImperfections>();
+  e->race_radius = e->ball_radius = ball_radius;
+  e->has_spall = true;
+  e->spall = {.angle = 0.0, .length = 2e-3, .width = 2e-3, .depth = 2e-6, .edge = SpallEdge::sharp};
+  defective.element_imperfections = e;
+  const double m = g.groove_radius - ball_radius, approach = 10e-6, psi = 0.6;
+  SpatialKinematics ring, ball;
+  ball.position = (g.centre_radius - m - approach) * radial(psi);  // inside the inner groove's arc centre
+  // The inner contact faces the bearing's axis, direction -e_r(psi): the ball turned by psi + pi brings its
+  // spall (longitude 0) there.
+  ball.rotation = Eigen::AngleAxisd(psi + std::numbers::pi, Vec3::UnitZ()).toRotationMatrix();
+  const SpatialSegmentResult over = evaluate(defective, ring, ball);
+  const SpatialSegmentResult clean = evaluate(perfect, ring, ball);
+  EXPECT_NEAR(over.diagnostics.approach, clean.diagnostics.approach - 2e-6, 1e-15);
+  ball.rotation = Mat3::Identity();  // unturned: the spall points along x, away from the contact
+  EXPECT_EQ(evaluate(defective, ring, ball).diagnostics.approach, clean.diagnostics.approach);
 }
 
 }  // namespace

@@ -68,6 +68,18 @@ TEST(SummaryJson, DumpsNestedObjectsInOrder) {
   EXPECT_NE(root.dump(0).find("{\"scene\":\"NU206\",\"steps\":43,"), std::string::npos);
 }
 
+// A value given as JSON text (the life script's object) goes in as it is, its lines indented to the
+// member's depth; compact output drops its line breaks; a later add replaces it in place.
+TEST(SummaryJson, RawValuesAreWrittenAsGivenAndIndented) {
+  JsonObject o;
+  o.add("a", 1.5).add_raw("life", "{\n  \"l10_mrev\": 61168.7,\n  \"note\": null\n}\n").add("b", true);
+  EXPECT_EQ(o.dump(), "{\n  \"a\": 1.5,\n  \"life\": {\n    \"l10_mrev\": 61168.7,\n    \"note\": null\n  },\n"
+                      "  \"b\": true\n}");
+  EXPECT_EQ(o.dump(0), "{\"a\":1.5,\"life\":{  \"l10_mrev\": 61168.7,  \"note\": null},\"b\":true}");
+  o.add_raw("life", "[1, 2]");
+  EXPECT_EQ(o.dump(0), "{\"a\":1.5,\"life\":[1, 2],\"b\":true}");
+}
+
 TEST(SummaryJson, EscapesStrings) {
   JsonObject o;
   o.add("s", std::string("quote\" backslash\\ nl\n tab\t cr\r bs\b ff\f nul") + '\0' + "\x01\x1f end \u00e9");

@@ -20,6 +20,7 @@ written out here from the standards' formulas, one case per ctest.
 - tables: the equivalent load's X, Y, e (deep groove, angular and four-point contact), a_1 and the
   other branches of a_ISO against ISO 281's tables and formulas by hand.
 - bad_keys: [life] values out of range refused with file, line, key and reason, exit code 2.
+Every case that runs a scene also checks that `raceway run --summary-json`'s `life` is the report's.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (numpy or h5py missing).
 """
@@ -55,14 +56,22 @@ def near(value, expected, rel, what):
 
 def run_and_report(raceway, source, scene, folder, settings):
     out = os.path.join(folder, "run.h5")
-    cmd = [raceway, "run", os.path.join(source, "jobs", "scenes", scene), "-o", out]
+    cmd = [raceway, "run", os.path.join(source, "jobs", "scenes", scene), "-o", out,
+           "--summary-json", os.path.join(folder, "run_summary.json")]
     for s in settings:
         cmd += ["--set", s]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     subprocess.run([raceway, "report", out, "--no-plots", "-o", os.path.join(folder, "report")], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(os.path.join(folder, "report", "summary.json")) as fh:
-        return out, json.load(fh)
+        report = json.load(fh)
+    # `raceway run --summary-json` holds the same lives: the report's calculation over its default window.
+    with open(os.path.join(folder, "run_summary.json")) as fh:
+        run_life = json.load(fh).get("life")
+    check(run_life == report["life"], f"{scene}: the run summary's life is the report's "
+          f"(L10 {run_life.get('l10_mrev') if run_life else None}, L10r "
+          f"{(run_life or {}).get('reference', {}).get('l10r_mrev')})")
+    return out, report
 
 
 def carried_radial_load(path, summary):

@@ -23,8 +23,12 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
     of the spalled bearings' lines (printed: the spectrum's median, the numerical noise floor).
   report: `raceway report` on the outer-race run: summary.json's vibration part (BPFO x2 among the lines
     that carry energy, BPFI not), the log's sensor line, and sensor.csv holding the window's samples.
-  ranks: the outer-race run at np = 2 against np = 1, and a run killed (SIGKILL) after a checkpoint and
-    resumed against an uninterrupted one with the same checkpoint interval: /housing bitwise.
+  ranks: the outer-race run (with a ball's spall and waviness besides) at np = 2 against np = 1, and a run
+    killed (SIGKILL) after a checkpoint and resumed against an uninterrupted one with the same
+    checkpoint interval: /housing bitwise.
+  ball_spall: a spall on ball[0]: the envelope spectrum's line at 2 BSF and the sidebands 2 BSF -+ FTF.
+  ball_waviness: ball[0]'s waviness of order 2: its contact forces at 2 BSF, the housing at 2 BSF -+ FTF;
+    of order 3: its contact forces silent at 3 BSF.
 
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
 """
@@ -44,7 +48,7 @@ except ImportError as err:
 
 SCENE = """[scene]
 end_time = "{end}"
-output_interval = "1 ms"
+output_interval = "{interval}"
 [bearing]
 designation = "6205"
 [inner_ring]
@@ -73,10 +77,11 @@ def check(cond, what):
         failures.append(what)
 
 
-def write_scene(work, name, end="40 ms", load='fy = "-500 N"', inner="", outer="", extra="", segments=False):
+def write_scene(work, name, end="40 ms", load='fy = "-500 N"', inner="", outer="", extra="", segments=False,
+                interval="1 ms"):
     path = os.path.join(work, name + ".toml")
     with open(path, "w", encoding="utf-8") as f:
-        f.write(SCENE.format(end=end, load=load, inner=inner, outer=outer, extra=extra,
+        f.write(SCENE.format(end=end, interval=interval, load=load, inner=inner, outer=outer, extra=extra,
                              segments="true" if segments else "false"))
     return path
 
@@ -149,6 +154,73 @@ def case_waviness(raceway, work):
               f"({a:.3g} < 3 x floor {floor:.3g})")
 
 
+def case_ball_spall(raceway, work):
+    """A spall on ball[0] meets the inner and the outer race once each per turn of the ball relative to
+    the cage: impacts at 2 BSF, and with the load zone turning at the cage's speed, sidebands at FTF."""
+    ball = 'spall = { element = 0, angle = "180 deg", length = "0.5 mm", width = "2 mm", depth = "0.1 mm" }'
+    vib, f, freq, amp = analyse(run(raceway, write_scene(work, "ball", end="80 ms", extra="[rolling_element]\n" + ball),
+                                    os.path.join(work, "ball.h5")))
+    print(f"BSF {f['BSF']:.2f} Hz (kinematic {f['kinematic']['BSF']:.2f}), FTF {f['FTF']:.2f} Hz", file=sys.stderr)
+    a, _ = line(vib, freq, amp, 2 * f["BSF"], "2 BSF", 0.01, 3.0)
+    for sign, name in ((-1, "2 BSF - FTF"), (1, "2 BSF + FTF")):
+        line(vib, freq, amp, 2 * f["BSF"] + sign * f["FTF"], name, 0.01, 2.0)
+
+
+def loaded_bsf(path, f):
+    """BSF at the contact angle the measured cage speed implies: under an axial load every ball rolls
+    at one contact angle a, and f_c = f_i (1 - gamma) / 2 with gamma = D cos a / d_m gives gamma; then
+    BSF = (d_m / D) (1 - gamma) (f_i - f_c) (the report's BSF takes the nominal angle, 0 here)."""
+    with h5py.File(path, "r") as h:
+        d_over_dm = float(np.squeeze(h.attrs["element_radius"])) / float(np.squeeze(h.attrs["pitch_radius"]))
+    gamma = 1 - 2 * f["FTF"] / f["shaft"]
+    print(f"contact angle from the cage's speed: {np.degrees(np.arccos(gamma / d_over_dm)):.1f} deg", file=sys.stderr)
+    return (1 - gamma) * (f["shaft"] - f["FTF"]) / d_over_dm
+
+
+def contact_force_line(vib, path, f0):
+    """Ball[0]'s inner- and outer-race normal forces: their spectra's largest peaks within 2 % of f0."""
+    with h5py.File(path, "r") as h:
+        t = h["time"][()].reshape(-1)
+        keep = t >= 0.01
+        out = []
+        for kind in ("ball_inner_groove", "ball_outer_groove"):
+            freq, amp = vib.spectrum(h["segments"][kind]["normal_force"][()][keep, 0], 1 / (t[1] - t[0]), pad=8)
+            out.append((vib.peak_near(freq, amp, f0, 0.02), vib.noise_floor(freq, amp, f0)))
+    return out
+
+
+def case_ball_waviness(raceway, work):
+    """Waviness of order n round one ball's equator (2 um) under an axial load. The two race contacts face
+    each other across the ball: an even order changes the ball's diameter between them n times a turn
+    relative to the cage: ball[0]'s contact forces vary at n BSF (within 1 %), a radial force turning
+    with the cage, so the housing vibrates at n BSF -+ FTF (within 1 %, at least 5 times the floor); an
+    odd order moves the surface in on one side and out on the other and leaves the diameter: its
+    contact forces at n BSF stay below 1 % of the even order's."""
+    even = None
+    for order in (2, 3):
+        extra = f'[rolling_element]\nwaviness = {{ element = 0, orders = [{order}], amplitudes = ["2 um"] }}'
+        path = run(raceway, write_scene(work, f"ballwav{order}", load='fz = "500 N"', extra=extra, segments=True,
+                                        interval="0.1 ms"), os.path.join(work, f"ballwav{order}.h5"))
+        vib, f, freq, amp = analyse(path, envelope=False, axis=0)
+        bsf = loaded_bsf(path, f)
+        forces = contact_force_line(vib, path, order * bsf)
+        for (at, a), floor in forces:
+            print(f"order {order}: ball[0]'s contact force {a:.4g} N at {at:.1f} Hz ({order} BSF {order * bsf:.1f} Hz), "
+                  f"floor {floor:.3g} N", file=sys.stderr)
+        if order % 2 == 0:
+            even = min(a for (_, a), _ in forces)
+            for ((at, a), floor), race in zip(forces, ("inner", "outer")):
+                check(abs(at / (order * bsf) - 1) <= 0.01 and a >= 10 * floor,
+                      f"order {order}: the {race}-race force's line at {at:.1f} Hz is {order} BSF, {a:.3g} N")
+            for sign in (-1, 1):
+                line(vib, freq, amp, order * bsf + sign * f["FTF"],
+                     f"ball waviness order {order}: {order} BSF {'+' if sign > 0 else '-'} FTF", 0.01, 5.0)
+        else:
+            for ((_, a), _), race in zip(forces, ("inner", "outer")):
+                check(a < 0.01 * even, f"order {order}: the {race}-race force at {order} BSF, {a:.3g} N, is below 1 % "
+                      f"of the even order's {even:.3g} N")
+
+
 def case_clean(raceway, work):
     vib, f, freq, amp = analyse(run(raceway, write_scene(work, "clean", end="80 ms"), os.path.join(work, "clean.h5")))
     _, fo, freq_o, amp_o = analyse(run(raceway, write_scene(work, "outer", end="80 ms", outer=SPALL % "-90 deg"),
@@ -205,15 +277,21 @@ def same(a, b, what):
     check(equal, what)
 
 
+BALL_DEFECTS = ('[rolling_element]\nspall = { element = 0, angle = "180 deg", length = "0.5 mm", width = "2 mm", '
+                'depth = "0.1 mm" }\nwaviness = { element = 3, orders = [2], amplitudes = ["1 um"] }')
+
+
 def case_ranks(raceway, mpiexec, work):
-    scene = write_scene(work, "outer", end="30 ms", outer=SPALL % "-90 deg")
+    # The outer race's spall, and a ball's spall and waviness (the balls' orientations are states).
+    scene = write_scene(work, "outer", end="30 ms", outer=SPALL % "-90 deg", extra=BALL_DEFECTS)
     one = housing_series(run(raceway, scene, os.path.join(work, "np1.h5")))
     two = housing_series(run(raceway, scene, os.path.join(work, "np2.h5"), 2, mpiexec))
     same(one, two, "np = 2 writes the np = 1 run's /housing bitwise")
     check(np.isfinite(one["acceleration"][1:]).all(), "every sensor sample after t = 0 is written")
     # Killed after a checkpoint and resumed: the same bits as the uninterrupted run (which restarts
     # its integrator at the same checkpoints).
-    ckpt = write_scene(work, "ckpt", end="60 ms", outer=SPALL % "-90 deg", extra='checkpoint_interval = "5 ms"')
+    ckpt = write_scene(work, "ckpt", end="60 ms", outer=SPALL % "-90 deg",
+                       extra='checkpoint_interval = "5 ms"\n' + BALL_DEFECTS)
     whole = housing_series(run(raceway, ckpt, os.path.join(work, "whole.h5")))
     out = os.path.join(work, "killed.h5")
     proc = subprocess.Popen([raceway, "run", ckpt, "-o", out], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -240,7 +318,8 @@ def main():
             case_ranks(raceway, mpiexec, work)
         else:
             {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
-             "report": case_report}[case](raceway, work)
+             "report": case_report, "ball_spall": case_ball_spall,
+             "ball_waviness": case_ball_waviness}[case](raceway, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
         return 1
