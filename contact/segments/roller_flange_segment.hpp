@@ -24,6 +24,9 @@
 // there: along the rib's generatrix (y) 1/R or 1/r_c; circumferential (x) 1/R or, for the flat end,
 // |sin g| / (rho + r_c |sin g|) of the torus, plus sin(g) / r of the cone at the contact radius r.
 // A flat end needs a rib angle (a flat end on a flat rib touches along a whole edge: no Hertz point).
+// A tapered roller's large end on the cone's back rib is this contact with the roller's axis leaning
+// by axis_angle: a spherical end's curvatures are unchanged (its centre at axis_radius), a flat
+// end's are taken in the roller's own meridian frame (roller_flange_segment.cpp).
 //
 // Traction: integrate_traction of the point contact (curve model) on the ellipse, x the
 // circumferential direction at the contact, y = z x x, z = -n (into the ring); sliding of the
@@ -49,7 +52,10 @@ struct RollerFlangeGeometry {
   double roller_length = 0;   ///< l [m]
   double roller_radius = 0;   ///< m
   double end_radius = 0;      ///< m: the sphere's R (spherical), the corner radius r_c (flat)
-  double axis_radius = 0;     ///< m, nominal distance of the roller's axis from the ring axis
+  double axis_radius = 0;     ///< m, nominal distance of the end's centre (on the roller's axis) from the ring axis
+  /// rad, a tapered roller's axis leaning from the ring axis, its `side` end outwards (0: parallel).
+  /// Only the Hertz constants of a flat end read it; the contact itself follows the roller's pose.
+  double axis_angle = 0;
 };
 
 struct RollerFlangeSegment {

@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 
+#include "contact/laws/tapered_geometry.hpp"
 #include "io/scene/scene_rules.hpp"
+#include "io/scene/scene_schema_rows.hpp"
 
 namespace raceway::scene::schema::rules {
 
@@ -23,6 +25,14 @@ std::optional<double> slices_default(const Bind& b) {
 // roller where the profile has none); a spherical end is a sphere of about the pitch radius.
 std::optional<double> end_radius_default(const Bind& b) {
   const BearingGeometry& g = b.scene.bearing;
+  // A tapered roller's spherical large end: 0.9 of the apex distance of its centre (the usual 0.8 to
+  // 0.95), so that it touches the cone's back rib near its middle.
+  if (g.is_tapered() && g.roller.end == RollerEnd::spherical) {
+    const std::string why = contact::tapered_geometry_problem(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+    if (why.empty())
+      return 0.9 * contact::tapered_geometry(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle)
+                       .apex_distance;
+  }
   if (g.roller.end == RollerEnd::spherical) return 0.5 * g.pitch_diameter;
   return g.roller.corner_radius > 0 ? g.roller.corner_radius : 0.1 * g.roller_diameter;
 }
@@ -38,6 +48,10 @@ std::optional<std::string> logarithmic_profile_only(const Section&, const Bind& 
   if (p == contact::RollerProfileKind::lundberg || p == contact::RollerProfileKind::johns_gohar) return std::nullopt;
   return "only for a logarithmic roller_profile (\"lundberg\" or \"johns_gohar\")";
 }
+std::optional<std::string> tapered_only(const Section&, const Bind& b) {
+  if (b.scene.bearing.is_tapered()) return std::nullopt;
+  return std::string(kTaperedOnly);
+}
 std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
   if (!b.spatial_roller()) return std::nullopt;
   return "the planar model's crowning; a spatial roller's crown is bearing.roller_profile";
@@ -51,6 +65,26 @@ void roller_profile_fits(const Row&, const Section& s, Bind& b) {
   // Any positive modulus: the checks are on lengths and loads.
   const std::string why = contact::validate_profile(g.roller_profile(1e11, 0.25 * g.roller_diameter));
   s.check(why.empty(), "roller_profile", [&] { return "the roller profile does not fit: " + why; });
+  s.check(!g.is_tapered() || !s.has("ribs"), "ribs", [] {
+    return std::string("a tapered roller bearing has one rib, the cone's back rib against the rollers' large ends: "
+                       "leave ribs out (it is for cylindrical roller bearings)");
+  });
+}
+
+// The apexes of cup, cone and roller meet on the axis only for a roller that fits the cup angle.
+void cup_angle_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  const std::string why =
+      contact::tapered_geometry_problem(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+  s.check(why.empty(), "cup_angle", [&] {
+    return fmt::format("a cup angle of {:.4g} deg with a {} roller on a {} pitch diameter: {}",
+                       g.roller.cup_angle * 180 / std::numbers::pi, mm(g.roller_diameter), mm(g.pitch_diameter), why);
+  });
+  s.check(g.radial_clearance == 0, "radial_clearance", [&] {
+    return fmt::format("a tapered roller bearing's play is axial: give radial_clearance = 0 (not {}) and set the play "
+                       "or preload by the inner ring's axial load or axial_position",
+                       mm(g.radial_clearance));
+  });
 }
 
 void end_radius_fits(const Row&, const Section& s, Bind& b) {
@@ -96,8 +130,17 @@ void axial_load_carried_by_ribs(const Row&, const Section& s, Bind& b) {
   double lo = 0, hi = 0;
   for (const double v : fz.values) lo = std::min(lo, v), hi = std::max(hi, v);
   if (lo == 0 && hi == 0) return;
-  const RibArrangement ribs = b.scene.bearing.roller.ribs;
   const bool inner = b.ring == &b.scene.inner_ring;
+  if (b.scene.bearing.is_tapered()) {
+    // The cone's back rib and the raceways carry the cone pushed into the cup: an inner-ring load
+    // along -z, an outer-ring load along +z.
+    if (inner ? hi > 0 : lo < 0)
+      s.fail("fz", fmt::format("a tapered roller bearing carries an axial load on its {} ring along {} only (the cone "
+                               "pushed into the cup, the rollers' large ends on the cone's back rib at +z)",
+                               inner ? "inner" : "outer", inner ? "-z" : "+z"));
+    return;
+  }
+  const RibArrangement ribs = b.scene.bearing.roller.ribs;
   // The direction an NJ bearing carries on this ring: +z on the inner ring, -z on the outer.
   const bool along_carried = inner ? lo >= 0 : hi <= 0;
   const char* design = ribs == RibArrangement::nu ? "NU" : ribs == RibArrangement::n ? "N" : "NJ";
