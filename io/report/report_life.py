@@ -75,7 +75,7 @@ def _word(p, key):
 def bearing_geometry(p, nominal_contact_angle=0.0):
     """The geometry the standards take (mm, rad) from the resolved scene parameters."""
     kind = _word(p, "bearing.type")
-    ball = kind != "cylindrical_roller"
+    ball = kind not in ("cylindrical_roller", "tapered_roller")
     g = {"type": kind, "ball": ball, "z": int(_value(p, "bearing.rolling_elements") or 0),
          "dw": 1e3 * (_value(p, "bearing.ball_diameter" if ball else "bearing.roller_diameter") or math.nan),
          "dpw": 1e3 * (_value(p, "bearing.pitch_diameter") or math.nan), "lwe": None, "fi": None, "fe": None,
@@ -89,6 +89,8 @@ def bearing_geometry(p, nominal_contact_angle=0.0):
             g["rows"] = 2
     else:
         g["lwe"] = 1e3 * (_value(p, "bearing.roller_length") or math.nan)
+        if kind == "tapered_roller":  # rated at the cup angle, the catalogues' contact angle
+            g["alpha"] = _value(p, "bearing.cup_angle") or 0.0
     return g
 
 

@@ -50,7 +50,7 @@ std::optional<std::string> logarithmic_profile_only(const Section&, const Bind& 
 }
 std::optional<std::string> tapered_only(const Section&, const Bind& b) {
   if (b.scene.bearing.is_tapered()) return std::nullopt;
-  return std::string(kTaperedOnly);
+  return std::string(table::kTaperedOnly);
 }
 std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
   if (!b.spatial_roller()) return std::nullopt;

@@ -91,9 +91,9 @@ constexpr Row kRows[] = {
                 "grooves; the contact line runs from the inner groove at -z to the outer at +z"},
     {.section = "bearing", .key = "cup_angle", .kind = number, .field = FIELD(scene.bearing.roller.cup_angle),
      .dim = dim::angle, .bounds = kCupAngle, .bearings = spatial_rollers, .elsewhere = kTaperedOnly,
-     .when = tapered_only, .then = cup_angle_fits,
+     .when = tapered_only,
      .missing = "required for type = \"tapered_roller\": the cup raceway's angle to the axis, e.g. \"14 deg\"",
-     .example = "14 deg",
+     .then = cup_angle_fits, .example = "14 deg",
      .meaning = "tapered roller bearings: the cup (outer) raceway's angle alpha to the axis (the catalogue's contact "
                 "angle); roller_diameter is the roller's diameter at its middle, pitch_diameter there; the roller's "
                 "and the cone's angles follow so that the apexes meet on the axis"},

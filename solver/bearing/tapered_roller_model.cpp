@@ -73,9 +73,9 @@ void set_geometry(Model& m, const scene::Scene& scene) {
   m.element_count = g.rolling_elements;
   m.pitch_radius = 0.5 * g.pitch_diameter;
   m.element_radius = 0.5 * g.roller_diameter;
-  // The raceways' radii at the roller's middle, along the normal through it.
-  m.inner_race_radius = m.pitch_radius - m.element_radius / std::cos(t.cone_angle + t.half_angle) * std::cos(t.half_angle);
-  m.outer_race_radius = m.pitch_radius + m.element_radius / std::cos(t.cup_angle - t.half_angle) * std::cos(t.half_angle);
+  // The raceways' radii at the foot of the normal from the roller's middle (r_r cos(gamma) away).
+  m.inner_race_radius = m.pitch_radius - m.element_radius * std::cos(t.half_angle) * std::cos(t.cone_angle);
+  m.outer_race_radius = m.pitch_radius + m.element_radius * std::cos(t.half_angle) * std::cos(t.cup_angle);
   m.cone_angle = t.cone_angle;
   m.cup_angle = t.cup_angle;
 }

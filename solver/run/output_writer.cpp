@@ -75,7 +75,7 @@ const std::vector<BodySeries>& element_series(const bearing::Model& m) {
       {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
        "roller centre acceleration and angular acceleration, bearing frame"}};
   if (m.kind != scene::ModelKind::spatial) return planar;
-  return m.bearing_type == scene::BearingType::cylindrical_roller ? spatial_rollers : spatial;
+  return !m.params().bearing.is_ball_bearing() ? spatial_rollers : spatial;
 }
 
 /// The `components` attribute of a series: what each of its columns is ("x", "about z", ...).
@@ -285,6 +285,10 @@ void write_bearing_attributes(h5::H5SeriesWriter& file, const bearing::Model& m,
     file.set_attribute("/", "outer_groove_radius", g.ball.outer_conformity * g.ball.ball_diameter);
   } else {
     file.set_attribute("/", "roller_length", g.roller_length);
+  }
+  if (g.is_tapered()) {
+    file.set_attribute("/", "cup_angle", m.cup_angle);
+    file.set_attribute("/", "cone_angle", m.cone_angle);
   }
   file.set_attribute("/", "cage_guidance", scene_word(scene, "cage.guidance"));
   file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
