@@ -103,6 +103,7 @@ struct Reference {
   /// (r, z), its lean beta + d, and the ring's displacement (er, ez) in its meridian plane.
   struct Roller {
     Eigen::Vector3d wrench = Eigen::Vector3d::Zero();
+    Eigen::Vector2d on_cone = Eigen::Vector2d::Zero();  ///< (r, z) on the inner ring: the cone's and the rib's
     double cone = 0, cup = 0, rib = 0;
   };
   Roller roller(double r, double zc, double d, double er, double ez) const {
@@ -129,6 +130,7 @@ struct Reference {
         const double q = slices.law.slice_stiffness[j] * std::pow(approach, 10.0 / 9.0);
         add(s - dist * n, (cup ? -q : q) * n);
         (cup ? out.cup : out.cone) += q;
+        if (!cup) out.on_cone -= q * n;
       }
     }
     // Rib: face normal (rib to roller) n_f = (sin g, -cos g); touching at the nominal place.
@@ -137,11 +139,12 @@ struct Reference {
     const Eigen::Vector2d a0(std::sin(beta), std::cos(beta));
     const Eigen::Vector2d centre0 = Eigen::Vector2d(rm, 0) + (0.5 * length - end_radius) * a0;
     const Eigen::Vector2d centre = c + (0.5 * length - end_radius) * a;
-    const double approach = end_radius - nf.dot(centre - Eigen::Vector2d(er, ez) - centre0) - end_radius;
-    const double delta = approach + 0.0;
+    // The face moves with the ring; at the nominal place the sphere touches it: approach 0.
+    const double delta = -nf.dot(centre - Eigen::Vector2d(er, ez) - centre0);
     if (delta > 0) {
       out.rib = rib_k * delta * std::sqrt(delta);
       add(centre - end_radius * nf, out.rib * nf);
+      out.on_cone -= out.rib * nf;
     }
     return out;
   }
@@ -157,27 +160,13 @@ struct Reference {
       const double er = 1e-6 * (u[0] * std::cos(psi) + u[1] * std::sin(psi));
       const auto i = 3 + 3 * k;
       const Roller f = roller(rm + 1e-6 * u[i], 1e-6 * u[i + 1], 1e-5 * u[i + 2], er, 1e-6 * u[2]);
-      // The ring takes the opposite of the cone's and the rib's forces: all but the cup's.
-      const Roller cup_only = cup_part(rm + 1e-6 * u[i], 1e-6 * u[i + 1], 1e-5 * u[i + 2], f);
-      const Eigen::Vector3d on_ring = -(f.wrench - cup_only.wrench);
-      ring += Eigen::Vector3d(on_ring.x() * std::cos(psi), on_ring.x() * std::sin(psi), on_ring.y());
+      ring += Eigen::Vector3d(f.on_cone.x() * std::cos(psi), f.on_cone.x() * std::sin(psi), f.on_cone.y());
       res[i] = f.wrench.x() - spring * u[i];
       res[i + 1] = f.wrench.y() - spring * u[i + 1];
       res[i + 2] = f.wrench.z() / rr - spring * u[i + 2];
     }
     for (int c = 0; c < 3; ++c) res[c] = ring[c] - spring * u[c];
     return res / 1000.0;
-  }
-  /// The cup's share of a roller's wrench (the ring-free outer raceway).
-  Roller cup_part(double r, double zc, double d, const Roller&) const {
-    Reference copy = *this;
-    copy.rib_k = 0;
-    const Roller far_cone = copy.roller_without_cone(r, zc, d);
-    return far_cone;
-  }
-  Roller roller_without_cone(double r, double zc, double d) const {
-    // The cone moved far inwards: only the cup touches.
-    return roller(r, zc, d, -1.0, 0.0);
   }
 };
 
