@@ -1,5 +1,5 @@
 // A single-row tapered roller bearing (solver/bearing/tapered_roller_model.cpp, tapered_startup.cpp)
-// under a combined radial and axial load, at rest, against a quasi-static solution derived here:
+// under a combined radial and axial load (4 kN, 1.6 kN: a load zone of part of the rollers), at rest, against a quasi-static solution derived here:
 // each roller in its meridian plane (r, z) between the cone, the cup and the cone's back rib, with
 // the geometry's angles from the apex construction written in this file (the cup angle and the
 // mean roller radius fix the roller's half angle: tan(gamma) = r_r sin(alpha_o - gamma) / r_m,
@@ -13,6 +13,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
+#include <tuple>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -58,7 +60,7 @@ motion = "driven"
 speed = "0 rpm"
 translation = "free"
 axial = "free"
-load = { fy = "-4 kN", fz = "-3 kN" }
+load = { fy = "-4 kN", fz = "-1.6 kN" }
 [outer_ring]
 motion = "fixed"
 )";
@@ -68,7 +70,7 @@ motion = "fixed"
 struct Reference {
   int z = 17;
   double rm = 23e-3, rr = 3.75e-3, alpha_o = 14 * deg, length = 12e-3 + 1.2e-3, rib = 1 * deg;
-  double fy = -4000, fz = -3000;
+  double fy = -4000, fz = -1600;
   double gamma = 0, beta = 0, alpha_i = 0, apex = 0;  // apex: distance from the apex to a roller's middle
   double end_radius = 0, rib_k = 0, e_star = 0;
   contact::SlicedLineContact slices;
@@ -172,7 +174,8 @@ struct Reference {
 
 Eigen::VectorXd solve(const Reference& ref) {
   Eigen::VectorXd u = Eigen::VectorXd::Zero(3 + 3 * ref.z);
-  for (const double spring : {1e3, 1e2, 1e1, 1.0, 0.1, 0.0}) {
+  // The last spring, 1e-3 N per um, holds the unloaded rollers (as the model's seating does).
+  for (const double spring : {1e3, 1e2, 1e1, 1.0, 0.1, 1e-2, 1e-3}) {
     double lambda = 1e-3;
     Eigen::VectorXd r = ref.residual(u, spring);
     for (int it = 0; it < 100 && r.lpNorm<Eigen::Infinity>() > 1e-10; ++it) {
@@ -233,8 +236,9 @@ TEST(TaperedRoller, CombinedLoadAgainstQuasiStaticRollers) {
   const StartupReport start = initial_state(m, 0.0);
   const ModelLoads got = model_loads(m, start.state);
   const Eigen::VectorXd u = solve(ref);
-  ASSERT_LT(ref.residual(u, 0.0).lpNorm<Eigen::Infinity>(), 1e-6) << "the reference did not converge";
-  double q_max = 0, axial = 0;
+  ASSERT_LT(ref.residual(u, 1e-3).lpNorm<Eigen::Infinity>(), 1e-6) << "the reference did not converge";
+  double q_max = 0, axial = 0, deviation[3] = {0, 0, 0};
+  int loaded = 0;
   for (int k = 0; k < ref.z; ++k) {
     const auto i = 3 + 3 * k;
     const double psi = ref.azimuth(k);
@@ -245,9 +249,18 @@ TEST(TaperedRoller, CombinedLoadAgainstQuasiStaticRollers) {
     for (const auto& [want, have, what] : {std::tuple{f.cone, got.cone[kk], "cone"}, std::tuple{f.cup, got.cup[kk], "cup"},
                                           std::tuple{f.rib, got.rib[kk], "rib"}})
       EXPECT_NEAR(have, want, 0.02 * want + 1.0) << what << " load of roller " << k;
+    const double wants[3] = {f.cone, f.cup, f.rib}, haves[3] = {got.cone[kk], got.cup[kk], got.rib[kk]};
+    if (f.cone > 50) ++loaded;
+    for (int c = 0; c < 3; ++c)
+      if (wants[c] > 50) deviation[c] = std::max(deviation[c], std::abs(haves[c] / wants[c] - 1));
     axial += got.cup[kk] * std::sin(ref.alpha_o);
   }
   EXPECT_GT(q_max, 500.0);  // a loaded bearing
+  EXPECT_GT(loaded, 5);
+  EXPECT_LT(loaded, ref.z);  // a load zone: combined load, some rollers unloaded
+  std::printf("tapered: %d of %d rollers loaded, largest cone load %.1f N; worst relative deviation cone %.2e, cup "
+              "%.2e, rib %.2e; inner ring axial %.4f um (reference %.4f um)\n",
+              loaded, ref.z, q_max, deviation[0], deviation[1], deviation[2], 1e6 * got.inner_z, u[2]);
   const double ez = 1e-6 * u[2];
   EXPECT_NEAR(got.inner_z, ez, 0.02 * std::abs(ez)) << "inner ring axial displacement";
   // The cup's axial components carry the axial load (the cup's slices at rest carry nothing else).
