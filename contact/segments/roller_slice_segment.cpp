@@ -95,6 +95,7 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
 
   PointDiagnostics& d = out.diagnostics;
   d.normal_force = q.force;
+  d.contact_angle = s.race_angle;  // the normal is the race's own: its angle to the radial plane
   d.slip_velocity = speed;
   d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
   d.traction_force = traction.norm();

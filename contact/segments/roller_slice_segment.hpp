@@ -25,6 +25,7 @@
 // normal force acts along +n_r (inner) or -n_r (outer) on the roller at S's foot S - d n_r on the
 // race, and everything else is as above. roller_radius is then the distance from the roller's axis
 // to its surface measured along that normal, r(x) cos(gamma) for a roller cone of half angle gamma.
+// The contact_angle diagnostic is alpha (the normal's angle to the radial plane, in the ring frame).
 // alpha = 0 keeps the cylindrical arithmetic above, bit for bit.
 #pragma once
 

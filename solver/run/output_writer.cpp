@@ -355,7 +355,14 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
       file_.define_series(path, row_shape(s, {}), s.unit, s.meaning);
       file_.set_attribute(path, "components", component_names(s));
     }
-  if (m.kind == scene::ModelKind::spatial) {
+  if (m.bearing_type == scene::BearingType::tapered_roller) {
+    file_.define_series("/cage/epicyclic_speed", {}, "rad/s",
+                        "kinematic cage speed: tapered rollers rolling without slip on both raceway cones about their "
+                        "common apex (w_i sin a_i + w_o sin a_o) / (sin a_i + sin a_o)");
+    file_.define_series("/cage/rolling_speed", {}, "rad/s",
+                        "kinematic cage speed at the loaded contact angles: a tapered roller's line contacts lie on "
+                        "the raceway cones, so the epicyclic speed");
+  } else if (m.kind == scene::ModelKind::spatial) {
     file_.define_series("/cage/epicyclic_speed", {}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
     file_.define_series("/cage/rolling_speed", {}, "rad/s",
                         "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
@@ -464,7 +471,9 @@ double OutputWriter::loaded_contact_angle(const bearing::Model& m, const bearing
 }
 
 double OutputWriter::rolling_cage_speed(const bearing::Model& m, const bearing::Equations& eq, double t) {
-  if (m.kind != scene::ModelKind::spatial) return m.epicyclic_cage_speed(t);  // line contacts roll at 0 deg
+  // Line contacts roll at fixed angles: 0 deg (planar), the raceway cones' (tapered rollers).
+  if (m.kind != scene::ModelKind::spatial || m.bearing_type == scene::BearingType::tapered_roller)
+    return m.epicyclic_cage_speed(t);
   return m.epicyclic_cage_speed(t, loaded_contact_angle(m, eq));
 }
 

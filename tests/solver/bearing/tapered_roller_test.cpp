@@ -26,6 +26,7 @@
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/startup.hpp"
+#include "solver/run/output_writer.hpp"
 
 namespace raceway::bearing {
 namespace {
@@ -208,6 +209,7 @@ Eigen::VectorXd solve(const Reference& ref) {
 struct ModelLoads {
   std::vector<double> cone, cup, rib;
   double inner_z = 0;
+  double cone_angle_seen = 0, cup_angle_seen = 0;  ///< the loaded slices' contact_angle diagnostic (the last)
 };
 
 ModelLoads model_loads(const Model& m, const std::vector<double>& z) {
@@ -219,9 +221,12 @@ ModelLoads model_loads(const Model& m, const std::vector<double>& z) {
     const auto k = static_cast<std::size_t>(seg.element);
     if (seg.kind == SegmentKind::roller_flange)
       out.rib[k] += contact::evaluate(m.law<contact::RollerFlangeSegment>(seg), ring, roller).diagnostics.normal_force;
-    else if (seg.kind == SegmentKind::roller_inner_slice || seg.kind == SegmentKind::roller_outer_slice)
-      (seg.kind == SegmentKind::roller_inner_slice ? out.cone : out.cup)[k] +=
-          contact::evaluate(m.law<contact::RollerSliceSegment>(seg), ring, roller).diagnostics.normal_force;
+    else if (seg.kind == SegmentKind::roller_inner_slice || seg.kind == SegmentKind::roller_outer_slice) {
+      const bool cone = seg.kind == SegmentKind::roller_inner_slice;
+      const auto d = contact::evaluate(m.law<contact::RollerSliceSegment>(seg), ring, roller).diagnostics;
+      (cone ? out.cone : out.cup)[k] += d.normal_force;
+      if (d.normal_force > 0) (cone ? out.cone_angle_seen : out.cup_angle_seen) = d.contact_angle;
+    }
   }
   out.inner_z = z[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(m.inner_ring)].slot[sz])];
   return out;
@@ -255,6 +260,9 @@ TEST(TaperedRoller, CombinedLoadAgainstQuasiStaticRollers) {
       if (wants[c] > 50) deviation[c] = std::max(deviation[c], std::abs(haves[c] / wants[c] - 1));
     axial += got.cup[kk] * std::sin(ref.alpha_o);
   }
+  // The slices' contact_angle is the raceway's own (the report's loads and lives read it).
+  EXPECT_NEAR(got.cone_angle_seen, ref.alpha_i, 1e-12);
+  EXPECT_NEAR(got.cup_angle_seen, ref.alpha_o, 1e-12);
   EXPECT_GT(q_max, 500.0);  // a loaded bearing
   EXPECT_GT(loaded, 5);
   EXPECT_LT(loaded, ref.z);  // a load zone: combined load, some rollers unloaded
@@ -279,6 +287,25 @@ TEST(TaperedRoller, CombinedLoadAgainstQuasiStaticRollers) {
       if (body.slot[c] >= 0) worst = std::max(worst, body.mass * std::abs(zdot[static_cast<std::size_t>(body.slot[c])]));
   }
   EXPECT_LT(worst, 1e-3 * q_max);
+}
+
+// Rolling without slip on both raceway cones about their common apex: the cone's and the cup's
+// contact lines at a roller section lie at one distance from the apex, so their radii are in the
+// ratio sin(alpha_i) : sin(alpha_o), and the cage turns at w_i sin(alpha_i) / (sin(alpha_i) +
+// sin(alpha_o)) (the inner ring driven, the cup fixed). The output's rolling speed is the same.
+TEST(TaperedRoller, EpicyclicCageSpeedRollsOnBothCones) {
+  std::string text = scene_text();
+  text.replace(text.find("speed = \"0 rpm\""), 15, "speed = \"3000 rpm\"");
+  const scene::Scene scene = scene::parse_scene(text, "tapered.toml");
+  const Model m = build_model(scene);
+  const Reference ref(scene);
+  const double wi = 3000 * 2 * pi / 60;
+  const double want = wi * std::sin(ref.alpha_i) / (std::sin(ref.alpha_i) + std::sin(ref.alpha_o));
+  EXPECT_NEAR(m.epicyclic_cage_speed(0.0), want, 1e-12 * want);
+  EXPECT_NEAR(want / wi, 0.4203, 5e-4);  // 14 deg cup, 10.10 deg cone
+  scheduler::SerialExecutor executor;
+  Equations eq(m, executor);
+  EXPECT_EQ(run::OutputWriter::rolling_cage_speed(m, eq, 0.0), m.epicyclic_cage_speed(0.0));
 }
 
 TEST(TaperedRoller, PlanarModelRefusesIt) {
