@@ -110,6 +110,35 @@ FlangeCurvatures flange_curvatures(const RollerFlangeGeometry& g) {
   return k;
 }
 
+std::string flange_problem(const RollerFlangeGeometry& g) {
+  try {
+    (void)flange_curvatures(g);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+RollerFlangeGeometry tapered_back_rib(const TaperedGeometry& t, double pitch_radius, double length,
+                                      RollerEndShape end, double end_radius, double rib_angle) {
+  const double beta = t.axis_angle;
+  const Vec3 axis(std::sin(beta), 0.0, std::cos(beta));
+  const Vec3 centre(pitch_radius, 0.0, 0.0);
+  const Vec3 face = centre + 0.5 * length * axis;
+  RollerFlangeGeometry g;
+  g.side = +1;
+  g.rib_radius = face.x();
+  g.rib_axial = face.z();
+  g.rib_angle = rib_angle - beta;  // from the ring's radial plane
+  g.end = end;
+  g.roller_length = length;
+  g.roller_radius = t.roller_radius_at(0.5 * length);
+  g.end_radius = end_radius;
+  g.axis_radius = (centre + (0.5 * length - end_radius) * axis).x();  // the sphere's or edge torus's centre
+  g.axis_angle = beta;
+  return g;
+}
+
 RollerFlangeSegment make_roller_flange_segment(const RollerFlangeGeometry& g, double reduced_modulus,
                                                double damping_factor, double max_approach,
                                                const PointTraction& traction) {

@@ -36,7 +36,10 @@
 // flat end whose axis becomes normal to the face, gives valid = false and no force.
 #pragma once
 
+#include <string>
+
 #include "contact/laws/point_contact.hpp"
+#include "contact/laws/tapered_geometry.hpp"
 #include "contact/segments/ball_segments.hpp"
 
 namespace raceway::contact {
@@ -73,6 +76,16 @@ struct FlangeCurvatures {
   double kx = 0, ky = 0, contact_radius = 0;
 };
 FlangeCurvatures flange_curvatures(const RollerFlangeGeometry& g);
+
+/// Empty if flange_curvatures(g) finds a Hertz point, else why not (for the scene's messages).
+std::string flange_problem(const RollerFlangeGeometry& g);
+
+/// A tapered roller's large end against the cone's back rib (side +1), the roller at its nominal
+/// place: its middle at (pitch_radius, 0, 0) of the ring frame, its axis leaning by t.axis_angle,
+/// `length` its whole length; the rib face is normal to the roller's axis, opening by rib_angle, and
+/// passes through the end's middle (the caller moves it so that the nominal roller just touches).
+RollerFlangeGeometry tapered_back_rib(const TaperedGeometry& t, double pitch_radius, double length,
+                                      RollerEndShape end, double end_radius, double rib_angle);
 
 RollerFlangeSegment make_roller_flange_segment(const RollerFlangeGeometry& g, double reduced_modulus,
                                                double damping_factor, double max_approach,

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "contact/laws/tapered_geometry.hpp"
+#include "contact/segments/roller_flange_segment.hpp"
 #include "io/scene/scene_rules.hpp"
 #include "io/scene/scene_schema_rows.hpp"
 
@@ -102,12 +103,61 @@ void end_radius_fits(const Row&, const Section& s, Bind& b) {
     });
 }
 
+namespace {
+
+/// The large end on the cone's back rib at a rib angle (what the tapered model builds), or nullopt
+/// where the geometry itself is refused elsewhere (cup_angle_fits).
+std::optional<std::string> back_rib_problem(const BearingGeometry& g, double rib_angle) {
+  const double rm = 0.5 * g.pitch_diameter, rr = 0.5 * g.roller_diameter;
+  if (!contact::tapered_geometry_problem(rm, rr, g.roller.cup_angle).empty()) return std::nullopt;
+  const auto end = g.roller.end == RollerEnd::flat ? contact::RollerEndShape::flat : contact::RollerEndShape::spherical;
+  const contact::RollerFlangeGeometry rib =
+      contact::tapered_back_rib(contact::tapered_geometry(rm, rr, g.roller.cup_angle), rm,
+                                g.roller_length + 2 * g.roller.corner_radius, end, g.roller.end_radius, rib_angle);
+  return contact::flange_problem(rib);
+}
+
+// A tapered roller's large end must touch the cone's back rib at a Hertz point: the rib face, normal
+// to the leaning roller's axis, is a cone about the bearing axis that curves away from a flat end's
+// rounded edge only beyond a rib angle of about a degree, and from a spherical end only where the
+// sphere's radius is below about the apex distance.
+void large_end_fits_back_rib(const Section& s, const Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  const std::optional<std::string> why = back_rib_problem(g, g.roller.rib_angle);
+  if (!why || why->empty()) return;
+  const contact::TaperedGeometry t =
+      contact::tapered_geometry(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+  std::string hint = fmt::format("give the spherical ends a smaller end_radius (makers use 0.8 to 0.95 of the apex "
+                                 "distance, {} here)",
+                                 mm(t.apex_distance));
+  if (g.roller.end == RollerEnd::flat) {
+    for (int tenth = 1; tenth < 100; ++tenth) {  // the smallest rib angle that works, to 0.1 deg
+      const std::optional<std::string> w = back_rib_problem(g, tenth * std::numbers::pi / 1800);
+      if (w && w->empty()) {
+        hint = fmt::format("a flat end needs rib_angle of at least {:.1f} deg here, or give the rollers spherical ends",
+                           0.1 * tenth);
+        break;
+      }
+    }
+  }
+  const char* key = s.has("rib_angle") ? "rib_angle" : s.has("end_radius") ? "end_radius" : "roller_end";
+  std::string_view reason = *why;
+  if (reason.starts_with("roller flange: ")) reason.remove_prefix(15);
+  s.fail(key, fmt::format("the rollers' {} large ends (end_radius {}) find no Hertz point on the cone's back rib at "
+                          "a rib_angle of {:.3g} deg ({}): {}",
+                          g.roller.end == RollerEnd::flat ? "flat" : "spherical", mm(g.roller.end_radius),
+                          g.roller.rib_angle * 180 / std::numbers::pi, reason, hint));
+}
+
+}  // namespace
+
 void rib_angle_fits_end(const Row&, const Section& s, Bind& b) {
   const RollerGeometry& r = b.scene.bearing.roller;
   s.check(r.end == RollerEnd::spherical || r.rib_angle > 0, "rib_angle", [] {
     return std::string("a flat roller end on a radial rib (rib_angle = 0) touches along a whole edge, not at a Hertz "
                        "point: give the rib an angle (e.g. \"0.5 deg\") or the rollers spherical ends");
   });
+  if (b.scene.bearing.is_tapered()) large_end_fits_back_rib(s, b);
 }
 
 void end_clearance_fits(const Row&, const Section& s, Bind& b) {

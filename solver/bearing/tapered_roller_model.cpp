@@ -158,21 +158,12 @@ void add_rollers(Model& m, const scene::Scene& scene) {
 contact::RollerFlangeSegment rib_law(const Model& m, const scene::Scene& scene, const contact::TaperedGeometry& t) {
   const auto& g = scene.bearing;
   const auto& r = g.roller;
-  const double l = roller_length_of(scene), beta = t.axis_angle;
-  const Vec3 axis(std::sin(beta), 0.0, std::cos(beta));
+  const double beta = t.axis_angle;
   const Vec3 centre(m.pitch_radius, 0.0, 0.0);
-  const Vec3 end_centre = centre + (0.5 * l - r.end_radius) * axis;  // sphere's or edge torus's centre
-  contact::RollerFlangeGeometry geo;
-  geo.side = +1;
-  geo.rib_radius = (centre + 0.5 * l * axis).x();
-  geo.rib_axial = (centre + 0.5 * l * axis).z();
-  geo.rib_angle = r.rib_angle - beta;
-  geo.end = r.end == scene::RollerEnd::flat ? contact::RollerEndShape::flat : contact::RollerEndShape::spherical;
-  geo.roller_length = l;
-  geo.roller_radius = t.roller_radius_at(0.5 * l);
-  geo.end_radius = r.end_radius;
-  geo.axis_radius = end_centre.x();
-  geo.axis_angle = beta;
+  const contact::RollerFlangeGeometry geo = contact::tapered_back_rib(
+      t, m.pitch_radius, roller_length_of(scene),
+      r.end == scene::RollerEnd::flat ? contact::RollerEndShape::flat : contact::RollerEndShape::spherical,
+      r.end_radius, r.rib_angle);
   const auto& spec = scene.roller_flange;
   contact::PointTraction traction;
   traction.model = spec.traction.id == contact::LawId::no_traction ? contact::TractionModel::none
