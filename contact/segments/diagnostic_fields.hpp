@@ -34,7 +34,9 @@ inline constexpr std::array<DiagnosticField<SegmentDiagnostics>, diagnostics_cou
 inline constexpr std::array<DiagnosticField<PointDiagnostics>, point_diagnostics_count> point_diagnostic_fields{{
     {"approach", "m", "approach of the two surfaces (> 0 in contact)", &PointDiagnostics::approach},
     {"normal_force", "N", "normal contact force (>= 0)", &PointDiagnostics::normal_force},
-    {"contact_angle", "rad", "ball-groove: angle of the contact normal to the radial plane; others 0",
+    {"contact_angle", "rad",
+     "ball-groove: angle of the contact normal to the radial plane; roller slices: the raceway's angle (a "
+     "tapered bearing's cone or cup, 0 on a cylinder); others 0",
      &PointDiagnostics::contact_angle},
     {"max_pressure", "Pa", "maximum Hertz pressure", &PointDiagnostics::max_pressure},
     {"film_thickness", "m", "central EHL film thickness (0 dry)", &PointDiagnostics::film_thickness},

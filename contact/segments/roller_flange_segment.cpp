@@ -63,6 +63,25 @@ bool nearest_end_point(const RollerFlangeGeometry& g, const Vec3& centre, const 
   return true;
 }
 
+// A flat end on a roller whose axis leans by beta (its `side` end outwards): in the roller's own
+// meridian frame (its axis a, e_r' = cos(beta) e_r - sin(beta) e_z) the face normal is
+// -cos(g') a + sin(g') e_r' with g' = g + beta, the cylindrical case's form; the torus point lies
+// at core + r_c |sin g'| from the roller's axis, the cone's curvature is taken at its distance from
+// the ring axis.
+FlangeCurvatures leaning_flat_end_curvatures(const RollerFlangeGeometry& g) {
+  if (!(g.end_radius < g.roller_radius)) throw std::invalid_argument("roller flange: corner radius above roller radius");
+  const double beta = g.axis_angle, gp = g.rib_angle + beta, sp = std::sin(gp);
+  if (sp == 0) throw std::invalid_argument("roller flange: a flat roller end needs a rib angle to its end face");
+  const double core = g.roller_radius - g.end_radius;
+  FlangeCurvatures k;
+  const double from_axis = core + g.end_radius * std::abs(sp);
+  k.contact_radius = g.axis_radius + (-(sp > 0 ? 1.0 : -1.0) * core - g.end_radius * sp) * std::cos(beta) +
+                     g.end_radius * std::cos(gp) * std::sin(beta);
+  k.kx = std::abs(sp) / from_axis + std::sin(g.rib_angle) / k.contact_radius;
+  k.ky = 1.0 / g.end_radius;
+  return k;
+}
+
 }  // namespace
 
 FlangeCurvatures flange_curvatures(const RollerFlangeGeometry& g) {
@@ -76,17 +95,48 @@ FlangeCurvatures flange_curvatures(const RollerFlangeGeometry& g) {
     k.contact_radius = g.axis_radius - g.end_radius * s;
     k.kx = 1.0 / g.end_radius + s / k.contact_radius;
     k.ky = 1.0 / g.end_radius;
-  } else {
+  } else if (g.axis_angle == 0) {
     if (!(g.end_radius < g.roller_radius)) throw std::invalid_argument("roller flange: corner radius above roller radius");
     if (s == 0) throw std::invalid_argument("roller flange: a flat roller end needs a rib angle");
     const double from_axis = g.roller_radius - g.end_radius + g.end_radius * std::abs(s);
     k.contact_radius = g.axis_radius - (s > 0 ? 1.0 : -1.0) * from_axis;
     k.kx = std::abs(s) / from_axis + s / k.contact_radius;
     k.ky = 1.0 / g.end_radius;
+  } else {
+    k = leaning_flat_end_curvatures(g);
   }
   if (!(k.contact_radius > 0) || !(k.kx > 0))
     throw std::invalid_argument("roller flange: the rib is concave beyond the end's curvature (no Hertz point)");
   return k;
+}
+
+std::string flange_problem(const RollerFlangeGeometry& g) {
+  try {
+    (void)flange_curvatures(g);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+RollerFlangeGeometry tapered_back_rib(const TaperedGeometry& t, double pitch_radius, double length,
+                                      RollerEndShape end, double end_radius, double rib_angle) {
+  const double beta = t.axis_angle;
+  const Vec3 axis(std::sin(beta), 0.0, std::cos(beta));
+  const Vec3 centre(pitch_radius, 0.0, 0.0);
+  const Vec3 face = centre + 0.5 * length * axis;
+  RollerFlangeGeometry g;
+  g.side = +1;
+  g.rib_radius = face.x();
+  g.rib_axial = face.z();
+  g.rib_angle = rib_angle - beta;  // from the ring's radial plane
+  g.end = end;
+  g.roller_length = length;
+  g.roller_radius = t.roller_radius_at(0.5 * length);
+  g.end_radius = end_radius;
+  g.axis_radius = (centre + (0.5 * length - end_radius) * axis).x();  // the sphere's or edge torus's centre
+  g.axis_angle = beta;
+  return g;
 }
 
 RollerFlangeSegment make_roller_flange_segment(const RollerFlangeGeometry& g, double reduced_modulus,

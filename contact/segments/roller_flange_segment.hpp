@@ -24,6 +24,9 @@
 // there: along the rib's generatrix (y) 1/R or 1/r_c; circumferential (x) 1/R or, for the flat end,
 // |sin g| / (rho + r_c |sin g|) of the torus, plus sin(g) / r of the cone at the contact radius r.
 // A flat end needs a rib angle (a flat end on a flat rib touches along a whole edge: no Hertz point).
+// A tapered roller's large end on the cone's back rib is this contact with the roller's axis leaning
+// by axis_angle: a spherical end's curvatures are unchanged (its centre at axis_radius), a flat
+// end's are taken in the roller's own meridian frame (roller_flange_segment.cpp).
 //
 // Traction: integrate_traction of the point contact (curve model) on the ellipse, x the
 // circumferential direction at the contact, y = z x x, z = -n (into the ring); sliding of the
@@ -33,7 +36,10 @@
 // flat end whose axis becomes normal to the face, gives valid = false and no force.
 #pragma once
 
+#include <string>
+
 #include "contact/laws/point_contact.hpp"
+#include "contact/laws/tapered_geometry.hpp"
 #include "contact/segments/ball_segments.hpp"
 
 namespace raceway::contact {
@@ -49,7 +55,10 @@ struct RollerFlangeGeometry {
   double roller_length = 0;   ///< l [m]
   double roller_radius = 0;   ///< m
   double end_radius = 0;      ///< m: the sphere's R (spherical), the corner radius r_c (flat)
-  double axis_radius = 0;     ///< m, nominal distance of the roller's axis from the ring axis
+  double axis_radius = 0;     ///< m, nominal distance of the end's centre (on the roller's axis) from the ring axis
+  /// rad, a tapered roller's axis leaning from the ring axis, its `side` end outwards (0: parallel).
+  /// Only the Hertz constants of a flat end read it; the contact itself follows the roller's pose.
+  double axis_angle = 0;
 };
 
 struct RollerFlangeSegment {
@@ -67,6 +76,16 @@ struct FlangeCurvatures {
   double kx = 0, ky = 0, contact_radius = 0;
 };
 FlangeCurvatures flange_curvatures(const RollerFlangeGeometry& g);
+
+/// Empty if flange_curvatures(g) finds a Hertz point, else why not (for the scene's messages).
+std::string flange_problem(const RollerFlangeGeometry& g);
+
+/// A tapered roller's large end against the cone's back rib (side +1), the roller at its nominal
+/// place: its middle at (pitch_radius, 0, 0) of the ring frame, its axis leaning by t.axis_angle,
+/// `length` its whole length; the rib face is normal to the roller's axis, opening by rib_angle, and
+/// passes through the end's middle (the caller moves it so that the nominal roller just touches).
+RollerFlangeGeometry tapered_back_rib(const TaperedGeometry& t, double pitch_radius, double length,
+                                      RollerEndShape end, double end_radius, double rib_angle);
 
 RollerFlangeSegment make_roller_flange_segment(const RollerFlangeGeometry& g, double reduced_modulus,
                                                double damping_factor, double max_approach,

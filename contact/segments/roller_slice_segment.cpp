@@ -6,6 +6,27 @@
 
 namespace raceway::contact {
 
+namespace {
+
+/// A conical race: approach, the normal on the roller and the contact point, in the ring frame.
+struct RaceContact {
+  double approach = 0;
+  Vec3 normal_local, point_local;
+};
+RaceContact cone_contact(const RollerSliceSegment& s, const Vec3& local, double rho) {
+  const double c = std::cos(s.race_angle), sn = std::sin(s.race_angle);
+  const Vec3 n_race(c * local.x() / rho, c * local.y() / rho, -sn);
+  const double d = (rho - s.race_radius) * c - local.z() * sn;
+  const double reach = s.roller_radius - s.drop;
+  RaceContact rc;
+  rc.approach = s.outer ? reach + d : reach - d;
+  rc.normal_local = s.outer ? Vec3(-n_race) : n_race;
+  rc.point_local = local - d * n_race;
+  return rc;
+}
+
+}  // namespace
+
 RollerSliceSegment make_roller_slice_segment(const SlicedLineContact& c, std::size_t j, double race_radius,
                                              double roller_radius, bool outer, const TractionCurve& traction) {
   RollerSliceSegment s;
@@ -35,16 +56,25 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
     out.valid = false;
     return out;
   }
-  const Vec3 radial_local(local.x() / rho, local.y() / rho, 0.0);
-  const double reach = s.roller_radius - s.drop;
-  const double approach = s.outer ? rho - (s.race_radius - reach) : s.race_radius + reach - rho;
+  double approach = 0;
+  Vec3 n, point;
+  if (s.race_angle == 0) {
+    const Vec3 radial_local(local.x() / rho, local.y() / rho, 0.0);
+    const double reach = s.roller_radius - s.drop;
+    approach = s.outer ? rho - (s.race_radius - reach) : s.race_radius + reach - rho;
+    const Vec3 radial = ring.rotation * radial_local;
+    n = s.outer ? Vec3(-radial) : radial;  // on the roller
+    point = ring.position + ring.rotation * Vec3(s.race_radius * radial_local + local.z() * Vec3::UnitZ());
+  } else {
+    const RaceContact rc = cone_contact(s, local, rho);
+    approach = rc.approach;
+    n = ring.rotation * rc.normal_local;
+    point = ring.position + ring.rotation * rc.point_local;
+  }
   out.diagnostics.approach = approach;
   if (!(approach > 0)) return out;
   if (approach > s.max_approach) out.valid = false;
 
-  const Vec3 radial = ring.rotation * radial_local;
-  const Vec3 n = s.outer ? Vec3(-radial) : radial;  // on the roller
-  const Vec3 point = ring.position + ring.rotation * Vec3(s.race_radius * radial_local + local.z() * Vec3::UnitZ());
   const Vec3 v_ring = ring.velocity + ring.angular_velocity.cross(point - ring.position);
   const Vec3 v_roller = roller.velocity + roller.angular_velocity.cross(point - roller.position);
   const Vec3 relative = v_roller - v_ring;
@@ -65,6 +95,7 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
 
   PointDiagnostics& d = out.diagnostics;
   d.normal_force = q.force;
+  d.contact_angle = s.race_angle;  // the normal is the race's own: its angle to the radial plane
   d.slip_velocity = speed;
   d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
   d.traction_force = traction.norm();

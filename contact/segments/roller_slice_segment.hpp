@@ -16,6 +16,17 @@
 // at the same point: action equals reaction. Approach rate: -n . (v_B - v_A) at that point.
 // Validity: approach above max_approach flagged (forces still computed); a non-finite input, or S
 // on the ring axis, gives valid = false and no force.
+//
+// A conical raceway (a tapered roller bearing's cup or cone: race_angle alpha != 0) is the same
+// slice on a race whose radius grows along the ring's axis, r(z) = race_radius + z tan(alpha) in
+// the ring frame. In S's meridian plane the race is a straight line of unit normal n_r = cos(alpha)
+// e_r - sin(alpha) e_z (outwards); with d = (rho - race_radius) cos(alpha) - z sin(alpha) S's signed
+// distance from it, the approach is reach - d on an inner race and reach + d on an outer one, the
+// normal force acts along +n_r (inner) or -n_r (outer) on the roller at S's foot S - d n_r on the
+// race, and everything else is as above. roller_radius is then the distance from the roller's axis
+// to its surface measured along that normal, r(x) cos(gamma) for a roller cone of half angle gamma.
+// The contact_angle diagnostic is alpha (the normal's angle to the radial plane, in the ring frame).
+// alpha = 0 keeps the cylindrical arithmetic above, bit for bit.
 #pragma once
 
 #include "contact/laws/sliced_line_contact.hpp"
@@ -27,6 +38,7 @@ struct RollerSliceSegment {
   double race_radius = 0;     ///< m
   double roller_radius = 0;   ///< m
   bool outer = false;         ///< the outer race (roller inside its bore)
+  double race_angle = 0;      ///< rad, the raceway's generatrix from the ring axis (0: a cylinder)
   double position = 0;        ///< m, the slice centre along the roller's axis from its centre
   double drop = 0;            ///< m, the profile drop at the slice centre
   double stiffness = 0;       ///< K_j [N/m^(10/9)]

@@ -92,9 +92,15 @@ def fatigue_load_limit(ball, c0, dpw):
 def equivalent_load(bearing_type, fr, fa, c0=None, f0=None, alpha=0.0):
     """ISO 281 dynamic equivalent radial load P_r = X F_r + Y F_a (N): (P, X, Y, e). Deep groove:
     e and Y from f_0 F_a / C_0r (held at the table's ends); angular contact: single row; four-point
-    contact: as a double-row angular contact bearing (makers' practice); cylindrical roller: F_r."""
+    contact: as a double-row angular contact bearing (makers' practice); cylindrical roller: F_r;
+    tapered roller, single row: e = 1.5 tan(alpha), X = 0.4 and Y = 0.4 cot(alpha) above e."""
     if bearing_type == "cylindrical_roller" or fa <= 0:
         return fr, 1.0, 0.0, None
+    if bearing_type == "tapered_roller":
+        e = 1.5 * math.tan(alpha)
+        if fr > 0 and fa / fr <= e:
+            return fr, 1.0, 0.0, e
+        return 0.4 * fr + 0.4 / math.tan(alpha) * fa, 0.4, 0.4 / math.tan(alpha), e
     y_low = 0.0  # Y for F_a / F_r <= e (X = 1 there)
     if bearing_type == "deep_groove_ball":
         ratio = min(max(f0 * fa / c0, DEEP_GROOVE_XY[0][0]), DEEP_GROOVE_XY[-1][0])

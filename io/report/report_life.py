@@ -75,7 +75,7 @@ def _word(p, key):
 def bearing_geometry(p, nominal_contact_angle=0.0):
     """The geometry the standards take (mm, rad) from the resolved scene parameters."""
     kind = _word(p, "bearing.type")
-    ball = kind != "cylindrical_roller"
+    ball = kind not in ("cylindrical_roller", "tapered_roller")
     g = {"type": kind, "ball": ball, "z": int(_value(p, "bearing.rolling_elements") or 0),
          "dw": 1e3 * (_value(p, "bearing.ball_diameter" if ball else "bearing.roller_diameter") or math.nan),
          "dpw": 1e3 * (_value(p, "bearing.pitch_diameter") or math.nan), "lwe": None, "fi": None, "fe": None,
@@ -89,6 +89,8 @@ def bearing_geometry(p, nominal_contact_angle=0.0):
             g["rows"] = 2
     else:
         g["lwe"] = 1e3 * (_value(p, "bearing.roller_length") or math.nan)
+        if kind == "tapered_roller":  # rated at the cup angle, the catalogues' contact angle
+            g["alpha"] = _value(p, "bearing.cup_angle") or 0.0
     return g
 
 
@@ -115,10 +117,11 @@ def _hours(mrev, rpm):
     return mrev * 1e6 / (60.0 * rpm) if rpm > 0 and math.isfinite(mrev) else None
 
 
-def window_operation(run, li, s):
-    """The load the inner race contacts carry over the window slice s (F_r, F_a, N), the rings'
-    relative speed (r/min) and whether the inner ring is the one rotating relative to the load."""
-    fr, fa = carried_load([(q[s], a[s]) for q, a in li["tracks"]["inner"]], run.element_xy[s])
+def window_operation(run, li, s, race="inner"):
+    """The load a race's contacts carry over the window slice s (F_r, F_a, N), the rings' relative
+    speed (r/min) and whether the inner ring is the one rotating relative to the load. A tapered
+    bearing's load is the cup's (race "outer"): the cone shares its axial load with the back rib."""
+    fr, fa = carried_load([(q[s], a[s]) for q, a in li["tracks"][race]], run.element_xy[s])
     speed = {ring: float(np.mean(li["speeds"][ring][s])) if ring in li["speeds"] else 0.0
              for ring in ("inner_ring", "outer_ring")}
     rpm = abs(speed["inner_ring"] - speed["outer_ring"]) * 60 / (2 * math.pi)
@@ -182,7 +185,8 @@ def summarize_life(run, w):
     if "fatigue_load_limit_n" not in ratings:
         return {"note": f"no life: D_w cos(alpha) / D_pw = {ratings['gamma']:.4f} is outside ISO 281's f_c table and "
                         "the scene gives no [life] dynamic_load_rating"}
-    fr, fa, rpm, inner_rotating = window_operation(run, li, w.slice)
+    race = "outer" if g["type"] == "tapered_roller" else "inner"
+    fr, fa, rpm, inner_rotating = window_operation(run, li, w.slice, race)
     c, cu = ratings["dynamic_load_rating_n"], ratings["fatigue_load_limit_n"]
     pe, x, y, e = lt.equivalent_load(g["type"], fr, fa, ratings["static_load_rating_n"], ratings["f_0"], g["alpha"])
     exponent = 3.0 if g["ball"] else 10 / 3
@@ -196,7 +200,7 @@ def summarize_life(run, w):
            "pitch_diameter_mm": g["dpw"], "contact_angle_deg": math.degrees(g["alpha"]), "rows": g["rows"]}
     out.update(ratings)
     out.update({"radial_load_n": fr, "axial_load_n": fa,
-                "load_note": "the window's mean load the inner race contacts carry",
+                "load_note": f"the window's mean load the {race} race contacts carry",
                 "equivalent_load_n": pe, "x": x, "y": y, "e": e,
                 "speed_rpm": rpm, "rotating_ring": "inner_ring" if inner_rotating else "outer_ring",
                 "l10_mrev": l10, "l10_h": _hours(l10, rpm)})

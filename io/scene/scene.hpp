@@ -52,7 +52,9 @@ struct SceneInfo {
   double output_interval = 0;  ///< s
 };
 
-enum class BearingType { cylindrical_roller, deep_groove_ball, four_point_contact_ball, angular_contact_ball };
+/// tapered_roller: a single-row tapered roller bearing (spatial model only): cone (inner ring) and
+/// cup (outer ring) raceways are cones whose apexes meet on the axis (contact/laws/tapered_geometry.hpp).
+enum class BearingType { cylindrical_roller, deep_groove_ball, four_point_contact_ball, angular_contact_ball, tapered_roller };
 
 /// Ball-bearing geometry (spatial scenes). Groove radii are conformity * ball diameter. The contact
 /// angle under load is never an input: it comes out of the groove geometry, the clearance and the
@@ -93,6 +95,9 @@ struct RollerGeometry {
   double end_radius = 0;     ///< m: flat ends: the rounding of the face's edge; spherical ends: the sphere
   double rib_angle = 0;      ///< rad, the rib face's opening angle (0: a radial face)
   double end_clearance = 0;  ///< m, axial play of a roller between the two ribs of a ring
+  /// Tapered roller bearings: alpha_o, the cup raceway's angle to the bearing axis (the catalogue's
+  /// contact angle); the roller's and the cone's angles follow from it (tapered_geometry.hpp).
+  double cup_angle = 0;      ///< rad
 };
 
 struct BearingGeometry {
@@ -114,9 +119,10 @@ struct BearingGeometry {
   /// distribution of standard deviation ball_diameter_scatter (scatter_seed). Empty: every ball nominal.
   double ball_diameter_scatter = 0;              ///< m, standard deviation
   std::vector<double> ball_diameter_deviations;  ///< m, one per ball, or empty
-  BallGeometry ball;                    ///< ball bearings (type != cylindrical_roller)
-  RollerGeometry roller;                ///< spatial cylindrical roller bearings
-  bool is_ball_bearing() const { return type != BearingType::cylindrical_roller; }
+  BallGeometry ball;                    ///< ball bearings
+  RollerGeometry roller;                ///< spatial cylindrical and tapered roller bearings
+  bool is_ball_bearing() const { return type != BearingType::cylindrical_roller && type != BearingType::tapered_roller; }
+  bool is_tapered() const { return type == BearingType::tapered_roller; }
   /// The spatial roller's profile: roller_length is its straight part, the corners add
   /// corner_radius at each end; the modulus and rolling radius are the caller's.
   contact::RollerProfile roller_profile(double reduced_modulus, double rolling_radius) const {

@@ -224,6 +224,9 @@ void initial_step_within_run(const Row&, const Section& s, Bind& b) {
 // cylindrical roller bearings, all six directions. Ball-groove contacts are three-dimensional.
 void model_fits_bearing_type(const Row&, const Section&, Bind& b) {
   const bool spatial = b.scene.scene.model == ModelKind::spatial;
+  if (!spatial && b.scene.bearing.is_tapered())
+    b.info->fail("model", "a tapered_roller bearing needs model = \"spatial\": its raceways are cones and its rollers "
+                          "lean to the axis (the planar model is for cylindrical roller bearings)");
   if (!spatial && b.ball())
     b.info->fail("model", fmt::format("a {} bearing needs model = \"spatial\": ball-groove contacts are three-"
                                       "dimensional (the planar model is for cylindrical roller bearings)",

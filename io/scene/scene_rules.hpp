@@ -40,6 +40,7 @@ long max_order_limit(const Bind& b);
 // ---- conditions: why a key does not apply here, or nullopt -------------------------------------
 std::optional<std::string> four_point_only(const Section& s, const Bind& b);
 std::optional<std::string> circular_profile_only(const Section& s, const Bind& b);
+std::optional<std::string> tapered_only(const Section& s, const Bind& b);
 std::optional<std::string> logarithmic_profile_only(const Section& s, const Bind& b);
 std::optional<std::string> planar_crown_only(const Section& s, const Bind& b);
 std::optional<std::string> contact_angle_applies(const Section& s, const Bind& b);
@@ -88,6 +89,7 @@ void misalignment_given(const Row& row, const Section& s, Bind& b);
 void ring_support_has_spring(const Row& row, const Section& s, Bind& b);
 void crown_drop_fits(const Row& row, const Section& s, Bind& b);
 void roller_profile_fits(const Row& row, const Section& s, Bind& b);
+void cup_angle_fits(const Row& row, const Section& s, Bind& b);
 void end_radius_fits(const Row& row, const Section& s, Bind& b);
 void rib_angle_fits_end(const Row& row, const Section& s, Bind& b);
 void end_clearance_fits(const Row& row, const Section& s, Bind& b);

@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "contact/laws/tapered_geometry.hpp"
+#include "contact/segments/roller_flange_segment.hpp"
 #include "io/scene/scene_rules.hpp"
+#include "io/scene/scene_schema_rows.hpp"
 
 namespace raceway::scene::schema::rules {
 
@@ -23,6 +26,14 @@ std::optional<double> slices_default(const Bind& b) {
 // roller where the profile has none); a spherical end is a sphere of about the pitch radius.
 std::optional<double> end_radius_default(const Bind& b) {
   const BearingGeometry& g = b.scene.bearing;
+  // A tapered roller's spherical large end: 0.9 of the apex distance of its centre (the usual 0.8 to
+  // 0.95), so that it touches the cone's back rib near its middle.
+  if (g.is_tapered() && g.roller.end == RollerEnd::spherical) {
+    const std::string why = contact::tapered_geometry_problem(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+    if (why.empty())
+      return 0.9 * contact::tapered_geometry(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle)
+                       .apex_distance;
+  }
   if (g.roller.end == RollerEnd::spherical) return 0.5 * g.pitch_diameter;
   return g.roller.corner_radius > 0 ? g.roller.corner_radius : 0.1 * g.roller_diameter;
 }
@@ -38,6 +49,10 @@ std::optional<std::string> logarithmic_profile_only(const Section&, const Bind& 
   if (p == contact::RollerProfileKind::lundberg || p == contact::RollerProfileKind::johns_gohar) return std::nullopt;
   return "only for a logarithmic roller_profile (\"lundberg\" or \"johns_gohar\")";
 }
+std::optional<std::string> tapered_only(const Section&, const Bind& b) {
+  if (b.scene.bearing.is_tapered()) return std::nullopt;
+  return std::string(table::kTaperedOnly);
+}
 std::optional<std::string> planar_crown_only(const Section&, const Bind& b) {
   if (!b.spatial_roller()) return std::nullopt;
   return "the planar model's crowning; a spatial roller's crown is bearing.roller_profile";
@@ -51,6 +66,26 @@ void roller_profile_fits(const Row&, const Section& s, Bind& b) {
   // Any positive modulus: the checks are on lengths and loads.
   const std::string why = contact::validate_profile(g.roller_profile(1e11, 0.25 * g.roller_diameter));
   s.check(why.empty(), "roller_profile", [&] { return "the roller profile does not fit: " + why; });
+  s.check(!g.is_tapered() || !s.has("ribs"), "ribs", [] {
+    return std::string("a tapered roller bearing has one rib, the cone's back rib against the rollers' large ends: "
+                       "leave ribs out (it is for cylindrical roller bearings)");
+  });
+}
+
+// The apexes of cup, cone and roller meet on the axis only for a roller that fits the cup angle.
+void cup_angle_fits(const Row&, const Section& s, Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  const std::string why =
+      contact::tapered_geometry_problem(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+  s.check(why.empty(), "cup_angle", [&] {
+    return fmt::format("a cup angle of {:.4g} deg with a {} roller on a {} pitch diameter: {}",
+                       g.roller.cup_angle * 180 / std::numbers::pi, mm(g.roller_diameter), mm(g.pitch_diameter), why);
+  });
+  s.check(g.radial_clearance == 0, "radial_clearance", [&] {
+    return fmt::format("a tapered roller bearing's play is axial: give radial_clearance = 0 (not {}) and set the play "
+                       "or preload by the inner ring's axial load or axial_position",
+                       mm(g.radial_clearance));
+  });
 }
 
 void end_radius_fits(const Row&, const Section& s, Bind& b) {
@@ -68,12 +103,61 @@ void end_radius_fits(const Row&, const Section& s, Bind& b) {
     });
 }
 
+namespace {
+
+/// The large end on the cone's back rib at a rib angle (what the tapered model builds), or nullopt
+/// where the geometry itself is refused elsewhere (cup_angle_fits).
+std::optional<std::string> back_rib_problem(const BearingGeometry& g, double rib_angle) {
+  const double rm = 0.5 * g.pitch_diameter, rr = 0.5 * g.roller_diameter;
+  if (!contact::tapered_geometry_problem(rm, rr, g.roller.cup_angle).empty()) return std::nullopt;
+  const auto end = g.roller.end == RollerEnd::flat ? contact::RollerEndShape::flat : contact::RollerEndShape::spherical;
+  const contact::RollerFlangeGeometry rib =
+      contact::tapered_back_rib(contact::tapered_geometry(rm, rr, g.roller.cup_angle), rm,
+                                g.roller_length + 2 * g.roller.corner_radius, end, g.roller.end_radius, rib_angle);
+  return contact::flange_problem(rib);
+}
+
+// A tapered roller's large end must touch the cone's back rib at a Hertz point: the rib face, normal
+// to the leaning roller's axis, is a cone about the bearing axis that curves away from a flat end's
+// rounded edge only beyond a rib angle of about a degree, and from a spherical end only where the
+// sphere's radius is below about the apex distance.
+void large_end_fits_back_rib(const Section& s, const Bind& b) {
+  const BearingGeometry& g = b.scene.bearing;
+  const std::optional<std::string> why = back_rib_problem(g, g.roller.rib_angle);
+  if (!why || why->empty()) return;
+  const contact::TaperedGeometry t =
+      contact::tapered_geometry(0.5 * g.pitch_diameter, 0.5 * g.roller_diameter, g.roller.cup_angle);
+  std::string hint = fmt::format("give the spherical ends a smaller end_radius (makers use 0.8 to 0.95 of the apex "
+                                 "distance, {} here)",
+                                 mm(t.apex_distance));
+  if (g.roller.end == RollerEnd::flat) {
+    for (int tenth = 1; tenth < 100; ++tenth) {  // the smallest rib angle that works, to 0.1 deg
+      const std::optional<std::string> w = back_rib_problem(g, tenth * std::numbers::pi / 1800);
+      if (w && w->empty()) {
+        hint = fmt::format("a flat end needs rib_angle of at least {:.1f} deg here, or give the rollers spherical ends",
+                           0.1 * tenth);
+        break;
+      }
+    }
+  }
+  const char* key = s.has("rib_angle") ? "rib_angle" : s.has("end_radius") ? "end_radius" : "roller_end";
+  std::string_view reason = *why;
+  if (reason.starts_with("roller flange: ")) reason.remove_prefix(15);
+  s.fail(key, fmt::format("the rollers' {} large ends (end_radius {}) find no Hertz point on the cone's back rib at "
+                          "a rib_angle of {:.3g} deg ({}): {}",
+                          g.roller.end == RollerEnd::flat ? "flat" : "spherical", mm(g.roller.end_radius),
+                          g.roller.rib_angle * 180 / std::numbers::pi, reason, hint));
+}
+
+}  // namespace
+
 void rib_angle_fits_end(const Row&, const Section& s, Bind& b) {
   const RollerGeometry& r = b.scene.bearing.roller;
   s.check(r.end == RollerEnd::spherical || r.rib_angle > 0, "rib_angle", [] {
     return std::string("a flat roller end on a radial rib (rib_angle = 0) touches along a whole edge, not at a Hertz "
                        "point: give the rib an angle (e.g. \"0.5 deg\") or the rollers spherical ends");
   });
+  if (b.scene.bearing.is_tapered()) large_end_fits_back_rib(s, b);
 }
 
 void end_clearance_fits(const Row&, const Section& s, Bind& b) {
@@ -96,8 +180,17 @@ void axial_load_carried_by_ribs(const Row&, const Section& s, Bind& b) {
   double lo = 0, hi = 0;
   for (const double v : fz.values) lo = std::min(lo, v), hi = std::max(hi, v);
   if (lo == 0 && hi == 0) return;
-  const RibArrangement ribs = b.scene.bearing.roller.ribs;
   const bool inner = b.ring == &b.scene.inner_ring;
+  if (b.scene.bearing.is_tapered()) {
+    // The cone's back rib and the raceways carry the cone pushed into the cup: an inner-ring load
+    // along -z, an outer-ring load along +z.
+    if (inner ? hi > 0 : lo < 0)
+      s.fail("fz", fmt::format("a tapered roller bearing carries an axial load on its {} ring along {} only (the cone "
+                               "pushed into the cup, the rollers' large ends on the cone's back rib at +z)",
+                               inner ? "inner" : "outer", inner ? "-z" : "+z"));
+    return;
+  }
+  const RibArrangement ribs = b.scene.bearing.roller.ribs;
   // The direction an NJ bearing carries on this ring: +z on the inner ring, -z on the outer.
   const bool along_carried = inner ? lo >= 0 : hi <= 0;
   const char* design = ribs == RibArrangement::nu ? "NU" : ribs == RibArrangement::n ? "N" : "NJ";

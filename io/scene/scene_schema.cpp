@@ -52,7 +52,8 @@ constexpr Row kRows[] = {
                 "check` lists them"},
     {.section = "bearing", .key = "type", .kind = choice, .field = FIELD(scene.bearing.type),
      .then = model_fits_bearing_type, .options = kBearingTypes, .noun = "bearing type",
-     .meaning = "cylindrical_roller: model = \"planar\" or \"spatial\"; the ball bearings need model = \"spatial\""},
+     .meaning = "cylindrical_roller: model = \"planar\" or \"spatial\"; tapered_roller and the ball bearings need model = "
+                "\"spatial\""},
     {.section = "bearing", .key = "rolling_elements", .kind = integer, .field = FIELD(scene.bearing.rolling_elements),
      .bounds = {.lo = 3, .hi = 1000}, .meaning = "number of rollers or balls (large slewing rings have a few hundred)"},
     {.section = "bearing", .key = "roller_diameter", .kind = number, .field = FIELD(scene.bearing.roller_diameter),
@@ -88,6 +89,14 @@ constexpr Row kRows[] = {
      .when = contact_angle_applies, .missing = kContactAngleMissing, .example = "40 deg",
      .meaning = "angular contact bearings: the free (nominal) contact angle, at which the unloaded ball touches both "
                 "grooves; the contact line runs from the inner groove at -z to the outer at +z"},
+    {.section = "bearing", .key = "cup_angle", .kind = number, .field = FIELD(scene.bearing.roller.cup_angle),
+     .dim = dim::angle, .bounds = kCupAngle, .bearings = spatial_rollers, .elsewhere = kTaperedOnly,
+     .when = tapered_only,
+     .missing = "required for type = \"tapered_roller\": the cup raceway's angle to the axis, e.g. \"14 deg\"",
+     .then = cup_angle_fits, .example = "14 deg",
+     .meaning = "tapered roller bearings: the cup (outer) raceway's angle alpha to the axis (the catalogue's contact "
+                "angle); roller_diameter is the roller's diameter at its middle, pitch_diameter there; the roller's "
+                "and the cone's angles follow so that the apexes meet on the axis"},
     {.section = "bearing", .key = "inner_bore_diameter", .kind = number,
      .field = FIELD(scene.bearing.inner_bore_diameter), .dim = dim::length, .bounds = positive,
      .def = derived(inner_bore_default, "inner race diameter - D"), .then = bore_inside_inner_race,

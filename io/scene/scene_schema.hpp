@@ -121,7 +121,8 @@ inline constexpr Option kModels[] = {{"planar", int(ModelKind::planar)}, {"spati
 inline constexpr Option kBearingTypes[] = {{"cylindrical_roller", int(BearingType::cylindrical_roller)},
                                            {"deep_groove_ball", int(BearingType::deep_groove_ball)},
                                            {"four_point_contact_ball", int(BearingType::four_point_contact_ball)},
-                                           {"angular_contact_ball", int(BearingType::angular_contact_ball)}};
+                                           {"angular_contact_ball", int(BearingType::angular_contact_ball)},
+                                           {"tapered_roller", int(BearingType::tapered_roller)}};
 inline constexpr Option kRibArrangements[] = {{"NU", int(RibArrangement::nu)},
                                               {"NJ", int(RibArrangement::nj)},
                                               {"NUP", int(RibArrangement::nup)},

@@ -49,6 +49,10 @@ inline constexpr std::string_view kBallRaceContact =
 inline constexpr std::string_view kSpatialRoller =
     "only for cylindrical roller bearings in the spatial model (model = \"spatial\"): the planar model's rollers have "
     "no profile, ends or ribs";
+inline constexpr std::string_view kTaperedOnly =
+    "only for tapered roller bearings (type = \"tapered_roller\", model = \"spatial\")";
+inline constexpr Bounds kCupAngle{.lo = 5 * std::numbers::pi / 180, .hi = 35 * std::numbers::pi / 180, .unit = "deg",
+                                  .note = " (tapered roller bearings are made with cup angles of about 10 to 30 deg)"};
 inline constexpr Bounds kRibAngle{.lo = 0, .hi = std::numbers::pi / 18, .hi_open = true, .unit = "deg",
                            .note = " (ribs open by a fraction of a degree to a few degrees)"};
 

@@ -11,6 +11,7 @@ const ModelBuilder& builder_for(scene::BearingType type, scene::ModelKind space)
   switch (type) {
     case scene::BearingType::cylindrical_roller:
       return space == scene::ModelKind::spatial ? spatial_roller_model_builder() : roller_model_builder();
+    case scene::BearingType::tapered_roller: return tapered_roller_model_builder();
     case scene::BearingType::deep_groove_ball:
     case scene::BearingType::four_point_contact_ball:
     case scene::BearingType::angular_contact_ball: return ball_model_builder();

@@ -239,6 +239,14 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
 }
 
 double Model::epicyclic_cage_speed(double t) const {
+  if (cup_angle > 0) {  // tapered: rolling on both raceway cones about their common apex
+    auto speed = [&](int b) {
+      const auto* r = bodies[static_cast<std::size_t>(b)].ring;
+      return r->motion == scene::RingMotion::driven ? r->speed(t) : 0.0;
+    };
+    const double si = std::sin(cone_angle), so = std::sin(cup_angle);
+    return (speed(inner_ring) * si + speed(outer_ring) * so) / (si + so);
+  }
   if (kind == scene::ModelKind::spatial) return epicyclic_cage_speed(t, nominal_contact_angle);
   auto speed = [&](int b) {
     const auto* r = bodies[static_cast<std::size_t>(b)].ring;

@@ -151,6 +151,7 @@ struct Model {
   double inner_race_radius = 0, outer_race_radius = 0;  ///< planar: race radii
   double nominal_contact_angle = 0;                     ///< rad (spatial): 0 deep groove, the arc angle four-point
   int arcs_per_ring = 1;                                ///< 2 for a four-point bearing
+  double cone_angle = 0, cup_angle = 0;                 ///< rad, tapered roller bearings: the raceways' angles
   double gravity = 0;                                   ///< m/s^2 along -y
   const char* element_group = "rollers";                ///< output group of the rolling elements
   /// Spatial roller bearings: the planar model of the same scene (the spatial one restricted to the
@@ -238,6 +239,7 @@ struct ModelBuilder {
 const ModelBuilder& roller_model_builder();  ///< planar cylindrical roller bearing (roller_model.cpp)
 const ModelBuilder& ball_model_builder();    ///< spatial ball bearing (ball_model.cpp)
 const ModelBuilder& spatial_roller_model_builder();  ///< spatial cylindrical roller bearing (spatial_roller_model.cpp)
+const ModelBuilder& tapered_roller_model_builder();  ///< spatial tapered roller bearing (tapered_roller_model.cpp)
 /// The builder of a bearing type in a space (the registry: builders.cpp).
 const ModelBuilder& builder_for(scene::BearingType type, scene::ModelKind space);
 

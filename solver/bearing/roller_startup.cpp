@@ -339,6 +339,7 @@ StartupReport seat_spatial_roller_bearing(const Model& m, double t0) {
 }
 
 StartupReport initial_state(const Model& model, double t0, double azimuth_offset, Equations* equations) {
+  if (model.bearing_type == scene::BearingType::tapered_roller) return seat_tapered_roller_bearing(model, t0);
   if (model.kind == scene::ModelKind::spatial && model.bearing_type == scene::BearingType::cylindrical_roller)
     return seat_spatial_roller_bearing(model, t0);
   if (model.kind == scene::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);

@@ -41,6 +41,11 @@ StartupReport seat_roller_bearing(const Model& model, double t0);
 /// at zero): aligned and without axial load that is the spatial model's seating as well.
 StartupReport seat_spatial_roller_bearing(const Model& model, double t0);
 
+/// Spatial tapered roller bearing (tapered_startup.cpp): quasi-static seating of rings and rollers
+/// (each roller's radial and axial place and its lean) with the model's race slices and rib, then
+/// rolling about the raceways' common apex at the epicyclic cage speed.
+StartupReport seat_tapered_roller_bearing(const Model& model, double t0);
+
 /// Spatial ball bearing, quasi-static seating with the same contact functions the dynamics use:
 /// unknowns are the free ring coordinates (translation, tilt) and each ball's radial and axial
 /// position in its azimuthal plane; Levenberg-Marquardt on the force balance (robust from open

@@ -75,7 +75,7 @@ const std::vector<BodySeries>& element_series(const bearing::Model& m) {
       {"acceleration", Quantity::acceleration, {0, 1, 2, 3, 4, 5}, "m/s^2, rad/s^2",
        "roller centre acceleration and angular acceleration, bearing frame"}};
   if (m.kind != scene::ModelKind::spatial) return planar;
-  return m.bearing_type == scene::BearingType::cylindrical_roller ? spatial_rollers : spatial;
+  return !m.params().bearing.is_ball_bearing() ? spatial_rollers : spatial;
 }
 
 /// The `components` attribute of a series: what each of its columns is ("x", "about z", ...).
@@ -286,6 +286,10 @@ void write_bearing_attributes(h5::H5SeriesWriter& file, const bearing::Model& m,
   } else {
     file.set_attribute("/", "roller_length", g.roller_length);
   }
+  if (g.is_tapered()) {
+    file.set_attribute("/", "cup_angle", m.cup_angle);
+    file.set_attribute("/", "cone_angle", m.cone_angle);
+  }
   file.set_attribute("/", "cage_guidance", scene_word(scene, "cage.guidance"));
   file.set_attribute("/", "pocket_clearance", scene.cage.pocket_clearance);
   file.set_attribute("/", "land_clearance",
@@ -351,7 +355,14 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
       file_.define_series(path, row_shape(s, {}), s.unit, s.meaning);
       file_.set_attribute(path, "components", component_names(s));
     }
-  if (m.kind == scene::ModelKind::spatial) {
+  if (m.bearing_type == scene::BearingType::tapered_roller) {
+    file_.define_series("/cage/epicyclic_speed", {}, "rad/s",
+                        "kinematic cage speed: tapered rollers rolling without slip on both raceway cones about their "
+                        "common apex (w_i sin a_i + w_o sin a_o) / (sin a_i + sin a_o)");
+    file_.define_series("/cage/rolling_speed", {}, "rad/s",
+                        "kinematic cage speed at the loaded contact angles: a tapered roller's line contacts lie on "
+                        "the raceway cones, so the epicyclic speed");
+  } else if (m.kind == scene::ModelKind::spatial) {
     file_.define_series("/cage/epicyclic_speed", {}, "rad/s", "kinematic cage speed (seed 001 eq. 5, nominal contact angle)");
     file_.define_series("/cage/rolling_speed", {}, "rad/s",
                         "kinematic cage speed at the load-weighted mean contact angle of the inner-groove contacts "
@@ -467,7 +478,9 @@ double OutputWriter::loaded_contact_angle(const bearing::Model& m, const bearing
 }
 
 double OutputWriter::rolling_cage_speed(const bearing::Model& m, const bearing::Equations& eq, double t) {
-  if (m.kind != scene::ModelKind::spatial) return m.epicyclic_cage_speed(t);  // line contacts roll at 0 deg
+  // Line contacts roll at fixed angles: 0 deg (planar), the raceway cones' (tapered rollers).
+  if (m.kind != scene::ModelKind::spatial || m.bearing_type == scene::BearingType::tapered_roller)
+    return m.epicyclic_cage_speed(t);
   return m.epicyclic_cage_speed(t, loaded_contact_angle(m, eq));
 }
 

@@ -318,7 +318,7 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   drain_output(rethrow);
   RunSummary sum;
   sum.model_kind = model_.kind == scene::ModelKind::spatial ? "spatial" : "planar";
-  sum.spatial_rollers = model_.kind == scene::ModelKind::spatial && model_.bearing_type == scene::BearingType::cylindrical_roller;
+  sum.spatial_rollers = model_.kind == scene::ModelKind::spatial && !model_.params().bearing.is_ball_bearing();
   totals_.summarize(sum, t, integrator_->statistics(), eq_, executor_, wall());
   // The integrator since the last restart (a checkpoint restarts it): its method, the states that
   // limit its step and the split of its time.

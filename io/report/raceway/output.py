@@ -317,7 +317,7 @@ class RacewayOutput:
         value = lambda key, default=None: p.get(key, {}).get("value", default)
         kind = "spatial" if _text(self.file.attrs.get("model_kind", "planar")) == "spatial" else "planar"
         btype = value("bearing.type", "cylindrical_roller")
-        ball = btype != "cylindrical_roller"
+        ball = btype not in ("cylindrical_roller", "tapered_roller")
         d = value("bearing.ball_diameter") if ball else value("bearing.roller_diameter")
         dm, pd = value("bearing.pitch_diameter"), value("bearing.radial_clearance", 0.0)
         if d is None or dm is None:

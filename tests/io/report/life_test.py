@@ -282,6 +282,12 @@ def case_tables(raceway, source, folder):
          "four-point 35 deg, F_a / F_r = 0.9: P = F_r + 0.66 F_a")
     near(lt.equivalent_load("four_point_contact_ball", 500, 2000, alpha=math.radians(35))[0], 0.6 * 500 + 1.07 * 2000,
          1e-9, "four-point 35 deg, F_a / F_r = 4: P = 0.6 F_r + 1.07 F_a")
+    # Tapered roller, single row, 14 deg cup: e = 1.5 tan(14 deg) = 0.374; above it X = 0.4, Y = 0.4 cot(14 deg) = 1.604.
+    p, x_, y_, e_ = lt.equivalent_load("tapered_roller", 4000, 3000, alpha=math.radians(14))
+    near(e_, 0.3740, 1e-3, "tapered 14 deg: e = 1.5 tan(alpha)")
+    near(p, 0.4 * 4000 + 1.6043 * 3000, 1e-4, "tapered 14 deg, F_a / F_r = 0.75: P = 0.4 F_r + 0.4 cot(alpha) F_a")
+    check(lt.equivalent_load("tapered_roller", 4000, 1200, alpha=math.radians(14))[0] == 4000,
+          "tapered: F_a / F_r = 0.3 below e: P = F_r")
     near(lt.a1(95), 0.64, 1e-9, "a_1 at 95 %")
     near(lt.a1(99.5), 0.5 * (0.19 + 0.16), 1e-9, "a_1 between 99.4 and 99.6 %")
     # a_ISO's other branches: balls 0.4 <= kappa < 1, rollers 0.1 <= kappa < 0.4, and the cap of 50.
