@@ -213,6 +213,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
 int Equations::rhs(double t, const double* z, double* zdot) {
   ++rhs_count_;
   rhs_time_ = t;
+  rhs_state_.assign(z, z + model_.state_size);
   const int nseg = static_cast<int>(model_.segments.size());
   segment_count_ += nseg;
   context_[0] = t;

@@ -34,6 +34,8 @@ class Node {
   /// Adds its kinetic (and field) energy to e term by term [J] (the order of the sum is part of the
   /// output's bits); its springs' elastic energy comes from their element records.
   virtual void add_energy(const Model& m, double t, const double* z, double& e) const = 0;
+  /// The power its own dampers dissipate at (t, z) [W] (>= 0; its springs' elements report theirs).
+  virtual double power_loss(const Model&, double, const double*) const { return 0.0; }
   /// Overrides the class-based absolute tolerances of its states where it knows better.
   virtual void set_tolerances(std::vector<double>&) const {}
   /// Its states at the start of a run.
