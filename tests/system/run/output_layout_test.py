@@ -317,6 +317,7 @@ def main():
                            ["Planar (roller-bearing) runs",
                             'Flexible cage bridges (planar runs with `[cage] bridges = "flexible"`)']),
     }[case]
+    sections.append("Power balance (every run)")
     sections.append("Scheduler (`/scheduler`, runs on several ranks or with `--scheduler-log`)")
     tables = documented_tables(doc)
     for title in sections:

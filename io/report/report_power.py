@@ -1,0 +1,49 @@
+"""The power balance over the report's window (docs/output_layout.md, "Power balance"): the work of
+each input and loss between the window's first and last samples, integrated by the run over its
+solver steps (/power_balance/*), the stored energy's change and what is left (the integrator's)."""
+import numpy as np
+
+
+def read_power(out):
+    """{inputs: (names, [T x 4]), losses: (names, [T x L]), stored: [T]} or None (an older file)."""
+    if "power_balance/input_work" not in out:
+        return None
+    return {"inputs": (out.components("power_balance/input_work"),
+                       np.asarray(out["power_balance/input_work"], dtype=float)),
+            "losses": (out.components("power_balance/loss_work"),
+                       np.asarray(out["power_balance/loss_work"], dtype=float)),
+            "stored": np.asarray(out["power_balance/stored_energy"], dtype=float)}
+
+
+def summarize_power(balance, w):
+    """The balance between the window's first and last samples (J); None without the series."""
+    if balance is None or w.samples < 2:
+        return None
+    first, last = w.slice.start, w.slice.stop - 1
+    out = {}
+    totals = {}
+    for group in ("inputs", "losses"):
+        names, work = balance[group]
+        values = {str(n): float(work[last, i] - work[first, i]) for i, n in enumerate(names)}
+        out[f"{group[:-1]}_work_j"] = values
+        totals[group] = sum(values.values())
+    stored = float(balance["stored"][last] - balance["stored"][first])
+    residual = totals["inputs"] - totals["losses"] - stored
+    out.update({"input_work_total_j": totals["inputs"], "loss_work_total_j": totals["losses"],
+                "stored_energy_change_j": stored, "residual_j": residual,
+                "relative_residual": residual / abs(totals["inputs"]) if totals["inputs"] else 0.0,
+                "mean_input_power_w": totals["inputs"] / (w.t_end - w.t_begin) if w.t_end > w.t_begin else 0.0})
+    return out
+
+
+def power_rows(p):
+    """(quantity, value) rows of the report page's power balance table."""
+    rows = [(f"input: {k}", f"{v:.6g} J") for k, v in p["input_work_j"].items() if v != 0.0]
+    rows += [(f"loss: {k}", f"{v:.6g} J") for k, v in p["loss_work_j"].items() if v != 0.0]
+    rows += [("inputs, total", f"{p['input_work_total_j']:.6g} J"),
+             ("losses, total", f"{p['loss_work_total_j']:.6g} J"),
+             ("stored energy change", f"{p['stored_energy_change_j']:.6g} J"),
+             ("residual (inputs - losses - stored change)",
+              f"{p['residual_j']:.4g} J = {100 * p['relative_residual']:.3g} % of the inputs"),
+             ("mean input power", f"{p['mean_input_power_w']:.6g} W")]
+    return rows
