@@ -9,9 +9,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "io/scene/scene_parser.hpp"
 #include "scheduler/executor.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/model.hpp"
@@ -64,7 +67,7 @@ Balance balance_after(const scene::Scene& scene, double t, double h) {
                 i < PowerTerms::input_count ? PowerTerms::input_names[i]
                                             : terms.loss_names()[i - PowerTerms::input_count].c_str(),
                 b.terms[i]);
-  std::printf(")\n");
+  std::printf("): mismatch %.3g of the terms' magnitudes\n", (b.stored_rate - b.inputs + b.losses) / b.scale);
   return b;
 }
 
@@ -77,7 +80,7 @@ TEST(PowerTerms, BallBearingBalancesTheStoredEnergyRate) {
   const Balance b = balance_after(test::load_job_scene("6205_first_scene.toml"), 2e-3, 1e-9);
   EXPECT_GT(b.terms[0], 0.0) << "the driven inner ring delivers power";
   EXPECT_GT(b.losses, 0.0);
-  expect_balanced(b, 1e-4);
+  expect_balanced(b, 2e-5);
 }
 
 TEST(PowerTerms, RollerBearingBalancesTheStoredEnergyRate) {
@@ -85,15 +88,43 @@ TEST(PowerTerms, RollerBearingBalancesTheStoredEnergyRate) {
   const Balance b = balance_after(s, 2e-3, 1e-9);
   EXPECT_GT(b.terms[0], 0.0);
   EXPECT_NE(b.terms[1], 0.0) << "the load on the free inner ring does work while it moves";
-  expect_balanced(b, 1e-4);
+  expect_balanced(b, 2e-5);
+}
+
+/// A seed 003 scene with dry roller-race contacts (Palmgren, tanh traction), its cage's films kept.
+/// The EHD race law's power_loss is not the work its forces do (docs/lubrication.md: the Poiseuille
+/// force, applied equal and opposite at the contact, does work through the slip alone, while the
+/// law counts it times the entrainment speed; the film's elastic energy leaves out its dependence on
+/// the film), which RacesWithEhdFilmsLeaveAResidual measures.
+scene::Scene dry_races(const std::string& name) {
+  std::ifstream in(std::string(RACEWAY_SOURCE_DIR) + "/jobs/scenes/" + name);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) s.replace(at, from.size(), to);
+  };
+  replace("normal = \"moes_ehd\"", "normal = \"palmgren\"");
+  replace("traction = \"ehd\"", "traction = \"tanh\"\nslip_velocity_scale = \"0.05 m/s\"");
+  return scene::parse_scene(s, name);
 }
 
 TEST(PowerTerms, CarrierFrameAndFilmsBalanceTheStoredEnergyRate) {
   // The planet bearing while its carrier spins up: the frame's Euler terms and the centrifugal
-  // potential's change in time, the EHD and hydrodynamic films' losses.
-  const Balance b = balance_after(test::load_job_scene("seed003_planet_carrier.toml"), 1e-3, 1e-9);
+  // potential's change in time, the hydrodynamic roller/cage and the land's losses.
+  const Balance b = balance_after(dry_races("seed003_planet_carrier.toml"), 1e-3, 1e-9);
   EXPECT_NE(b.terms[2], 0.0) << "the spinning-up carrier frame does work";
-  expect_balanced(b, 1e-4);
+  expect_balanced(b, 2e-5);
+}
+
+TEST(PowerTerms, RacesWithEhdFilmsLeaveAResidual) {
+  // The EHD race law as shipped: its power_loss exceeds the work of its forces (measured 565 W of
+  // 17.6 kW of losses at 1 ms of seed003_no_carrier), far beyond the differences' error. When the
+  // law is made consistent this test fails and is to be folded into the ones above.
+  const Balance b = balance_after(test::load_job_scene("seed003_no_carrier.toml"), 1e-3, 1e-9);
+  EXPECT_GT(b.stored_rate - (b.inputs - b.losses), 0.01 * b.losses);
 }
 
 }  // namespace

@@ -52,18 +52,20 @@ Window run_window(scene::Scene s, double end_time, double window_start) {
 }
 
 TEST(PowerBalance, ClosesOnABallBearing) {
-  // 6205 at its shipped rtol (1e-6), a quarter of an inner-ring revolution after the first 2 ms.
+  // 6205 at its shipped rtol (1e-6), a quarter of an inner-ring revolution after the first 2 ms
+  // (measured residual 6.5e-4 of the inputs; 6.1e-5 over the first 40 ms).
   const Window w = run_window(test::load_job_scene("6205_first_scene.toml"), 7e-3, 2e-3);
   EXPECT_GT(w.drive, 0.0);
   EXPECT_LT(std::abs(w.residual()), 0.01 * w.inputs);
 }
 
 TEST(PowerBalance, ClosesOnARollerBearing) {
-  // Seed 002 at 40 Hz with rtol 1e-7 (the scene ships 1e-5, where BDF's own dissipation of the
-  // rollers' resolved contact oscillations leaves about 10 % of the drive unaccounted).
+  // Seed 002 at 40 Hz with rtol 1e-7, 10 to 20 ms, where the cage's impacts on its bars take most
+  // of the drive (measured residual 2.8e-4). The scene ships rtol 1e-5, where BDF's own damping of
+  // the rollers' resolved contact oscillations leaves 5-12 % of the inputs unaccounted (1e-6: 0.2-1.5 %).
   scene::Scene s = test::load_job_scene("seed002_40hz.toml");
   s.solver.rtol = 1e-7;
-  const Window w = run_window(s, 4e-3, 1e-3);
+  const Window w = run_window(s, 20e-3, 10e-3);
   EXPECT_GT(w.drive, 0.0);
   EXPECT_LT(std::abs(w.residual()), 0.01 * w.inputs);
 }
