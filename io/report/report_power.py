@@ -22,10 +22,10 @@ def summarize_power(balance, w):
     first, last = w.slice.start, w.slice.stop - 1
     out = {}
     totals = {}
-    for group in ("inputs", "losses"):
+    for group, key in (("inputs", "input_work_j"), ("losses", "loss_work_j")):
         names, work = balance[group]
         values = {str(n): float(work[last, i] - work[first, i]) for i, n in enumerate(names)}
-        out[f"{group[:-1]}_work_j"] = values
+        out[key] = values
         totals[group] = sum(values.values())
     stored = float(balance["stored"][last] - balance["stored"][first])
     residual = totals["inputs"] - totals["losses"] - stored
