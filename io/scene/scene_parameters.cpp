@@ -107,7 +107,7 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
       Bind on_ring = b;
       on_ring.ring = section == "inner_ring" ? &s.inner_ring : &s.outer_ring;
       walk("*_ring", prefix, on_ring, out);
-    } else if (section != "housing" || s.housing.present) {
+    } else if ((section != "housing" || s.housing.present) && (section != "thermal" || s.thermal.present)) {
       walk(section, prefix, b, out);
     }
   }

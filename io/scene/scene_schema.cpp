@@ -419,7 +419,7 @@ std::span<const Row> bearing_rows() { return kRows; }
 namespace {
 
 constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "housing",
-                                             "carrier", "lubricant", "life",    "contact", "solver",     "output"};
+                                             "carrier", "lubricant", "thermal", "life",    "contact", "solver",     "output"};
 
 }  // namespace
 

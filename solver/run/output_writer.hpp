@@ -5,12 +5,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/h5/h5_series.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/run/power_balance.hpp"
+#include "solver/run/thermal_series.hpp"
 
 namespace raceway::run {
 
@@ -99,6 +101,7 @@ class OutputWriter {
   h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
   std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_, sensor_ids_;
   PowerBalanceSeries power_;
+  std::optional<ThermalSeries> thermal_;
   std::size_t sensor_per_ = 0;    ///< the housing sensor's samples per row
   std::size_t pocket_cells_ = 0;  ///< doubles of the pocket statistics in a step row (the sensor's follow)
   std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids_[bearing::segment_kind_count];

@@ -21,6 +21,7 @@
 #include "solver/run/build_info.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
+#include "solver/bearing/thermal_network.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/output_thread.hpp"
@@ -71,6 +72,7 @@ json::JsonObject RunSummary::to_json() const {
   j.add("output_thread_time_s", output_thread_seconds);
   if (!pocket_step_totals.empty()) j.add("pocket_step_totals", pocket_step_totals);
   if (!power_balance.empty()) j.add("power_balance", power_balance);
+  if (!thermal.empty()) j.add("thermal", thermal);
   json::JsonObject named_warnings;
   for (const auto& [name, text] : warnings) named_warnings.add(name, text);
   j.add("warnings", std::move(named_warnings));
@@ -338,6 +340,12 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   sum.output_thread_seconds = output_thread_ ? output_thread_->busy_seconds() : 0.0;
   sum.pocket_step_totals = pockets_.totals_json();
   sum.power_balance = power_.summary_json(0.0, t, totals_.stored_energy_initial(), totals_.stored_energy_final());
+  if (const bearing::ThermalNetwork* network = bearing::thermal_network_of(model_)) {
+    json::JsonObject temperatures;
+    for (int k = 0; k < bearing::ThermalNetwork::parts; ++k)
+      temperatures.add(bearing::ThermalNetwork::part_names[k], z_[static_cast<std::size_t>(network->state(k))]);
+    sum.thermal.add("final_temperature_k", std::move(temperatures));
+  }
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
   sum.warnings = regime_warnings(sum);
