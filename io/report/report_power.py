@@ -47,3 +47,35 @@ def power_rows(p):
               f"{p['residual_j']:.4g} J = {100 * p['relative_residual']:.3g} % of the inputs"),
              ("mean input power", f"{p['mean_input_power_w']:.6g} W")]
     return rows
+
+
+def read_thermal(out):
+    """{parts, temperature [T x 6], heat_input [T x 6], links, link_flow [T x L]} or None (no network)."""
+    if "thermal/temperature" not in out:
+        return None
+    return {"parts": [str(n) for n in out.components("thermal/temperature")],
+            "temperature": np.asarray(out["thermal/temperature"], dtype=float),
+            "heat_input": np.asarray(out["thermal/heat_input"], dtype=float),
+            "links": [str(n) for n in out.components("thermal/link_flow")],
+            "link_flow": np.asarray(out["thermal/link_flow"], dtype=float)}
+
+
+def summarize_thermal(thermal, w):
+    """The temperatures at the window's ends and the heat flows' means over it; None without a network."""
+    if thermal is None:
+        return None
+    first, last = w.slice.start, w.slice.stop - 1
+    return {"temperature_start_k": dict(zip(thermal["parts"], map(float, thermal["temperature"][first]))),
+            "temperature_end_k": dict(zip(thermal["parts"], map(float, thermal["temperature"][last]))),
+            "heat_input_mean_w": dict(zip(thermal["parts"], map(float, np.mean(thermal["heat_input"][w.slice], axis=0)))),
+            "link_flow_mean_w": dict(zip(thermal["links"], map(float, np.mean(thermal["link_flow"][w.slice], axis=0))))}
+
+
+def thermal_rows(t):
+    """(quantity, value) rows of the report page's thermal table."""
+    rows = [(f"{p}: temperature (window start -> end)",
+             f"{t['temperature_start_k'][p] - 273.15:.5g} -> {t['temperature_end_k'][p] - 273.15:.5g} degC")
+            for p in t["temperature_end_k"]]
+    rows += [(f"{p}: heat input (mean)", f"{v:.4g} W") for p, v in t["heat_input_mean_w"].items()]
+    rows += [(f"link {k}: heat flow (mean)", f"{v:.4g} W") for k, v in t["link_flow_mean_w"].items()]
+    return rows
