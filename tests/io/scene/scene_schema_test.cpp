@@ -45,7 +45,7 @@ TEST(SceneSchema, SectionsAreContiguousAndKeysUnique) {
 
 TEST(SceneSchema, EveryRowCanBeStored) {
   std::set<std::string_view> reachable = {"scene",     "materials.*", "bearing", "cage",    "*_ring", "housing", "carrier",
-                                          "lubricant", "life",        "contact", "solver", "output"};
+                                          "lubricant", "thermal",     "life",    "contact", "solver", "output"};
   for (const Row& row : scene_rows()) {
     SCOPED_TRACE(std::string(row.section) + "." + std::string(row.key));
     if (row.kind == ValueKind::table) {
