@@ -41,7 +41,8 @@ constexpr Row kRows[] = {
      .meaning = "the air around the housing and the shaft beyond the inner ring's fit"},
     {.section = "thermal", .key = "initial_temperature", .kind = number, .field = FIELD(scene.thermal.initial_temperature),
      .dim = dim::temperature, .bounds = positive, .def = absent, .example = "20 degC",
-     .meaning = "every node's temperature at the start (default: the ambient temperature)"},
+     .meaning = "every part's temperature at the start (default: the lubricant's temperature where given, else the "
+                "ambient temperature)"},
     {.section = "thermal", .key = "specific_heat", .kind = number, .field = FIELD(scene.thermal.specific_heat),
      .dim = dim::specific_heat, .bounds = positive, .def = value(460), .example = "460 J/kg K",
      .meaning = "of the rings and rolling elements (their heat capacity: mass x specific heat)"},

@@ -174,7 +174,14 @@ void add_thermal_network(Model& m, const scene::Scene& scene, int first_state) {
   const double rho = scene.lubricant.density > 0 ? scene.lubricant.density : oil_density;
   c[ThermalNetwork::oil] = or_default(th.oil_heat_capacity, g.free_volume() * rho * oil_specific_heat);
   c[ThermalNetwork::housing] = or_default(th.housing_heat_capacity, 5.0 * c[ThermalNetwork::outer_ring]);
-  const double initial = th.initial_temperature > 0 ? th.initial_temperature : th.ambient_temperature;
+  const scene::Lubricant& oil = scene.lubricant;
+  const double initial = th.initial_temperature > 0 ? th.initial_temperature
+                         : oil.temperature > 0      ? oil.temperature
+                                                    : th.ambient_temperature;
+  // The ball-groove contacts' viscosity at the oil's temperature, where the data sheet gives it.
+  if (oil.viscosity_40 > 0 && oil.viscosity_100 > 0 && oil.density > 0)
+    m.oil_viscosity = {first_state + ThermalNetwork::oil,
+                       contact::walther_constants(oil.viscosity_40, 313.15, oil.viscosity_100, 373.15), oil.density};
   m.add_node(std::make_shared<ThermalNetwork>(c, links_of(th, g), heat_routing(m), th.ambient_temperature, initial,
                                               first_state));
 }
