@@ -17,6 +17,7 @@ import numpy as np
 from raceway import RacewayOutput
 from report_bridges import bridge_forces
 from report_life import read_life_input
+from report_power import read_power, read_thermal
 from report_metrics import cage_direction, element_loads, split_bar_forces
 
 
@@ -53,6 +54,8 @@ class BearingRun:
     driven_speed: np.ndarray = None   # [T] rad/s
     contact: dict = field(default_factory=dict)  # kind -> {names, element, normal_force, ...} (spatial)
     power_loss: dict = field(default_factory=dict)  # segment kind -> [T] W (sum over its segments)
+    power_balance: dict = None  # /power_balance/* (report_power.read_power), None in older files
+    thermal: dict = None  # /thermal/* (report_power.read_thermal), None without a thermal network
     geometry: dict = field(default_factory=dict)     # pitch_radius, clearances, radii (m)
     roller_angles: np.ndarray = None  # [T x n x 2] rad, spatial rollers' Cardan angles (report_rollers.py)
     life_input: dict = None  # what the rating lives need (report_life.read_life_input)
@@ -191,6 +194,8 @@ def read_bearing(out):
     _pocket_steps(out, run)
     _driven(out, run)
     _sum_power(out, run)
+    run.power_balance = read_power(out)
+    run.thermal = read_thermal(out)
     run.life_input = read_life_input(out, n)
     return run
 

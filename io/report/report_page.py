@@ -6,6 +6,7 @@ import math
 import os
 
 from report_life import life_rows
+from report_power import power_rows, thermal_rows
 from report_rollers import rows as roller_rows
 from report_rollers_plots import CAPTIONS as ROLLER_CAPTIONS
 
@@ -140,6 +141,16 @@ def write_page(run, summary, folder, pngs, name="report.html"):
                      f"{w['end_s']:.6g} s; slices numbered from the roller's -z end.</p>"
                      "<table><tr><th>quantity</th><th>value</th></tr>")
         parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in roller_rows(summary)]
+    if summary.get("power_balance"):
+        parts.append("</table><h2>Power balance</h2><p>Work over the window, integrated over the solver's steps "
+                     "(docs/output_layout.md, \"Power balance\"); the residual is the integrator's own dissipation."
+                     "</p><table><tr><th>quantity</th><th>value</th></tr>")
+        parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in power_rows(summary["power_balance"])]
+    if summary.get("thermal"):
+        parts.append("</table><h2>Thermal network</h2><p>Temperatures at the window's ends, heat flows averaged "
+                     "over it (docs/lubrication.md, \"Thermal network\").</p>"
+                     "<table><tr><th>quantity</th><th>value</th></tr>")
+        parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in thermal_rows(summary["thermal"])]
     parts.append("</table><h2>Rating life</h2><table><tr><th>quantity</th><th>value</th></tr>")
     parts += [f"<tr><td>{esc(k)}</td><td>{esc(v)}</td></tr>" for k, v in life_rows(summary.get("life", {}))]
     parts.append("</table><p>docs/life.md: the standards' formulas and what is estimated.</p>"

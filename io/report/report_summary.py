@@ -10,6 +10,7 @@ import numpy as np
 import report_metrics as rm
 from report_bridges import summarize_bridges
 from report_life import summarize_life
+from report_power import summarize_power, summarize_thermal
 from report_rollers import summarize_rollers
 
 DEG = 180.0 / math.pi
@@ -233,6 +234,12 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
         s["friction"] = fr
         if "power_loss_mean_w" in fr:
             s["power_loss"] = {"total_mean_w": fr["power_loss_mean_w"]}
+    balance = summarize_power(run.power_balance, w)
+    if balance:
+        s["power_balance"] = balance
+    thermal = summarize_thermal(run.thermal, w)
+    if thermal:
+        s["thermal"] = thermal
     rollers = summarize_rollers(run, w, bins)
     if rollers:
         s["rollers"] = rollers

@@ -279,6 +279,22 @@ struct HousingSpec {
   std::vector<double> sensor_participation;
 };
 
+/// The thermal network (solver/bearing/thermal_network.hpp): a [thermal] section switches it on.
+/// A conductance or capacity left at -1 is taken from the geometry when the model is built.
+struct ThermalSpec {
+  bool present = false;                    ///< a [thermal] section was given
+  double ambient_temperature = 293.15;     ///< K
+  double initial_temperature = -1;         ///< K; -1: the ambient temperature
+  double specific_heat = 460;              ///< J/(kg K), the rings and rolling elements (steel)
+  double cage_specific_heat = 460;         ///< J/(kg K)
+  double oil_heat_capacity = -1;           ///< J/K
+  double housing_heat_capacity = -1;       ///< J/K
+  double convection_coefficient = 200;     ///< W/(m^2 K), the parts to the oil
+  double ambient_convection_coefficient = 20;  ///< W/(m^2 K), the housing to the ambient air
+  double fit_conductance = 5000;           ///< W/(m^2 K), the rings' fits (shaft, housing)
+  double element_ring_conductance = -1;    ///< W/K, one rolling element to one ring through its contact
+};
+
 /// Contact laws, chosen by name in the scene. The parser looks every name up in the law registry
 /// (contact/laws/law_registry.hpp, which lists the laws each contact accepts) and stores its id;
 /// models are built from `id`, `name` is the scene's spelling of it (for printing only).
@@ -417,6 +433,7 @@ struct Scene {
   ContactSpec roller_flange;  ///< spatial roller bearings: a roller's end on a rib
   RollingElementSpec rolling_element;  ///< ball bearings: a ball's spall and waviness (absent: perfect balls)
   HousingSpec housing;        ///< spatial: the outer ring in a housing (absent: the outer ring as its motion says)
+  ThermalSpec thermal;        ///< the thermal network (absent: none, one temperature for the bearing)
   CarrierSpec carrier;    ///< planar: the bearing on a rotating planet carrier (absent: inertial frame)
   SolverSpec solver;
   OutputSpec output;

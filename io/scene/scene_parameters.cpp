@@ -109,7 +109,7 @@ std::vector<SceneParameter> scene_parameters(const Scene& scene) {
       Bind on_ring = b;
       on_ring.ring = section == "inner_ring" ? &s.inner_ring : &s.outer_ring;
       walk("*_ring", prefix, on_ring, out);
-    } else if ((section != "housing" || s.housing.present) &&
+    } else if ((section != "housing" || s.housing.present) && (section != "thermal" || s.thermal.present) &&
                (section != "rolling_element" || s.rolling_element.any())) {
       walk(section, prefix, b, out);
     }

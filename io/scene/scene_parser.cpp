@@ -380,6 +380,10 @@ Scene parse_table(toml::table& root, const std::string& source_name) {
   }
   if (const Section lubricant = top(file, root, "lubricant", false); lubricant.present())
     read_section("lubricant", lubricant, b);
+  if (const Section thermal = top(file, root, "thermal", false); thermal.present()) {
+    read_section("thermal", thermal, b);
+    scene.thermal.present = true;
+  }
   if (const Section life = top(file, root, "life", false); life.present()) read_section("life", life, b);
   read_section("contact", top(file, root, "contact", false), b);
   read_section("solver", top(file, root, "solver", false), b);

@@ -479,8 +479,9 @@ std::span<const Row> bearing_rows() { return kRows; }
 
 namespace {
 
-constexpr std::string_view kTopSections[] = {"scene",   "bearing", "materials", "cage",    "inner_ring", "outer_ring", "rolling_element", "housing",
-                                             "carrier", "lubricant", "life",    "contact", "solver",     "output"};
+constexpr std::string_view kTopSections[] = {"scene",     "bearing",   "materials", "cage",    "inner_ring",
+                                             "outer_ring", "rolling_element", "housing", "carrier", "lubricant",
+                                             "thermal",   "life",      "contact",   "solver",  "output"};
 
 }  // namespace
 

@@ -54,6 +54,46 @@ constexpr Row kRows[] = {
      .dim = dim::damping, .bounds = non_negative, .def = absent, .example = "[\"400 N s/m\"]",
      .meaning = "modal damping of each further mode; absent: all 0"},
 
+    // ---- [thermal]: optional; the thermal network (solver/bearing/thermal_network.hpp) --------
+    {.section = "thermal", .key = "ambient_temperature", .kind = number, .field = FIELD(scene.thermal.ambient_temperature),
+     .dim = dim::temperature, .bounds = positive, .def = value(293.15), .example = "20 degC",
+     .meaning = "the air around the housing and the shaft beyond the inner ring's fit"},
+    {.section = "thermal", .key = "initial_temperature", .kind = number, .field = FIELD(scene.thermal.initial_temperature),
+     .dim = dim::temperature, .bounds = positive, .def = absent, .example = "20 degC",
+     .meaning = "every part's temperature at the start (default: the lubricant's temperature where given, else the "
+                "ambient temperature)"},
+    {.section = "thermal", .key = "specific_heat", .kind = number, .field = FIELD(scene.thermal.specific_heat),
+     .dim = dim::specific_heat, .bounds = positive, .def = value(460), .example = "460 J/kg K",
+     .meaning = "of the rings and rolling elements (their heat capacity: mass x specific heat)"},
+    {.section = "thermal", .key = "cage_specific_heat", .kind = number, .field = FIELD(scene.thermal.cage_specific_heat),
+     .dim = dim::specific_heat, .bounds = positive, .def = value(460), .example = "380 J/kg K",
+     .meaning = "of the cage"},
+    {.section = "thermal", .key = "oil_heat_capacity", .kind = number, .field = FIELD(scene.thermal.oil_heat_capacity),
+     .dim = dim::heat_capacity, .bounds = positive, .def = absent, .example = "5 J/K",
+     .meaning = "the oil in the bearing (default: its free volume between the rings full of oil, 870 kg/m^3 "
+                "or the lubricant's density, 1900 J/kg K)"},
+    {.section = "thermal", .key = "housing_heat_capacity", .kind = number,
+     .field = FIELD(scene.thermal.housing_heat_capacity), .dim = dim::heat_capacity, .bounds = positive, .def = absent,
+     .example = "2 kJ/K", .meaning = "the housing (default: five times the outer ring's)"},
+    {.section = "thermal", .key = "convection_coefficient", .kind = number,
+     .field = FIELD(scene.thermal.convection_coefficient), .dim = dim::heat_transfer_coefficient,
+     .bounds = non_negative, .def = value(200), .example = "200 W/m^2 K",
+     .meaning = "between the oil and the rings' raceways, the rolling elements' and the cage's surfaces"},
+    {.section = "thermal", .key = "ambient_convection_coefficient", .kind = number,
+     .field = FIELD(scene.thermal.ambient_convection_coefficient), .dim = dim::heat_transfer_coefficient,
+     .bounds = non_negative, .def = value(20), .example = "20 W/m^2 K",
+     .meaning = "between the housing and the air, on a cylinder of twice the outer ring's outside diameter and "
+                "three times its width"},
+    {.section = "thermal", .key = "fit_conductance", .kind = number, .field = FIELD(scene.thermal.fit_conductance),
+     .dim = dim::heat_transfer_coefficient, .bounds = non_negative, .def = value(5000), .example = "5000 W/m^2 K",
+     .meaning = "through the rings' fits: the inner ring's bore to the shaft (at the ambient temperature), the "
+                "outer ring's outside to the housing"},
+    {.section = "thermal", .key = "element_ring_conductance", .kind = number,
+     .field = FIELD(scene.thermal.element_ring_conductance), .dim = dim::thermal_conductance, .bounds = non_negative,
+     .def = absent, .example = "0.05 W/K",
+     .meaning = "one rolling element to one ring through their contact (default: the constriction of a contact "
+                "of radius a tenth of the element's radius in steel, 2 k a with k = 45 W/(m K))"},
+
     // ---- [lubricant]: optional; without it the contacts are dry --------------------------------
     {.section = "lubricant", .key = "name", .kind = text, .field = FIELD(scene.lubricant.name), .def = word(""),
      .meaning = "label"},

@@ -79,6 +79,10 @@ inline constexpr Dimension angular_damping{1, 2, -1, -1};    ///< N m s/rad (til
 inline constexpr Dimension information{0, 0, 0, 0, 1};       ///< bytes (output sizes)
 inline constexpr Dimension temperature{0, 0, 0, 0, 0, 1};    ///< K (absolute; "degC" alone adds 273.15)
 inline constexpr Dimension kinematic_viscosity{0, 2, -1, 0}; ///< m^2/s (mm^2/s = cSt)
+inline constexpr Dimension thermal_conductance{1, 2, -3, 0, 0, -1};  ///< W/K
+inline constexpr Dimension heat_capacity{1, 2, -2, 0, 0, -1};        ///< J/K
+inline constexpr Dimension specific_heat{0, 2, -2, 0, 0, -1};        ///< J/(kg K)
+inline constexpr Dimension heat_transfer_coefficient{1, 0, -3, 0, 0, -1};  ///< W/(m^2 K)
 }  // namespace dim
 
 /// A value in SI units with its dimension.

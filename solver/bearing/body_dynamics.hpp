@@ -37,6 +37,16 @@ class FiniteDifferenceSteps {
   std::vector<double> position_step_;  ///< absolute step (positions, angles), else 0
 };
 
+/// The power of a body's external forces (loads, supports, gravity, the carrier frame's inertial
+/// forces, the cage's unbalance) on its states that is not the rate of a potential kept in
+/// body_energy, by origin [W] (solver/bearing/power_terms.hpp).
+struct ExternalPower {
+  double loads = 0;         ///< the applied loads (their potential is left out of the stored energy)
+  double support_loss = 0;  ///< dissipated in the support's dampers (>= 0)
+  double frame = 0;         ///< carrier frame: Euler force and moment, the centrifugal potential's change in time
+  double unbalance = 0;     ///< the cage's unbalance force (not a potential)
+};
+
 class BodyDynamics {
  public:
   virtual ~BodyDynamics() = default;
@@ -53,6 +63,10 @@ class BodyDynamics {
   /// Kinetic energy + support springs + potential of the current loads and gravity [J] (the
   /// contacts' elastic energy comes from the segment records).
   virtual double body_energy(double t, const double* z) const = 0;
+  /// Body b's external power (ExternalPower) at (t, z).
+  virtual ExternalPower external_power(int b, double t, const double* z) const = 0;
+  /// The part of body_energy that is the potential of body b's applied loads [J].
+  virtual double load_potential(int b, double t, const double* z) const = 0;
 };
 
 /// The dynamics of the model's kind.

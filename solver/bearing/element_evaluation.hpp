@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -77,10 +78,36 @@ contact::SegmentResult evaluate_planar(const Model& m, const Law& law, const Seg
 
 }  // namespace element_detail
 
+/// The law at the thermal network's oil temperature: a ball-groove contact's lubricant viscosity
+/// from Model::oil_viscosity (a copy in `warm`), every other law as it is.
+/// Without a network (every shipped scene) nothing is copied or constructed.
+template <class Law>
+const Law& law_at_oil_temperature(const Model& m, const Law& law, const double* z, std::optional<Law>& warm) {
+  if constexpr (std::is_same_v<Law, contact::BallGrooveSegment>) {
+    if (m.oil_viscosity.state >= 0 && law.lubricant.viscosity > 0) {
+      warm.emplace(law);
+      warm->lubricant.viscosity = m.oil_viscosity.at(z, law.lubricant.viscosity);
+      return *warm;
+    }
+  }
+  return law;
+}
+
+template <class Law>
+void write_element_result_of(const Model& m, const Law& law, const Segment& seg, double t, const double* z,
+                             std::span<double> rec);
+
 /// The element's result at (t, z).
 template <class Law>
 void write_element_result(const Model& m, const Law& law, const Segment& seg, double t, const double* z,
                           std::span<double> rec) {
+  std::optional<Law> warm;
+  write_element_result_of(m, law_at_oil_temperature(m, law, z, warm), seg, t, z, rec);
+}
+
+template <class Law>
+void write_element_result_of(const Model& m, const Law& law, const Segment& seg, double t, const double* z,
+                             std::span<double> rec) {
   if constexpr (PlanarElementLaw<Law>) {
     const Marker& ma = m.markers[static_cast<std::size_t>(seg.marker_a)];
     const Marker& mb = m.markers[static_cast<std::size_t>(seg.marker_b)];
@@ -102,9 +129,11 @@ void write_element_result(const Model& m, const Law& law, const Segment& seg, do
 /// The record of one element's Jacobian task: its result at (t, z), then one column of wrench
 /// differences per column of its shape (forward differences).
 template <class Law>
-void write_element_jacobian(const Model& m, const FiniteDifferenceSteps& step, const Law& law, const Segment& seg,
+void write_element_jacobian(const Model& m, const FiniteDifferenceSteps& step, const Law& given, const Segment& seg,
                             const ElementShape& shape, double t, const double* z, std::span<double> rec) {
   using namespace element_detail;
+  std::optional<Law> warm;  // the oil's temperature is no column: d/dT is left to Newton's iterations
+  const Law& law = law_at_oil_temperature(m, given, z, warm);
   const Marker& ma = m.markers[static_cast<std::size_t>(seg.marker_a)];
   const Marker& mb = m.markers[static_cast<std::size_t>(seg.marker_b)];
   std::vector<double> zp(z, z + m.state_size);

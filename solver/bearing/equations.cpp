@@ -213,6 +213,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
 int Equations::rhs(double t, const double* z, double* zdot) {
   ++rhs_count_;
   rhs_time_ = t;
+  rhs_state_.assign(z, z + model_.state_size);
   const int nseg = static_cast<int>(model_.segments.size());
   segment_count_ += nseg;
   context_[0] = t;
@@ -234,6 +235,7 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   for (std::size_t b = 0; b < model_.bodies.size(); ++b)
     dynamics_->rates(static_cast<int>(b), t, z, contact_.body[b], net_[b], zdot);
   for (const auto& node : model_.nodes) node->rates(model_, t, z, contact_.node.data() + node->force_offset, zdot);
+  for (const auto& node : model_.nodes) node->add_segment_rates(model_, t, z, records_.data(), zdot);
   return status;
 }
 

@@ -57,6 +57,10 @@ class Equations final : public numerics::DynamicSystem {
   const std::vector<double>& segment_records() const { return records_; }
   /// Time of the last rhs() evaluation (the records' time).
   double last_rhs_time() const { return rhs_time_; }
+  /// The state of the last rhs() evaluation (state_size values).
+  const double* last_rhs_state() const { return rhs_state_.data(); }
+  /// The space's body dynamics.
+  const BodyDynamics& dynamics() const { return *dynamics_; }
   /// A diagnostic of segment s from the last rhs(), by its position in the segment family's field table.
   double diagnostic(std::size_t s, int field) const {
     return records_[s * SegmentRecord::size + SegmentRecord::diagnostics + static_cast<std::size_t>(field)];
@@ -142,6 +146,7 @@ class Equations final : public numerics::DynamicSystem {
   scheduler::TaskFunction rhs_task_, jacobian_task_;
   int last_invalid_ = -1;
   double rhs_time_ = 0;
+  std::vector<double> rhs_state_;  ///< z of the last rhs()
   long rhs_count_ = 0, jac_count_ = 0;
   long segment_count_ = 0;
   long jacobian_segment_evaluations_ = 0;  ///< per Jacobian: base point and one per state of each segment's bodies

@@ -113,6 +113,10 @@ void Housing::add_energy(const Model&, double, const double* z, double& e) const
   }
 }
 
+double Housing::power_loss(const Model&, double, const double* z) const {
+  return damping_ * (z[state(2)] * z[state(2)] + z[state(3)] * z[state(3)]);
+}
+
 void Housing::initial_state(std::vector<double>& z) const {  // at rest, centred
   for (int j = 0; j < mode_count(); ++j)
     for (int i = 0; i < 4; ++i) z[static_cast<std::size_t>(state(i, j))] = 0.0;

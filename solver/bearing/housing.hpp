@@ -72,6 +72,7 @@ class Housing final : public Node {
   void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const override;
   void add_own_jacobian(const Model& m, double t, numerics::BorderedMatrix& jac) const override;
   void add_energy(const Model& m, double t, const double* z, double& e) const override;
+  double power_loss(const Model& m, double t, const double* z) const override;
   void initial_state(std::vector<double>& z) const override;
   std::string describe(const Model& m) const override;
 

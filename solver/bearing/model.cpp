@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/thermal_network.hpp"
 
 namespace raceway::bearing {
 
@@ -70,6 +71,7 @@ Model build_model(const scene::Scene& scene, const ModelBuilder& builder) {
   builder.geometry(m, scene);
   builder.rings(m, scene);
   builder.cage(m, scene);
+  const int thermal_first = add_thermal_states(m, scene);
   m.border_size = m.state_size;
   builder.rolling_elements(m, scene);
   m.block_size = m.element_count > 0 ? (m.state_size - m.border_size) / m.element_count : 0;
@@ -81,6 +83,7 @@ Model build_model(const scene::Scene& scene, const ModelBuilder& builder) {
     if (seg.marker_a < 0) seg.marker_a = first_centre + seg.body_a;
     if (seg.marker_b < 0) seg.marker_b = first_centre + seg.body_b;
   }
+  if (thermal_first >= 0) add_thermal_network(m, scene, thermal_first);
   return m;
 }
 

@@ -23,6 +23,7 @@
 #include <variant>
 #include <vector>
 
+#include "contact/laws/viscosity.hpp"
 #include "contact/segments/ball_segments.hpp"
 #include "contact/segments/drag_segments.hpp"
 #include "contact/segments/roller_flange_segment.hpp"
@@ -111,6 +112,20 @@ struct ModelParameters {
   scene::ContactSpec ball_race, ball_cage;  ///< for the model's description
 };
 
+/// The oil's viscosity at the thermal network's oil temperature (a [thermal] section and a lubricant
+/// given by its data sheet): density x Walther's kinematic viscosity. The ball-groove contacts take it
+/// (element_evaluation.hpp: law_at_oil_temperature). state < 0: none, the laws keep the scene's.
+struct OilViscosity {
+  int state = -1;  ///< the oil's temperature
+  contact::WaltherConstants walther;
+  double density = 0;  ///< kg/m^3
+  /// Pa s at z, or `otherwise` where the temperature is not set yet (a seating's state, 0 K).
+  double at(const double* z, double otherwise) const {
+    const double t = z[state];
+    return t > 0 ? density * contact::walther_viscosity(walther, t) : otherwise;
+  }
+};
+
 struct Model {
   /// The scene's values the model and its dynamics read after the build. Shared and immutable, so
   /// Body::ring stays valid when a model is moved or copied.
@@ -157,6 +172,8 @@ struct Model {
   /// Spatial roller bearings: the planar model of the same scene (the spatial one restricted to the
   /// plane), whose seating starts the spatial one (spatial_roller_startup.cpp).
   std::shared_ptr<const Model> planar_restriction;
+  /// With a thermal network and a lubricant's data sheet: the viscosity the ball-groove contacts take.
+  OilViscosity oil_viscosity;
 
   const ModelParameters& params() const { return *parameters; }
   template <class Law>

@@ -29,11 +29,16 @@ class Node {
   /// The rates of its states into zdot from its generalized forces `forces`. The rigid bodies'
   /// rates are in zdot already (a relative coordinate may read its carrier's).
   virtual void rates(const Model& m, double t, const double* z, const double* forces, double* zdot) const = 0;
+  /// Adds to its rates what the segments' records of the same right-hand side give it (a thermal
+  /// network's heat from their power losses), after every node's rates().
+  virtual void add_segment_rates(const Model&, double, const double*, const double*, double*) const {}
   /// Its own Jacobian terms (kinematic rows), the contacts' parts come through its markers.
   virtual void add_own_jacobian(const Model& m, double t, numerics::BorderedMatrix& jac) const = 0;
   /// Adds its kinetic (and field) energy to e term by term [J] (the order of the sum is part of the
   /// output's bits); its springs' elastic energy comes from their element records.
   virtual void add_energy(const Model& m, double t, const double* z, double& e) const = 0;
+  /// The power its own dampers dissipate at (t, z) [W] (>= 0; its springs' elements report theirs).
+  virtual double power_loss(const Model&, double, const double*) const { return 0.0; }
   /// Overrides the class-based absolute tolerances of its states where it knows better.
   virtual void set_tolerances(std::vector<double>&) const {}
   /// Its states at the start of a run.

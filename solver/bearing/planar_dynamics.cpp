@@ -109,6 +109,35 @@ class PlanarDynamics final : public BodyDynamics {
     return e;
   }
 
+  ExternalPower external_power(int b, double t, const double* z) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    const auto& sl = body.slot;
+    auto state = [&](Coordinate c) { return sl[c] >= 0 ? z[sl[c]] : 0.0; };
+    const double x = state(sx), y = state(sy), vx = state(svx), vy = state(svy), w = state(swz);
+    ExternalPower p;
+    if (body.ring) {
+      p.loads = body.ring->load.fx(t) * vx + body.ring->load.fy(t) * vy + body.ring->load.mz(t) * w;
+      const auto& sup = body.ring->support;
+      if (sup.stiffness > 0 && sl[sx] >= 0) p.support_loss = sup.damping * (vx * vx + vy * vy);
+    }
+    if (const auto frame = carrier_frame(m_.params().carrier, t)) {
+      // Euler force and moment; Coriolis does no work; the centrifugal potential in body_energy
+      // changes in time with the carrier's speed: its partial derivative is the frame's work too.
+      const double a = frame->acceleration, rx = frame->radius + x;
+      if (sl[sx] >= 0)
+        p.frame = body.mass * a * (y * vx - rx * vy) - body.mass * frame->speed * a * (rx * rx + y * y);
+      p.frame += frame->moment(body.axial_inertia) * w;
+    }
+    return p;
+  }
+
+  double load_potential(int b, double t, const double* z) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    const auto& sl = body.slot;
+    if (!body.ring || sl[svx] < 0) return 0.0;
+    return -(body.ring->load.fx(t) * z[sl[sx]] + body.ring->load.fy(t) * z[sl[sy]]);
+  }
+
  private:
   const Model& m_;
 };

@@ -1,4 +1,5 @@
 #include "solver/bearing/startup.hpp"
+#include "solver/bearing/thermal_network.hpp"
 
 #include "solver/bearing/carrier_frame.hpp"
 
@@ -339,11 +340,17 @@ StartupReport seat_spatial_roller_bearing(const Model& m, double t0) {
 }
 
 StartupReport initial_state(const Model& model, double t0, double azimuth_offset, Equations* equations) {
-  if (model.bearing_type == scene::BearingType::tapered_roller) return seat_tapered_roller_bearing(model, t0);
-  if (model.kind == scene::ModelKind::spatial && model.bearing_type == scene::BearingType::cylindrical_roller)
-    return seat_spatial_roller_bearing(model, t0);
-  if (model.kind == scene::ModelKind::spatial) return seat_ball_bearing(model, t0, azimuth_offset, equations);
-  return seat_roller_bearing(model, t0);
+  StartupReport start;
+  if (model.bearing_type == scene::BearingType::tapered_roller)
+    start = seat_tapered_roller_bearing(model, t0);
+  else if (model.kind == scene::ModelKind::spatial && model.bearing_type == scene::BearingType::cylindrical_roller)
+    start = seat_spatial_roller_bearing(model, t0);
+  else if (model.kind == scene::ModelKind::spatial)
+    start = seat_ball_bearing(model, t0, azimuth_offset, equations);
+  else
+    start = seat_roller_bearing(model, t0);
+  if (const ThermalNetwork* thermal = thermal_network_of(model)) thermal->initial_state(start.state);  // no seating
+  return start;
 }
 
 }  // namespace raceway::bearing

@@ -25,6 +25,7 @@
 // no more between ranks.
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include "solver/bearing/equations.hpp"
 
@@ -54,8 +55,10 @@ constexpr int traction_size = 4;
 constexpr int prepared_share = SegmentRecord::size - traction_size;
 static_assert(2 * prepared_share >= contact::PreparedGrooveContact::size);
 
-const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg) {
-  return std::get<contact::BallGrooveSegment>(m.laws[static_cast<std::size_t>(seg.law)]);
+/// The segment's ball-groove law at the oil's temperature in z (law_at_oil_temperature; a copy in `warm`).
+const contact::BallGrooveSegment& groove_law(const Model& m, const Segment& seg, const double* z,
+                                             std::optional<contact::BallGrooveSegment>& warm) {
+  return law_at_oil_temperature(m, std::get<contact::BallGrooveSegment>(m.laws[static_cast<std::size_t>(seg.law)]), z, warm);
 }
 
 }  // namespace
@@ -98,7 +101,8 @@ void Equations::rhs_part(const double* context, int s, int part, std::span<doubl
                                 ? groove_kinematics_at_rest(model_, seg, t, z)
                                 : std::pair{marker_spatial(model_, model_.markers[static_cast<std::size_t>(seg.marker_a)], t, z),
                                             marker_spatial(model_, model_.markers[static_cast<std::size_t>(seg.marker_b)], t, z)};
-  const contact::TractionResult block = contact::evaluate_traction_block(groove_law(model_, seg), ring, ball, part,
+  std::optional<contact::BallGrooveSegment> warm;
+  const contact::TractionResult block = contact::evaluate_traction_block(groove_law(model_, seg, z, warm), ring, ball, part,
                                                                          part < 2 ? &prepared : nullptr);
   std::fill(rec.begin(), rec.end(), 0.0);
   rec[0] = block.force_x;
@@ -136,7 +140,8 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
   const double t = context[0];
   const double* z = context + 1;
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  const auto& law = groove_law(model_, seg);
+  std::optional<contact::BallGrooveSegment> warm;
+  const auto& law = groove_law(model_, seg, z, warm);
   const std::vector<SegmentColumn>& columns = shapes_[static_cast<std::size_t>(s)].columns;
   const Marker& ma = model_.markers[static_cast<std::size_t>(seg.marker_a)];
   const Marker& mb = model_.markers[static_cast<std::size_t>(seg.marker_b)];

@@ -116,6 +116,41 @@ class SpatialDynamics final : public BodyDynamics {
     return e;
   }
 
+  ExternalPower external_power(int b, double t, const double* z) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    const auto& sl = body.slot;
+    auto state = [&](int c) { return sl[c] >= 0 ? z[sl[c]] : 0.0; };
+    const Vec3 v(state(svx), state(svy), state(svz));
+    ExternalPower p;
+    if (body.ring) {  // on the generalized coordinates the ring's equations use (small tilts)
+      const auto& l = body.ring->load;
+      p.loads = l.fx(t) * v.x() + l.fy(t) * v.y() + l.fz(t) * v.z() + l.mx(t) * state(swx) + l.my(t) * state(swy) +
+                l.mz(t) * state(swz);
+    }
+    const Support s = support_of(body);
+    p.support_loss = s.c_radial * (v.x() * v.x() + v.y() * v.y()) + s.c_axial * v.z() * v.z();
+    if (body.kind == BodyKind::cage && s.c_tilt > 0) {  // the damper on the spin across the axis (external_wrench)
+      const Mat3 r = cardan_rotation(state(sax), state(say), state(saz));
+      const Vec3 axis = r.col(2);
+      const Vec3 w_fixed = r * Vec3(state(swx), state(swy), state(swz));
+      p.support_loss += s.c_tilt * (w_fixed - w_fixed.dot(axis) * axis).squaredNorm();
+    } else if (body.kind != BodyKind::cage) {
+      p.support_loss += s.c_tilt * (state(swx) * state(swx) + state(swy) * state(swy));
+    }
+    if (body.kind == BodyKind::cage && m_.params().cage.mass_eccentricity > 0) p.unbalance = unbalance_force(body, z).dot(v);
+    return p;
+  }
+
+  double load_potential(int b, double t, const double* z) const override {
+    const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    if (!body.ring) return 0.0;
+    const auto& sl = body.slot;
+    auto state = [&](int c) { return sl[c] >= 0 ? z[sl[c]] : 0.0; };
+    const auto& l = body.ring->load;
+    return -(l.fx(t) * state(sx) + l.fy(t) * state(sy) + l.fz(t) * state(sz) + l.mx(t) * state(sax) +
+             l.my(t) * state(say));
+  }
+
   /// States of body b in coordinate order.
   static int body_states(const Body& b, int out[coordinate_count]) {
     int n = 0;

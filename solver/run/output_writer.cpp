@@ -176,7 +176,8 @@ constexpr double kIndexShare = 0.01;
 /// The datasets the writer defines for `m` (OutputWriter's constructor and define_segment_groups).
 double dataset_count(const bearing::Model& m, bool segments) {
   double n = 2 + static_cast<double>(m.first_element * static_cast<int>(border_series(m.kind).size())) +
-             static_cast<double>(element_series(m).size()) + PocketSteps::quantities;
+             static_cast<double>(element_series(m).size()) + PocketSteps::quantities + PowerBalanceSeries::datasets +
+             ThermalSeries::datasets(m);
   n += 2;  // /cage/epicyclic_speed, /cage/rolling_speed (both kinds)
   if (!segments) return n;
   std::set<std::pair<int, bool>> kinds;  // (kind, line family)
@@ -217,6 +218,7 @@ OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scen
   long values = 2 + m.first_element * columns(border_series(m.kind)) + m.element_count * columns(element_series(m));
   values += 2;  // /cage/epicyclic_speed, /cage/rolling_speed
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
+  values += PowerBalanceSeries::values(m) + ThermalSeries::values(m);
   if (const bearing::Housing* housing = bearing::housing_of(m)) values += HousingSensor::quantities * housing->sensor_samples();
   if (scene.output.segments)
     for (const bearing::Segment& s : m.segments)
@@ -382,6 +384,8 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
   }
   define_pocket_steps();
   define_housing_sensor();
+  power_ = define_power_balance_series(file_, m);
+  thermal_.emplace(file_, m);
   if (segments_) define_segment_groups();
   time_ = file_.series_id("/time"), energy_ = file_.series_id("/energy");
   for (int b = 0; b < m.first_element; ++b)
@@ -420,6 +424,7 @@ void OutputWriter::define_housing_sensor() {
   const bearing::Housing* housing = bearing::housing_of(m_);
   if (!housing) return;
   const auto per = static_cast<std::size_t>(housing->sensor_samples());
+  sensor_per_ = per;
   for (const SensorSeries& s : sensor_series) {
     const bool time = sensor_ids_.empty();
     file_.define_series(s.path, time ? std::vector<std::size_t>{per} : std::vector<std::size_t>{per, 2}, s.unit,
@@ -523,14 +528,13 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
   std::size_t used = 0;
   for (std::size_t q = 0; q < pocket_step_ids_.size(); ++q, used += pocket_cells_)
     file_.append(pocket_step_ids_[q], std::span<const double>(pocket_steps.data() + used, pocket_cells_));
-  if (!sensor_ids_.empty()) {
-    const std::size_t per = (pocket_steps.size() - used) / HousingSensor::quantities;
-    for (std::size_t q = 0; q < sensor_ids_.size(); ++q) {
-      const std::size_t cells = q == 0 ? per : 2 * per;
-      file_.append(sensor_ids_[q], std::span<const double>(pocket_steps.data() + used, cells));
-      used += cells;
-    }
+  for (std::size_t q = 0; q < sensor_ids_.size(); ++q) {
+    const std::size_t cells = q == 0 ? sensor_per_ : 2 * sensor_per_;
+    file_.append(sensor_ids_[q], std::span<const double>(pocket_steps.data() + used, cells));
+    used += cells;
   }
+  append_power_balance(file_, power_, pocket_steps.data() + used, eq, t, z.data(), energy);
+  thermal_->append(file_, z, eq);
   if (!segments_) return;
   for (int k = 0; k < bearing::segment_kind_count; ++k) {
     const std::vector<int>& index = index_[k];

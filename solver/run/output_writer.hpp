@@ -5,11 +5,14 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/h5/h5_series.hpp"
 #include "solver/bearing/equations.hpp"
+#include "solver/run/power_balance.hpp"
+#include "solver/run/thermal_series.hpp"
 
 namespace raceway::run {
 
@@ -69,7 +72,8 @@ class OutputWriter {
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
   /// `pocket_steps`: the step-resolved pocket statistics of the interval ending at t
   /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets),
-  /// then the housing sensor's samples of that interval (solver/run/housing_sensor.hpp).
+  /// then the housing sensor's samples of that interval (solver/run/housing_sensor.hpp), then the
+  /// power balance's work up to t (solver/run/power_balance.hpp).
   /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
   /// process writes the diagnostics of rank 0's).
   void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
@@ -96,6 +100,9 @@ class OutputWriter {
   // The series' handles in the order append() writes them (looked up once, not per sample).
   h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
   std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_, sensor_ids_;
+  PowerBalanceSeries power_;
+  std::optional<ThermalSeries> thermal_;
+  std::size_t sensor_per_ = 0;    ///< the housing sensor's samples per row
   std::size_t pocket_cells_ = 0;  ///< doubles of the pocket statistics in a step row (the sensor's follow)
   std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids_[bearing::segment_kind_count];
   std::vector<double> row_;  ///< reused row buffer

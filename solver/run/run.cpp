@@ -21,12 +21,14 @@
 #include "solver/run/build_info.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/bearing/startup.hpp"
+#include "solver/bearing/thermal_network.hpp"
 #include "solver/numerics/newton_backends.hpp"
 #include "solver/run/checkpoint.hpp"
 #include "solver/run/output_thread.hpp"
 #include "solver/run/output_writer.hpp"
 #include "solver/run/housing_sensor.hpp"
 #include "solver/run/pocket_steps.hpp"
+#include "solver/run/power_balance.hpp"
 #include "solver/run/run_profile.hpp"
 #include "solver/run/run_totals.hpp"
 #include "solver/run/scene_summary.hpp"
@@ -69,6 +71,8 @@ json::JsonObject RunSummary::to_json() const {
   j.add("output_write_time_s", output_write_seconds);
   j.add("output_thread_time_s", output_thread_seconds);
   if (!pocket_step_totals.empty()) j.add("pocket_step_totals", pocket_step_totals);
+  if (!power_balance.empty()) j.add("power_balance", power_balance);
+  if (!thermal.empty()) j.add("thermal", thermal);
   json::JsonObject named_warnings;
   for (const auto& [name, text] : warnings) named_warnings.add(name, text);
   j.add("warnings", std::move(named_warnings));
@@ -210,7 +214,7 @@ class RunLoop {
         plan_{scene.output.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.output.checkpoint_interval / dt_))
                                                    : 0,
               scene.output.checkpoint_wall_interval, options.stop_signal},
-        totals_(model, scene.scene.end_time), pockets_(model), sensor_(model, dt_) {}
+        totals_(model, scene.scene.end_time), pockets_(model), power_(model), sensor_(model, dt_) {}
 
   RunSummary run(const std::optional<Checkpoint>& resumed);
 
@@ -246,6 +250,9 @@ class RunLoop {
   // The step-resolved pocket statistics (solver/run/pocket_steps.hpp), on the run's thread; the row
   // of each sample goes to the output with it.
   PocketSteps pockets_;
+  // The power balance over the steps (solver/run/power_balance.hpp), on the run's thread; its row
+  // of each sample goes to the output after the pocket statistics' and the sensor's.
+  PowerBalance power_;
   // The housing's sensor (solver/run/housing_sensor.hpp): its samples of each interval go to the
   // output with the pocket statistics' row.
   HousingSensor sensor_;
@@ -282,6 +289,7 @@ void RunLoop::record(double t, long sample) {
   totals_.turn_to(t);
   pockets_.take_row(t, pocket_row_);
   sensor_.take_row(sample, pocket_row_);
+  power_.take_row(t, pocket_row_);
   if (output_thread_) {
     output_thread_->submit(t, sample, z_, pocket_row_);
   } else {
@@ -304,10 +312,12 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
   Checkpoint cp{kind, sample, t, z_, {}, restart_times_, file_->unwritten_rows(), fingerprint_, file_->row_checksums()};
   totals_.save(cp, integrator_->statistics(), eq_, executor_, wall());
   pockets_.save(cp);
+  power_.save(cp);
   write_checkpoint(checkpoint_path(options_.output_path), cp);
   if (kind == CheckpointKind::periodic) {  // every run restarts CVODE here: a resume repeats it bitwise
     totals_.add_finished_integrator(integrator_->statistics());
     pockets_.restart();  // the steps past t are integrated again
+    power_.restart();
     start_integrator(t);
   }
   last_checkpoint_wall_ = wall();
@@ -329,6 +339,13 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   sum.output_write_seconds = output_seconds_ - diagnostics_seconds_;
   sum.output_thread_seconds = output_thread_ ? output_thread_->busy_seconds() : 0.0;
   sum.pocket_step_totals = pockets_.totals_json();
+  sum.power_balance = power_.summary_json(0.0, t, totals_.stored_energy_initial(), totals_.stored_energy_final());
+  if (const bearing::ThermalNetwork* network = bearing::thermal_network_of(model_)) {
+    json::JsonObject temperatures;
+    for (int k = 0; k < bearing::ThermalNetwork::parts; ++k)
+      temperatures.add(bearing::ThermalNetwork::part_names[k], z_[static_cast<std::size_t>(network->state(k))]);
+    sum.thermal.add("final_temperature_k", std::move(temperatures));
+  }
   sum.scene_overrides = scene_overrides_json(scene_);
   sum.scene_parameters = scene_parameters_json(scene_);
   sum.warnings = regime_warnings(sum);
@@ -344,11 +361,11 @@ void RunLoop::start_integrator(double t) {
   // The last right-hand side of an accepted step is the integrator's own: a sample's (write_sample
   // on eq_) comes after advance_to() returns, and every step evaluates the right-hand side again.
   sensor_.restart(t);
-  if (pockets_.active() || sensor_.active())
-    integrator_->set_step_observer([this] {
-      if (pockets_.active()) pockets_.observe(eq_.last_rhs_time(), eq_.segment_records());
-      sensor_.observe(*integrator_);
-    });
+  integrator_->set_step_observer([this] {
+    if (pockets_.active()) pockets_.observe(eq_.last_rhs_time(), eq_.segment_records());
+    power_.observe(eq_);
+    if (sensor_.active()) sensor_.observe(*integrator_);
+  });
 }
 
 void RunLoop::start_output_thread() {
@@ -381,12 +398,17 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   if (resumed) {
     totals_.restore(*resumed, eq_, executor_);
     pockets_.restore(*resumed);
+    power_.restore(*resumed);
     z_ = resumed->state, first = resumed->sample + 1, restart_times_ = resumed->restart_times;
     if (resumed->kind != CheckpointKind::periodic) restart_times_.push_back(resumed->time);
   } else {
     const bearing::StartupReport start = startup_naming_keys(model_, scene_, t0, options_.azimuth_offset, eq_);
     if (options_.on_info) options_.on_info(start.summary);
     z_ = start.state;
+    // The power balance's first evaluation: the terms at the start (the steps' evaluations follow).
+    std::vector<double> zdot(z_.size());
+    eq_.rhs(t0, z_.data(), zdot.data());
+    power_.observe(eq_);
   }
   zdot_.resize(z_.size());
   double t_last = resumed ? resumed->time : t0;

@@ -112,6 +112,11 @@ struct RunSummary {
   json::JsonObject scene_overrides, scene_parameters;
   /// The step-resolved pocket statistics' run totals (solver/run/pocket_steps.hpp); empty without pockets.
   json::JsonObject pocket_step_totals;
+  /// The power balance over the run (solver/run/power_balance.hpp): work of each input and loss,
+  /// the stored energy's change, the residual.
+  json::JsonObject power_balance;
+  /// With a thermal network: each part's temperature at the end [K].
+  json::JsonObject thermal;
   /// Signs that the run ended far from any physical running regime (regime_warnings()), by name:
   /// printed as warnings at the end and kept in the summary's "warnings".
   std::vector<std::pair<std::string, std::string>> warnings;

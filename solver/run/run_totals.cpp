@@ -1,5 +1,7 @@
 #include "solver/run/run_totals.hpp"
 
+#include "solver/bearing/power_terms.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -58,8 +60,9 @@ void RunTotals::turn_to(double t) {
 }
 
 void RunTotals::record(double t, const std::vector<double>& z, const bearing::Equations& eq, double energy) {
-  if (samples_ == 0) energy_initial_ = energy;
-  energy_final_ = energy;
+  const double stored = bearing::PowerTerms::stored_energy(eq, t, z.data(), energy);
+  if (samples_ == 0) energy_initial_ = energy, stored_initial_ = stored;
+  energy_final_ = energy, stored_final_ = stored;
   energy_max_drift_ = std::max(energy_max_drift_, std::abs(energy - energy_initial_));
   ++samples_;
   if (t < 0.5 * end_ - 1e-12) return;
@@ -93,6 +96,7 @@ void RunTotals::save(Checkpoint& cp, const numerics::IntegratorStatistics& curre
   process_counts(eq, executor, wall_seconds, now);
   for (int i = 0; i < 6; ++i) v[kBaseNames[i]] = base_[i] + now[i];
   v["energy_initial"] = energy_initial_, v["energy_final"] = energy_final_, v["energy_max_drift"] = energy_max_drift_;
+  v["stored_energy_initial"] = stored_initial_, v["stored_energy_final"] = stored_final_;
   v["revolutions"] = revolutions_, v["last_t"] = last_t_, v["output_samples"] = static_cast<double>(samples_);
   for (int d = 0; d < 3; ++d) {
     v["second_half.force_" + std::to_string(d)] = force_sum_[d];
@@ -114,6 +118,7 @@ void RunTotals::restore(const Checkpoint& cp, const bearing::Equations& eq, cons
   process_counts(eq, executor, 0.0, now);
   for (int i = 0; i < 6; ++i) base_[i] = get(kBaseNames[i]) - now[i];
   energy_initial_ = get("energy_initial"), energy_final_ = get("energy_final"), energy_max_drift_ = get("energy_max_drift");
+  stored_initial_ = get("stored_energy_initial"), stored_final_ = get("stored_energy_final");
   revolutions_ = get("revolutions"), last_t_ = get("last_t"), turned_ = true, samples_ = std::lround(get("output_samples"));
   for (int d = 0; d < 3; ++d) {
     force_sum_[d] = get("second_half.force_" + std::to_string(d));

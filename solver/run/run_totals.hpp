@@ -41,6 +41,9 @@ class RunTotals {
                  const scheduler::Executor& executor, double wall_seconds) const;
 
   double revolutions() const { return revolutions_; }
+  /// The stored energy (bearing::PowerTerms::stored_energy) at the first and the last sample [J].
+  double stored_energy_initial() const { return stored_initial_; }
+  double stored_energy_final() const { return stored_final_; }
   long steps(const numerics::IntegratorStatistics& current) const { return finished_.steps + current.steps; }
 
  private:
@@ -49,6 +52,7 @@ class RunTotals {
   const scene::RingSpec* drive_;
   // Over all samples.
   double energy_initial_ = 0, energy_final_ = 0, energy_max_drift_ = 0;
+  double stored_initial_ = 0, stored_final_ = 0;
   long samples_ = 0;
   // Of turn_to().
   double revolutions_ = 0, last_t_ = 0;

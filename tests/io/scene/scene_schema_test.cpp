@@ -44,9 +44,9 @@ TEST(SceneSchema, SectionsAreContiguousAndKeysUnique) {
 }
 
 TEST(SceneSchema, EveryRowCanBeStored) {
-  std::set<std::string_view> reachable = {"scene",   "materials.*", "bearing", "cage",   "*_ring", "rolling_element",
-                                          "housing", "carrier",     "lubricant", "life", "contact", "solver",
-                                          "output"};
+  std::set<std::string_view> reachable = {"scene",     "materials.*", "bearing", "cage",      "*_ring",
+                                          "rolling_element", "housing", "carrier", "lubricant", "thermal",
+                                          "life",      "contact",     "solver",  "output"};
   for (const Row& row : scene_rows()) {
     SCOPED_TRACE(std::string(row.section) + "." + std::string(row.key));
     if (row.kind == ValueKind::table) {

@@ -261,8 +261,8 @@ PY
     "$source_dir/jobs/scenes/default.toml" >"$work/huge.toml"
   for command in check run; do
     if [[ $command == run ]]; then run run "$work/huge.toml" -o "$work/huge.h5"; else run check "$work/huge.toml"; fi
-    [[ $rc -eq 2 ]] || fail "$command of a 58 GB output: exit code $rc, expected 2"
-    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 5[89].[0-9] GB \(2e\+07 samples.*x 366 values x 8 bytes, \+ [0-9.]+ [kMG]?B of names, attributes and indexes\), more than \[output\] max_size = 4 GB" "$work/err" ||
+    [[ $rc -eq 2 ]] || fail "$command of a 61 GB output: exit code $rc, expected 2"
+    grep -qE "huge.toml:[0-9]+: key 'scene.output_interval': the output would be 6[01].[0-9] GB \(2e\+07 samples.*x 378 values x 8 bytes, \+ [0-9.]+ [kMG]?B of names, attributes and indexes\), more than \[output\] max_size = 4 GB" "$work/err" ||
       fail "$command: no size, key and limit in: $(cat "$work/err")"
   done
   [[ -e "$work/huge.h5" || -e "$work/huge.h5.partial" ]] && fail "a refused run created an output file"

@@ -5,7 +5,7 @@ and the root carries the layout version, the build and the bearing attributes. T
 with the raceway package (io/report/raceway, the reader users are pointed to).
 
     output_layout_test.py CASE RACEWAY SOURCE_DIR [BUILD_DIR]
-        CASE: planar, spatial, spatial_rollers, planar_bridges   one run each against the documented tables
+        CASE: planar, spatial, spatial_rollers, planar_bridges, thermal   one run each against the documented tables
               shared_names                      a planar and a spatial run speak one dialect
               previous                          the committed layout version 2 files
                                                 (tests/system/run/layout_v2) read under version 3's names
@@ -316,7 +316,11 @@ def main():
         "planar_bridges": ("seed003_flexible_bridges.toml", "0.3 ms",
                            ["Planar (roller-bearing) runs",
                             'Flexible cage bridges (planar runs with `[cage] bridges = "flexible"`)']),
+        "thermal": ("6205_first_scene.toml", "1 ms",
+                    ["Spatial (ball-bearing) runs", "Thermal network (runs with a `[thermal]` section)"]),
     }[case]
+    extra = "\n[thermal]\n" if case == "thermal" else ""
+    sections.append("Power balance (every run)")
     sections.append("Scheduler (`/scheduler`, runs on several ranks or with `--scheduler-log`)")
     tables = documented_tables(doc)
     for title in sections:
@@ -326,7 +330,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         text = open(os.path.join(source, "jobs", "scenes", scene_file), encoding="utf-8").read()
         scene = os.path.join(work, "scene.toml")
-        open(scene, "w", encoding="utf-8").write(re.sub(r"(?m)^end_time = .*$", f'end_time = "{end}"', text))
+        open(scene, "w", encoding="utf-8").write(re.sub(r"(?m)^end_time = .*$", f'end_time = "{end}"', text) + extra)
         out = os.path.join(work, "out.h5")
         run = subprocess.run([raceway, "run", scene, "-o", out, "--scheduler-log"], capture_output=True, text=True,
                              timeout=300)
