@@ -9,10 +9,6 @@ namespace raceway::numerics {
 OrderChoice::OrderChoice(double t0, OrderChoiceSettings settings)
     : settings_(settings), current_(settings.high_order), gap_(settings.first_probe), last_t_(t0), window_t_(t0) {}
 
-double OrderChoice::rate_since(double t0, double cost0) const {
-  return cost_ > cost0 ? (last_t_ - t0) / (cost_ - cost0) : 0.0;
-}
-
 int OrderChoice::after_step(double t, long rhs, long jacobians) {
   if (order() == settings_.low_order) time_low_ += t - last_t_;
   last_t_ = t;
@@ -25,45 +21,48 @@ int OrderChoice::after_step(double t, long rhs, long jacobians) {
   return order();
 }
 
-// At the current order: after `settle` steps, windows of `window` steps, each one's rate kept;
-// once `gap_` steps have passed (and a window is complete) the other order is probed.
+// At the current order: after `settle` steps, windows of `window` steps, the last complete one
+// kept (its time span and work); once `gap_` steps have passed (and a window is complete) the
+// other order is probed.
 void OrderChoice::run_step(double cost) {
   const long measured = steps_in_phase_ - settings_.settle;
   if (measured == 0) window_t_ = last_t_, window_cost_ = cost;
   if (measured > 0 && measured % settings_.window == 0) {
-    current_rate_ = rate_since(window_t_, window_cost_);
+    reference_span_ = last_t_ - window_t_, reference_cost_ = cost - window_cost_;
     window_t_ = last_t_, window_cost_ = cost;
   }
-  if (steps_in_phase_ >= gap_ && current_rate_ > 0) {
-    phase_ = Phase::probe_settle;
+  if (steps_in_phase_ >= gap_ && reference_cost_ > 0) {
+    phase_ = Phase::probe;
     steps_in_phase_ = 0;
+    window_t_ = last_t_, window_cost_ = cost;
     ++probes_;
   }
 }
 
-// At the other order: `settle` steps, then one window; its rate against the current order's.
+// At the other order, over the time span of the current order's last window: the probe wins when
+// it covers that span for less than the window's work divided by the gain, and loses as soon as it
+// has spent that much (so a probe never costs more than a window of the current order). The
+// probe's work includes its start (a restart where the order is lowered), as a switch's would.
 void OrderChoice::probe_step(double t, double cost) {
-  if (phase_ == Phase::probe_settle) {
-    if (steps_in_phase_ < settings_.settle) return;
-    phase_ = Phase::probe_measure;
-    steps_in_phase_ = 0;
-    window_t_ = t, window_cost_ = cost;
+  if (steps_in_phase_ <= settings_.probe_settle) {
+    window_t_ = t, window_cost_ = cost;  // the probe's start is not measured
     return;
   }
-  if (steps_in_phase_ < settings_.window) return;
-  const double probe_rate = rate_since(window_t_, window_cost_);
-  if (probe_rate > settings_.gain * current_rate_) {
-    pending_.push_back({t, other(), current_rate_, probe_rate});
+  const double span = t - window_t_, spent = cost - window_cost_;
+  const bool lost = spent * settings_.gain >= reference_cost_;
+  if (!lost && span < reference_span_) return;
+  if (!lost) {
+    pending_.push_back({t, other(), reference_span_ / reference_cost_, span / spent});
     current_ = other();
     ++switches_;
     last_switch_time_ = t;
-    gap_ = settings_.first_probe;
+    gap_ = current_ == settings_.low_order ? settings_.first_probe_at_low : settings_.first_probe;
   } else {
     gap_ = std::min(2 * gap_, settings_.longest_gap);
   }
   phase_ = Phase::run;
   steps_in_phase_ = 0;
-  current_rate_ = 0;
+  reference_span_ = reference_cost_ = 0;
 }
 
 std::vector<OrderSwitch> OrderChoice::take_switches() {
@@ -92,7 +91,8 @@ void OrderChoice::save(std::map<std::string, double>& values) const {
   put("cost", cost_);
   put("window_t", window_t_);
   put("window_cost", window_cost_);
-  put("current_rate", current_rate_);
+  put("reference_span", reference_span_);
+  put("reference_cost", reference_cost_);
   put("probes", static_cast<double>(probes_));
   put("switches", static_cast<double>(switches_));
   put("time_low", time_low_);
@@ -113,7 +113,8 @@ void OrderChoice::restore(const std::map<std::string, double>& values) {
   cost_ = get("cost");
   window_t_ = get("window_t");
   window_cost_ = get("window_cost");
-  current_rate_ = get("current_rate");
+  reference_span_ = get("reference_span");
+  reference_cost_ = get("reference_cost");
   probes_ = static_cast<long>(get("probes"));
   switches_ = static_cast<long>(get("switches"));
   time_low_ = get("time_low");

@@ -21,11 +21,16 @@ namespace raceway::numerics {
 struct OrderChoiceSettings {
   int high_order = 5;   ///< the scene's max_order
   int low_order = 2;    ///< A-stable BDF2
-  long settle = 50;     ///< steps after a change of order before anything is measured
-  long window = 100;    ///< steps measured per window (the current order's and a probe's)
-  long first_probe = 200;    ///< steps at an order before the first probe of the other one
+  long settle = 50;     ///< steps after a change of order before its windows are measured
+  long probe_settle = 100;  ///< steps of a probe before it is measured (the change of order's transient)
+  long window = 100;    ///< steps per window of the current order (a probe covers the last one's time span)
+  long first_probe = 200;    ///< steps at the high order before the first probe of the low one
+  /// Steps at the low order before the first probe of the high one: longer, since such a probe
+  /// re-excites what the low order damped, and one that loses restarts the method.
+  long first_probe_at_low = 1600;
   long longest_gap = 6400;   ///< the gap between probes doubles after each probe that loses, up to this
-  /// The probed order is taken when it advances the time this many times further per unit of work.
+  /// The probed order is taken when it covers the current order's last window for this many times
+  /// less work.
   double gain = 1.3;
   /// Work of one Jacobian in right-hand sides (its forward differences: one contact evaluation per
   /// perturbed column, about ten per contact).
@@ -66,11 +71,10 @@ class OrderChoice {
   void restore(const std::map<std::string, double>& values);
 
  private:
-  enum class Phase { run, probe_settle, probe_measure };
+  enum class Phase { run, probe };
   int other() const { return current_ == settings_.high_order ? settings_.low_order : settings_.high_order; }
   void run_step(double cost);
   void probe_step(double t, double cost);
-  double rate_since(double t0, double cost0) const;
 
   OrderChoiceSettings settings_;
   Phase phase_ = Phase::run;
@@ -79,7 +83,7 @@ class OrderChoice {
   long gap_;                  // steps at the current order before the next probe
   double last_t_ = 0, cost_ = 0;            // the last step's end; work so far (rhs units)
   double window_t_ = 0, window_cost_ = 0;   // where the window being measured began
-  double current_rate_ = 0;                 // the current order's last complete window; 0: none yet
+  double reference_span_ = 0, reference_cost_ = 0;  // the current order's last complete window; 0: none yet
   long probes_ = 0, switches_ = 0;
   double time_low_ = 0, last_switch_time_ = 0;
   std::vector<OrderSwitch> pending_;
