@@ -185,7 +185,7 @@ constexpr Row kRows[] = {
      .def = derived(automatic_order_default, "true for bdf unless max_order is given"), .when = bdf_order_choice,
      .then = automatic_order_has_choice, .otherwise = 0,
      .meaning = "bdf: the largest order switches between max_order and 2 (A-stable) by measured probes of the other "
-                "order, where one advances the time 1.3 times further per unit of work (docs/integration_methods.md)"},
+                "order, where one advances the time 1.5 times further per unit of work (docs/integration_methods.md)"},
     {.section = "solver", .key = "stability_limit_detection", .kind = boolean,
      .field = FIELD(scene.solver.stability_limit_detection), .def = value(0), .when = bdf_only, .otherwise = 0,
      .meaning = "CVODE's BDF stability-limit detection: lowers the order where order 3 to 5 is unstable"},

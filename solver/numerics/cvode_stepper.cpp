@@ -77,6 +77,7 @@ class CvodeStepper final : public TimeStepper {
       sunrealtype t = 0, h = 0;
       check(CVodeGetCurrentTime(mem_, &t), "CVodeGetCurrentTime");
       check(CVodeGetLastStep(mem_, &h), "CVodeGetLastStep");
+      check(CVodeGetDky(mem_, t, 0, y), "CVodeGetDky");  // the state at the last step's end, exactly
       check(CVodeReInit(mem_, t, y), "CVodeReInit");
       if (h > 0) check(CVodeSetInitStep(mem_, h), "CVodeSetInitStep");
     }

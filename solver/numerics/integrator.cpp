@@ -213,6 +213,9 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
   // normal mode does inside, with the accounting of each accepted step in between.
   for (long taken = 0; s.stepper->time() < t_out; ++taken) {
     if (taken >= per_call) throw IntegrationFailure(s.diagnose(0, true));
+    // A change of the largest order takes effect before the next step (not after the last one: a
+    // restart there would leave no interpolant for t_out).
+    if (s.choice && s.choice->order() != s.applied_order) s.apply_order(s.choice->order());
     if (s.limits_steps) s.limit_next_step();
     double t_reached = 0;
     const int flag = s.stepper->step(t_out, s.y, t_reached);
@@ -320,9 +323,8 @@ void Integrator::Impl::apply_order(int order) {
 
 void Integrator::Impl::follow_order_choice(double t) {
   const IntegratorStatistics st = totals();
-  const int order = choice->after_step(t, st.rhs_evaluations - counted_rhs, st.jacobian_evaluations - counted_jacobians);
+  choice->after_step(t, st.rhs_evaluations - counted_rhs, st.jacobian_evaluations - counted_jacobians);
   counted_rhs = st.rhs_evaluations, counted_jacobians = st.jacobian_evaluations;
-  if (order != applied_order) apply_order(order);
 }
 
 void Integrator::set_order_choice(OrderChoice* choice) {

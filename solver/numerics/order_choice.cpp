@@ -44,7 +44,7 @@ void OrderChoice::run_step(double cost) {
 // has spent that much (so a probe never costs more than a window of the current order). The
 // probe's work includes its start (a restart where the order is lowered), as a switch's would.
 void OrderChoice::probe_step(double t, double cost) {
-  if (steps_in_phase_ <= settings_.probe_settle) {
+  if (other() == settings_.low_order && steps_in_phase_ <= settings_.probe_settle) {
     window_t_ = t, window_cost_ = cost;  // the probe's start is not measured
     return;
   }
@@ -56,10 +56,8 @@ void OrderChoice::probe_step(double t, double cost) {
     current_ = other();
     ++switches_;
     last_switch_time_ = t;
-    gap_ = current_ == settings_.low_order ? settings_.first_probe_at_low : settings_.first_probe;
-  } else {
-    gap_ = std::min(2 * gap_, settings_.longest_gap);
   }
+  gap_ = std::min(2 * gap_, settings_.longest_gap);
   phase_ = Phase::run;
   steps_in_phase_ = 0;
   reference_span_ = reference_cost_ = 0;

@@ -22,16 +22,17 @@ struct OrderChoiceSettings {
   int high_order = 5;   ///< the scene's max_order
   int low_order = 2;    ///< A-stable BDF2
   long settle = 50;     ///< steps after a change of order before its windows are measured
-  long probe_settle = 100;  ///< steps of a probe before it is measured (the change of order's transient)
+  /// Steps of a probe of the low order before it is measured: the restart's transient, the damping
+  /// of what the high order kept alive. A probe of the high order is measured from its first step.
+  long probe_settle = 100;
   long window = 100;    ///< steps per window of the current order (a probe covers the last one's time span)
   long first_probe = 200;    ///< steps at the high order before the first probe of the low one
-  /// Steps at the low order before the first probe of the high one: longer, since such a probe
-  /// re-excites what the low order damped, and one that loses restarts the method.
-  long first_probe_at_low = 1600;
-  long longest_gap = 6400;   ///< the gap between probes doubles after each probe that loses, up to this
+  /// The gap between probes doubles after each probe, won or lost, up to this: the probes cost a
+  /// bounded share of the run, and a run settles on the order its regime wants.
+  long longest_gap = 6400;
   /// The probed order is taken when it covers the current order's last window for this many times
   /// less work.
-  double gain = 1.3;
+  double gain = 1.5;
   /// Work of one Jacobian in right-hand sides (its forward differences: one contact evaluation per
   /// perturbed column, about ten per contact).
   double jacobian_cost = 10;
