@@ -27,9 +27,9 @@ struct OrderChoiceSettings {
   long probe_settle = 100;
   long window = 100;    ///< steps per window of the current order (a probe covers the last one's time span)
   long first_probe = 200;    ///< steps at the high order before the first probe of the low one
-  /// The gap between probes doubles after each probe, won or lost, up to this: the probes cost a
-  /// bounded share of the run, and a run settles on the order its regime wants.
-  long longest_gap = 6400;
+  /// The gap between probes doubles after each probe, won or lost, up to this: a run of N steps
+  /// makes about log2(N / first_probe) probes, and settles on the order its regime wants.
+  long longest_gap = 1L << 40;
   /// The probed order is taken when it covers the current order's last window for this many times
   /// less work.
   double gain = 1.5;
