@@ -168,7 +168,7 @@ TEST(OrderChoice, StiffRealDecayKeepsOrderFive) {
   EXPECT_EQ(automatic.order, 5);
   EXPECT_EQ(automatic.switches, 0);
   EXPECT_LT(order5.steps, order2.steps) << "order 5: " << order5.steps << ", order 2: " << order2.steps;
-  EXPECT_LE(automatic.steps, order5.steps * 1.15);
+  EXPECT_LE(static_cast<double>(automatic.steps), static_cast<double>(order5.steps) * 1.15);
 }
 
 }  // namespace
