@@ -362,6 +362,9 @@ struct SolverSpec {
   IntegrationMethod method = IntegrationMethod::bdf;
   int max_order = 5;                 ///< bdf, adams: largest order; erk, ark: the order of the pair
   bool stability_limit_detection = false;  ///< bdf: CVODE's BDF stability-limit detection (order 3 and up)
+  /// bdf: the largest order chosen during the run between max_order and 2 by measured probes
+  /// (solver/numerics/order_choice.hpp); the scene's default unless it gives max_order.
+  bool automatic_order = false;
   double rtol = 1e-6;
   /// Tolerances this many times tighter on a rolling element and the cage while the element touches
   /// its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).

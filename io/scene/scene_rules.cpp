@@ -79,6 +79,9 @@ const MethodOrders& orders_of(IntegrationMethod m) {
 }  // namespace
 std::optional<double> max_order_default(const Bind& b) { return orders_of(b.scene.solver.method).default_order; }
 long max_order_limit(const Bind& b) { return orders_of(b.scene.solver.method).largest_order; }
+std::optional<double> automatic_order_default(const Bind& b) {
+  return b.scene.solver.method == IntegrationMethod::bdf && b.scene.line_of("solver.max_order") == 0 ? 1.0 : 0.0;
+}
 
 // ---- conditions --------------------------------------------------------------------------------
 
@@ -178,6 +181,11 @@ std::optional<std::string> traction_law_on(const Section&, const Bind& b) {
 std::optional<std::string> bdf_only(const Section&, const Bind& b) {
   if (b.scene.solver.method == IntegrationMethod::bdf) return std::nullopt;
   return "only for method = \"bdf\": the stability-limit detection watches CVODE's BDF orders 3 to 5";
+}
+
+std::optional<std::string> bdf_order_choice(const Section&, const Bind& b) {
+  if (b.scene.solver.method == IntegrationMethod::bdf) return std::nullopt;
+  return "only for method = \"bdf\": it chooses between BDF's orders up to max_order and the A-stable BDF2";
 }
 
 // ---- checks after a key is read ----------------------------------------------------------------
@@ -499,6 +507,14 @@ void order_exists_for_method(const Row& row, const Section& s, Bind& b) {
     s.fail(row.key, fmt::format("method \"erk\" has explicit Runge-Kutta pairs of order 2, 3, 4, 5, 6 and 8, not {}", order));
   if (spec.method == IntegrationMethod::ark && order < 2)
     s.fail(row.key, fmt::format("method \"ark\" has implicit Runge-Kutta pairs of order 2 to 5, not {}", order));
+}
+
+void automatic_order_has_choice(const Row& row, const Section& s, Bind& b) {
+  const SolverSpec& spec = b.scene.solver;
+  if (spec.automatic_order && spec.max_order < 3)
+    s.fail(row.key, fmt::format("the automatic order chooses between max_order and 2, but max_order is {}: give "
+                                "max_order = 3 or more, or automatic_order = false",
+                                spec.max_order));
 }
 
 // ---- across sections ---------------------------------------------------------------------------

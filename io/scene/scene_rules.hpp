@@ -36,6 +36,8 @@ std::optional<double> max_order_default(const Bind& b);
 std::optional<double> slices_default(const Bind& b);
 std::optional<double> end_radius_default(const Bind& b);
 long max_order_limit(const Bind& b);
+// On for bdf unless the scene gives max_order.
+std::optional<double> automatic_order_default(const Bind& b);
 
 // ---- conditions: why a key does not apply here, or nullopt -------------------------------------
 std::optional<std::string> four_point_only(const Section& s, const Bind& b);
@@ -63,6 +65,7 @@ std::optional<std::string> tilt_support_needs_free_tilt(const Section& s, const 
 std::optional<std::string> damping_law_on(const Section& s, const Bind& b);
 std::optional<std::string> traction_law_on(const Section& s, const Bind& b);
 std::optional<std::string> bdf_only(const Section& s, const Bind& b);
+std::optional<std::string> bdf_order_choice(const Section& s, const Bind& b);
 
 // ---- checks after a key is read ----------------------------------------------------------------
 void allowed_keys_in_scene(const Row& row, const Section& s, Bind& b);
@@ -103,6 +106,8 @@ void traction_fits_normal_law(const Row& row, const Section& s, Bind& b);
 void rolling_resistance_has_film(const Row& row, const Section& s, Bind& b);
 void remember_petsc_options_place(const Row& row, const Section& s, Bind& b);
 void order_exists_for_method(const Row& row, const Section& s, Bind& b);
+// The automatic order chooses between max_order and 2: max_order must be 3 or more.
+void automatic_order_has_choice(const Row& row, const Section& s, Bind& b);
 
 // ---- the race's imperfections and the housing (imperfection_rules.cpp) -------------------------
 void spall_given(const Row& row, const Section& s, Bind& b);

@@ -240,6 +240,11 @@ constexpr Row kRows[] = {
      .then = order_exists_for_method,
      .meaning = "bdf, adams: largest order; erk: order of the pair (2, 3, 4, 5 Dormand-Prince, 6 Verner, 8 Fehlberg); "
                 "ark: order of the implicit pair (2 to 5)"},
+    {.section = "solver", .key = "automatic_order", .kind = boolean, .field = FIELD(scene.solver.automatic_order),
+     .def = derived(automatic_order_default, "true for bdf unless max_order is given"), .when = bdf_order_choice,
+     .then = automatic_order_has_choice, .otherwise = 0,
+     .meaning = "bdf: the largest order switches between max_order and 2 (A-stable) by measured probes of the other "
+                "order, where one advances the time 1.5 times further per unit of work (docs/integration_methods.md)"},
     {.section = "solver", .key = "stability_limit_detection", .kind = boolean,
      .field = FIELD(scene.solver.stability_limit_detection), .def = value(0), .when = bdf_only, .otherwise = 0,
      .meaning = "CVODE's BDF stability-limit detection: lowers the order where order 3 to 5 is unstable"},

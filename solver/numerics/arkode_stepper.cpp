@@ -123,6 +123,9 @@ class ArkodeStepper final : public TimeStepper {
   bool local_errors(N_Vector error, N_Vector weights) const override {
     return calls_.local_errors(mem_, error) == ARK_SUCCESS && calls_.error_weights(mem_, weights) == ARK_SUCCESS;
   }
+  bool set_max_order(int, N_Vector) override {
+    throw std::logic_error("the automatic order is for CVODE's BDF only");
+  }
   IntegratorStatistics statistics() const override {
     IntegratorStatistics st;
     calls_.steps(mem_, &st.steps);

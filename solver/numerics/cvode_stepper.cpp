@@ -69,6 +69,21 @@ class CvodeStepper final : public TimeStepper {
     if (bdf_) CVodeGetNumStabLimOrderReds(mem_, &st.stability_order_reductions);
     return st;
   }
+  bool set_max_order(int order, N_Vector y) override {
+    int next = 0;
+    check(CVodeGetCurrentOrder(mem_, &next), "CVodeGetCurrentOrder");
+    const bool restart = next > order;
+    if (restart) {
+      sunrealtype t = 0, h = 0;
+      check(CVodeGetCurrentTime(mem_, &t), "CVodeGetCurrentTime");
+      check(CVodeGetLastStep(mem_, &h), "CVodeGetLastStep");
+      check(CVodeGetDky(mem_, t, 0, y), "CVodeGetDky");  // the state at the last step's end, exactly
+      check(CVodeReInit(mem_, t, y), "CVodeReInit");
+      if (h > 0) check(CVodeSetInitStep(mem_, h), "CVodeSetInitStep");
+    }
+    check(CVodeSetMaxOrd(mem_, order), "CVodeSetMaxOrd");
+    return restart;
+  }
   double attempted_step() const override {
     sunrealtype h = 0;
     CVodeGetCurrentStep(mem_, &h);

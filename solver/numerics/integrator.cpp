@@ -141,6 +141,16 @@ struct Integrator::Impl {
     self->last_message = fmt::format("{} {} (code {}): {}", module, function, code, msg);
   }
 
+  // The automatic order ([solver] automatic_order): the choice (not owned), the order applied, the
+  // counters of the methods restarted by lowering it, the work counted so far.
+  OrderChoice* choice = nullptr;
+  int applied_order = 0;
+  IntegratorStatistics carried;
+  long counted_rhs = 0, counted_jacobians = 0;
+  IntegratorStatistics totals() const;
+  void apply_order(int order);
+  void follow_order_choice(double t);
+
   void record_step_error();
   std::string diagnose(int flag, bool budget_exhausted) const;
 };
@@ -198,11 +208,14 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
   ScopedTimer timer(s.timing.total);
   // Guard against a run that crawls: at most 200000 steps per output interval, and the scene's
   // total budget. Either ends the run with a diagnosis, never a hang.
-  const long per_call = std::min<long>(200000, std::max<long>(1, s.steps_budget - s.stepper->statistics().steps));
+  const long per_call = std::min<long>(200000, std::max<long>(1, s.steps_budget - s.totals().steps));
   // One internal step at a time until t_out is reached, then the interpolant there: what CVODE's
   // normal mode does inside, with the accounting of each accepted step in between.
   for (long taken = 0; s.stepper->time() < t_out; ++taken) {
     if (taken >= per_call) throw IntegrationFailure(s.diagnose(0, true));
+    // A change of the largest order takes effect before the next step (not after the last one: a
+    // restart there would leave no interpolant for t_out).
+    if (s.choice && s.choice->order() != s.applied_order) s.apply_order(s.choice->order());
     if (s.limits_steps) s.limit_next_step();
     double t_reached = 0;
     const int flag = s.stepper->step(t_out, s.y, t_reached);
@@ -210,6 +223,7 @@ void Integrator::advance_to(double t_out, std::vector<double>& z) {
     if (flag < 0) throw IntegrationFailure(s.diagnose(flag, false));
     s.stepped = true;
     s.record_step_error();
+    if (s.choice) s.follow_order_choice(t_reached);
     if (s.step_observer) s.step_observer();
   }
   const int flag = s.stepper->interpolate(t_out, s.y);
@@ -250,7 +264,7 @@ void Integrator::Impl::record_step_error() {
 }
 
 std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
-  const IntegratorStatistics st = stepper->statistics();
+  const IntegratorStatistics st = totals();
   const std::string what =
       out_of_wall_time ? fmt::format("wall-time budget exhausted ({:.4g} s of [solver] max_wall_time = {:g} s)",
                                      wall_seconds(), spec.max_wall_time)
@@ -282,7 +296,46 @@ std::string Integrator::Impl::diagnose(int flag, bool budget_exhausted) const {
 
 void Integrator::set_step_observer(std::function<void()> observer) { impl_->step_observer = std::move(observer); }
 
-IntegratorStatistics Integrator::statistics() const { return impl_->stepper->statistics(); }
+IntegratorStatistics Integrator::statistics() const { return impl_->totals(); }
+
+IntegratorStatistics Integrator::Impl::totals() const {
+  IntegratorStatistics st = stepper->statistics();
+  st.steps += carried.steps;
+  st.rhs_evaluations += carried.rhs_evaluations;
+  st.jacobian_evaluations += carried.jacobian_evaluations;
+  st.linear_setups += carried.linear_setups;
+  st.newton_iterations += carried.newton_iterations;
+  st.newton_failures += carried.newton_failures;
+  st.error_test_failures += carried.error_test_failures;
+  st.stability_order_reductions += carried.stability_order_reductions;
+  return st;
+}
+
+void Integrator::Impl::apply_order(int order) {
+  const IntegratorStatistics before = totals();
+  if (stepper->set_max_order(order, y)) {  // restarted: its counters start again
+    carried = before;
+    carried.last_order = 0, carried.last_step = 0;
+    stepped = false;
+  }
+  applied_order = order;
+}
+
+void Integrator::Impl::follow_order_choice(double t) {
+  const IntegratorStatistics st = totals();
+  choice->after_step(t, st.rhs_evaluations - counted_rhs, st.jacobian_evaluations - counted_jacobians);
+  counted_rhs = st.rhs_evaluations, counted_jacobians = st.jacobian_evaluations;
+}
+
+void Integrator::set_order_choice(OrderChoice* choice) {
+  Impl& s = *impl_;
+  if (s.spec.method != scene::IntegrationMethod::bdf) throw std::logic_error("the automatic order is for BDF only");
+  s.choice = choice;
+  s.applied_order = s.spec.max_order;
+  const IntegratorStatistics st = s.totals();
+  s.counted_rhs = st.rhs_evaluations, s.counted_jacobians = st.jacobian_evaluations;
+  if (choice->order() != s.applied_order) s.apply_order(choice->order());
+}
 const StepLimitingStates& Integrator::step_limiting_states() const { return impl_->limiting; }
 const IntegratorTiming& Integrator::timing() const { return impl_->timing; }
 std::string Integrator::method_name() const { return impl_->stepper->method_name(); }

@@ -20,6 +20,7 @@
 #include "io/scene/scene.hpp"
 #include "solver/numerics/dynamic_system.hpp"
 #include "solver/numerics/newton_backends.hpp"
+#include "solver/numerics/order_choice.hpp"
 
 namespace raceway::numerics {
 
@@ -85,6 +86,10 @@ class Integrator {
   /// step's time, a Runge-Kutta step's last stage). Jacobians do not touch a system's rhs records;
   /// nothing is evaluated for the observer.
   void set_step_observer(std::function<void()> observer);
+  /// BDF: the largest order follows `choice` (not owned; solver/numerics/order_choice.hpp), which
+  /// sees every accepted step's time and work. Before the first step. Lowering the order below the
+  /// one in use restarts CVODE at the last step (statistics() counts on across it).
+  void set_order_choice(OrderChoice* choice);
   IntegratorStatistics statistics() const;
   const StepLimitingStates& step_limiting_states() const;
   const IntegratorTiming& timing() const;

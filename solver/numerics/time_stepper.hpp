@@ -58,6 +58,11 @@ class TimeStepper {
   /// integrator cannot give them yet.
   virtual bool local_errors(N_Vector error, N_Vector weights) const = 0;
   virtual IntegratorStatistics statistics() const = 0;
+  /// BDF, Adams: the largest order of the next steps. A lower bound than the order in use restarts
+  /// the method at the last step's end (its state into `y`; order 1, its first step the last step's size:
+  /// CVODE lowers its order only one at a time); returns true when it restarted (the counters then
+  /// start again from 0). Not for the Runge-Kutta methods (throws).
+  virtual bool set_max_order(int order, N_Vector y) = 0;
   virtual double attempted_step() const = 0;
   /// SUNDIALS' name of a return flag ("CV_ERR_FAILURE", "ARK_TOO_MUCH_WORK").
   virtual std::string flag_name(int flag) const = 0;

@@ -65,6 +65,7 @@ json::JsonObject RunSummary::to_json() const {
   j.add("energy_max_drift_j", energy_max_drift_j);
   j.add("output_samples", static_cast<long long>(output_samples));
   j.add("method", method);
+  j.add("order_choice", order_choice);
   j.add("step_limiting_states", step_limiting_json(step_limiting));
   j.add("time_split_s", time_split_json(timing, output_seconds, wall_time_s));
   j.add("output_time_s", output_seconds);
@@ -260,6 +261,10 @@ class RunLoop {
   std::optional<h5::H5SeriesWriter> file_;
   std::optional<OutputWriter> out_;
   std::unique_ptr<numerics::Integrator> integrator_;
+  // [solver] automatic_order: BDF's largest order chosen during the run (solver/numerics/order_choice.hpp);
+  // kept across the integrator's restarts and in the checkpoints.
+  std::optional<numerics::OrderChoice> order_choice_;
+  void log_order_switches();
   std::vector<double> z_, zdot_, restart_times_;
   double output_seconds_ = 0, last_checkpoint_wall_ = 0;
   double diagnostics_seconds_ = 0;  // of output_seconds_: the right-hand sides at output times
@@ -313,6 +318,7 @@ void RunLoop::checkpoint(CheckpointKind kind, long sample, double t) {
   totals_.save(cp, integrator_->statistics(), eq_, executor_, wall());
   pockets_.save(cp);
   power_.save(cp);
+  if (order_choice_) order_choice_->save(cp.values);
   write_checkpoint(checkpoint_path(options_.output_path), cp);
   if (kind == CheckpointKind::periodic) {  // every run restarts CVODE here: a resume repeats it bitwise
     totals_.add_finished_integrator(integrator_->statistics());
@@ -333,6 +339,8 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   // The integrator since the last restart (a checkpoint restarts it): its method, the states that
   // limit its step and the split of its time.
   sum.method = integrator_->method_name();
+  sum.order_choice = order_choice_ ? order_choice_->description()
+                                   : fmt::format("fixed: max_order = {}", scene_.solver.max_order);
   sum.step_limiting = step_limiting_classes(model_, integrator_->step_limiting_states());
   sum.timing = integrator_->timing();
   sum.output_seconds = output_seconds_;
@@ -356,8 +364,18 @@ RunSummary RunLoop::finish(double t, bool rethrow) {
   return sum;
 }
 
+void RunLoop::log_order_switches() {
+  if (!order_choice_) return;
+  for (const numerics::OrderSwitch& sw : order_choice_->take_switches())
+    if (options_.on_info)
+      options_.on_info(fmt::format("automatic order: BDF order at most {} from t = {:.6g} s (it advanced {:.3g} s per "
+                                   "unit of work against {:.3g} s at the order left)",
+                                   sw.to_order, sw.time, sw.probe_rate, sw.current_rate));
+}
+
 void RunLoop::start_integrator(double t) {
   integrator_ = std::make_unique<numerics::Integrator>(eq_, scene_.solver, t, z_);
+  if (order_choice_) integrator_->set_order_choice(&*order_choice_);
   // The last right-hand side of an accepted step is the integrator's own: a sample's (write_sample
   // on eq_) comes after advance_to() returns, and every step evaluates the right-hand side again.
   sensor_.restart(t);
@@ -394,6 +412,14 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     sample_executor_.attach(sample_eq_->task_catalogue());
     sample_zdot_.resize(static_cast<std::size_t>(model_.state_size));
     totals_.count_also(*sample_eq_, sample_executor_);
+  }
+  if (scene_.solver.automatic_order) {
+    order_choice_.emplace(t0, numerics::OrderChoiceSettings{.high_order = scene_.solver.max_order});
+    if (resumed) order_choice_->restore(resumed->values);
+    if (options_.on_info)
+      options_.on_info(resumed ? "automatic order: continues from the checkpoint: " + order_choice_->description()
+                               : fmt::format("automatic order: BDF order at most {}, probing order 2 after {} steps",
+                                             scene_.solver.max_order, numerics::OrderChoiceSettings{}.first_probe));
   }
   if (resumed) {
     totals_.restore(*resumed, eq_, executor_);
@@ -443,6 +469,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
       file_->flush();
       throw;  // the .partial file stays, the previous output is untouched
     }
+    log_order_switches();
     record(t, i);
     t_last = t;
     if (options_.on_progress)

@@ -105,6 +105,8 @@ struct RunSummary {
   double energy_initial_j = 0, energy_final_j = 0, energy_max_drift_j = 0;
   int output_samples = 0;
   std::string method;                        ///< the integrator's method ("CVODE BDF", ...)
+  /// BDF's largest order: "fixed: max_order = 5", or the automatic choice's account (order_choice.hpp).
+  std::string order_choice;
   std::vector<StateClassShare> step_limiting;  ///< which states limit the step, largest share first
   numerics::IntegratorTiming timing;                   ///< where the integrator's time went
   /// The scene's keys set on the command line ("key": "value as given") and its resolved
