@@ -113,8 +113,13 @@ void Housing::add_energy(const Model&, double, const double* z, double& e) const
   }
 }
 
-double Housing::power_loss(const Model&, double, const double* z) const {
-  return damping_ * (z[state(2)] * z[state(2)] + z[state(3)] * z[state(3)]);
+double Housing::power_loss(const Model&, double, const double* z) const {  // sum_j c_j |q_j'|^2
+  double loss = 0;
+  for (int j = 0; j < mode_count(); ++j) {
+    const double vx = z[state(2, j)], vy = z[state(3, j)];
+    loss += modes_[static_cast<std::size_t>(j)].damping * (vx * vx + vy * vy);
+  }
+  return loss;
 }
 
 void Housing::initial_state(std::vector<double>& z) const {  // at rest, centred

@@ -194,6 +194,31 @@ TEST(HousingModes, FrequenciesSolveTheTwoDegreeOfFreedomProblem) {
   EXPECT_NEAR(housing_of(one.model)->frequencies().front(), std::sqrt(500e6 / (2.0 + mr)) / (2 * std::numbers::pi), 1e-6);
 }
 
+// The housing's energy (the modes' and the ring's riding on the seat) changes at the rate the force
+// on the ring does work on the seat less the dampers' loss: dE/dt = F . u' - sum_j c_j |q_j'|^2,
+// dE/dt by central differences along the rates, at an arbitrary state of the modes.
+TEST(HousingModes, EnergyChangesByTheForcesPowerLessTheDampersLoss) {
+  HousedBearing b(two_mode_scene_text());
+  const Housing* h = housing_of(b.model);
+  std::vector<double> z(b.start.size(), 0.0), zdot(b.start.size(), 0.0);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 4; ++i) z[static_cast<std::size_t>(h->state(i, j))] = (i < 2 ? 1e-6 : 0.3) * (1 + i + 3 * j) * (j ? -1 : 1);
+  const double forces[2] = {120.0, -450.0};
+  h->rates(b.model, 0.0, z.data(), forces, zdot.data());
+  const auto energy = [&](double step) {
+    std::vector<double> y = z;
+    for (std::size_t k = 0; k < y.size(); ++k) y[k] += step * zdot[k];
+    double e = 0;
+    h->add_energy(b.model, 0.0, y.data(), e);
+    return e;
+  };
+  const double step = 1e-7, rate = (energy(step) - energy(-step)) / (2 * step);
+  const double power = forces[0] * h->seat(z.data(), 2) + forces[1] * h->seat(z.data(), 3);
+  const double loss = h->power_loss(b.model, 0.0, z.data());
+  EXPECT_GT(loss, 0.0);
+  EXPECT_NEAR(rate, power - loss, 1e-6 * (std::abs(power) + loss));
+}
+
 // A ball outside the spall may step to its edge at its speed relative to the race, not further; one
 // within it a tenth of its passage.
 TEST(Housing, SpallStepLimitReachesTheEdge) {
