@@ -71,6 +71,11 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
     n = ring.rotation * rc.normal_local;
     point = ring.position + ring.rotation * rc.point_local;
   }
+  RaceHeight surface;
+  if (s.imperfections) {
+    surface = race_height(*s.imperfections, std::atan2(local.y(), local.x()) - ring.spin_angle, local.z());
+    approach += surface.height;
+  }
   out.diagnostics.approach = approach;
   if (!(approach > 0)) return out;
   if (approach > s.max_approach) out.valid = false;
@@ -78,7 +83,13 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
   const Vec3 v_ring = ring.velocity + ring.angular_velocity.cross(point - ring.position);
   const Vec3 v_roller = roller.velocity + roller.angular_velocity.cross(point - roller.position);
   const Vec3 relative = v_roller - v_ring;
-  const double approach_rate = -n.dot(relative);
+  double approach_rate = -n.dot(relative);
+  if (s.imperfections) {  // the surface's height passing under S: its azimuth rate in the ring's frame
+    const Vec3 centre_velocity = roller.velocity + roller.angular_velocity.cross(centre - roller.position);
+    const Vec3 local_rate = ring.rotation.transpose() *
+                            (centre_velocity - ring.velocity - ring.angular_velocity.cross(centre - ring.position));
+    approach_rate += surface.per_azimuth * (local.x() * local_rate.y() - local.y() * local_rate.x()) / (rho * rho);
+  }
 
   const double elastic = s.stiffness * std::pow(approach, palmgren_exponent);
   const DampedForce q = hunt_crossley(elastic, s.damping_factor, approach_rate);

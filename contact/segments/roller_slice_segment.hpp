@@ -27,8 +27,18 @@
 // to its surface measured along that normal, r(x) cos(gamma) for a roller cone of half angle gamma.
 // The contact_angle diagnostic is alpha (the normal's angle to the radial plane, in the ring frame).
 // alpha = 0 keeps the cylindrical arithmetic above, bit for bit.
+//
+// A race's imperfections (a spall, waviness: contact/laws/race_imperfections.hpp) move its surface
+// along the normal by a height at S's azimuth in the ring's own frame, the spall acting on the
+// slices whose centres lie within half its width of the race's middle (axial 0 in the ring frame);
+// the approach grows by the height and its rate by the height's change as S moves round the race.
+// The roller's radius limits its drop into a short spall as a ball's does (the rolling direction's
+// curvature). Without imperfections nothing changes, bit for bit.
 #pragma once
 
+#include <memory>
+
+#include "contact/laws/race_imperfections.hpp"
 #include "contact/laws/sliced_line_contact.hpp"
 #include "contact/segments/ball_segments.hpp"
 
@@ -45,6 +55,7 @@ struct RollerSliceSegment {
   double damping_factor = 0;  ///< s/m
   double max_approach = 0;    ///< m
   TractionCurve traction;
+  std::shared_ptr<const RaceImperfections> imperfections;  ///< the race's spall and waviness; null: perfect
 };
 
 /// Slice j of a sliced roller-race contact.

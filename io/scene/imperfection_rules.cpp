@@ -26,16 +26,16 @@ void spall_given(const Row&, const Section& s, Bind& b) {
   ring_angle_known(s, b, "spall");
   SpallSpec& spall = b.ring->spall;
   spall.present = true;
-  // The ball spacing on the race: a longer spall holds two balls at once, which the defect models
-  // (one ball entering, rolling over, leaving) do not describe.
+  // The rolling elements' spacing on the race: a longer spall holds two at once, which the defect
+  // models (one element entering, rolling over, leaving) do not describe.
   const BearingGeometry& g = b.scene.bearing;
   const bool inner = b.ring == &b.scene.inner_ring;
   const double race = inner ? g.inner_race_diameter() : g.outer_race_diameter();
   const double spacing = std::numbers::pi * race / g.rolling_elements;
   const Section table = s.sub("spall");
   table.check(spall.length < spacing, "length", [&] {
-    return fmt::format("a spall of {} is longer than the balls' spacing on the race ({}); one ball at a time rolls "
-                       "over a spall",
+    return fmt::format("a spall of {} is longer than the rolling elements' spacing on the race ({}); one at a time "
+                       "rolls over a spall",
                        mm(spall.length), mm(spacing));
   });
 }

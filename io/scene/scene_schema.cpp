@@ -348,27 +348,28 @@ constexpr Row kRows[] = {
      .meaning = "flexibility = \"ring_modes\": timoshenko (a thick ring: bending, extension and shear; modes n = "
                 "0, 1, 2..modes) or euler_bernoulli (a thin inextensional ring: bending modes n = 2..modes)"},
 
-    {.section = "*_ring", .key = "spall", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
-     .elsewhere = kBallOnly, .then = spall_given, .sub = "*_ring.spall",
+    {.section = "*_ring", .key = "spall", .kind = table, .field = nullptr, .def = absent, .bearings = spatial_bearings,
+     .elsewhere = kSpatialOnlyDefect, .then = spall_given, .sub = "*_ring.spall",
      .meaning = "a localized defect (spall) on the ring's race (docs/vibration.md)"},
-    {.section = "*_ring", .key = "waviness", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
-     .elsewhere = kBallOnly, .then = waviness_lists_match, .sub = "*_ring.waviness",
+    {.section = "*_ring", .key = "waviness", .kind = table, .field = nullptr, .def = absent, .bearings = spatial_bearings,
+     .elsewhere = kSpatialOnlyDefect, .then = waviness_lists_match, .sub = "*_ring.waviness",
      .meaning = "the race's waviness: radius deviation sum A_k cos(n_k theta + phase_k) (docs/vibration.md)"},
 
-    // ---- [*_ring.spall] and [*_ring.waviness]: the race's imperfections (ball bearings) ---------
+    // ---- [*_ring.spall] and [*_ring.waviness]: the race's imperfections (spatial scenes) --------
     {.section = "*_ring.spall", .key = "angle", .kind = number, .field = FIELD(ring->spall.angle), .dim = dim::angle,
      .bounds = kSpallAngle, .def = value(0), .example = "90 deg",
      .meaning = "the spall's centre about the ring axis, in the ring's frame (0: along x; the inner ring's turns)"},
     {.section = "*_ring.spall", .key = "length", .kind = number, .field = FIELD(ring->spall.length),
      .dim = dim::length, .bounds = kSpallSize, .example = "0.178 mm", .meaning = "along the race"},
     {.section = "*_ring.spall", .key = "width", .kind = number, .field = FIELD(ring->spall.width), .dim = dim::length,
-     .bounds = kSpallSize, .example = "0.178 mm", .meaning = "across the race (the contact's track must lie within it)"},
+     .bounds = kSpallSize, .example = "0.178 mm", .meaning = "across the race, centred on its middle (a ball's contact track must lie within it; a roller's "
+                "slices within it drop into it)"},
     {.section = "*_ring.spall", .key = "depth", .kind = number, .field = FIELD(ring->spall.depth), .dim = dim::length,
      .bounds = kSpallSize, .example = "0.28 mm",
-     .meaning = "depth; a ball drops at most r - sqrt(r^2 - (length/2)^2) into it"},
+     .meaning = "depth; a ball or roller of radius r drops at most r - sqrt(r^2 - (length/2)^2) into it"},
     {.section = "*_ring.spall", .key = "edge", .kind = choice, .field = FIELD(ring->spall.edge), .def = word("sharp"),
      .options = kSpallEdges, .noun = "spall edge",
-     .meaning = "sharp: the ball pivots on the edges; smooth: a raised cosine to the same deepest drop"},
+     .meaning = "sharp: the rolling element pivots on the edges; smooth: a raised cosine to the same deepest drop"},
     {.section = "*_ring.waviness", .key = "orders", .kind = integer_list, .field = FIELD(ring->waviness.orders),
      .bounds = {.lo = 1, .hi = 1000}, .example = "[9, 10]", .meaning = "lobes round the race, one per term"},
     {.section = "*_ring.waviness", .key = "amplitudes", .kind = number_list,

@@ -21,6 +21,11 @@ inline constexpr Default empty_table = value(0);
 // Why a key is rejected where the bearing or contact does not take it.
 inline constexpr std::string_view kBallOnly =
     "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
+inline constexpr std::string_view kSpatialOnlyDefect =
+    "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\"): a planar roller's line "
+    "contact has no place across the race for a defect";
+inline constexpr std::string_view kSpatialOnlyHousing =
+    "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\")";
 inline constexpr std::string_view kSpatialCage =
     "only for ball bearings (model = \"spatial\"): a planar cage moves in x, y and about z, and a spatial roller "
     "bearing's cage takes its section from the rollers as the planar one does";

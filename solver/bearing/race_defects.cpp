@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "contact/laws/element_imperfections.hpp"
+#include "contact/segments/roller_slice_segment.hpp"
 #include "solver/bearing/element_traits.hpp"
 
 namespace raceway::bearing {
@@ -83,22 +84,42 @@ double element_limit(const contact::BallGrooveSegment& law, const contact::Spati
   return distance <= 0 ? within : std::max(within, distance / speed);
 }
 
+/// The race's imperfections a race segment's law carries (a ball groove or a roller slice), or null.
+const contact::RaceImperfections* race_of(const Model& m, const Segment& seg) {
+  switch (seg.kind) {
+    case SegmentKind::ball_inner_groove:
+    case SegmentKind::ball_outer_groove:
+      return m.law<contact::BallGrooveSegment>(seg).imperfections.get();
+    case SegmentKind::roller_inner_slice:
+    case SegmentKind::roller_outer_slice:
+      return m.law<contact::RollerSliceSegment>(seg).imperfections.get();
+    default:
+      return nullptr;
+  }
+}
+
+bool is_ball_groove(const Segment& seg) {
+  return seg.kind == SegmentKind::ball_inner_groove || seg.kind == SegmentKind::ball_outer_groove;
+}
+
 }  // namespace
 
 std::string describe_race_imperfections(const Model& m) {
   std::string out;
-  for (const SegmentKind kind : {SegmentKind::ball_inner_groove, SegmentKind::ball_outer_groove}) {
+  for (const SegmentKind kind : {SegmentKind::ball_inner_groove, SegmentKind::ball_outer_groove,
+                                 SegmentKind::roller_inner_slice, SegmentKind::roller_outer_slice}) {
     const Segment* seg = m.first_segment(kind);
     if (!seg) continue;
-    const auto& race = m.law<contact::BallGrooveSegment>(*seg).imperfections;
+    const contact::RaceImperfections* race = race_of(m, *seg);
     if (!race) continue;
-    const char* ring = kind == SegmentKind::ball_inner_groove ? "inner" : "outer";
+    const bool inner = kind == SegmentKind::ball_inner_groove || kind == SegmentKind::roller_inner_slice;
+    const char* ring = inner ? "inner" : "outer";
     if (race->has_spall) {
       const contact::RaceSpall& s = race->spall;
       out += fmt::format("  {} race: spall at {:.4g} deg (ring frame), {:.4g} x {:.4g} mm, {:.4g} mm deep, {} edges: a "
-                         "ball drops at most {:.4g} um into it; at least {} steps across it\n",
+                         "{} drops at most {:.4g} um into it; at least {} steps across it\n",
                          ring, s.angle * 180 / std::numbers::pi, 1e3 * s.length, 1e3 * s.width, 1e3 * s.depth,
-                         s.edge == contact::SpallEdge::sharp ? "sharp" : "smooth",
+                         s.edge == contact::SpallEdge::sharp ? "sharp" : "smooth", is_ball_groove(*seg) ? "ball" : "roller",
                          1e6 * contact::spall_effective_depth(s, race->ball_radius), steps_within_spall);
     }
     const contact::RaceWaviness& w = race->waviness;
@@ -127,11 +148,11 @@ std::string describe_race_imperfections(const Model& m) {
 
 bool has_spall(const Model& m) {
   for (const Segment& seg : m.segments) {
-    if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
-    const auto& law = m.law<contact::BallGrooveSegment>(seg);
-    if ((law.imperfections && law.imperfections->has_spall) ||
-        (law.element_imperfections && law.element_imperfections->has_spall))
-      return true;
+    const contact::RaceImperfections* race = race_of(m, seg);
+    if (race && race->has_spall) return true;
+    if (!is_ball_groove(seg)) continue;
+    const auto& element = m.law<contact::BallGrooveSegment>(seg).element_imperfections;
+    if (element && element->has_spall) return true;
   }
   return false;
 }
@@ -139,16 +160,19 @@ bool has_spall(const Model& m) {
 double spall_step_limit(const Model& m, double t, const double* z) {
   double limit = std::numeric_limits<double>::infinity();
   bool any = false;
+  const Segment* previous = nullptr;  // a roller's slices share its limit: the first one's
   for (const Segment& seg : m.segments) {
-    if (seg.kind != SegmentKind::ball_inner_groove && seg.kind != SegmentKind::ball_outer_groove) continue;
-    const auto& law = m.law<contact::BallGrooveSegment>(seg);
-    const auto& race = law.imperfections;
-    const bool element = law.element_imperfections && law.element_imperfections->has_spall;
-    if ((!race || !race->has_spall) && !element) continue;
+    const contact::RaceImperfections* race = race_of(m, seg);
+    const bool ball = is_ball_groove(seg);
+    const auto* law = ball ? &m.law<contact::BallGrooveSegment>(seg) : nullptr;
+    const bool element = law && law->element_imperfections && law->element_imperfections->has_spall;
+    const bool same_roller = !ball && previous && previous->kind == seg.kind && previous->element == seg.element;
+    if (race && !ball) previous = &seg;
+    if ((!race || !race->has_spall || same_roller) && !element) continue;
     any = true;
-    const contact::SpatialKinematics ring = m.kinematics(seg.body_a, t, z), ball = m.kinematics(seg.body_b, t, z);
-    if (race && race->has_spall) limit = std::min(limit, ball_limit(*race, ring, ball));
-    if (element) limit = std::min(limit, element_limit(law, ring, ball));
+    const contact::SpatialKinematics ring = m.kinematics(seg.body_a, t, z), body = m.kinematics(seg.body_b, t, z);
+    if (race && race->has_spall && !same_roller) limit = std::min(limit, ball_limit(*race, ring, body));
+    if (element) limit = std::min(limit, element_limit(*law, ring, body));
   }
   return any ? limit : 0.0;
 }

@@ -1,6 +1,7 @@
-// A ball bearing's race imperfections (a spall, waviness) in the model: built from the scene into
-// the ball-groove laws (contact/laws/race_imperfections.hpp: a change of the contact's geometry,
-// nothing else), and the step limit that makes the integration see every ball's entry into a spall.
+// A race's imperfections (a spall, waviness) in the model: built from the scene into the ball-groove
+// laws and a spatial roller bearing's slice laws (contact/laws/race_imperfections.hpp: a change of
+// the contact's geometry, nothing else), and the step limit that makes the integration see every
+// rolling element's entry into a spall (a roller's: its centre's, the same for all its slices).
 //
 // A spall is short (0.18 mm on a 6205's outer race: some tens of microseconds of a ball's passage),
 // and a step that carries a ball over it unseen leaves no trace the error test could find. So
@@ -34,7 +35,7 @@ std::string describe_race_imperfections(const Model& m);
 /// Steps a ball takes at least within a spall.
 inline constexpr double steps_within_spall = 10;
 
-/// Whether a ball-groove law of the model has a spall.
+/// Whether a ball-groove or roller-slice law of the model has a spall.
 bool has_spall(const Model& m);
 /// The largest step at (t, z) that lets no ball enter or cross a spall unseen [s]; 0 when the model
 /// has no spall (no limit). A ball's own spall: at most the step that turns it to the nearer

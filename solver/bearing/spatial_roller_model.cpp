@@ -18,7 +18,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/housing.hpp"
 #include "solver/bearing/model.hpp"
+#include "solver/bearing/race_defects.hpp"
 
 namespace raceway::bearing {
 
@@ -97,6 +99,7 @@ void add_rings(Model& m, const scene::Scene& scene) {
                    m.inner_race_radius, width, density);
   add_spatial_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, m.outer_race_radius,
                    0.5 * g.outer_outside_diameter, width, density);
+  add_housing(m, scene);
 }
 
 /// The planar cage's mass (two side rings 30 % of the roller length wide, n bars), full pose.
@@ -228,11 +231,14 @@ void add_segments(Model& m, const scene::Scene& scene) {
       max_approach(m));
   const auto race_traction = traction_curve(scene.roller_race);
   std::vector<int> inner_slices, outer_slices;
+  const auto inner_race = race_imperfections(scene.inner_ring, m.inner_race_radius, m.element_radius);
+  const auto outer_race = race_imperfections(scene.outer_ring, m.outer_race_radius, m.element_radius);
   for (std::size_t j = 0; j < sliced.slice_centre.size(); ++j) {
-    inner_slices.push_back(add_law(m, contact::make_roller_slice_segment(sliced, j, m.inner_race_radius, m.element_radius,
-                                                                         false, race_traction)));
-    outer_slices.push_back(add_law(m, contact::make_roller_slice_segment(sliced, j, m.outer_race_radius, m.element_radius,
-                                                                         true, race_traction)));
+    auto inner = contact::make_roller_slice_segment(sliced, j, m.inner_race_radius, m.element_radius, false, race_traction);
+    auto outer = contact::make_roller_slice_segment(sliced, j, m.outer_race_radius, m.element_radius, true, race_traction);
+    inner.imperfections = inner_race, outer.imperfections = outer_race;
+    inner_slices.push_back(add_law(m, std::move(inner)));
+    outer_slices.push_back(add_law(m, std::move(outer)));
   }
   std::vector<std::pair<std::pair<int, int>, int>> ribs;
   for (const auto& rib : ribs_of(g.roller.ribs)) ribs.push_back({rib, add_law(m, rib_law(m, scene, rib.first, rib.second))});
@@ -261,6 +267,7 @@ void add_segments(Model& m, const scene::Scene& scene) {
                                         rib.second > 0 ? "plus_z" : "minus_z")});
   }
   add_land_segment(m, scene);
+  attach_outer_ring_to_housing(m);
 }
 
 }  // namespace
@@ -293,6 +300,7 @@ std::string describe_spatial_roller_model(const Model& m) {
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",
                        b.name, b.mass, b.axial_inertia, b.transverse_inertia, b.size, why);
   }
+  for (const auto& node : m.nodes) out += node->describe(m);
   int count[segment_kind_count] = {};
   for (const auto& s : m.segments) ++count[static_cast<int>(s.kind)];
   out += "contact segments:\n";
@@ -305,6 +313,7 @@ std::string describe_spatial_roller_model(const Model& m) {
                        count[static_cast<int>(SegmentKind::roller_inner_slice)] / m.element_count, s.stiffness,
                        s.damping_factor, s.traction.friction_coefficient);
   }
+  out += describe_race_imperfections(m);
   if (const Segment* rib = m.first_segment(SegmentKind::roller_flange)) {
     const auto& f = m.law<contact::RollerFlangeSegment>(*rib);
     out += fmt::format("  ribs: {} {} ends (radius {:.4g} mm) on ribs at {:.3g} deg, end play {:.4g} mm, Hertz K = {:.4g}\n",

@@ -20,7 +20,9 @@
 #include <stdexcept>
 
 #include "contact/laws/tapered_geometry.hpp"
+#include "solver/bearing/housing.hpp"
 #include "solver/bearing/model.hpp"
+#include "solver/bearing/race_defects.hpp"
 
 namespace raceway::bearing {
 
@@ -88,6 +90,7 @@ void add_rings(Model& m, const scene::Scene& scene) {
                    m.inner_race_radius, width, density);
   add_spatial_ring(m, BodyKind::outer_ring, "outer_ring", m.params().outer_ring, m.outer_race_radius,
                    0.5 * g.outer_outside_diameter, width, density);
+  add_housing(m, scene);
 }
 
 struct CageGeometry {
@@ -192,12 +195,15 @@ void add_slice_laws(Model& m, const scene::Scene& scene, const contact::TaperedG
       e_race, g.roller_profile(e_race, rolling), scene.roller_race.normal.slices, damping_of(scene.roller_race),
       max_approach(m));
   const auto traction = traction_curve(scene.roller_race);
+  const auto cone_race = race_imperfections(scene.inner_ring, t.cone_radius, m.element_radius);
+  const auto cup_race = race_imperfections(scene.outer_ring, t.cup_radius, m.element_radius);
   for (std::size_t j = 0; j < sliced.slice_centre.size(); ++j) {
     const double reach = t.roller_radius_at(sliced.slice_centre[j]) * std::cos(t.half_angle);
     auto cone = contact::make_roller_slice_segment(sliced, j, t.cone_radius, reach, false, traction);
     cone.race_angle = t.cone_angle;
     auto cup = contact::make_roller_slice_segment(sliced, j, t.cup_radius, reach, true, traction);
     cup.race_angle = t.cup_angle;
+    cone.imperfections = cone_race, cup.imperfections = cup_race;
     inner.push_back(add_law(m, cone));
     outer.push_back(add_law(m, cup));
   }
@@ -255,6 +261,7 @@ void add_segments(Model& m, const scene::Scene& scene) {
                           fmt::format("roller[{}]/inner_rib_plus_z", k)});
   }
   add_land_segment(m, scene);
+  attach_outer_ring_to_housing(m);
 }
 
 std::string describe(const Model& m) {
@@ -273,6 +280,7 @@ std::string describe(const Model& m) {
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states\n", b.name,
                        b.mass, b.axial_inertia, b.transverse_inertia, b.size);
   }
+  for (const auto& node : m.nodes) out += node->describe(m);
   int count[segment_kind_count] = {};
   for (const auto& s : m.segments) ++count[static_cast<int>(s.kind)];
   out += "contact segments:\n";
@@ -285,6 +293,7 @@ std::string describe(const Model& m) {
                        r.end == scene::RollerEnd::flat ? "flat" : "spherical", 1e3 * r.end_radius, r.rib_angle * deg,
                        f.hertz.stiffness);
   }
+  out += describe_race_imperfections(m);
   out += fmt::format("state layout: border {} states (rings, cage), then {} blocks of {} (rollers)\n", m.border_size,
                      m.element_count, m.block_size);
   return out;

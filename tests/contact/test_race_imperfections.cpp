@@ -1,7 +1,8 @@
 // A race's spall and waviness (contact/laws/race_imperfections.hpp): the published ball path into a
 // spall (limited by the ball radius and the spall's length and depth), its smooth variant, the
 // spall's place on the race (wrapping at +-pi, its width), waviness, the height's azimuth slope
-// against finite differences, and the ball-groove contact seeing the height in its approach.
+// against finite differences, and the ball-groove contact and a roller's slice seeing the height in
+// their approach (the slice also in its approach rate, through its damping).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,8 @@
 #include <numbers>
 
 #include "ball_cases.hpp"
+#include "slice_cases.hpp"
+#include "contact/laws/damping.hpp"
 #include "contact/laws/element_imperfections.hpp"
 #include "contact/laws/race_imperfections.hpp"
 #include <Eigen/Geometry>
@@ -201,4 +204,55 @@ TEST(ElementHeight, GrooveContactApproachFollowsTheBall) {
 }
 
 }  // namespace
+
+// A roller's slice on a wavy inner race (order 5, 2 um) orbiting at Omega: the approach is the
+// perfect race's plus the height at the slice centre's ring-frame azimuth, and the damping sees the
+// approach's rate along the orbit, Omega d(approach)/d(psi) by central differences: the normal force
+// is Hunt-Crossley's at that approach and rate. A spall 1 mm wide at the race's middle reaches the
+// slices whose centres lie within 0.5 mm of it and not the end slice.
+TEST(RaceHeight, RollerSliceApproachAndRateFollowTheRace) {
+  const slice::SliceCase c{"inner_middle", false, 4};
+  const RollerSliceSegment perfect = slice::make(c, true, false);
+  RollerSliceSegment wavy = perfect;
+  auto race = std::make_shared<RaceImperfections>();
+  race->race_radius = slice::inner_race_radius;
+  race->ball_radius = perfect.roller_radius;
+  race->waviness = {{5}, {2e-6}, {0.3}};
+  wavy.imperfections = race;
+  const double omega = 150.0, approach0 = 6e-6, psi0 = 0.37;
+  SpatialKinematics ring;
+  ring.spin_angle = 0.2;
+  const double rho = slice::inner_race_radius + perfect.roller_radius - perfect.drop - approach0;
+  auto roller_at = [&](double psi) {
+    SpatialKinematics roller;
+    roller.position = rho * ball::radial(psi) - perfect.position * Vec3::UnitZ();  // the slice centre at z = 0
+    roller.velocity = omega * Vec3::UnitZ().cross(roller.position);
+    return roller;
+  };
+  const double height = 2e-6 * std::cos(5 * (psi0 - 0.2) + 0.3);
+  const SpatialSegmentResult at = evaluate(wavy, ring, roller_at(psi0));
+  EXPECT_NEAR(evaluate(perfect, ring, roller_at(psi0)).diagnostics.approach, approach0, 1e-15);
+  EXPECT_NEAR(at.diagnostics.approach, approach0 + height, 1e-15);
+  const double h = 1e-6;
+  const double rate = omega * (evaluate(wavy, ring, roller_at(psi0 + h)).diagnostics.approach -
+                               evaluate(wavy, ring, roller_at(psi0 - h)).diagnostics.approach) / (2 * h);
+  EXPECT_GT(std::abs(rate), 1e-4);  // the waviness does pass under the slice
+  const double elastic = perfect.stiffness * std::pow(approach0 + height, palmgren_exponent);
+  const double expected = hunt_crossley(elastic, perfect.damping_factor, rate).force;
+  EXPECT_NEAR(at.diagnostics.normal_force, expected, 1e-6 * expected);
+
+  RollerSliceSegment spalled = perfect;
+  auto pit = std::make_shared<RaceImperfections>(*race);
+  pit->waviness = {};
+  pit->has_spall = true;
+  pit->spall = {.angle = psi0 - 0.2, .length = 2e-3, .width = 1e-3, .depth = 1e-6, .edge = SpallEdge::sharp};
+  spalled.imperfections = pit;
+  EXPECT_NEAR(evaluate(spalled, ring, roller_at(psi0)).diagnostics.approach, approach0 - 1e-6, 1e-15);
+  const slice::SliceCase end{"inner_end", false, 9};  // 4.5 mm from the middle
+  RollerSliceSegment end_slice = slice::make(end, true, false);
+  const double end_approach = evaluate(end_slice, ring, roller_at(psi0)).diagnostics.approach;
+  end_slice.imperfections = pit;
+  EXPECT_EQ(evaluate(end_slice, ring, roller_at(psi0)).diagnostics.approach, end_approach);
+}
+
 }  // namespace raceway::contact::test
