@@ -92,11 +92,13 @@ def main():
     nu = 1e6 * eta / rho            # mm^2/s
     speeds = (1000.0, 3000.0, 6000.0)
     loads = (375.0, 1000.0, 2500.0)
-    tractions = ("tanh", "limiting_shear")
+    variants = (("tanh", ["contact.ball_race.traction=tanh"]),
+                ("limiting_shear", ["contact.ball_race.traction=limiting_shear"]),
+                ("tanh, no RR", ["contact.ball_race.traction=tanh", "contact.ball_race.rolling_resistance=false"]))
     print("# Friction torque, 6205 (catalogue), raceway against the SKF model\n")
     print(f"nu = {nu:.2f} mm^2/s (0.03 Pa s / 870 kg/m^3); window: second half of {a.revolutions:g} "
           "inner-ring revolutions; raceway's M = drive work / (omega x window)\n")
-    print("| n [r/min] | Fr [N] | traction | raceway M [N mm] | SKF M [N mm] (M_rr + M_sl) | ratio | "
+    print("| n [r/min] | Fr [N] | ball-race law (RR: EHL rolling resistance) | raceway M [N mm] | SKF M [N mm] (M_rr + M_sl) | ratio | "
           "inner groove W | outer groove W | pockets W | balance residual | steps | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []
@@ -105,11 +107,11 @@ def main():
             m, m_rr, m_sl, phi_ish, phi_rs, mu_sl = skf_moment(series, d, D, n, nu, fr)
             omega = 2.0 * math.pi * n / 60.0
             end = a.revolutions * 60.0 / n
-            for tr in tractions:
-                path = os.path.join(a.out, f"6205_{int(n)}_{int(fr)}_{tr}.h5")
+            for k, (tr, variant) in enumerate(variants):
+                path = os.path.join(a.out, f"6205_{int(n)}_{int(fr)}_{k}.h5")
                 sets = [f"inner_ring.speed={n:g} rpm", f"inner_ring.load.fy=-{fr:g} N",
                         f"scene.end_time={end * 1e3:.6g} ms", f"scene.output_interval={end * 1e3 / 300:.6g} ms",
-                        "output.segments=false", f"contact.ball_race.traction={tr}"]
+                        "output.segments=false"] + variant
                 summary = run_case(a.raceway, scene, sets, path)
                 m_sim, losses, resid, win = window_measure(path, omega)
                 print(f"| {n:g} | {fr:g} | {tr} | {m_sim:.3f} | {m:.2f} ({m_rr:.2f} + {m_sl:.2f}) | "
@@ -121,7 +123,7 @@ def main():
                                  window_s=win, steps=summary["steps"], wall_s=summary["wall_time_s"]))
     print("\nSKF factors per speed: " + "; ".join(
         f"{r['n']:g} r/min: phi_ish {r['phi_ish']:.3f}, phi_rs {r['phi_rs']:.3f}, mu_sl {r['mu_sl']:.3f}"
-        for r in rows if r["fr"] == loads[0] and r["traction"] == tractions[0]))
+        for r in rows if r["fr"] == loads[0] and r["traction"] == variants[0][0]))
     with open(os.path.join(a.out, "friction_torque.json"), "w") as f:
         json.dump(rows, f, indent=1)
 
