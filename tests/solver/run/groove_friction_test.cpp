@@ -7,7 +7,9 @@
 // entrainment speed of pure rolling, omega_c r_o with omega_c = omega r_i / (r_i + r_o), averaged over
 // the balls' positions. The run's grooves' power is the power balance's (integrated over the solver's
 // steps), over the second half of one inner-ring revolution of the 6205 first scene without gravity.
-// docs/validation_ball_bearings.md, "Friction torque", compares the whole torque with SKF's model.
+// docs/validation_ball_bearings.md, "Friction torque", compares the whole torque with SKF's model; a
+// law that adds the differential (Heathcote) slip of the groove's curved contact adds its loss to
+// this limit, and the test then needs that term too.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,6 +28,7 @@ namespace raceway::run {
 namespace {
 
 using test::pi;
+using contact::Vec3;
 
 /// Rolling-resistance power [W] of every groove contact of the bearing, averaged over `phases`
 /// positions of the ball set across one ball spacing, in pure rolling at the inner ring's speed omega.
@@ -47,7 +50,7 @@ double rolling_resistance_power(const scene::Scene& s, double radial_load, doubl
     return f > 0 ? f * q / (f + q) : 0.0;
   };
   double power = 0;
-  Vec3 c(0, -1e-6, 0);
+  Vec3 c(0, -15e-6, 0);  // beyond the radial play (6.25 um), where balls carry load
   for (int j = 0; j < phases; ++j) {
     std::vector<double> psi;
     for (int k = 0; k < qs.z; ++k) psi.push_back(2 * pi * (k + (j + 0.5) / phases) / qs.z);
@@ -85,8 +88,8 @@ TEST(GrooveFriction, IsTheRollingResistanceOfTheQuasiStaticLoadsAtZeroContactAng
   const double grooves = power(loss, 0) + power(loss, 1), pockets = power(loss, 2);
   const double expected = rolling_resistance_power(s, radial_load, omega, 24);
   const double torque = power(input, 0) / omega;
-  std::printf("[ grooves ] %.4f W against %.4f W of rolling resistance (pockets %.4f W); drive torque %.3f N mm, "
-              "rolling resistance alone %.3f N mm\n",
+  std::printf("[ grooves ] %.4f W against %.4f W of rolling resistance (pockets %.4f W); drive torque over the "
+              "window %.3f N mm, the rolling resistance's %.3f N mm\n",
               grooves, expected, pockets, 1e3 * torque, 1e3 * expected / omega);
   EXPECT_NEAR(grooves / expected, 1.0, 0.03);
 }
