@@ -98,7 +98,8 @@ def main():
     print("# Friction torque, 6205 (catalogue), raceway against the SKF model\n")
     print(f"nu = {nu:.2f} mm^2/s (0.03 Pa s / 870 kg/m^3); window: second half of {a.revolutions:g} "
           "inner-ring revolutions; raceway's M = drive work / (omega x window)\n")
-    print("| n [r/min] | Fr [N] | ball-race law (RR: EHL rolling resistance) | raceway M [N mm] | SKF M [N mm] (M_rr + M_sl) | ratio | "
+    print("| n [r/min] | Fr [N] | ball-race law (RR: EHL rolling resistance) | raceway M [N mm] | "
+          "SKF M [N mm] (M_rr + M_sl) | ratio | "
           "inner groove W | outer groove W | pockets W | balance residual | steps | wall s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     rows = []

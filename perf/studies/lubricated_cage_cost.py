@@ -64,7 +64,8 @@ def main():
             load = os.getloadavg()[0]
             cpu, s = run(a.raceway, sets + [end, rtol], os.path.join(a.out, f"qj215_{k}.h5"))
             results[name].append((cpu, s))
-            print(f"| {r + 1} ({rtol.split('=')[1]}) | {name} | {load:.2f} | {cpu:.3f} | {s['wall_time_s']:.3f} | {s['steps']} | "
+            print(f"| {r + 1} ({rtol.split('=')[1]}) | {name} | {load:.2f} | {cpu:.3f} | {s['wall_time_s']:.3f} | "
+                  f"{s['steps']} | "
                   f"{s['rhs_evaluations']} | {s['jacobian_evaluations']} | {s['cage_speed_rpm']:.2f} |", flush=True)
     rev = a.revolutions
     base_cpu = statistics.median(c for c, _ in results[CONFIGS[0][0]])
