@@ -4,7 +4,7 @@ four-component model (M = M_rr + M_sl + M_seal + M_drag) with its inlet shear he
 replenishment reduction factors.
 
     /usr/bin/python3 perf/studies/friction_torque.py [--raceway build/raceway] [--out DIR] \
-        > perf/studies/results/friction_torque.md
+        [--bearing 6205|6309] > perf/studies/results/friction_torque[_6309].md
 
 raceway's torque: the drive term of the power balance (/power_balance/input_work, column `drive`,
 integrated over the solver's steps) over a window after settling, divided by the inner ring's
@@ -33,6 +33,9 @@ MU_BL = 0.15        # boundary sliding friction coefficient (additive package), 
 MU_EHL = 0.05       # full-film sliding friction coefficient, mineral oil, "other bearings"
 K_RS = 3e-8         # replenishment/starvation constant: low oil level bath and oil jet
 K_Z = 3.1           # bearing type constant of deep groove ball bearings
+# The catalogue's bearings: bore d, outside diameter D [mm], series, radial loads [N].
+BEARINGS = {"6205": (25.0, 52.0, "62", (375.0, 1000.0, 2500.0)),
+            "6309": (45.0, 100.0, "63", (1000.0, 3000.0, 8000.0))}
 
 
 def skf_moment(series, d, D, n_rpm, nu_mm2s, fr_n):
@@ -84,18 +87,19 @@ def main():
     ap.add_argument("--raceway", default="build/raceway")
     ap.add_argument("--out", default="/tmp/friction_torque")
     ap.add_argument("--revolutions", type=float, default=6.0)
+    ap.add_argument("--bearing", choices=sorted(BEARINGS), default="6205")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    scene = "jobs/scenes/6205_first_scene.toml"
-    d, D, series = 25.0, 52.0, "62"
+    scene = "jobs/scenes/6205_first_scene.toml"   # the 6309: the same scene with its designation
+    d, D, series, loads = BEARINGS[a.bearing]
+    base = [] if a.bearing == "6205" else [f'bearing.designation="{a.bearing}"']
     eta, rho = 0.03, 870.0          # the first scene's oil [Pa s]; the catalogue's density [kg/m^3]
     nu = 1e6 * eta / rho            # mm^2/s
     speeds = (1000.0, 3000.0, 6000.0)
-    loads = (375.0, 1000.0, 2500.0)
     variants = (("tanh", ["contact.ball_race.traction=tanh"]),
                 ("limiting_shear", ["contact.ball_race.traction=limiting_shear"]),
                 ("tanh, no RR", ["contact.ball_race.traction=tanh", "contact.ball_race.rolling_resistance=false"]))
-    print("# Friction torque, 6205 (catalogue), raceway against the SKF model\n")
+    print(f"# Friction torque, {a.bearing} (catalogue), raceway against the SKF model\n")
     print(f"nu = {nu:.2f} mm^2/s (0.03 Pa s / 870 kg/m^3); window: second half of {a.revolutions:g} "
           "inner-ring revolutions; raceway's M = drive work / (omega x window)\n")
     print("| n [r/min] | Fr [N] | ball-race law (RR: EHL rolling resistance) | raceway M [N mm] | "
@@ -109,10 +113,10 @@ def main():
             omega = 2.0 * math.pi * n / 60.0
             end = a.revolutions * 60.0 / n
             for k, (tr, variant) in enumerate(variants):
-                path = os.path.join(a.out, f"6205_{int(n)}_{int(fr)}_{k}.h5")
+                path = os.path.join(a.out, f"{a.bearing}_{int(n)}_{int(fr)}_{k}.h5")
                 sets = [f"inner_ring.speed={n:g} rpm", f"inner_ring.load.fy=-{fr:g} N",
                         f"scene.end_time={end * 1e3:.6g} ms", f"scene.output_interval={end * 1e3 / 300:.6g} ms",
-                        "output.segments=false"] + variant
+                        "output.segments=false"] + base + variant
                 summary = run_case(a.raceway, scene, sets, path)
                 m_sim, losses, resid, win = window_measure(path, omega)
                 print(f"| {n:g} | {fr:g} | {tr} | {m_sim:.3f} | {m:.2f} ({m_rr:.2f} + {m_sl:.2f}) | "
@@ -125,7 +129,7 @@ def main():
     print("\nSKF factors per speed: " + "; ".join(
         f"{r['n']:g} r/min: phi_ish {r['phi_ish']:.3f}, phi_rs {r['phi_rs']:.3f}, mu_sl {r['mu_sl']:.3f}"
         for r in rows if r["fr"] == loads[0] and r["traction"] == variants[0][0]))
-    with open(os.path.join(a.out, "friction_torque.json"), "w") as f:
+    with open(os.path.join(a.out, f"friction_torque_{a.bearing}.json"), "w") as f:
         json.dump(rows, f, indent=1)
 
 
