@@ -33,6 +33,9 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
     a spall 1 mm long and 4 mm wide on its outer race in the load zone (the middle slices drop into
     it): BPFO and its harmonics 2 to 4 within 1 % of kinematics after slip, the fundamental at least
     2 times its floor (measured 2.5), the harmonics 3 times (measured 16-29), and no line at BPFI.
+  roller_inner: the same bearing with the spall on its inner race instead (80 ms): BPFI and harmonics
+    2 and 3, and the sidebands BPFI -+ the shaft frequency, within 1 % and at least 2 times their
+    floor (measured within 0.2 %, 3.8 to 5.3 times).
 
 Exit codes: 0 pass, 1 fail, 77 skipped (h5py or numpy missing).
 """
@@ -279,6 +282,19 @@ def case_roller_outer(raceway, work):
     check(a < 3.0 * floor, f"roller BPFI (no inner-race fault): {a:.4g} < 3 x floor {floor:.4g}")
 
 
+def case_roller_inner(raceway, work):
+    text = ROLLER_SCENE.replace('end_time = "40 ms"', 'end_time = "80 ms"').replace(
+        'spall = { angle = "-90 deg"', '# no outer spall').replace(
+        '[inner_ring]\n', '[inner_ring]\nspall = { angle = "0 deg", length = "1 mm", width = "4 mm", depth = "0.1 mm" }\n')
+    path = os.path.join(work, "roller_inner.toml")
+    open(path, "w", encoding="utf-8").write(text)
+    vib, f, freq, amp = analyse(run(raceway, path, os.path.join(work, "roller_inner.h5")))
+    for k in range(1, 4):
+        line(vib, freq, amp, k * f["BPFI"], f"roller BPFI x{k}", 0.01, 2.0)
+    for sign, name in ((-1, "roller BPFI - shaft"), (1, "roller BPFI + shaft")):
+        line(vib, freq, amp, f["BPFI"] + sign * f["shaft"], name, 0.01, 2.0)
+
+
 def case_report(raceway, work):
     """`raceway report` on a spalled run: the vibration summary, its lines and the sensor's CSV."""
     import csv
@@ -359,7 +375,8 @@ def main():
         else:
             {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
              "report": case_report, "ball_spall": case_ball_spall,
-             "ball_waviness": case_ball_waviness, "roller_outer": case_roller_outer}[case](raceway, work)
+             "ball_waviness": case_ball_waviness, "roller_outer": case_roller_outer,
+             "roller_inner": case_roller_inner}[case](raceway, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
         return 1
