@@ -30,6 +30,7 @@ struct Series {
   double element_factor = 0;            ///< D_w = factor (D - d)
   std::optional<double> contact_angle;  ///< deg, angular contact
   std::optional<double> arc_angle;      ///< deg, four-point
+  std::string ribs;                     ///< cylindrical rollers: NU, NJ or NUP
   bool ball() const { return type != "cylindrical_roller"; }
 };
 
@@ -58,9 +59,10 @@ Catalogue load_catalogue() {
     Series s{std::string(name.str()), (*t)["type"].value_or(std::string()),
              (*t)["dimension_series"].value_or(std::string()),
              number(t->contains("ball_factor") ? t->get("ball_factor") : t->get("roller_factor")), std::nullopt,
-             std::nullopt};
+             std::nullopt, {}};
     if (t->contains("contact_angle")) s.contact_angle = number(t->get("contact_angle"));
     if (t->contains("arc_contact_angle")) s.arc_angle = number(t->get("arc_contact_angle"));
+    s.ribs = (*t)["ribs"].value_or(std::string());
     c.series.push_back(s);
   }
   for (Series& s : c.series)
@@ -281,6 +283,14 @@ std::vector<Fill> first_scene_values(const Entry& e, const toml::table& root) {
   return out;
 }
 
+/// A cylindrical roller series' ribs (its designation's letters): the spatial model's [bearing] ribs;
+/// the planar model has no ribs, so there it is said, not filled.
+Fill ribs_value(const Entry& e, const toml::table& root) {
+  const std::string origin = fmt::format("the series' rib arrangement (its designation, catalogue series {})", e.series->name);
+  if (root["scene"]["model"].value_or(std::string("planar")) == "spatial") return word("bearing", "ribs", e.series->ribs, origin);
+  return {"bearing", "(ribs)", e.series->ribs, origin + "; the planar model has no ribs: model = \"spatial\" takes them"};
+}
+
 const Entry& find_entry(const toml::table& bearing, const std::string& file) {
   const toml::node& node = *bearing.get("designation");
   const std::string wanted = normalised(node.value_or(std::string()));
@@ -337,6 +347,7 @@ std::vector<CatalogueValue> catalogue::fill(toml::table& root, const std::string
   fills.insert(fills.end(), geometry.begin(), geometry.end());
   const std::vector<Fill> cage = cage_values(e, size, root["cage"].as_table());
   fills.insert(fills.end(), cage.begin(), cage.end());
+  if (!e.series->ribs.empty()) fills.push_back(ribs_value(e, root));
   const std::vector<Fill> ratings = rating_values(e);
   fills.insert(fills.end(), ratings.begin(), ratings.end());
   std::vector<CatalogueValue> out;
