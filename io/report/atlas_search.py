@@ -12,6 +12,7 @@ boundary instead of piling up at one place. Before two classes are seen the batc
 which makes a resumed atlas the uninterrupted one.
 """
 import math
+import warnings
 
 import numpy as np
 
@@ -57,12 +58,15 @@ def candidate_pool(d, size=2500):
 
 def fit_classifier(points, labels):
     """The Gaussian-process classifier of `labels` at `points` (at least two classes)."""
+    from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessClassifier
     from sklearn.gaussian_process.kernels import RBF, ConstantKernel
 
     kernel = ConstantKernel(1.0, (1e-2, 1e3)) * RBF(length_scale=0.2, length_scale_bounds=(0.02, 2.0))
     model = GaussianProcessClassifier(kernel=kernel, random_state=0, n_restarts_optimizer=0)
-    model.fit(np.asarray(points, dtype=float), np.asarray(labels))
+    with warnings.catch_warnings():  # hyperparameters at their bounds: the fit is still usable
+        warnings.filterwarnings("ignore", category=ConvergenceWarning)
+        model.fit(np.asarray(points, dtype=float), np.asarray(labels))
     return model
 
 
