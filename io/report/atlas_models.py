@@ -4,7 +4,6 @@ motion's classification of its output) or the tests' cheap stand-in with a known
 Both answer evaluate(point_id, sets, tag) with the window's metrics and class (cage_motion), the
 blocks' metrics and classes (atlas_certify.settled) and the run's wall time in seconds.
 """
-import json
 import math
 import os
 import subprocess
@@ -25,6 +24,20 @@ class PointFailed(Exception):
 def unit_value(value, unit):
     """A range value with its unit as the scene reads it: 3000 rpm -> "3000 rpm"."""
     return f"{value:.10g} {unit}"
+
+
+def cage_mass(path):
+    """The cage's mass [kg] from its net force and acceleration (F = m a, least squares over the run's
+    radial components); None where the file has neither or the cage never accelerates."""
+    from raceway import RacewayOutput
+
+    with RacewayOutput(path) as out:
+        if "cage/force" not in out or "cage/acceleration" not in out:
+            return None
+        f = np.asarray(out["cage/force"], dtype=float)[:, :2]
+        a = np.asarray(out["cage/acceleration"], dtype=float)[:, :2]
+    den = float(np.sum(a * a))
+    return float(np.sum(f * a)) / den if den > 0 else None
 
 
 class SimulatorModel:
@@ -65,8 +78,7 @@ class SimulatorModel:
         name = point_id + (f"_{tag}" if tag else "")
         out, wall = self._run(name, sets)
         run = read_run(out + ".h5")
-        with open(out + ".json", encoding="utf-8") as f:
-            mass = json.load(f).get("scene_parameters", {}).get("cage.mass", {}).get("value")
+        mass = cage_mass(out + ".h5")
         a = self.atlas
         m = cm.classify_run(run, a["settling_time_s"], cage_mass=mass, overrides=a["thresholds"])
         window = np.nonzero(run.time >= a["settling_time_s"])[0]

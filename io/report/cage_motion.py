@@ -13,8 +13,10 @@ The metrics:
 - seed 001's irregularity metrics (section 4, eq. 9): the vortex radius ratio (max - min) / mean of
   the centre's distance from its mean position, and the velocity deviation sigma_v = std / mean of
   the centre's speed;
-- the pocket impacts: contact onsets per pocket and per cage revolution (the impact rate) and the
-  mean impact energy, the kinetic energy an impact's impulse J gives the free cage, J^2 / (2 m);
+- the pocket impacts (window_impacts): new bar engagements per pocket and per cage revolution (the
+  impact rate) and the mean impact energy, the kinetic energy an impact's impulse J gives the free
+  cage, J^2 / (2 m), also as a ratio to the kinetic energy of the cage's centre orbiting at the
+  guiding clearance at the cage's speed, m (Omega c)^2 / 2 (the impact energy ratio);
 - the cage dynamics indicator (CDI), ours, in the spirit of Schwarz et al. (Tribology Transactions,
   2022; docs/references.md), not their definition: min(1, rho) x (1 - p), where p is the share of
   the centre's displacement power (its discrete spectrum, the mean removed) in the strongest whirl
@@ -24,9 +26,11 @@ The metrics:
 
 The classes (THRESHOLDS, each overridable):
 
-- stable: rho < stable_orbit_ratio and at most impact_rate_max impacts per pocket and cage revolution;
+- stable: rho < stable_orbit_ratio and no hard impacting: not (more than impact_rate_max impacts per
+  pocket and cage revolution with an impact energy ratio above impact_energy_ratio_min; the rate
+  alone where the energy is unknown);
 - circling: a regular whirl: at least circling_min_turns whole turns, vortex radius ratio at most
-  circling_vortex_ratio, sigma_v at most circling_sigma_v, impacts as above;
+  circling_vortex_ratio, sigma_v at most circling_sigma_v, no hard impacting;
 - unstable: everything else (an irregular orbit or frequent pocket impacts); `reasons` says which
   criteria decided.
 """
@@ -41,7 +45,8 @@ THRESHOLDS = {
     "circling_min_turns": 1,       # whole whirl turns a circling cage makes in the window
     "circling_vortex_ratio": 0.5,  # seed 001's vortex radius ratio at most this for a regular whirl
     "circling_sigma_v": 0.5,       # seed 001's velocity deviation at most this for a regular whirl
-    "impact_rate_max": 1.0,        # pocket impacts per pocket and cage revolution at most (stable, circling)
+    "impact_rate_max": 1.0,        # pocket impacts per pocket and cage revolution at most (stable, circling) ...
+    "impact_energy_ratio_min": 0.1,  # ... unless their energy is below this share of the whirl energy
 }
 
 CLASSES = ("stable", "circling", "unstable")
@@ -104,20 +109,24 @@ def orbit_metrics(time, x, y, clearance, cage_speed_mean, vx=None, vy=None):
     return m
 
 
-def impact_metrics(impact_count, impact_energies, pockets, cage_revolutions):
-    """Impact rate (per pocket and cage revolution) and mean impact energy [J]."""
+def impact_metrics(impact_count, impact_energies, pockets, cage_revolutions, whirl_energy=math.nan):
+    """Impact rate (per pocket and cage revolution), mean impact energy [J] and its ratio to
+    `whirl_energy` [J] (NaN where either is unknown)."""
     per = pockets * abs(cage_revolutions)
     energies = np.asarray(impact_energies, dtype=float)
-    return {"impact_rate": impact_count / per if per > 0 else 0.0,
-            "impact_energy_j": float(np.mean(energies)) if energies.size else 0.0,
-            "impacts": int(impact_count)}
+    energy = float(np.mean(energies)) if energies.size else (0.0 if impact_count == 0 else math.nan)
+    return {"impact_rate": impact_count / per if per > 0 else 0.0, "impact_energy_j": energy,
+            "impact_energy_ratio": _ratio(energy, whirl_energy), "impacts": int(impact_count)}
 
 
 def classify_metrics(m, overrides=None):
     """The class of metrics `m` (orbit_metrics plus impact_metrics) and the reasons for it."""
     t = thresholds(overrides)
-    impacts_ok = not m.get("impact_rate", 0.0) > t["impact_rate_max"]
-    impact_note = f"impact rate {m.get('impact_rate', 0.0):.3g} > {t['impact_rate_max']:.3g} per pocket and revolution"
+    energy = m.get("impact_energy_ratio", math.nan)
+    impacts_ok = not (m.get("impact_rate", 0.0) > t["impact_rate_max"]
+                      and not energy <= t["impact_energy_ratio_min"])  # NaN energy: the rate decides
+    impact_note = (f"impact rate {m.get('impact_rate', 0.0):.3g} > {t['impact_rate_max']:.3g} per pocket and "
+                   f"revolution at energy ratio {energy:.3g} > {t['impact_energy_ratio_min']:.3g}")
     if m["orbit_ratio"] < t["stable_orbit_ratio"]:
         if impacts_ok:
             return "stable", [f"orbit ratio {m['orbit_ratio']:.3g} < {t['stable_orbit_ratio']:.3g}"]
@@ -138,31 +147,39 @@ def classify_metrics(m, overrides=None):
 
 
 def classify(time, x, y, clearance, cage_speed, pockets=1, impact_count=0, impact_energies=(),
-             overrides=None, vx=None, vy=None):
+             overrides=None, vx=None, vy=None, cage_mass=None):
     """Metrics, class and reasons of a window: the centre path, the cage's speed about the axis
-    [rad/s, array or mean], the guiding clearance [m], the pocket count and the window's impacts."""
+    [rad/s, array or mean], the guiding clearance [m], the pocket count, the window's impacts and
+    the cage's mass [kg] (for the impact energy ratio; None: unknown)."""
     time = np.asarray(time, dtype=float)
     speed = float(np.mean(cage_speed))
     m = orbit_metrics(time, x, y, clearance, speed, vx, vy)
     revolutions = speed * float(time[-1] - time[0]) / TWO_PI
-    m.update(impact_metrics(impact_count, impact_energies, pockets, revolutions))
+    whirl_energy = 0.5 * cage_mass * (speed * clearance) ** 2 if cage_mass else math.nan
+    m.update(impact_metrics(impact_count, impact_energies, pockets, revolutions, whirl_energy))
     m["motion_class"], m["reasons"] = classify_metrics(m, overrides)
     return m
 
 
-def window_impacts(pocket_steps, window, cage_mass):
+def window_impacts(pocket_steps, window, cage_mass, share=0.01):
     """Impact count and energies J^2 / (2 m) in the samples `window` (a slice) from the step-resolved
-    pocket statistics (report_data.BearingRun.pocket_steps): each interval's impulse shared equally
-    by its onsets."""
+    pocket statistics (report_data.BearingRun.pocket_steps): an impact is an output interval in which
+    a bar's largest step force exceeds `share` of the window's largest (at least 1e-3 N, the report's
+    contact threshold) after an interval in which it did not (a new engagement, not a ball pushing
+    the cage through the load zone); J is the bar's impulse over that interval."""
+    bars = list((pocket_steps or {}).values())
+    if not bars:
+        return 0, []
+    peaks = [np.asarray(bar["peak_force"], dtype=float)[window] for bar in bars]
+    threshold = max(share * max(float(np.max(p, initial=0.0)) for p in peaks), 1e-3)
     count, energies = 0, []
-    for bar in (pocket_steps or {}).values():
-        onsets = np.asarray(bar["onsets"], dtype=float)[window]
+    for bar, peak in zip(bars, peaks):
         impulse = np.asarray(bar["impulse"], dtype=float)[window]
-        hit = onsets > 0
-        count += int(np.sum(onsets[hit]))
+        on = peak > threshold
+        start = on[1:] & ~on[:-1]
+        count += int(np.sum(start))
         if cage_mass and cage_mass > 0:
-            per = impulse[hit] / onsets[hit]
-            energies.extend(np.repeat(per ** 2 / (2.0 * cage_mass), onsets[hit].astype(int)).tolist())
+            energies.extend((impulse[1:][start] ** 2 / (2.0 * cage_mass)).tolist())
     return count, energies
 
 
@@ -181,4 +198,4 @@ def classify_run(run, start, end=None, cage_mass=None, overrides=None):
     count, energies = window_impacts(run.pocket_steps, sl, cage_mass)
     return classify(t[sl], run.cage_xy[sl, 0], run.cage_xy[sl, 1], guiding_clearance(run.geometry),
                     run.cage_speed[sl], pockets=run.elements, impact_count=count, impact_energies=energies,
-                    overrides=overrides, vx=run.cage_vxy[sl, 0], vy=run.cage_vxy[sl, 1])
+                    overrides=overrides, vx=run.cage_vxy[sl, 0], vy=run.cage_vxy[sl, 1], cage_mass=cage_mass)

@@ -1,0 +1,24 @@
+// `raceway atlas FILE -o DIR [--resume] [--check] [--ranks N]`: the cage-stability atlas (docs/atlas.md),
+// a launcher of the Python driver raceway_atlas.py beside the report's script (io/report/), which runs
+// each point with this executable's `raceway run`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace raceway::driver {
+
+struct AtlasRequest {
+  std::string atlas_file, output_dir;
+  bool resume = false, check = false;
+  int ranks = 1;  ///< points run at a time (each `raceway run` on one rank), the default batch size
+};
+
+/// Adds the atlas command to the command line; returns it (parsed: `*command`).
+CLI::App* add_atlas_command(CLI::App& app, AtlasRequest& request);
+
+/// Runs the atlas driver on this (rank 0's) process and waits for it: its exit code (0 done, 1 a
+/// point failed, 2 bad input, 3 numpy or scikit-learn missing), 1 when it cannot be started.
+int atlas_command(const AtlasRequest& request);
+
+}  // namespace raceway::driver
