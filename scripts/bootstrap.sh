@@ -22,6 +22,7 @@ runtime_packages=(
   libhdf5-openmpi-dev libmetis-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
   hdf5-tools
   python3-numpy python3-h5py python3-matplotlib python3-munkres
+  python3-sklearn    # `raceway atlas`: the adaptive search's Gaussian-process classifier (brings scipy)
 )
 
 # Testing adds these, one a line with what needs it (a test that needs one skips when it is absent,

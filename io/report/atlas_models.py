@@ -97,7 +97,8 @@ class StandinModel:
     atlas_search.standin_classes (unstable below the load 0.15 + 0.7 speed^2), the metric a logistic
     of the distance to that boundary; blocks, a tighter rtol and realisations perturb it by small
     amounts drawn from the point (deterministic). RACEWAY_ATLAS_STANDIN_DELAY (s) slows each evaluation
-    (the resume test kills a slow atlas)."""
+    (the resume test kills a slow atlas), RACEWAY_ATLAS_STANDIN_LOG names a file that gets each
+    evaluated point's id."""
 
     def __init__(self, atlas, noise=0.0):
         self.atlas, self.noise = atlas, noise
@@ -113,6 +114,9 @@ class StandinModel:
     def evaluate(self, point_id, sets, tag=""):
         if self.delay:
             time.sleep(self.delay)
+        if os.environ.get("RACEWAY_ATLAS_STANDIN_LOG"):  # the resume test: which points were evaluated
+            with open(os.environ["RACEWAY_ATLAS_STANDIN_LOG"], "a", encoding="utf-8") as f:
+                f.write(f"{point_id}\n")
         u = self.unit(sets)
         margin = u[1] - float(standin_boundary(u[0]))
         if self.noise > 0:

@@ -12,7 +12,8 @@ The metrics:
   mean rate and that rate over the cage's mean speed (whirl-frequency / cage-frequency ratio);
 - seed 001's irregularity metrics (section 4, eq. 9): the vortex radius ratio (max - min) / mean of
   the centre's distance from its mean position, and the velocity deviation sigma_v = std / mean of
-  the centre's speed;
+  the centre's speed, both over the window's last whole whirl turns (report_metrics.whole_turn_window,
+  as the report; the whole window when it holds less than one turn);
 - the pocket impacts (window_impacts): new bar engagements per pocket and per cage revolution (the
   impact rate) and the mean impact energy, the kinetic energy an impact's impulse J gives the free
   cage, J^2 / (2 m), also as a ratio to the kinetic energy of the cage's centre orbiting at the
@@ -37,6 +38,8 @@ The classes (THRESHOLDS, each overridable):
 import math
 
 import numpy as np
+
+import report_metrics as rm
 
 TWO_PI = 2.0 * math.pi
 
@@ -97,10 +100,15 @@ def orbit_metrics(time, x, y, clearance, cage_speed_mean, vx=None, vy=None):
     if vx is None or vy is None:
         vx, vy = np.gradient(x, time), np.gradient(y, time)
     r = np.hypot(x - np.mean(x), y - np.mean(y))
-    speed = np.hypot(np.asarray(vx, dtype=float), np.asarray(vy, dtype=float))
+    # seed 001's metrics over the window's last whole whirl turns (the report's choice: the mean of a
+    # part-swept circle is off its centre), the whole window when it holds less than one turn.
+    whole, _ = rm.whole_turn_window(time, x, y, rm.select_window(time, start=float(time[0])))
+    w = whole.slice
+    rv = np.hypot(x[w] - np.mean(x[w]), y[w] - np.mean(y[w]))
+    speed = np.hypot(np.asarray(vx, dtype=float)[w], np.asarray(vy, dtype=float)[w])
     m = {"orbit_ratio": _ratio(float(np.sqrt(np.mean(r ** 2))), clearance),
          "orbit_radius_m": float(np.mean(r)),
-         "vortex_radius_ratio": _ratio(float(r.max() - r.min()), float(np.mean(r))),
+         "vortex_radius_ratio": _ratio(float(rv.max() - rv.min()), float(np.mean(rv))),
          "sigma_v": _ratio(float(np.std(speed, ddof=1)), float(np.mean(speed))),
          "spectral_peak_share": spectral_peak_share(x, y)}
     m.update(whirl_metrics(time, x, y, cage_speed_mean))
