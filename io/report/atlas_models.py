@@ -7,6 +7,7 @@ blocks' metrics and classes (atlas_certify.settled) and the run's wall time in s
 import math
 import os
 import subprocess
+import threading
 import time
 import zlib
 
@@ -19,6 +20,27 @@ from atlas_search import standin_boundary
 
 class PointFailed(Exception):
     """A point's run failed: str() says how (exit code, last lines of its log)."""
+
+
+class PointStopped(Exception):
+    """A point's run was stopped by a signal: the point stays planned (rerun on --resume)."""
+
+
+#: Set by a stop signal (raceway_atlas.py): no new run starts; the running ones got the signal.
+STOP = threading.Event()
+_RUNNING = set()
+_RUNNING_LOCK = threading.Lock()
+
+
+def stop_runs(signum):
+    """Asks every running `raceway run` to stop (it writes a checkpoint and exits 4)."""
+    STOP.set()
+    with _RUNNING_LOCK:
+        for process in _RUNNING:
+            try:
+                process.send_signal(signum)
+            except OSError:
+                pass
 
 
 def unit_value(value, unit):
@@ -63,9 +85,17 @@ class SimulatorModel:
         for key, value in {**self.base_sets(), **sets}.items():
             args += ["--set", f"{key}={value}"]
         start = time.monotonic()
-        with open(out + ".log", "w", encoding="utf-8") as log:
-            status = subprocess.run(args, stdout=log, stderr=subprocess.STDOUT, check=False).returncode
+        with open(out + ".log", "w", encoding="utf-8") as log, _RUNNING_LOCK:
+            if STOP.is_set():
+                raise PointStopped(name)
+            process = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT)
+            _RUNNING.add(process)
+        status = process.wait()
+        with _RUNNING_LOCK:
+            _RUNNING.discard(process)
         wall = time.monotonic() - start
+        if status == 4 or (status != 0 and STOP.is_set()):
+            raise PointStopped(name)
         if status != 0:
             with open(out + ".log", encoding="utf-8", errors="replace") as log:
                 tail = " | ".join(log.read().strip().splitlines()[-2:])

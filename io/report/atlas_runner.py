@@ -3,7 +3,9 @@ and certified, the state file written after every finished point, the table and 
 
 The state file DIR/atlas_state.json holds the atlas's identity (its file's and base scene's text),
 the batch size, and every point: planned (proposed, not finished), done or failed, with its
-results. A killed atlas resumed with --resume runs the planned points again and goes on; since a
+results. A stop signal (SIGINT, SIGTERM, SIGUSR1) starts no new run, asks the running ones to
+stop and leaves their points planned (exit 4). A stopped or killed atlas resumed with --resume
+runs the planned points again and goes on; since a
 batch is proposed only from finished points, in a fixed order, the resumed atlas is the
 uninterrupted one.
 """
@@ -17,7 +19,7 @@ import numpy as np
 
 import atlas_certify as ac
 import atlas_search as search
-from atlas_models import PointFailed, unit_value
+from atlas_models import STOP, PointFailed, PointStopped, unit_value
 
 STATE = "atlas_state.json"
 
@@ -108,6 +110,8 @@ def evaluate_point(model, atlas, point):
     try:
         base = model.evaluate(point["id"], sets)
         cert, extra = certify(model, atlas, point, sets, base)
+    except PointStopped:
+        return {"status": "planned"}
     except (PointFailed, OSError, KeyError, ValueError) as err:
         return {"status": "failed", "error": str(err), "wall_s": 0.0}
     metrics = {k: v for k, v in base.items() if k not in ("blocks", "wall_s", "output", "reasons")}
@@ -124,7 +128,11 @@ def run_pending(model, atlas, state, folder, workers, log):
     lock = threading.Lock()
 
     def one(point):
+        if STOP.is_set():
+            return
         result = evaluate_point(model, atlas, point)
+        if result["status"] == "planned":
+            return
         with lock:
             point.update(result)
             state["core_hours"] += result["wall_s"] / 3600.0
@@ -182,6 +190,9 @@ def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
     state["stop"] = None
     while True:
         run_pending(model, atlas, state, folder, workers, log)
+        if STOP.is_set():
+            state["stop"] = "stopped by a signal: continue with --resume"
+            break
         batch = next_batch(atlas, state)
         if not batch:
             break

@@ -11,14 +11,18 @@ points (default: --ranks), each point a `raceway run` of the base scene with --s
 `--ranks` runs at a time. DIR gets atlas_state.json (resumable), points/, atlas.csv, atlas.json and
 atlas.png. `--standin NOISE` evaluates the tests' closed-form stand-in instead of the simulator.
 
+A stop signal (SIGINT, SIGTERM, SIGUSR1) starts no new run and is passed on to the running ones,
+whose points stay planned; the table and map are written of what is done (exit 4; --resume goes on).
+
 Exit codes: 0 done; 1 a point failed (recorded in the table); 2 bad input (atlas file, scene,
-folder); 3 numpy or scikit-learn missing.
+folder); 3 numpy or scikit-learn missing; 4 stopped by a signal.
 """
 import argparse
 import importlib.util
 import itertools
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -35,7 +39,7 @@ if MISSING:
     sys.exit(3)
 
 from atlas_file import AtlasFileError, read_atlas_file  # noqa: E402
-from atlas_models import SimulatorModel, StandinModel, unit_value  # noqa: E402
+from atlas_models import STOP, SimulatorModel, StandinModel, stop_runs, unit_value  # noqa: E402
 from atlas_output import write_outputs  # noqa: E402
 from atlas_runner import AtlasStateError, run_atlas  # noqa: E402
 
@@ -136,6 +140,8 @@ def main(argv):
         return 0
     model = StandinModel(atlas, args.standin) if args.standin is not None else \
         SimulatorModel(args.raceway, atlas, args.output_dir)
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGUSR1):
+        signal.signal(signum, lambda number, _frame: stop_runs(number))
     start = time.monotonic()
     try:
         state = run_atlas(model, atlas, args.output_dir, args.resume, batch, args.ranks, log)
@@ -148,6 +154,9 @@ def main(argv):
     failed = sum(p["status"] == "failed" for p in state["points"])
     log(f"{len(state['points'])} points ({failed} failed), {state['core_hours']:.3g} core-hours, "
         f"{time.monotonic() - start:.1f} s; {args.output_dir}/atlas.csv, atlas.json, atlas.png")
+    if STOP.is_set():
+        log("stopped by a signal: the finished points are kept; continue with --resume")
+        return 4
     return 1 if failed else 0
 
 

@@ -18,7 +18,8 @@ struct AtlasRequest {
 CLI::App* add_atlas_command(CLI::App& app, AtlasRequest& request);
 
 /// Runs the atlas driver on this (rank 0's) process and waits for it: its exit code (0 done, 1 a
-/// point failed, 2 bad input, 3 numpy or scikit-learn missing), 1 when it cannot be started.
+/// point failed, 2 bad input, 3 numpy or scikit-learn missing, 4 stopped by a signal, which this
+/// process passes on to it), 1 when it cannot be started.
 int atlas_command(const AtlasRequest& request);
 
 }  // namespace raceway::driver

@@ -8,7 +8,7 @@ CASE: motion_classes (synthetic orbits land in their class), motion_thresholds (
 threshold moves them), certify (block agreement, the rtol sample, Student's t interval by hand),
 search_accuracy (the adaptive search locates the stand-in's boundary with at least 3x fewer points
 than a grid of the same accuracy), search_resume (a killed atlas resumed loses no finished point and
-gives the uninterrupted atlas), bad_files (file, line, key, reason, exit 2, nothing created),
+gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), bad_files (file, line, key, reason, exit 2, nothing created),
 run_6205 (a tiny real atlas through the executable: table, map, certification).
 """
 import csv
@@ -33,7 +33,7 @@ import atlas_certify as ac  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
 
-NEEDS_SKLEARN = {"search_accuracy", "search_resume", "run_6205"}
+NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "run_6205"}
 if CASE in NEEDS_SKLEARN and not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
     sys.exit(77)
@@ -224,6 +224,45 @@ def atlas_script(args, env=None, **kw):
                             stderr=subprocess.STDOUT, text=True, **kw)
 
 
+def wait_done(state_path, count, timeout=30):
+    """Polls the state file until `count` points are done (or the timeout)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            with open(state_path) as f:
+                if sum(q["status"] == "done" for q in json.load(f)["points"]) >= count:
+                    return
+        except (OSError, ValueError):
+            pass
+        time.sleep(0.01)
+
+
+def case_search_stop():
+    """SIGTERM: no new point, exit 4, the table of what is done; --resume: the uninterrupted atlas."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = write_atlas(tmp, STANDIN_ATLAS, "standin.toml")
+        whole, cut = os.path.join(tmp, "whole"), os.path.join(tmp, "cut")
+        atlas_script([path, "-o", whole, "--standin", "0.02"]).communicate()
+        p = atlas_script([path, "-o", cut, "--standin", "0.02"], env={"RACEWAY_ATLAS_STANDIN_DELAY": "0.02"})
+        wait_done(os.path.join(cut, "atlas_state.json"), 7)
+        p.send_signal(signal.SIGTERM)
+        out, _ = p.communicate()
+        check(p.returncode == 4, f"stopped atlas exit {p.returncode}, not 4: {out[-300:]}")
+        with open(os.path.join(cut, "atlas.json")) as f:
+            doc = json.load(f)
+        done = sum(q["status"] == "done" for q in doc["points"])
+        check(7 <= done < 21 and "signal" in (doc["stop"] or ""), f"stopped with {done} done, stop {doc['stop']!r}")
+        r = atlas_script([path, "-o", cut, "--standin", "0.02", "--resume"])
+        r.communicate()
+        check(r.returncode == 0, f"resume after the stop: exit {r.returncode}")
+        tables = []
+        for folder in (whole, cut):
+            with open(os.path.join(folder, "atlas.csv")) as f:
+                tables.append(f.read())
+        check(tables[0] == tables[1], "the atlas resumed after a stop differs from the uninterrupted one")
+        print(f"stopped by SIGTERM after {done} of 21 points; resumed to the uninterrupted atlas")
+
+
 def case_search_resume():
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "standin.toml")
@@ -388,6 +427,7 @@ def case_run_6205():
 
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
+         "search_stop": case_search_stop,
          "bad_files": case_bad_files, "run_6205": case_run_6205}
 CASES[CASE]()
 sys.exit(1 if failures else 0)
