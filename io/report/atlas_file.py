@@ -79,7 +79,8 @@ class _Checker:
         except ValueError:
             seconds = math.nan
         if not (math.isfinite(seconds) and seconds > 0):
-            self.fail(f"{table}.{key}", f"must be a positive time with its unit (s, ms, us), e.g. \"20 ms\", not {value!r}")
+            self.fail(f"{table}.{key}",
+                      f"must be a positive time with its unit (s, ms, us), e.g. \"20 ms\", not {value!r}")
         return seconds
 
     def unknown(self, table, values, known):
@@ -124,7 +125,8 @@ def _certify(c, raw):
         c.fail("certify", "must be a table")
     c.unknown("certify", raw, CERTIFY_KEYS)
     out = {"blocks": c.number("certify", "blocks", raw.get("blocks", 3), 2, 20, integer=True),
-           "block_tolerance": c.number("certify", "block_tolerance", raw.get("block_tolerance", 0.05), 0, low_open=True),
+           "block_tolerance": c.number("certify", "block_tolerance", raw.get("block_tolerance", 0.05), 0,
+                                       low_open=True),
            "convergence_sample": c.number("certify", "convergence_sample", raw.get("convergence_sample", 0.25), 0, 1),
            "convergence_rtol": c.number("certify", "convergence_rtol", raw.get("convergence_rtol", 1e-7), 0, 0.01,
                                         low_open=True),

@@ -48,20 +48,6 @@ def unit_value(value, unit):
     return f"{value:.10g} {unit}"
 
 
-def cage_mass(path):
-    """The cage's mass [kg] from its net force and acceleration (F = m a, least squares over the run's
-    radial components); None where the file has neither or the cage never accelerates."""
-    from raceway import RacewayOutput
-
-    with RacewayOutput(path) as out:
-        if "cage/force" not in out or "cage/acceleration" not in out:
-            return None
-        f = np.asarray(out["cage/force"], dtype=float)[:, :2]
-        a = np.asarray(out["cage/acceleration"], dtype=float)[:, :2]
-    den = float(np.sum(a * a))
-    return float(np.sum(f * a)) / den if den > 0 else None
-
-
 class SimulatorModel:
     """Runs `raceway run BASE --set ...` per point into DIR/points and classifies its output."""
 
@@ -108,7 +94,7 @@ class SimulatorModel:
         name = point_id + (f"_{tag}" if tag else "")
         out, wall = self._run(name, sets)
         run = read_run(out + ".h5")
-        mass = cage_mass(out + ".h5")
+        mass = cm.output_cage_mass(out + ".h5")
         a = self.atlas
         m = cm.classify_run(run, a["settling_time_s"], cage_mass=mass, overrides=a["thresholds"])
         window = np.nonzero(run.time >= a["settling_time_s"])[0]

@@ -12,7 +12,8 @@ import numpy as np
 import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
-                  "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j", "impact_energy_ratio")
+                  "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j",
+                  "impact_energy_ratio")
 CLASS_COLOURS = {"stable": "tab:green", "circling": "tab:blue", "unstable": "tab:red"}
 #: The band drawn round the boundary: where the classifier's largest class probability is below 1 - this.
 BAND_UNCERTAINTY = 0.2

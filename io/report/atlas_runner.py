@@ -162,7 +162,8 @@ def next_batch(atlas, state):
     if atlas["stop_uncertainty"] > 0 and len(set(labels)) > 1:
         u, _ = search.uncertainty(search.fit_classifier(units, labels), search.candidate_pool(d))
         if float(np.max(u)) < atlas["stop_uncertainty"]:
-            state["stop"] = f"the largest uncertainty left, {float(np.max(u)):.3g}, is below {atlas['stop_uncertainty']:g}"
+            state["stop"] = (f"the largest uncertainty left, {float(np.max(u)):.3g}, is below "
+                             f"{atlas['stop_uncertainty']:g}")
             return []
     taken = [p["unit"] for p in points]  # failed points too: not proposed again
     if len(set(labels)) < 2:

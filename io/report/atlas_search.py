@@ -11,6 +11,7 @@ boundary instead of piling up at one place. Before two classes are seen the batc
 (the Halton points in order). Everything is deterministic: the same points run give the same batch,
 which makes a resumed atlas the uninterrupted one.
 """
+import importlib.util
 import math
 import warnings
 
@@ -20,11 +21,7 @@ PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29)
 
 
 def have_sklearn():
-    try:
-        import sklearn  # noqa: F401
-        return True
-    except ImportError:
-        return False
+    return importlib.util.find_spec("sklearn") is not None
 
 
 def halton(n, d, skip=0):

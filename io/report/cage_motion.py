@@ -33,7 +33,11 @@ The classes (THRESHOLDS, each overridable):
 - circling: a regular whirl: at least circling_min_turns whole turns, vortex radius ratio at most
   circling_vortex_ratio, sigma_v at most circling_sigma_v, no hard impacting;
 - unstable: everything else (an irregular orbit or frequent pocket impacts); `reasons` says which
-  criteria decided.
+  criteria decided;
+- unknown: no guiding clearance to scale the orbit by.
+
+`raceway report` puts motion_summary's object into summary.json (`cage_motion`) and the campaign
+table its class and indicator; the atlas (docs/atlas.md) classifies its points with it.
 """
 import math
 
@@ -130,6 +134,8 @@ def impact_metrics(impact_count, impact_energies, pockets, cage_revolutions, whi
 def classify_metrics(m, overrides=None):
     """The class of metrics `m` (orbit_metrics plus impact_metrics) and the reasons for it."""
     t = thresholds(overrides)
+    if not math.isfinite(m["orbit_ratio"]):
+        return "unknown", ["no guiding clearance (land or pocket) to scale the orbit by"]
     energy = m.get("impact_energy_ratio", math.nan)
     impacts_ok = not (m.get("impact_rate", 0.0) > t["impact_rate_max"]
                       and not energy <= t["impact_energy_ratio_min"])  # NaN energy: the rate decides
@@ -207,3 +213,33 @@ def classify_run(run, start, end=None, cage_mass=None, overrides=None):
     return classify(t[sl], run.cage_xy[sl, 0], run.cage_xy[sl, 1], guiding_clearance(run.geometry),
                     run.cage_speed[sl], pockets=run.elements, impact_count=count, impact_energies=energies,
                     overrides=overrides, vx=run.cage_vxy[sl, 0], vy=run.cage_vxy[sl, 1], cage_mass=cage_mass)
+
+
+def output_cage_mass(path):
+    """The cage's mass [kg] from its net force and acceleration in the output (F = m a, least squares
+    over the radial components of every sample); None where the file has neither or the cage never
+    accelerates."""
+    from raceway import RacewayOutput
+
+    with RacewayOutput(path) as out:
+        if "cage/force" not in out or "cage/acceleration" not in out:
+            return None
+        f = np.asarray(out["cage/force"], dtype=float)[:, :2]
+        a = np.asarray(out["cage/acceleration"], dtype=float)[:, :2]
+    den = float(np.sum(a * a))
+    return float(np.sum(f * a)) / den if den > 0 else None
+
+
+SUMMARY_KEYS = ("motion_class", "reasons", "cage_dynamics_indicator", "orbit_ratio", "whirl_turns",
+                "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v", "spectral_peak_share", "impact_rate",
+                "impact_energy_j", "impact_energy_ratio")
+
+
+def motion_summary(run, window):
+    """The report's `cage_motion` object: classify_run over the report's window (report_metrics.Window)
+    with the thresholds' defaults, and the cage mass it used."""
+    mass = output_cage_mass(run.path)
+    m = classify_run(run, window.t_begin, window.t_end, cage_mass=mass)
+    out = {k: m[k] for k in SUMMARY_KEYS}
+    out["cage_mass_kg"] = mass if mass is not None else math.nan
+    return out

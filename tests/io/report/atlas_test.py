@@ -8,7 +8,8 @@ CASE: motion_classes (synthetic orbits land in their class), motion_thresholds (
 threshold moves them), certify (block agreement, the rtol sample, Student's t interval by hand),
 search_accuracy (the adaptive search locates the stand-in's boundary with at least 3x fewer points
 than a grid of the same accuracy), search_resume (a killed atlas resumed loses no finished point and
-gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), bad_files (file, line, key, reason, exit 2, nothing created),
+gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), bad_files (file,
+line, key, reason, exit 2, nothing created),
 run_6205 (a tiny real atlas through the executable: table, map, certification).
 """
 import csv
