@@ -127,7 +127,8 @@ def write_map(atlas, state, folder):
     sc = axes[1].scatter(px, py, c=[p["metric"] for p in done], cmap="viridis", edgecolors="k", zorder=3)
     fig.colorbar(sc, ax=axes[1], label=atlas["metric"])
     axes[0].legend(title=f"class (hatched: uncertainty > {BAND_UNCERTAINTY:g})", loc="best", fontsize=8)
-    axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band")
+    others = "" if len(atlas["parameters"]) == 2 else "\n(the other parameters at their range's middle)"
+    axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band{others}")
     axes[1].set_title(f"{atlas['metric']} at the points")
     for ax in axes:
         ax.set_xlabel(xlabel)
