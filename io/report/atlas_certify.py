@@ -1,9 +1,10 @@
 """How an atlas point is certified (docs/atlas.md, "Certification").
 
 - settled: the window (settling_time .. end_time) is cut into `blocks` equal blocks; the metric of
-  each block (classified on its own) and of its successor differ by at most block_tolerance, and
-  the last block's class is the window's. A point that is not settled is recorded as such (its
-  class stands, flagged): the run was too short for it.
+  each block and of its successor differ by at most block_tolerance. Each block's own class is
+  recorded as evidence, not required to be the window's: a block shorter than a whirl turn cannot
+  show a whirl. A point that is not settled is recorded as such (its class stands, flagged): the
+  run was too short for it.
 - converged: a sample of the points (every k-th point in the order they were run, k = round(1 /
   convergence_sample)) is rerun with [solver] rtol = convergence_rtol; it agrees when its class is
   the same and its metric within convergence_tolerance.
@@ -36,9 +37,9 @@ def settled(block_metrics, block_classes, window_class, tolerance):
     values = [float(v) for v in block_metrics]
     steps = [abs(b - a) for a, b in zip(values[:-1], values[1:])]
     worst = max(steps) if steps else 0.0
-    ok = bool(all(math.isfinite(s) for s in steps) and worst <= tolerance and block_classes[-1] == window_class)
+    ok = bool(all(math.isfinite(s) for s in steps) and worst <= tolerance)
     return {"ok": ok, "block_metric": values, "block_class": list(block_classes), "largest_step": worst,
-            "tolerance": tolerance}
+            "tolerance": tolerance, "classes_agree": all(c == window_class for c in block_classes)}
 
 
 def in_convergence_sample(index, share):

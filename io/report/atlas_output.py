@@ -128,11 +128,14 @@ def write_map(atlas, state, folder):
     fig.colorbar(sc, ax=axes[1], label=atlas["metric"])
     axes[0].legend(title=f"class (hatched: uncertainty > {BAND_UNCERTAINTY:g})", loc="best", fontsize=8)
     others = "" if len(atlas["parameters"]) == 2 else "\n(the other parameters at their range's middle)"
-    axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band{others}")
-    axes[1].set_title(f"{atlas['metric']} at the points")
+    axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band{others}", fontsize=10)
+    axes[1].set_title(f"{atlas['metric']} at the points", fontsize=10)
+    pad = [0.03 * (gx[-1] - gx[0]), 0.03 * (gy[-1] - gy[0])]
     for ax in axes:
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
+        ax.set_xlim(gx[0] - pad[0], gx[-1] + pad[0])
+        ax.set_ylim(gy[0] - pad[1], gy[-1] + pad[1])
     path = os.path.join(folder, "atlas.png")
     fig.savefig(path + ".tmp.png", dpi=110)
     plt.close(fig)

@@ -144,8 +144,11 @@ def case_certify():
     check(s["ok"] and abs(s["largest_step"] - 0.02) < 1e-12, f"blocks within tolerance: {s}")
     s = ac.settled([0.10, 0.30, 0.31], ["stable"] * 3, "stable", 0.05)
     check(not s["ok"], "blocks 0.2 apart passed a tolerance of 0.05")
-    s = ac.settled([0.10, 0.11, 0.12], ["stable", "stable", "unstable"], "stable", 0.05)
-    check(not s["ok"], "last block of another class passed")
+    s = ac.settled([0.10, 0.16, 0.22], ["stable", "stable", "unstable"], "stable", 0.05)
+    check(not s["ok"] and abs(s["largest_step"] - 0.06) < 1e-12 and not s["classes_agree"],
+          f"a metric drifting 0.06 a block passed a tolerance of 0.05: {s}")
+    s = ac.settled([0.10, 0.10, float("nan")], ["stable"] * 3, "stable", 0.05)
+    check(not s["ok"], "a block without a metric passed")
     check([i for i in range(10) if ac.in_convergence_sample(i, 0.25)] == [0, 4, 8], "every 4th point rerun")
     check(not any(ac.in_convergence_sample(i, 0.0) for i in range(10)), "a zero sample reruns points")
     c = ac.converged("unstable", 0.40, "unstable", 0.43, 1e-7, 0.05)
