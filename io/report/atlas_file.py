@@ -14,7 +14,7 @@ import tomllib
 from cage_motion import CLASSES, THRESHOLDS
 
 ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "metric", "classes", "budget_points",
-              "budget_core_hours", "batch_size", "set", "stop_uncertainty"}
+              "budget_core_hours", "batch_size", "set", "stop_band_share"}
 CERTIFY_KEYS = {"blocks", "block_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
                 "realisation_key", "realisations", "ci_target"}
 PARAMETER_KEYS = {"key", "name", "range", "unit"}
@@ -172,7 +172,7 @@ def _atlas(c, raw, path):
     a["budget_core_hours"] = c.number("atlas", "budget_core_hours", raw.get("budget_core_hours", 1e9), 0,
                                       low_open=True)
     a["batch_size"] = c.number("atlas", "batch_size", raw.get("batch_size", 0), 0, 4096, integer=True)
-    a["stop_uncertainty"] = c.number("atlas", "stop_uncertainty", raw.get("stop_uncertainty", 0.0), 0, 1)
+    a["stop_band_share"] = c.number("atlas", "stop_band_share", raw.get("stop_band_share", 0.0), 0, 1)
     a["set"] = raw.get("set", {})
     if not isinstance(a["set"], dict) or any(not isinstance(v, (str, int, float)) for v in a["set"].values()):
         c.fail("atlas.set", "must be a table of scene keys and values, e.g. { \"inner_ring.load.fy\" = \"0 N\" }")

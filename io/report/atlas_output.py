@@ -15,8 +15,7 @@ METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vort
                   "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j",
                   "impact_energy_ratio")
 CLASS_COLOURS = {"stable": "tab:green", "circling": "tab:blue", "unstable": "tab:red"}
-#: The band drawn round the boundary: where the classifier's largest class probability is below 1 - this.
-BAND_UNCERTAINTY = 0.2
+BAND_UNCERTAINTY = search.BAND_UNCERTAINTY  # the band drawn round the boundary
 
 
 def _finite(value):

@@ -159,11 +159,11 @@ def next_batch(atlas, state):
     done = [p for p in points if p["status"] == "done"]
     labels = [p["label"] for p in done]
     units = [p["unit"] for p in done]
-    if atlas["stop_uncertainty"] > 0 and len(set(labels)) > 1:
-        u, _ = search.uncertainty(search.fit_classifier(units, labels), search.candidate_pool(d))
-        if float(np.max(u)) < atlas["stop_uncertainty"]:
-            state["stop"] = (f"the largest uncertainty left, {float(np.max(u)):.3g}, is below "
-                             f"{atlas['stop_uncertainty']:g}")
+    if atlas["stop_band_share"] > 0 and len(set(labels)) > 1:
+        band = search.band_share(search.fit_classifier(units, labels), search.candidate_pool(d))
+        if band < atlas["stop_band_share"]:
+            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.3g} of the "
+                             f"map, less than stop_band_share {atlas['stop_band_share']:g}")
             return []
     taken = [p["unit"] for p in points]  # failed points too: not proposed again
     if len(set(labels)) < 2:

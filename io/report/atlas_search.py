@@ -73,6 +73,17 @@ def uncertainty(model, points):
     return 1.0 - p.max(axis=1), model.classes_[np.argmax(p, axis=1)]
 
 
+#: The uncertainty band: where u = 1 - max_k p_k exceeds this (the map hatches it).
+BAND_UNCERTAINTY = 0.2
+
+
+def band_share(model, pool):
+    """Share of the candidate pool inside the uncertainty band: the search's stopping measure (the
+    largest u is no measure: next to the boundary it is always 1/2 or more)."""
+    u, _ = uncertainty(model, pool)
+    return float(np.mean(u > BAND_UNCERTAINTY))
+
+
 def _spread_pick(scores, pool, taken, count, spacing):
     """Greedy: the pool's best score damped by closeness to `taken` and to the picks so far."""
     taken = [np.asarray(t, dtype=float) for t in taken]
