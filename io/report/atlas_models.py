@@ -114,7 +114,7 @@ class StandinModel:
     of the distance to that boundary; blocks, a tighter rtol and realisations perturb it by small
     amounts drawn from the point (deterministic). RACEWAY_ATLAS_STANDIN_DELAY (s) slows each evaluation
     (the resume test kills a slow atlas), RACEWAY_ATLAS_STANDIN_LOG names a file that gets each
-    evaluated point's id."""
+    evaluated point's id, RACEWAY_ATLAS_STANDIN_FAIL the ids of points that fail."""
 
     def __init__(self, atlas, noise=0.0):
         self.atlas, self.noise = atlas, noise
@@ -130,6 +130,8 @@ class StandinModel:
     def evaluate(self, point_id, sets, tag=""):
         if self.delay:
             time.sleep(self.delay)
+        if point_id in os.environ.get("RACEWAY_ATLAS_STANDIN_FAIL", "").split(","):
+            raise PointFailed(f"stand-in: {point_id} fails (RACEWAY_ATLAS_STANDIN_FAIL)")
         if os.environ.get("RACEWAY_ATLAS_STANDIN_LOG"):  # the resume test: which points were evaluated
             with open(os.environ["RACEWAY_ATLAS_STANDIN_LOG"], "a", encoding="utf-8") as f:
                 f.write(f"{point_id}\n")

@@ -15,8 +15,6 @@ import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
 
-import numpy as np
-
 import atlas_certify as ac
 import atlas_search as search
 from atlas_models import STOP, PointFailed, PointStopped, unit_value
@@ -112,8 +110,10 @@ def evaluate_point(model, atlas, point):
         cert, extra = certify(model, atlas, point, sets, base)
     except PointStopped:
         return {"status": "planned"}
-    except (PointFailed, OSError, KeyError, ValueError) as err:
+    except PointFailed as err:
         return {"status": "failed", "error": str(err), "wall_s": 0.0}
+    except Exception as err:  # an unreadable output, a window without samples: the point, not the atlas
+        return {"status": "failed", "error": f"{type(err).__name__}: {err}", "wall_s": 0.0}
     metrics = {k: v for k, v in base.items() if k not in ("blocks", "wall_s", "output", "reasons")}
     return {"status": "done", "class": base["motion_class"], "label": mapped_class(base["motion_class"],
             atlas["classes"]), "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
@@ -166,12 +166,7 @@ def next_batch(atlas, state):
                              f"map, less than stop_band_share {atlas['stop_band_share']:g}")
             return []
     taken = [p["unit"] for p in points]  # failed points too: not proposed again
-    if len(set(labels)) < 2:
-        return search.space_filling(taken, min(left, state["batch_size"]), d)
-    pool = search.candidate_pool(d)
-    u, _ = search.uncertainty(search.fit_classifier(units, labels), pool)
-    spacing = 0.5 / np.sqrt(len(units) + 1)
-    return search._spread_pick(u, pool, taken, min(left, state["batch_size"]), spacing)
+    return search.propose(units, labels, min(left, state["batch_size"]), taken=taken)
 
 
 def add_batch(state, batch):

@@ -113,16 +113,18 @@ def space_filling(taken, count, d):
     return picks
 
 
-def propose(points, labels, count, pool=None):
-    """The next `count` points (unit cube) given the points run and their classes."""
+def propose(points, labels, count, pool=None, taken=None):
+    """The next `count` points (unit cube) given the points run and their classes; `taken`: every
+    point already placed (default: `points`; the atlas adds its failed ones, never proposed again)."""
     points = np.asarray(points, dtype=float)
     d = points.shape[1]
+    taken = points if taken is None else np.asarray(taken, dtype=float)
     if len(set(labels)) < 2:
-        return space_filling(points, count, d)
+        return space_filling(taken, count, d)
     pool = candidate_pool(d) if pool is None else pool
     u, _ = uncertainty(fit_classifier(points, labels), pool)
     spacing = 0.5 / math.sqrt(len(points) + 1)
-    return _spread_pick(u, pool, points, count, spacing)
+    return _spread_pick(u, pool, taken, count, spacing)
 
 
 def misclassified_share(model_or_points, labels_or_none, truth, grid):

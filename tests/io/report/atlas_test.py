@@ -8,7 +8,8 @@ CASE: motion_classes (synthetic orbits land in their class), motion_thresholds (
 threshold moves them), certify (block agreement, the rtol sample, Student's t interval by hand),
 search_accuracy (the adaptive search locates the stand-in's boundary with at least 3x fewer points
 than a grid of the same accuracy), search_resume (a killed atlas resumed loses no finished point and
-gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), bad_files (file,
+gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), search_ends (the
+uncertainty band small enough; a failed point), bad_files (file,
 line, key, reason, exit 2, nothing created),
 run_6205 (a tiny real atlas through the executable: table, map, certification).
 """
@@ -34,7 +35,7 @@ import atlas_certify as ac  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
 
-NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "run_6205"}
+NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "search_ends", "run_6205"}
 if CASE in NEEDS_SKLEARN and not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
     sys.exit(77)
@@ -265,8 +266,13 @@ def case_search_stop():
                 tables.append(f.read())
         check(tables[0] == tables[1], "the atlas resumed after a stop differs from the uninterrupted one")
         print(f"stopped by SIGTERM after {done} of 21 points; resumed to the uninterrupted atlas")
+
+
+def case_search_ends():
+    """The search's other ends: the uncertainty band small enough; a failed point."""
+    with tempfile.TemporaryDirectory() as tmp:
         # stop_band_share: the search ends when the uncertainty band covers less of the map, before the
-        # budget (the band covers 0.053 of it at 45 points, 0.044 at 53: tests run by hand).
+        # budget (measured by hand: the band covers 0.053 of it at 45 points, 0.044 at 53).
         sure = write_atlas(tmp, STANDIN_ATLAS.replace("budget_points = 21",
                                                       "budget_points = 200\nstop_band_share = 0.05"), "sure.toml")
         atlas_script([sure, "-o", os.path.join(tmp, "sure"), "--standin", "0"]).communicate()
@@ -275,6 +281,17 @@ def case_search_stop():
         check(len(doc["points"]) < 120 and "stop_band_share" in (doc["stop"] or ""),
               f"stop_band_share 0.05: {len(doc['points'])} points, stop {doc['stop']!r}")
         print(f"stop_band_share 0.05: {len(doc['points'])} points, {doc['stop']}")
+        # A failed point: recorded with its error, the others run, exit 1.
+        failing = write_atlas(tmp, STANDIN_ATLAS.replace("budget_points = 21", "budget_points = 9"), "failing.toml")
+        p = atlas_script([failing, "-o", os.path.join(tmp, "failing"), "--standin", "0"],
+                         env={"RACEWAY_ATLAS_STANDIN_FAIL": "p0002"})
+        p.communicate()
+        with open(os.path.join(tmp, "failing", "atlas.csv")) as f:
+            rows = {r["id"]: r for r in csv.DictReader(f)}
+        check(p.returncode == 1 and len(rows) == 9 and rows["p0002"]["status"] == "failed"
+              and "RACEWAY_ATLAS_STANDIN_FAIL" in rows["p0002"]["certified_by"]
+              and sum(r["status"] == "done" for r in rows.values()) == 8,
+              f"a failed point: exit {p.returncode}, rows {[(k, r['status']) for k, r in rows.items()]}")
 
 
 def case_search_resume():
@@ -443,7 +460,7 @@ def case_run_6205():
 
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
-         "search_stop": case_search_stop,
+         "search_stop": case_search_stop, "search_ends": case_search_ends,
          "bad_files": case_bad_files, "run_6205": case_run_6205}
 CASES[CASE]()
 sys.exit(1 if failures else 0)
