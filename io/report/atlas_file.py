@@ -174,7 +174,7 @@ def _atlas(c, raw, path):
     a["batch_size"] = c.number("atlas", "batch_size", raw.get("batch_size", 0), 0, 4096, integer=True)
     a["stop_band_share"] = c.number("atlas", "stop_band_share", raw.get("stop_band_share", 0.0), 0, 1)
     a["set"] = raw.get("set", {})
-    if not isinstance(a["set"], dict) or any(not isinstance(v, (str, int, float)) for v in a["set"].values()):
+    if not isinstance(a["set"], dict) or any(not isinstance(v, (str, int, float, bool)) for v in a["set"].values()):
         c.fail("atlas.set", "must be a table of scene keys and values, e.g. { \"inner_ring.load.fy\" = \"0 N\" }")
     for reserved in ("scene.end_time", "solver.rtol"):
         if reserved in a["set"]:

@@ -43,6 +43,11 @@ def stop_runs(signum):
                 pass
 
 
+def set_text(value):
+    """A `set` value of the atlas file as --set takes it: TOML booleans in TOML, the rest as written."""
+    return ("true" if value else "false") if isinstance(value, bool) else str(value)
+
+
 def unit_value(value, unit):
     """A range value with its unit as the scene reads it: 3000 rpm -> "3000 rpm"."""
     return f"{value:.10g} {unit}"
@@ -58,7 +63,7 @@ class SimulatorModel:
 
     def base_sets(self):
         a = self.atlas
-        sets = {k: str(v) for k, v in a["set"].items()}
+        sets = {k: set_text(v) for k, v in a["set"].items()}
         sets["scene.end_time"] = f"{a['end_time_s']:.10g} s"
         return sets
 

@@ -9,7 +9,8 @@ The metrics:
 - orbit ratio rho = rms distance of the centre from its mean position / guiding clearance (the
   cage's radial play: the land clearance of a land-guided cage, else the pocket clearance);
 - whirl: the angle the centre sweeps about its mean position (unwrapped), whole turns of it, its
-  mean rate and that rate over the cage's mean speed (whirl-frequency / cage-frequency ratio);
+  mean rate and that rate over the cage's mean speed (whirl-frequency / cage-frequency ratio,
+  signed: +1 a whirl turning with the cage at its speed, whichever way the cage turns);
 - seed 001's irregularity metrics (section 4, eq. 9): the vortex radius ratio (max - min) / mean of
   the centre's distance from its mean position, and the velocity deviation sigma_v = std / mean of
   the centre's speed, both over the window's last whole whirl turns (report_metrics.whole_turn_window,
@@ -80,8 +81,10 @@ def whirl_metrics(time, x, y, cage_speed_mean):
     swept = float(np.sum(np.remainder(np.diff(phi) + math.pi, TWO_PI) - math.pi))
     duration = float(time[-1] - time[0])
     rate = swept / duration if duration > 0 else math.nan
+    # Signed: +1 for a whirl turning with the cage at its speed, whichever way the cage turns.
+    ratio = rate / cage_speed_mean if cage_speed_mean and math.isfinite(cage_speed_mean) else math.nan
     return {"whirl_turns": int(math.floor(abs(swept) / TWO_PI)), "whirl_frequency_hz": rate / TWO_PI,
-            "whirl_to_cage_frequency": _ratio(rate, abs(cage_speed_mean)) if cage_speed_mean else math.nan}
+            "whirl_to_cage_frequency": ratio}
 
 
 def spectral_peak_share(x, y):

@@ -39,7 +39,7 @@ if MISSING:
     sys.exit(3)
 
 from atlas_file import AtlasFileError, read_atlas_file  # noqa: E402
-from atlas_models import STOP, SimulatorModel, StandinModel, stop_runs, unit_value  # noqa: E402
+from atlas_models import STOP, SimulatorModel, StandinModel, set_text, stop_runs, unit_value  # noqa: E402
 from atlas_output import write_outputs  # noqa: E402
 from atlas_runner import AtlasStateError, run_atlas  # noqa: E402
 
@@ -50,7 +50,7 @@ def log(message):
 
 def checks(atlas):
     """(atlas file key, --set overrides) of every scene checked before the atlas runs."""
-    base = {k: str(v) for k, v in atlas["set"].items()}
+    base = {k: set_text(v) for k, v in atlas["set"].items()}
     base["scene.end_time"] = f"{atlas['end_time_s']:.10g} s"
     params = atlas["parameters"]
     for corner in itertools.product(*[p["range"] for p in params]):

@@ -53,24 +53,25 @@ def check(ok, what):
 T = np.arange(2000) * 1e-4
 OMEGA = 2 * math.pi * 50.0
 C = 100e-6
-RNG = np.random.default_rng(7)
 
 
 def settled_centre():
     """A centre resting 30 um off the axis with 4 um of white noise."""
-    return 30e-6 + 4e-6 * RNG.standard_normal(T.size), 4e-6 * RNG.standard_normal(T.size)
+    rng = np.random.default_rng(7)
+    return 30e-6 + 4e-6 * rng.standard_normal(T.size), 4e-6 * rng.standard_normal(T.size)
 
 
 def circular_whirl(radius=0.8 * C, rate=1.0):
     """A whirl at `radius` at `rate` times the cage frequency, with 0.5 um of noise."""
-    return (radius * np.cos(rate * OMEGA * T) + 0.5e-6 * RNG.standard_normal(T.size),
-            radius * np.sin(rate * OMEGA * T) + 0.5e-6 * RNG.standard_normal(T.size))
+    rng = np.random.default_rng(8)
+    return (radius * np.cos(rate * OMEGA * T) + 0.5e-6 * rng.standard_normal(T.size),
+            radius * np.sin(rate * OMEGA * T) + 0.5e-6 * rng.standard_normal(T.size))
 
 
 def random_walk_with_impacts():
     """A random walk in the clearance circle, reflected at its wall: each reflection an impact."""
     p, path, hits = np.zeros(2), [], 0
-    steps = 12e-6 * RNG.standard_normal((T.size, 2))
+    steps = 12e-6 * np.random.default_rng(9).standard_normal((T.size, 2))
     for s in steps:
         p = p + s
         r = np.hypot(*p)
@@ -88,14 +89,22 @@ def classify(x, y, **kw):
 
 def case_motion_classes():
     m = classify(*settled_centre())
+    print(f"settled centre: rho {m['orbit_ratio']:.3g}, CDI {m['cage_dynamics_indicator']:.3g}")
     check(m["motion_class"] == "stable", f"settled centre: {m['motion_class']} {m['reasons']}")
     check(m["orbit_ratio"] < 0.1 and m["cage_dynamics_indicator"] < 0.1, f"settled centre metrics {m}")
     m = classify(*circular_whirl())
+    print(f"circular whirl: rho {m['orbit_ratio']:.3g}, whirl / cage {m['whirl_to_cage_frequency']:.4g}, "
+          f"{m['whirl_turns']} turns, vortex {m['vortex_radius_ratio']:.3g}, sigma_v {m['sigma_v']:.3g}, "
+          f"CDI {m['cage_dynamics_indicator']:.3g}")
     check(m["motion_class"] == "circling", f"circular whirl: {m['motion_class']} {m['reasons']}")
     check(abs(m["orbit_ratio"] - 0.8) < 0.01, f"whirl orbit ratio {m['orbit_ratio']} != 0.8")
     check(abs(m["whirl_to_cage_frequency"] - 1.0) < 0.01, f"whirl / cage frequency {m['whirl_to_cage_frequency']}")
     check(m["whirl_turns"] == 9, f"whirl turns {m['whirl_turns']} != 9 (10 turns less one sample)")
-    check(m["vortex_radius_ratio"] < 0.05 and m["sigma_v"] < 0.2, f"whirl regular: {m}")
+    check(m["vortex_radius_ratio"] < 0.1 and m["sigma_v"] < 0.2, f"whirl regular: {m}")
+    x, y = circular_whirl()
+    back = cm.classify(T, x, -y, C, -OMEGA, pockets=9)  # the same whirl with a cage turning the other way
+    check(back["motion_class"] == "circling" and abs(back["whirl_to_cage_frequency"] - 1.0) < 0.01,
+          f"whirl with a cage turning in -z: {back['motion_class']}, ratio {back['whirl_to_cage_frequency']}")
     check(m["cage_dynamics_indicator"] < 0.02, f"whirl indicator {m['cage_dynamics_indicator']}")
     x, y, hits = random_walk_with_impacts()
     energy = 0.5 * 0.04 * (OMEGA * C) ** 2  # each impact as energetic as a whirl at the clearance
@@ -407,7 +416,7 @@ end_time = "10 ms"
 settling_time = "5 ms"
 budget_points = 3
 batch_size = 3
-set = {{ "scene.output_interval" = "0.1 ms" }}
+set = {{ "scene.output_interval" = "0.1 ms", "scene.gravity" = true }}
 
 [certify]
 blocks = 2
