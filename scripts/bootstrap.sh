@@ -22,7 +22,6 @@ runtime_packages=(
   libhdf5-openmpi-dev libmetis-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
   hdf5-tools
   python3-numpy python3-h5py python3-matplotlib python3-munkres
-  python3-sklearn    # `raceway atlas`: the adaptive search's Gaussian-process classifier (brings scipy)
 )
 
 # Testing adds these, one a line with what needs it (a test that needs one skips when it is absent,
@@ -35,6 +34,8 @@ test_packages=(
   ffmpeg             # io.report_run.6309_R3: the animation as MP4 (GIF without it)
   slurm-wlm munge    # campaign.real_slurm_*: a one-node Slurm on localhost for the Slurm recipes
   python3-pandas     # run.output_layout_package: the reader's pandas view (the test also runs without it)
+  python3-sklearn    # io.atlas.*, and `raceway atlas` itself: the search's Gaussian-process classifier (it
+                     # brings scipy, 247 MB, which the runtime list avoids: an atlas user installs it)
 )
 
 tests=0 list=0
