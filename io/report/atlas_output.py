@@ -97,7 +97,7 @@ def write_map(atlas, state, folder):
         import matplotlib.pyplot as plt
     except ImportError:
         return "no map: matplotlib is missing"
-    done = [p for p in state["points"] if p["status"] == "done"]
+    done = [p for p in state["points"] if p["status"] == "done" and p.get("label")]
     units = np.array([p["unit"] for p in done]) if done else np.zeros((0, len(atlas["parameters"])))
     labels = [p["label"] for p in done]
     fig, axes = plt.subplots(1, 2, figsize=(12, 5), constrained_layout=True)

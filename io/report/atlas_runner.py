@@ -70,9 +70,12 @@ def point_sets(atlas, unit):
 
 
 def mapped_class(cls, classes):
-    """The class the map shows: a class left out of the atlas's list joins its neighbour."""
+    """The class the map shows: a class left out of the atlas's list joins its neighbour; None for
+    "unknown" (no clearance in the output: such a point trains nothing)."""
     if cls in classes:
         return cls
+    if cls not in ("stable", "circling", "unstable"):
+        return None
     if cls == "circling":
         return "stable" if "stable" in classes else "unstable"
     return "circling"
@@ -156,7 +159,7 @@ def next_batch(atlas, state):
         return []
     if not points:
         return list(search.initial_design(d))[:left]
-    done = [p for p in points if p["status"] == "done"]
+    done = [p for p in points if p["status"] == "done" and p.get("label")]
     labels = [p["label"] for p in done]
     units = [p["unit"] for p in done]
     if atlas["stop_band_share"] > 0 and len(set(labels)) > 1:
