@@ -400,6 +400,8 @@ def case_bad_files():
     bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um"]'), 12,
                 "certify.realisations", ["at least two"])
     bad_in_file(good.replace('end_time = "20 ms"', 'end_time = "20 ms'), 4, "(syntax)", ["not TOML"])
+    bad_in_file(good + "\n[thresholds]\nwobble = 1\n", 26, "thresholds.wobble", ["unknown key", "stable_orbit_ratio"])
+    bad_in_file(good + "\n[thresholds]\ncircling_sigma_v = -1\n", 26, "thresholds.circling_sigma_v", ["at least 0"])
     bad_in_file(good.replace('batch_size = 4', 'batch_size = 4\nset = {{ "inner_ring.speed" = "1 rpm" }}'), 9,
                 "atlas.set", ["also a parameter"])
     # Through the executable: exit 2 before anything is created; values the scene refuses, found by
@@ -417,6 +419,9 @@ settling_time = "5 ms"
 budget_points = 3
 batch_size = 3
 set = {{ "scene.output_interval" = "0.1 ms", "scene.gravity" = true }}
+
+[thresholds]
+stable_orbit_ratio = 0.25
 
 [certify]
 blocks = 2
@@ -453,6 +458,7 @@ def case_run_6205():
               "the rtol sample is not every 3rd point")
         for q in pts:
             check(q["class"] in cm.CLASSES and q["certified_by"], f"{q['id']}: class / certification missing")
+            check(q["class"] != "stable" or "< 0.25" in q["reasons"][0], f"{q['id']}: threshold not applied: {q['reasons']}")
             check(len(q["certification"]["settled"]["block_metric"]) == 2, f"{q['id']}: not 2 blocks")
             check(q["certification"]["realisations"]["checked"] == (q["class"] == "unstable"),
                   f"{q['id']}: realisations run for a {q['class']} point or not for an unstable one")
