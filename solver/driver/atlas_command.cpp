@@ -83,8 +83,14 @@ CLI::App* add_atlas_command(CLI::App& app, AtlasRequest& request) {
   return atlas;
 }
 
-int atlas_command(const AtlasRequest& request) {
+int atlas_command(const AtlasRequest& request, int rank, int size) {
   namespace fs = std::filesystem;
+  if (size > 1) {
+    if (rank == 0)
+      std::fprintf(stderr, "[raceway] error: atlas: start it without mpirun, which it does not need: it runs its points "
+                           "itself, --ranks %d of them at a time\n", size);
+    return 2;
+  }
   const char* py_env = std::getenv("RACEWAY_PYTHON");
   const std::string python = py_env && *py_env ? py_env : "/usr/bin/python3";
   if (access(python.c_str(), X_OK) != 0) {

@@ -17,9 +17,10 @@ struct AtlasRequest {
 /// Adds the atlas command to the command line; returns it (parsed: `*command`).
 CLI::App* add_atlas_command(CLI::App& app, AtlasRequest& request);
 
-/// Runs the atlas driver on this (rank 0's) process and waits for it: its exit code (0 done, 1 a
-/// point failed, 2 bad input, 3 numpy or scikit-learn missing, 4 stopped by a signal, which this
-/// process passes on to it), 1 when it cannot be started.
-int atlas_command(const AtlasRequest& request);
+/// Runs the atlas driver and waits for it: its exit code (0 done, 1 a point failed, 2 bad input, 3
+/// numpy or scikit-learn missing, 4 stopped by a signal, which this process passes on to it), 1 when
+/// it cannot be started. Refused under mpirun (`size` > 1, exit 2 on every rank): the driver starts
+/// its own runs, and a child of an MPI job's rank would take itself for that rank.
+int atlas_command(const AtlasRequest& request, int rank, int size);
 
 }  // namespace raceway::driver

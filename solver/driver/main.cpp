@@ -563,7 +563,7 @@ int main(int argc, char** argv) {
   }
   const int code = *cl.run            ? run_on_all_ranks(cl, MPI_COMM_WORLD)
                    : *campaign_app    ? driver::campaign_command(campaign_request)
-                   : *atlas_app       ? (rank == 0 ? driver::atlas_command(atlas_request) : 0)
+                   : *atlas_app       ? driver::atlas_command(atlas_request, rank, size)
                    : rank == 0        ? check_or_report(cl)
                                       : 0;
   MPI_Finalize();
