@@ -140,22 +140,13 @@ def regular_grid(n, d):
     return np.stack([a.ravel(order="F") for a in axes], axis=1)
 
 
-def standin_classes(points, noise=0.0, seed=0):
+def standin_classes(points):
     """A cheap stand-in for the simulator with a known boundary (the tests' model): on (speed, load) in
-    the unit square, "unstable" where load < 0.15 + 0.7 speed^2 (the cage is driven too little for
-    its speed), "stable" above. With noise > 0 a point within `noise` of the boundary (in load) is
-    flipped with probability falling linearly from 1/2 on it, drawn from the point's coordinates
-    and `seed` (the same point always gets the same class)."""
+    the unit square, "unstable" where load < standin_boundary(speed) (the cage is driven too little
+    for its speed), "stable" above. (`raceway_atlas.py --standin NOISE` adds a ripple to the boundary:
+    atlas_models.StandinModel.)"""
     points = np.atleast_2d(np.asarray(points, dtype=float))
-    margin = points[:, 1] - standin_boundary(points[:, 0])
-    labels = np.where(margin < 0.0, "unstable", "stable")
-    if noise > 0:
-        for i, (p, m) in enumerate(zip(points, margin)):
-            key = int.from_bytes(np.round(p * 1e9).astype(np.int64).tobytes(), "little") % (2 ** 63)
-            draw = np.random.default_rng([seed, key]).random()
-            if abs(m) < noise and draw < 0.5 * (1.0 - abs(m) / noise):
-                labels[i] = "stable" if labels[i] == "unstable" else "unstable"
-    return labels
+    return np.where(points[:, 1] < standin_boundary(points[:, 0]), "unstable", "stable")
 
 
 def standin_boundary(speed):
