@@ -1,11 +1,13 @@
 """The atlas's outputs (docs/atlas.md, "Outputs"): DIR/atlas.csv and DIR/atlas.json (every point with
 its parameters, class, indicator, metrics and certification evidence) and DIR/atlas.png (the map of
 class and indicator over the first two parameters: the points, the classifier's boundary and its
-uncertainty band). Files are written beside and renamed."""
+uncertainty band; the metric at the points over a Gaussian-process regression of them). Files are
+written beside and renamed."""
 import csv
 import json
 import math
 import os
+import warnings
 
 import numpy as np
 
@@ -89,6 +91,25 @@ def _axis(atlas, k, unit):
     return low + np.asarray(unit) * (high - low), f"{p['name']} ({p['key']}) [{p['unit']}]"
 
 
+def metric_field(units, values, cube):
+    """The metric over the grid `cube`: a Gaussian-process regression of the points' values (constant x
+    RBF plus white noise, normalised, fixed random state); None with fewer than 3 finite points."""
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+
+    values = np.asarray(values, dtype=float)
+    keep = np.isfinite(values)
+    if keep.sum() < 3:
+        return None
+    kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(0.3, (0.05, 3.0)) + WhiteKernel(1e-2, (1e-6, 1.0))
+    model = GaussianProcessRegressor(kernel=kernel, normalize_y=True, random_state=0)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", category=ConvergenceWarning)
+        model.fit(np.asarray(units, dtype=float)[keep], values[keep])
+    return model.predict(cube)
+
+
 def write_map(atlas, state, folder):
     """DIR/atlas.png; returns a note when the map could not be drawn (no matplotlib)."""
     try:
@@ -123,12 +144,19 @@ def write_map(atlas, state, folder):
     for cls in [c for c in CLASS_COLOURS if c in labels]:
         sel = [i for i, c in enumerate(labels) if c == cls]
         axes[0].scatter(px[sel], py[sel], c=CLASS_COLOURS[cls], edgecolors="k", label=cls, zorder=3)
-    sc = axes[1].scatter(px, py, c=[p["metric"] for p in done], cmap="viridis", edgecolors="k", zorder=3)
+    values = [p["metric"] if p["metric"] is not None else math.nan for p in done]
+    field = metric_field(units, values, cube) if search.have_sklearn() and len(done) else None
+    finite = [v for v in values if math.isfinite(v)]
+    low, high = (min(finite), max(finite)) if finite else (0.0, 1.0)
+    if field is not None:
+        axes[1].pcolormesh(gx, gy, field.reshape(len(g), len(g)), cmap="viridis", vmin=low, vmax=high,
+                           shading="auto", alpha=0.6)
+    sc = axes[1].scatter(px, py, c=values, cmap="viridis", vmin=low, vmax=high, edgecolors="k", zorder=3)
     fig.colorbar(sc, ax=axes[1], label=atlas["metric"])
     axes[0].legend(title=f"class (hatched: uncertainty > {BAND_UNCERTAINTY:g})", loc="best", fontsize=8)
     others = "" if len(atlas["parameters"]) == 2 else "\n(the other parameters at their range's middle)"
     axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band{others}", fontsize=10)
-    axes[1].set_title(f"{atlas['metric']} at the points", fontsize=10)
+    axes[1].set_title(f"{atlas['metric']}: the points and a Gaussian-process fit of them (shaded)", fontsize=10)
     pad = [0.03 * (gx[-1] - gx[0]), 0.03 * (gy[-1] - gy[0])]
     for ax in axes:
         ax.set_xlabel(xlabel)
