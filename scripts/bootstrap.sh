@@ -34,6 +34,8 @@ test_packages=(
   ffmpeg             # io.report_run.6309_R3: the animation as MP4 (GIF without it)
   slurm-wlm munge    # campaign.real_slurm_*: a one-node Slurm on localhost for the Slurm recipes
   python3-pandas     # run.output_layout_package: the reader's pandas view (the test also runs without it)
+  python3-sklearn    # io.atlas.*, and `raceway atlas` itself: the search's Gaussian-process classifier (it
+                     # brings scipy, 247 MB, which the runtime list avoids: an atlas user installs it)
 )
 
 tests=0 list=0

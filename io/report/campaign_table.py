@@ -77,12 +77,16 @@ UNITS = {
     "life_l10mr_mrev": ("1e6 rev", "ISO/TS 16281 modified reference rating life a_1 a_ISO L10r"),
     "life_equivalent_load_n": ("N", "ISO 281 dynamic equivalent load P"),
     "life_reference_load_n": ("N", "ISO/TS 16281 reference load P_ref = C / L10r^(1/p)"),
+    "cage_motion": ("", "the cage's motion: stable, circling or unstable (io/report/cage_motion.py, docs/atlas.md)"),
+    "cage_dynamics_indicator": ("1", "min(1, rms orbit radius / guiding clearance) x (1 - the orbit's spectral "
+                                     "peak share): ~0 settled or regular whirl, towards 1 irregular (docs/atlas.md)"),
     "window_revolutions": ("rev", "revolutions of the driven ring relative to the other in the window"),
     "window_samples": ("1", "output samples in the window"),
     "steps": ("1", "integration steps of the whole run"),
     "wall_time_s": ("s", "wall time of the whole run (the last call, when resumed)"),
 }
-METRICS = [m for m in UNITS if m not in ("window_revolutions", "window_samples", "steps", "wall_time_s")]
+METRICS = [m for m in UNITS if m not in ("window_revolutions", "window_samples", "steps", "wall_time_s",
+                                         "cage_motion", "cage_dynamics_indicator")]
 #: The campaign file's metric names (campaign.metrics; solver/driver/campaign_file.cpp) and their columns.
 COLUMNS_OF = {"cage_speed": ["cage_speed_rpm"], "cage_slip": ["cage_slip"],
               "cage_whirl_radius": ["cage_whirl_radius_m", "cage_whirl_radius_std_m"],
@@ -156,6 +160,8 @@ def scene_metrics(path, settling_time):
         "sigma_v": _number(centroid["sigma_v"]),
         "vortex_turns": centroid["vortex_turns"],
         "whirl_frequency_hz": _number(centroid["whirl_frequency_hz"]),
+        "cage_motion": report["cage_motion"]["motion_class"],
+        "cage_dynamics_indicator": _number(report["cage_motion"]["cage_dynamics_indicator"]),
         "pocket_force_mean_n": float(np.mean(pocket)) if pocket.size else 0.0,
         "pocket_force_peak_n": float(np.max(pocket)) if pocket.size else 0.0,
         "max_element_load_mean_n": float(np.mean(np.max(loads, axis=1))) if loads.size else 0.0,
@@ -206,7 +212,7 @@ def build_table(folder):
                 manifest.setdefault("axis_units", {})[name] = params.get(key, {}).get("unit", "")
                 value = params.get(key, {}).get("value")
                 row[f"{name}_si"] = value if isinstance(value, (int, float)) else None
-            row.update({k: metrics.get(k) for k in METRICS})
+            row.update({k: metrics.get(k) for k in METRICS + ["cage_motion", "cage_dynamics_indicator"]})
             row["window_revolutions"] = metrics["window_revolutions"]
             row["window_samples"] = metrics["samples"]
             row["steps"] = summary.get("steps")
@@ -228,7 +234,8 @@ def metric_columns(manifest):
 
 def write_table(folder, manifest, rows):
     metrics, run = metric_columns(manifest)
-    columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + metrics + \
+    motion = ["cage_motion", "cage_dynamics_indicator"] if "vortex_radius_ratio" in metrics else []
+    columns = ["scene"] + list(manifest["axes"]) + [f"{a}_si" for a in manifest["axes"]] + metrics + motion + \
         ["window_revolutions", "window_samples"] + run + ["status", "attempts", "diagnosis"]
     units = {c: UNITS[c][0] for c in columns if c in UNITS}
     units.update({f"{a}_si": manifest.get("axis_units", {}).get(a, "") for a in manifest["axes"]})

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+import cage_motion
 import report_metrics as rm
 from report_bridges import summarize_bridges
 from report_life import summarize_life
@@ -204,6 +205,7 @@ def summarize(run, window_start=None, bin_width_deg=5.0, contact_threshold=None)
     if angles:
         s["contact_angle"] = angles
     s["cage_centroid"] = centroid(run, w, cs["mean_rad_s"])
+    s["cage_motion"] = cage_motion.motion_summary(run, w)  # stable / circling / unstable (docs/atlas.md)
     az = {"bin_width_deg": bin_width_deg}
     pf = pocket_forces(run, w, cs["direction"], contact_threshold)
     if pf:

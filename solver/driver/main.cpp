@@ -1,6 +1,6 @@
 // The raceway command line: the run driver (the one place besides scheduler/ and io/ where MPI
 // lives). `raceway run [SCENE] -o OUT.h5`, `raceway check SCENE`, `raceway plan SCENE`
-// (plan_command.hpp), `raceway report OUT.h5`,
+// (plan_command.hpp), `raceway report OUT.h5`, `raceway atlas FILE -o DIR` (atlas_command.hpp),
 // `raceway --version`.
 //
 // Exit codes (every rank of `raceway run` exits with rank 0's): 0 success; 2 bad input (scene,
@@ -42,6 +42,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "io/json/summary_json.hpp"
 #include "io/report/life.hpp"
+#include "solver/driver/atlas_command.hpp"
 #include "scheduler/mpi_executor.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/driver/plan_command.hpp"
@@ -277,7 +278,7 @@ int command_line_error(const CLI::App& app, const CLI::ParseError& e, int rank, 
       return !app.get_subcommands([&](const CLI::App* c) { return c->check_name(word); }).empty();
     };
     if (argc > 1 && argv[1][0] != '-' && !known(argv[1]))
-      what = fmt::format("unknown command '{}'; the commands are run, check, plan and report", argv[1]);
+      what = fmt::format("unknown command '{}'; the commands are run, check, plan, report, campaign and atlas", argv[1]);
     std::replace(what.begin(), what.end(), '\n', ' ');
     std::fprintf(stderr, "[raceway] error: %s (see raceway --help)\n", what.c_str());
   }
@@ -546,6 +547,8 @@ int main(int argc, char** argv) {
   cl.plan = driver::add_plan_command(app, cl.plan_options);
   driver::CampaignRequest campaign_request;
   CLI::App* campaign_app = driver::add_campaign_command(app, campaign_request);
+  driver::AtlasRequest atlas_request;
+  CLI::App* atlas_app = driver::add_atlas_command(app, atlas_request);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {  // also --help and --version, with code 0
@@ -560,6 +563,7 @@ int main(int argc, char** argv) {
   }
   const int code = *cl.run            ? run_on_all_ranks(cl, MPI_COMM_WORLD)
                    : *campaign_app    ? driver::campaign_command(campaign_request)
+                   : *atlas_app       ? driver::atlas_command(atlas_request, rank, size)
                    : rank == 0        ? check_or_report(cl)
                                       : 0;
   MPI_Finalize();

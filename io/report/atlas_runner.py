@@ -1,0 +1,205 @@
+"""The atlas's loop (docs/atlas.md): batches of points proposed by the search, each run, classified
+and certified, the state file written after every finished point, the table and the map at the end.
+
+The state file DIR/atlas_state.json holds the atlas's identity (its file's and base scene's text),
+the batch size, and every point: planned (proposed, not finished), done or failed, with its
+results. A stop signal (SIGINT, SIGTERM, SIGUSR1) starts no new run, asks the running ones to
+stop and leaves their points planned (exit 4). A stopped or killed atlas resumed with --resume
+runs the planned points again and goes on; since a
+batch is proposed only from finished points, in a fixed order, the resumed atlas is the
+uninterrupted one.
+"""
+import hashlib
+import json
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
+import atlas_certify as ac
+import atlas_search as search
+from atlas_models import STOP, PointFailed, PointStopped, unit_value
+
+STATE = "atlas_state.json"
+
+
+class AtlasStateError(Exception):
+    """The folder holds another atlas, or no atlas where --resume expects one (exit 2)."""
+
+
+def identity(atlas):
+    with open(atlas["scene"], "rb") as f:
+        scene = f.read()
+    return hashlib.sha256(atlas["text"].encode() + b"\0" + scene).hexdigest()
+
+
+def save_state(folder, state):
+    path = os.path.join(folder, STATE)
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        json.dump(state, f, indent=1, allow_nan=True)
+    os.replace(path + ".tmp", path)
+
+
+def open_state(atlas, folder, resume, batch_size):
+    """The folder's state (resume) or a new one; refuses a folder of another atlas."""
+    path = os.path.join(folder, STATE)
+    if os.path.exists(path):
+        if not resume:
+            raise AtlasStateError(f"{folder} already holds an atlas ({STATE}): give --resume to continue it, "
+                                  "or another folder")
+        with open(path, encoding="utf-8") as f:
+            state = json.load(f)
+        if state.get("identity") != identity(atlas):
+            raise AtlasStateError(f"{folder} holds another atlas (its atlas file or base scene differs from "
+                                  f"{atlas['path']}): refused, the folder's points would be mislabelled")
+        return state
+    os.makedirs(folder, exist_ok=True)
+    state = {"identity": identity(atlas), "name": atlas["name"], "batch_size": batch_size, "points": [],
+             "core_hours": 0.0, "stop": None}
+    save_state(folder, state)
+    return state
+
+
+def point_sets(atlas, unit):
+    """The --set overrides of the unit-cube point `unit` and the parameters' values."""
+    sets, values = {}, {}
+    for p, u in zip(atlas["parameters"], unit):
+        low, high = p["range"]
+        values[p["name"]] = low + float(u) * (high - low)
+        sets[p["key"]] = unit_value(values[p["name"]], p["unit"])
+    return sets, values
+
+
+def mapped_class(cls, classes):
+    """The class the map shows: a class left out of the atlas's list joins its neighbour; None for
+    "unknown" (no clearance in the output: such a point trains nothing)."""
+    if cls in classes:
+        return cls
+    if cls not in ("stable", "circling", "unstable"):
+        return None
+    if cls == "circling":
+        return "stable" if "stable" in classes else "unstable"
+    return "circling"
+
+
+def certify(model, atlas, point, sets, base):
+    """The point's certification (atlas_certify) and the wall time of its extra runs."""
+    c, metric = atlas["certify"], atlas["metric"]
+    cert = {"settled": ac.settled([b["metric"] for b in base["blocks"]], [b["class"] for b in base["blocks"]],
+                                  base["motion_class"], c["block_tolerance"])}
+    wall = 0.0
+    cert["converged"] = {"checked": False}
+    if ac.in_convergence_sample(point["index"], c["convergence_sample"]):
+        tight = model.evaluate(point["id"], {**sets, "solver.rtol": f"{c['convergence_rtol']:g}"}, "rtol")
+        wall += tight["wall_s"]
+        cert["converged"] = ac.converged(base["motion_class"], base[metric], tight["motion_class"], tight[metric],
+                                         c["convergence_rtol"], c["convergence_tolerance"])
+    cert["realisations"] = {"checked": False}
+    if base["motion_class"] == "unstable" and c["realisations"]:
+        values = [base[metric]]
+        for i, v in enumerate(c["realisations"]):
+            r = model.evaluate(point["id"], {**sets, c["realisation_key"]: v}, f"r{i}")
+            wall += r["wall_s"]
+            values.append(r[metric])
+        cert["realisations"] = ac.confidence(values, c["ci_target"])
+        cert["realisations"]["key"] = c["realisation_key"]
+    return cert, wall
+
+
+def evaluate_point(model, atlas, point):
+    """Runs and certifies one point; its record's results (status done or failed)."""
+    sets, _ = point_sets(atlas, point["unit"])
+    try:
+        base = model.evaluate(point["id"], sets)
+        cert, extra = certify(model, atlas, point, sets, base)
+    except PointStopped:
+        return {"status": "planned"}
+    except PointFailed as err:
+        return {"status": "failed", "error": str(err), "wall_s": 0.0}
+    except Exception as err:  # an unreadable output, a window without samples: the point, not the atlas
+        return {"status": "failed", "error": f"{type(err).__name__}: {err}", "wall_s": 0.0}
+    metrics = {k: v for k, v in base.items() if k not in ("blocks", "wall_s", "output", "reasons")}
+    return {"status": "done", "class": base["motion_class"], "label": mapped_class(base["motion_class"],
+            atlas["classes"]), "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
+            "reasons": base.get("reasons", []), "metrics": metrics, "certification": cert,
+            "certified": ac.certified(cert), "certified_by": ac.summary(cert), "output": base.get("output", ""),
+            "wall_s": base["wall_s"] + extra}
+
+
+def run_pending(model, atlas, state, folder, workers, log):
+    """Runs the planned points, `workers` at a time; the state is saved after each."""
+    pending = [p for p in state["points"] if p["status"] == "planned"]
+    lock = threading.Lock()
+
+    def one(point):
+        if STOP.is_set():
+            return
+        result = evaluate_point(model, atlas, point)
+        if result["status"] == "planned":
+            return
+        with lock:
+            point.update(result)
+            state["core_hours"] += result["wall_s"] / 3600.0
+            save_state(folder, state)
+            log(f"{point['id']} {point['status']}: " + (f"{point['class']}, {atlas['metric']} {point['metric']:.3g}, "
+                f"{point['certified_by']}" if point["status"] == "done" else point["error"]))
+
+    with ThreadPoolExecutor(max_workers=max(1, workers)) as pool:
+        list(pool.map(one, pending))
+
+
+def next_batch(atlas, state):
+    """The next points (unit cube), or [] with state['stop'] saying why the search ends."""
+    points, d = state["points"], len(atlas["parameters"])
+    left = atlas["budget_points"] - len(points)
+    if left <= 0:
+        state["stop"] = f"the budget of {atlas['budget_points']} points is spent"
+        return []
+    if state["core_hours"] >= atlas["budget_core_hours"]:
+        state["stop"] = f"the budget of {atlas['budget_core_hours']:g} core-hours is spent"
+        return []
+    if not points:
+        return list(search.initial_design(d))[:left]
+    done = [p for p in points if p["status"] == "done" and p.get("label")]
+    labels = [p["label"] for p in done]
+    units = [p["unit"] for p in done]
+    if atlas["stop_band_share"] > 0 and len(set(labels)) > 1:
+        band = search.band_share(search.fit_classifier(units, labels), search.candidate_pool(d))
+        if band < atlas["stop_band_share"]:
+            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.3g} of the "
+                             f"map, less than stop_band_share {atlas['stop_band_share']:g}")
+            return []
+    taken = [p["unit"] for p in points]  # failed points too: not proposed again
+    return search.propose(units, labels, min(left, state["batch_size"]), taken=taken)
+
+
+def add_batch(state, batch):
+    number = 1 + max((p["batch"] for p in state["points"]), default=-1)
+    for unit in batch:
+        index = len(state["points"])
+        state["points"].append({"id": f"p{index:04d}", "index": index, "batch": number,
+                                "unit": [float(u) for u in unit], "status": "planned"})
+
+
+def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
+    """The whole atlas into `folder`; returns the state."""
+    state = open_state(atlas, folder, resume, batch_size)
+    if state["batch_size"] != batch_size:
+        log(f"batch size {state['batch_size']} from the folder's state (asked: {batch_size}): a resumed atlas keeps "
+            "its batches")
+    state["stop"] = None
+    while True:
+        run_pending(model, atlas, state, folder, workers, log)
+        if STOP.is_set():
+            state["stop"] = "stopped by a signal: continue with --resume"
+            break
+        batch = next_batch(atlas, state)
+        if not batch:
+            break
+        add_batch(state, batch)
+        for p in state["points"][-len(batch):]:
+            p["values"] = point_sets(atlas, p["unit"])[1]
+        save_state(folder, state)
+        log(f"batch {state['points'][-1]['batch']}: {len(batch)} points")
+    save_state(folder, state)
+    log(f"search ended: {state['stop']}")
+    return state

@@ -1,0 +1,154 @@
+"""The atlas's adaptive search: where to run the next points (docs/atlas.md, "Search").
+
+Points live in the unit cube [0, 1]^d (each parameter's range mapped linearly). The classes of the
+points run so far train a Gaussian-process classifier (scikit-learn's GaussianProcessClassifier, a
+constant times an RBF kernel, its hyperparameters fitted, a fixed random state): its class
+probabilities give every candidate of a fixed pool an uncertainty u = 1 - max_k p_k (0: sure; the
+boundary between two classes: 1/2). A batch is the candidates of largest u, chosen greedily, each
+weighed by its distance to the points run and already chosen (a candidate closer than the spacing
+d0 = 1 / (2 sqrt(n + 1)) of the n points run counts u x distance / d0), so a batch spreads along the
+boundary instead of piling up at one place. Before two classes are seen the batch fills space
+(the Halton points in order). Everything is deterministic: the same points run give the same batch,
+which makes a resumed atlas the uninterrupted one.
+"""
+import importlib.util
+import math
+import warnings
+
+import numpy as np
+
+PRIMES = (2, 3, 5, 7, 11, 13, 17, 19, 23, 29)
+
+
+def have_sklearn():
+    return importlib.util.find_spec("sklearn") is not None
+
+
+def halton(n, d, skip=0):
+    """n points of the Halton sequence in [0, 1)^d from index skip + 1."""
+    out = np.empty((n, d))
+    for j in range(d):
+        b = PRIMES[j]
+        for i in range(n):
+            k, f, v = i + skip + 1, 1.0, 0.0
+            while k > 0:
+                f /= b
+                v += f * (k % b)
+                k //= b
+            out[i, j] = v
+    return out
+
+
+def initial_design(d):
+    """The first batch: the 2^d corners and the centre of the cube."""
+    corners = np.array([[(i >> j) & 1 for j in range(d)] for i in range(2 ** d)], dtype=float)
+    return np.vstack([corners, np.full((1, d), 0.5)])
+
+
+def candidate_pool(d, size=2500):
+    """The fixed candidates: a regular grid in 2-D (51 x 51), Halton points in more dimensions."""
+    if d == 2:
+        g = np.linspace(0.0, 1.0, 51)
+        return np.array([[a, b] for b in g for a in g])
+    return halton(size, d, skip=20)
+
+
+def fit_classifier(points, labels):
+    """The Gaussian-process classifier of `labels` at `points` (at least two classes)."""
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessClassifier
+    from sklearn.gaussian_process.kernels import RBF, ConstantKernel
+
+    kernel = ConstantKernel(1.0, (1e-2, 1e3)) * RBF(length_scale=0.2, length_scale_bounds=(0.02, 2.0))
+    model = GaussianProcessClassifier(kernel=kernel, random_state=0, n_restarts_optimizer=0)
+    with warnings.catch_warnings():  # hyperparameters at their bounds: the fit is still usable
+        warnings.filterwarnings("ignore", category=ConvergenceWarning)
+        model.fit(np.asarray(points, dtype=float), np.asarray(labels))
+    return model
+
+
+def uncertainty(model, points):
+    """1 - max class probability at each point, and the predicted class."""
+    p = model.predict_proba(np.asarray(points, dtype=float))
+    return 1.0 - p.max(axis=1), model.classes_[np.argmax(p, axis=1)]
+
+
+#: The uncertainty band: where u = 1 - max_k p_k exceeds this (the map hatches it).
+BAND_UNCERTAINTY = 0.2
+
+
+def band_share(model, pool):
+    """Share of the candidate pool inside the uncertainty band: the search's stopping measure (the
+    largest u is no measure: next to the boundary it is always 1/2 or more)."""
+    u, _ = uncertainty(model, pool)
+    return float(np.mean(u > BAND_UNCERTAINTY))
+
+
+def _spread_pick(scores, pool, taken, count, spacing):
+    """Greedy: the pool's best score damped by closeness to `taken` and to the picks so far."""
+    taken = [np.asarray(t, dtype=float) for t in taken]
+    picks = []
+    near = np.full(len(pool), np.inf)
+    for t in taken:
+        near = np.minimum(near, np.linalg.norm(pool - t, axis=1))
+    for _ in range(count):
+        weight = scores * np.minimum(1.0, near / spacing)
+        k = int(np.argmax(weight))
+        if not weight[k] > 0:
+            break
+        picks.append(pool[k].copy())
+        near = np.minimum(near, np.linalg.norm(pool - pool[k], axis=1))
+    return picks
+
+
+def space_filling(taken, count, d):
+    """The next `count` Halton points not already run (the search before two classes are seen)."""
+    taken = {tuple(np.round(t, 12)) for t in taken}
+    picks, skip = [], 0
+    while len(picks) < count:
+        for p in halton(64, d, skip=skip):
+            if tuple(np.round(p, 12)) not in taken and len(picks) < count:
+                picks.append(p)
+        skip += 64
+    return picks
+
+
+def propose(points, labels, count, pool=None, taken=None):
+    """The next `count` points (unit cube) given the points run and their classes; `taken`: every
+    point already placed (default: `points`; the atlas adds its failed ones, never proposed again)."""
+    points = np.asarray(points, dtype=float)
+    d = points.shape[1]
+    taken = points if taken is None else np.asarray(taken, dtype=float)
+    if len(set(labels)) < 2:
+        return space_filling(taken, count, d)
+    pool = candidate_pool(d) if pool is None else pool
+    u, _ = uncertainty(fit_classifier(points, labels), pool)
+    spacing = 0.5 / math.sqrt(len(points) + 1)
+    return _spread_pick(u, pool, taken, count, spacing)
+
+
+def misclassified_share(model_or_points, labels_or_none, truth, grid):
+    """Share of `grid` (unit-cube points) where the classifier's class differs from truth(grid)."""
+    model = model_or_points if labels_or_none is None else fit_classifier(model_or_points, labels_or_none)
+    predicted = model.predict(np.asarray(grid, dtype=float))
+    return float(np.mean(predicted != truth(grid)))
+
+
+def regular_grid(n, d):
+    """n^d points of a regular grid over the unit cube (first parameter fastest)."""
+    axes = np.meshgrid(*[np.linspace(0.0, 1.0, n)] * d, indexing="ij")
+    return np.stack([a.ravel(order="F") for a in axes], axis=1)
+
+
+def standin_classes(points):
+    """A cheap stand-in for the simulator with a known boundary (the tests' model): on (speed, load) in
+    the unit square, "unstable" where load < standin_boundary(speed) (the cage is driven too little
+    for its speed), "stable" above. (`raceway_atlas.py --standin NOISE` adds a ripple to the boundary:
+    atlas_models.StandinModel.)"""
+    points = np.atleast_2d(np.asarray(points, dtype=float))
+    return np.where(points[:, 1] < standin_boundary(points[:, 0]), "unstable", "stable")
+
+
+def standin_boundary(speed):
+    """The stand-in's boundary: the load at which the class changes, per speed (unit square)."""
+    return 0.15 + 0.7 * np.asarray(speed, dtype=float) ** 2
