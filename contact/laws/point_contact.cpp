@@ -368,6 +368,22 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   return film;
 }
 
+namespace {
+/// One film starved: H ((m - 1)/(m* - 1))^exponent below m* = 1 + c ((Rx/b)^2 H)^power.
+double starved(double film, double rx, double semi_width, double m, double c, double power, double exponent) {
+  if (!(film > 0)) return film;
+  const double critical = 1 + c * std::pow(rx * film / (semi_width * semi_width), power);  // (Rx/b)^2 h/Rx
+  if (m >= critical) return film;
+  return m > 1 ? film * std::pow((m - 1) / (critical - 1), exponent) : 0.0;
+}
+}  // namespace
+
+FilmThickness starved_film(const FilmThickness& flooded, double rx, double semi_width, double inlet_meniscus) {
+  if (!(inlet_meniscus > 0) || !(semi_width > 0) || !(rx > 0)) return flooded;
+  return {starved(flooded.central, rx, semi_width, inlet_meniscus, 3.06, 0.58, 0.29),
+          starved(flooded.minimum, rx, semi_width, inlet_meniscus, 3.34, 0.56, 0.25)};
+}
+
 double ehl_rolling_resistance(double entrainment_speed, double load, double rx, double ry,
                               double reduced_modulus, const PointLubricant& lubricant) {
   if (!(entrainment_speed > 0) || !(load > 0) || !(lubricant.viscosity > 0) ||

@@ -83,6 +83,9 @@ struct PointLubricant {
   /// saturates at Lambda p, not at the curve's mu p. 10 nm is below any running film (tenths of
   /// a micrometre) and below the roughness of ground races, where the film model no longer holds.
   double boundary_film = 1e-8;
+  /// Starvation: the inlet meniscus's distance from the contact centre in semi-widths of the contact
+  /// along the rolling direction (Hamrock and Dowson's m, starved_film below); 0: fully flooded.
+  double inlet_meniscus = 0;
 };
 
 /// The share of a point contact's traction carried by the film of central thickness h [m]:
@@ -105,6 +108,14 @@ struct FilmThickness {
 };
 FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
                                   double reduced_modulus, const PointLubricant& lubricant);
+
+/// Hamrock and Dowson's starved point contact (Hamrock, Fundamentals of Fluid Film Lubrication, the
+/// chapter on starvation; docs/lubrication.md says what was checked): the inlet meniscus at m
+/// semi-widths b (along the rolling direction) from the contact centre starves the film below the
+/// critical m* = 1 + 3.06 ((Rx/b)^2 H_c)^0.58 (central) and 1 + 3.34 ((Rx/b)^2 H_min)^0.56 (minimum),
+/// H = h / Rx the fully flooded films; there the films are H ((m - 1)/(m* - 1))^0.29 (central) and
+/// ^0.25 (minimum). m <= 0 (flooded), m >= m* or b <= 0: the flooded film unchanged.
+FilmThickness starved_film(const FilmThickness& flooded, double rx, double semi_width, double inlet_meniscus);
 
 /// How traction is computed on a point contact.
 ///  - curve: mu(s) = mu_max tanh(s / s_scale) of the local sliding speed s (regularised Coulomb);

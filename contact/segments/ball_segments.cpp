@@ -210,6 +210,7 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
   const double cbrt_q = std::cbrt(g.q);
   g.a = hertz.a_coefficient * cbrt_q, g.b = hertz.b_coefficient * cbrt_q;
   g.ax = hertz.a_along_x ? g.a : g.b, g.ay = hertz.a_along_x ? g.b : g.a;
+  if (s.lubricant.inlet_meniscus > 0) g.film = starved_film(g.film, g.rx, g.ax, s.lubricant.inlet_meniscus);
   g.w_rel = ball.angular_velocity - ring.angular_velocity;
   g.sliding = ContactSliding{slide_x, slide_y, g.w_rel.dot(g.n)};
   return g;

@@ -335,6 +335,7 @@ struct Lubricant {
   double limiting_shear_coefficient = 0;  ///< - : limiting shear stress = coefficient * pressure
   double viscosity_exponent_cap = 12;     ///< - : largest alpha p in the Barus law (contact/laws/point_contact.hpp);
                                           ///< 12 gives measured traction-curve shapes and practical steps
+  double inlet_meniscus = 0;       ///< - : starvation's inlet meniscus in contact semi-widths (ball-groove films); 0: flooded
   double oil_volume_fraction = 0;  ///< - : oil's share of the cavity's oil-air mixture (drag and churning); 0: none
 };
 

@@ -132,6 +132,13 @@ constexpr Row kRows[] = {
      .def = value(12),
      .meaning = "largest alpha p in the Barus law (contact/laws/point_contact.hpp); 12 gives measured traction-curve "
                 "shapes and practical steps"},
+    {.section = "lubricant", .key = "inlet_meniscus", .kind = number, .field = FIELD(scene.lubricant.inlet_meniscus),
+     .dim = dim::none, .bounds = {.lo = 1, .hi = 1000, .lo_open = true, .note = " (contact semi-widths; about 10 is "
+                                                                           "flooded for most ball-race films)"},
+     .def = {.kind = Default::Kind::absent, .text = "fully flooded"}, .bearings = ball_bearings, .elsewhere = kBallOnly,
+     .example = "3",
+     .meaning = "starvation of the ball-groove EHL films: the inlet meniscus's distance from the contact centre in "
+                "semi-widths along the rolling direction (Hamrock and Dowson's m; docs/lubrication.md)"},
     {.section = "lubricant", .key = "oil_volume_fraction", .kind = number,
      .field = FIELD(scene.lubricant.oil_volume_fraction), .dim = dim::none,
      .bounds = {.lo = 0, .hi = 1, .note = " (jet and mist lubrication: about 0.01 to 0.1)"}, .def = value(0),

@@ -181,6 +181,7 @@ contact::PointLubricant lubricant(const scene::Scene& scene) {
   lube.pressure_viscosity = scene.lubricant.pressure_viscosity;
   lube.limiting_shear_coefficient = scene.lubricant.limiting_shear_coefficient;
   lube.viscosity_exponent_cap = scene.lubricant.viscosity_exponent_cap;
+  lube.inlet_meniscus = scene.lubricant.inlet_meniscus;
   if (scene.lubricant.roelands && lube.viscosity > 0 && lube.pressure_viscosity > 0)
     lube.roelands_index = contact::roelands_index(lube.viscosity, lube.pressure_viscosity);
   return lube;

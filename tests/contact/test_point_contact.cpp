@@ -359,6 +359,36 @@ TEST(HamrockDowsonFilm, ZeroWithoutSpeedLoadOrViscosity) {
   }
 }
 
+// Starvation (Hamrock and Dowson's inlet meniscus), on the 209 reference film above with a contact
+// semi-width b = 0.2 mm along rolling: H_c = 1.0527 um / 5.109 mm = 2.0605e-4, (Rx/b)^2 H_c = 0.13447,
+// so the critical meniscus m* = 1 + 3.06 * 0.13447^0.58 = 1.9556 (by hand). At and beyond m* the
+// flooded film; halfway (m - 1 = (m* - 1)/2) the central film times 0.5^0.29 = 0.8180; continuous at
+// m*; zero at m = 1; the minimum film with its own m* and exponent 0.25.
+TEST(HamrockDowsonFilm, StarvedBelowTheCriticalMeniscus) {
+  const double e_star = reduced_modulus(200e9, 0.3, 200e9, 0.3);
+  const FilmCase c = inner_race_film_case();
+  const FilmThickness flooded = hamrock_dowson_film(10, 1000, c.rx, c.ry, e_star, c.lubricant);
+  const double b = 0.2e-3;
+  const double critical = 1 + 3.06 * std::pow(c.rx * flooded.central / (b * b), 0.58);
+  EXPECT_NEAR(critical, 1.9556, 2e-3);
+  const FilmThickness far = starved_film(flooded, c.rx, b, 10.0);
+  EXPECT_EQ(far.central, flooded.central);
+  EXPECT_EQ(far.minimum, flooded.minimum);
+  const FilmThickness half = starved_film(flooded, c.rx, b, 1 + 0.5 * (critical - 1));
+  EXPECT_NEAR(half.central / flooded.central, std::pow(0.5, 0.29), 1e-12);
+  EXPECT_NEAR(half.central / flooded.central, 0.8180, 1e-4);
+  const double critical_min = 1 + 3.34 * std::pow(c.rx * flooded.minimum / (b * b), 0.56);
+  const FilmThickness at = starved_film(flooded, c.rx, b, 1 + 0.25 * (critical_min - 1));
+  EXPECT_NEAR(at.minimum / flooded.minimum, std::pow(0.25, 0.25), 1e-12);
+  const FilmThickness edge = starved_film(flooded, c.rx, b, critical * (1 - 1e-9));
+  EXPECT_NEAR(edge.central / flooded.central, 1.0, 1e-8);
+  const FilmThickness dry = starved_film(flooded, c.rx, b, 1.0);
+  EXPECT_EQ(dry.central, 0.0);
+  EXPECT_EQ(dry.minimum, 0.0);
+  const FilmThickness off = starved_film(flooded, c.rx, b, 0.0);  // 0: flooded
+  EXPECT_EQ(off.central, flooded.central);
+}
+
 // ---- rolling resistance --------------------------------------------------------------------------
 
 TEST(EhlRollingResistance, PositiveScalesAndVanishesWithoutFilm) {
