@@ -26,6 +26,10 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   const double rb = f.ball_radius, rp = rb + c, eta = f.viscosity;
   const auto& v = m.velocity;
   const auto& w = m.angular_velocity;
+  // The motion in the frame of e (x' towards the thinnest film): the strips' normals are then
+  // (cos, sin)(gamma), gamma = alpha - beta, and the sums turn back to the pocket frame at the end.
+  const double vx = cb * v[0] + sb * v[1], vy = -sb * v[0] + cb * v[1];
+  const double wx = cb * w[0] + sb * w[1], wy = -sb * w[0] + cb * w[1];
   // The grid's eccentricity: the film's, held below grid_eccentricity by a smooth minimum, so that the
   // strips stay dense where the film is thin without leaving the thick side bare (where a separating
   // or sliding ball's film carries its load).
@@ -36,56 +40,60 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   // The strips' half angles psi/2 by rotation (no trigonometry in the loop): (c, s) = (cos, sin)(psi_k / 2).
   const double step_c = std::cos(0.5 * dpsi), step_s = std::sin(0.5 * dpsi);
   double half_c = std::cos(0.25 * dpsi), half_s = std::sin(0.25 * dpsi);
-  const double sqrt_2rb = std::sqrt(2.0 * rb);
-  double px = 0, py = 0;                  // the pressure's resultant on the ball
+  const double sqrt_2rb = std::sqrt(2.0 * rb), slope = c * eps / rp, spin_t = rb * w[2];
+  // d(alpha) = root dpsi / (1 + grid_eps cos psi) = root dpsi / (1 + grid_eps) / w2 (w2 below).
+  const double arc = rp * root * dpsi / (1.0 + grid_eps);
+  const double load_scale = 24.0 * eta * rb * arc, drag_scale = eta * std::numbers::pi * sqrt_2rb * arc;
+  const ReynoldsRatioTable& table = reynolds_line_ratio_table();
+  double px = 0, py = 0;                  // the pressure's resultant on the ball (frame of e)
   double sx = 0, sy = 0, sa = 0;          // the shear's force on the ball
   double mx = 0, my = 0, ma = 0;          // and its moment about the ball's centre
   double shear_loss = 0;
   for (int k = 0; k < f.points; ++k) {
-    // Sommerfeld's variable psi about the thinnest film (direction beta of e): tan(gamma / 2) =
-    // ratio tan(psi / 2), gamma = alpha - beta, in half-angle form.
-    const double u = ratio * half_s, w2 = half_c * half_c + u * u;
-    const double cg = (half_c * half_c - u * u) / w2, sg = 2.0 * u * half_c / w2;
-    const double cos_psi = half_c * half_c - half_s * half_s;
-    const double weight = root / (1.0 + grid_eps * cos_psi) * dpsi;  // d(alpha)
+    // Sommerfeld's variable psi about the thinnest film: tan(gamma / 2) = ratio tan(psi / 2), in
+    // half-angle form; w2 = cos^2 + u^2 = (1 + grid_eps cos psi) / (1 + grid_eps).
+    const double u = ratio * half_s, hc2 = half_c * half_c, u2 = u * u;
+    const double inv_w2 = 1.0 / (hc2 + u2);
+    const double cg = (hc2 - u2) * inv_w2, sg = 2.0 * u * half_c * inv_w2;  // n(gamma)
     const double next_c = half_c * step_c - half_s * step_s;
     half_s = half_s * step_c + half_c * step_s;
     half_c = next_c;
-    const double ca = cb * cg - sb * sg, sa_ = sb * cg + cb * sg;  // n(alpha)
     const double h0 = c * (1.0 - eps * cg);
-    const double dh0_ds = c * eps * sg / rp;
-    const double v_n = v[0] * ca + v[1] * sa_;
-    const double v_t = -v[0] * sa_ + v[1] * ca + rb * w[2];             // the ball's surface around the pocket
-    const double rolling_a = rb * (w[0] * sa_ - w[1] * ca);
+    const double v_t = vy * cg - vx * sg + spin_t;                       // the ball's surface around the pocket
+    const double rolling_a = rb * (wx * sg - wy * cg);
     const double v_a = v[2] + rolling_a;                                 // and along the axis
     const double entrainment = 0.5 * (rolling_a - v[2]);
-    const double film_rate = -v_n + 0.5 * v_t * dh0_ds;
-    // The strip's line film (reynolds_line_film.hpp): 24 eta r_b / h0 |(rho, sigma)| G(phi).
+    const double film_rate = -(vx * cg + vy * sg) + 0.5 * v_t * slope * sg;
+    // The strip's line film (reynolds_line_film.hpp): 24 eta r_b / h0 |(rho, sigma)| G(t), with
+    // sigma = s / sqrt(h0), t = sigma / (rho + |sigma|) = s / den; one division gives 1/sqrt(h0) and t.
     const double root_h0 = std::sqrt(h0);
-    const double rho = std::abs(entrainment), sigma = film_rate * sqrt_2rb / root_h0;
-    const double magnitude = std::sqrt(rho * rho + sigma * sigma);
-    const double sum = rho + std::abs(sigma);
-    const double load =
-        sum > 0 ? 24.0 * eta * rb / h0 * magnitude * reynolds_line_load_integral_of_ratio(sigma / sum) * rp * weight
-                : 0.0;
-    px -= load * ca;
-    py -= load * sa_;
+    const double rho = std::abs(entrainment), s = film_rate * sqrt_2rb;
+    const double den = rho * root_h0 + std::abs(s), den_safe = den > 0 ? den : 1.0;
+    const double inv = 1.0 / (root_h0 * den_safe);
+    const double inv_root_h0 = den_safe * inv, t = s * root_h0 * inv;
+    const double magnitude_root_h0 = std::sqrt(rho * rho * h0 + s * s);  // |(rho, sigma)| sqrt(h0)
+    const double load = load_scale * inv_w2 * magnitude_root_h0 * (inv_root_h0 * inv_root_h0 * inv_root_h0) * table.at(t);
+    px -= load * cg;
+    py -= load * sg;
     if (!f.shear) continue;
     // Couette: force on the ball -eta v_slide int dA / h, at r_b n from its centre.
-    const double drag = eta * std::numbers::pi * sqrt_2rb / root_h0 * rp * weight;
-    const double ft_x = drag * v_t * sa_, ft_y = -drag * v_t * ca, ft_a = -drag * v_a;
+    const double drag = drag_scale * inv_w2 * inv_root_h0;
+    const double ft_x = drag * v_t * sg, ft_y = -drag * v_t * cg, ft_a = -drag * v_a;
     sx += ft_x, sy += ft_y, sa += ft_a;
-    // r_b n x F, n = (ca, sa_, 0).
-    mx += rb * sa_ * ft_a;
-    my -= rb * ca * ft_a;
-    ma += rb * (ca * ft_y - sa_ * ft_x);
+    // r_b n x F, n = (cg, sg, 0).
+    mx += rb * sg * ft_a;
+    my -= rb * cg * ft_a;
+    ma -= rb * drag * v_t;
     shear_loss += drag * (v_t * v_t + v_a * v_a);
   }
-  out.force_on_ball = {px + sx, py + sy, sa};
-  out.moment_on_ball = {mx, my, ma};
+  out.power_loss = -(px * vx + py * vy) + shear_loss;
+  // Back to the pocket frame.
+  const auto turn = [cb, sb](double x, double y) { return std::array<double, 2>{cb * x - sb * y, sb * x + cb * y}; };
+  const auto p = turn(px, py), sh = turn(sx, sy), mo = turn(mx, my);
+  out.force_on_ball = {p[0] + sh[0], p[1] + sh[1], sa};
+  out.moment_on_ball = {mo[0], mo[1], ma};
   out.pressure_force = std::hypot(px, py);
   out.shear_force = std::sqrt(sx * sx + sy * sy + sa * sa);
-  out.power_loss = -(px * v[0] + py * v[1]) + shear_loss;
   out.valid = std::isfinite(px + py + sx + sy + sa + mx + my + ma);
   return out;
 }
