@@ -1,11 +1,98 @@
 #include "contact/laws/pocket_film.hpp"
 
+#include <Eigen/Core>
 #include <cmath>
 #include <numbers>
 
 #include "contact/laws/reynolds_line_film.hpp"
 
 namespace raceway::contact {
+
+namespace {
+
+// The strips go in blocks of `lanes` as Eigen arrays (the compiler's vector units, and the strips'
+// divisions and square roots overlap), the lanes past the last strip weighted by zero.
+constexpr int lanes = 16;
+using Block = Eigen::Array<double, lanes, 1>;
+
+/// What the strips share: the film's constants and the ball's motion in the frame of e (x' towards
+/// the thinnest film), where strip gamma = alpha - beta has the normal (cos, sin)(gamma).
+struct Strips {
+  double c, eps, rb, slope, sqrt_2rb, ratio, load_scale, drag_scale;
+  double vx, vy, va, wx, wy, spin_t;
+  bool shear;
+};
+
+/// The strips' sums in the frame of e: the pressure's resultant, the shear's force and moment.
+struct Sums {
+  double px = 0, py = 0, sx = 0, sy = 0, sa = 0, mx = 0, my = 0, ma = 0, shear_loss = 0;
+};
+
+/// One block of strips, (hc, hs) = (cos, sin)(psi / 2) of Sommerfeld's variable psi, weighted by `mask`.
+void add_block(const Strips& s, const Block& hc, const Block& hs, const Block& mask, Sums& out) {
+  // tan(gamma / 2) = ratio tan(psi / 2) in half-angle form; w2 = cos^2 + u^2 = (1 + grid_eps cos psi) /
+  // (1 + grid_eps), so that d(alpha) = root dpsi / (1 + grid_eps cos psi) is in load_scale / w2.
+  const Block u = s.ratio * hs, hc2 = hc.square(), u2 = u.square();
+  const Block inv_w2 = (hc2 + u2).inverse();
+  const Block cg = (hc2 - u2) * inv_w2, sg = 2.0 * u * hc * inv_w2;
+  const Block h0 = s.c * (1.0 - s.eps * cg);
+  const Block v_t = s.vy * cg - s.vx * sg + s.spin_t;  // the ball's surface around the pocket
+  const Block rolling_a = s.rb * (s.wx * sg - s.wy * cg);
+  const Block entrainment = 0.5 * (rolling_a - s.va);
+  const Block film_rate = (0.5 * s.slope) * v_t * sg - (s.vx * cg + s.vy * sg);
+  // The strip's line film (reynolds_line_film.hpp): 24 eta r_b / h0 |(rho, sigma)| G(t), with
+  // sigma = sig / sqrt(h0), t = sigma / (rho + |sigma|) = sig / den; one division gives 1/sqrt(h0) and t.
+  const Block root_h0 = h0.sqrt(), rho = entrainment.abs(), sig = s.sqrt_2rb * film_rate;
+  const Block den = rho * root_h0 + sig.abs();
+  const Block den_safe = (den > 0.0).select(den, Block::Ones());
+  const Block inv = (root_h0 * den_safe).inverse();
+  const Block inv_root_h0 = den_safe * inv, t = sig * root_h0 * inv;
+  const ReynoldsRatioTable& table = reynolds_line_ratio_table();
+  Block g;
+  for (int i = 0; i < lanes; ++i) g[i] = table.at(t[i]);
+  const Block arc = mask * inv_w2;
+  const Block load = s.load_scale * arc * (rho.square() * h0 + sig.square()).sqrt() * inv_root_h0.cube() * g;
+  out.px -= (load * cg).sum();
+  out.py -= (load * sg).sum();
+  if (!s.shear) return;
+  // Couette: force on the ball -eta v_slide int dA / h, at r_b n from its centre; moment r_b n x F.
+  const Block drag = s.drag_scale * arc * inv_root_h0, v_a = s.va + rolling_a;
+  const Block f_t = drag * v_t, f_a = -drag * v_a;
+  out.sx += (f_t * sg).sum();
+  out.sy -= (f_t * cg).sum();
+  out.sa += f_a.sum();
+  out.mx += s.rb * (sg * f_a).sum();
+  out.my -= s.rb * (cg * f_a).sum();
+  out.ma -= s.rb * f_t.sum();
+  out.shear_loss += (drag * (v_t.square() + v_a.square())).sum();
+}
+
+/// All the strips: psi_k = (k + 1/2) dpsi, the half angles of the first block by rotation, of the
+/// next ones by rotating the block (no trigonometry per strip).
+Sums sum_strips(const Strips& s, int points) {
+  const double dpsi = 2.0 * std::numbers::pi / points;
+  const double step_c = std::cos(0.5 * dpsi), step_s = std::sin(0.5 * dpsi);
+  const double block_c = std::cos(0.5 * lanes * dpsi), block_s = std::sin(0.5 * lanes * dpsi);
+  Block hc, hs;
+  hc[0] = std::cos(0.25 * dpsi);
+  hs[0] = std::sin(0.25 * dpsi);
+  for (int i = 1; i < lanes; ++i) {
+    hc[i] = hc[i - 1] * step_c - hs[i - 1] * step_s;
+    hs[i] = hs[i - 1] * step_c + hc[i - 1] * step_s;
+  }
+  Sums out;
+  for (int first = 0; first < points; first += lanes) {
+    Block mask = Block::Ones();
+    for (int i = points - first; i < lanes; ++i) mask[i] = 0.0;
+    add_block(s, hc, hs, mask, out);
+    const Block next_c = hc * block_c - hs * block_s;
+    hs = hs * block_c + hc * block_s;
+    hc = next_c;
+  }
+  return out;
+}
+
+}  // namespace
 
 PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m) {
   PocketFilmForce out;
@@ -26,67 +113,22 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   const double rb = f.ball_radius, rp = rb + c, eta = f.viscosity;
   const auto& v = m.velocity;
   const auto& w = m.angular_velocity;
-  // The motion in the frame of e (x' towards the thinnest film): the strips' normals are then
-  // (cos, sin)(gamma), gamma = alpha - beta, and the sums turn back to the pocket frame at the end.
-  const double vx = cb * v[0] + sb * v[1], vy = -sb * v[0] + cb * v[1];
-  const double wx = cb * w[0] + sb * w[1], wy = -sb * w[0] + cb * w[1];
   // The grid's eccentricity: the film's, held below grid_eccentricity by a smooth minimum, so that the
   // strips stay dense where the film is thin without leaving the thick side bare (where a separating
   // or sliding ball's film carries its load).
   const double cap = f.grid_eccentricity, q = eps / cap, q2 = q * q, q4 = q2 * q2;
   const double grid_eps = cap < 1.0 ? eps / std::sqrt(std::sqrt(std::sqrt(1.0 + q4 * q4))) : eps;
-  const double ratio = std::sqrt((1.0 - grid_eps) / (1.0 + grid_eps)), root = std::sqrt(1.0 - grid_eps * grid_eps);
-  const double dpsi = 2.0 * std::numbers::pi / f.points;
-  // The strips' half angles psi/2 by rotation (no trigonometry in the loop): (c, s) = (cos, sin)(psi_k / 2).
-  const double step_c = std::cos(0.5 * dpsi), step_s = std::sin(0.5 * dpsi);
-  double half_c = std::cos(0.25 * dpsi), half_s = std::sin(0.25 * dpsi);
-  const double sqrt_2rb = std::sqrt(2.0 * rb), slope = c * eps / rp, spin_t = rb * w[2];
-  // d(alpha) = root dpsi / (1 + grid_eps cos psi) = root dpsi / (1 + grid_eps) / w2 (w2 below).
-  const double arc = rp * root * dpsi / (1.0 + grid_eps);
-  const double load_scale = 24.0 * eta * rb * arc, drag_scale = eta * std::numbers::pi * sqrt_2rb * arc;
-  const ReynoldsRatioTable& table = reynolds_line_ratio_table();
-  double px = 0, py = 0;                  // the pressure's resultant on the ball (frame of e)
-  double sx = 0, sy = 0, sa = 0;          // the shear's force on the ball
-  double mx = 0, my = 0, ma = 0;          // and its moment about the ball's centre
-  double shear_loss = 0;
-  for (int k = 0; k < f.points; ++k) {
-    // Sommerfeld's variable psi about the thinnest film: tan(gamma / 2) = ratio tan(psi / 2), in
-    // half-angle form; w2 = cos^2 + u^2 = (1 + grid_eps cos psi) / (1 + grid_eps).
-    const double u = ratio * half_s, hc2 = half_c * half_c, u2 = u * u;
-    const double inv_w2 = 1.0 / (hc2 + u2);
-    const double cg = (hc2 - u2) * inv_w2, sg = 2.0 * u * half_c * inv_w2;  // n(gamma)
-    const double next_c = half_c * step_c - half_s * step_s;
-    half_s = half_s * step_c + half_c * step_s;
-    half_c = next_c;
-    const double h0 = c * (1.0 - eps * cg);
-    const double v_t = vy * cg - vx * sg + spin_t;                       // the ball's surface around the pocket
-    const double rolling_a = rb * (wx * sg - wy * cg);
-    const double v_a = v[2] + rolling_a;                                 // and along the axis
-    const double entrainment = 0.5 * (rolling_a - v[2]);
-    const double film_rate = -(vx * cg + vy * sg) + 0.5 * v_t * slope * sg;
-    // The strip's line film (reynolds_line_film.hpp): 24 eta r_b / h0 |(rho, sigma)| G(t), with
-    // sigma = s / sqrt(h0), t = sigma / (rho + |sigma|) = s / den; one division gives 1/sqrt(h0) and t.
-    const double root_h0 = std::sqrt(h0);
-    const double rho = std::abs(entrainment), s = film_rate * sqrt_2rb;
-    const double den = rho * root_h0 + std::abs(s), den_safe = den > 0 ? den : 1.0;
-    const double inv = 1.0 / (root_h0 * den_safe);
-    const double inv_root_h0 = den_safe * inv, t = s * root_h0 * inv;
-    const double magnitude_root_h0 = std::sqrt(rho * rho * h0 + s * s);  // |(rho, sigma)| sqrt(h0)
-    const double load = load_scale * inv_w2 * magnitude_root_h0 * (inv_root_h0 * inv_root_h0 * inv_root_h0) * table.at(t);
-    px -= load * cg;
-    py -= load * sg;
-    if (!f.shear) continue;
-    // Couette: force on the ball -eta v_slide int dA / h, at r_b n from its centre.
-    const double drag = drag_scale * inv_w2 * inv_root_h0;
-    const double ft_x = drag * v_t * sg, ft_y = -drag * v_t * cg, ft_a = -drag * v_a;
-    sx += ft_x, sy += ft_y, sa += ft_a;
-    // r_b n x F, n = (cg, sg, 0).
-    mx += rb * sg * ft_a;
-    my -= rb * cg * ft_a;
-    ma -= rb * drag * v_t;
-    shear_loss += drag * (v_t * v_t + v_a * v_a);
-  }
-  out.power_loss = -(px * vx + py * vy) + shear_loss;
+  const double root = std::sqrt(1.0 - grid_eps * grid_eps);
+  const double arc = rp * root * (2.0 * std::numbers::pi / f.points) / (1.0 + grid_eps);  // times 1 / w2
+  const double sqrt_2rb = std::sqrt(2.0 * rb);
+  const Strips strips{.c = c, .eps = eps, .rb = rb, .slope = c * eps / rp, .sqrt_2rb = sqrt_2rb,
+                      .ratio = std::sqrt((1.0 - grid_eps) / (1.0 + grid_eps)), .load_scale = 24.0 * eta * rb * arc,
+                      .drag_scale = eta * std::numbers::pi * sqrt_2rb * arc, .vx = cb * v[0] + sb * v[1],
+                      .vy = -sb * v[0] + cb * v[1], .va = v[2], .wx = cb * w[0] + sb * w[1],
+                      .wy = -sb * w[0] + cb * w[1], .spin_t = rb * w[2], .shear = f.shear};
+  const Sums s = sum_strips(strips, f.points);
+  const double px = s.px, py = s.py, sx = s.sx, sy = s.sy, sa = s.sa, mx = s.mx, my = s.my, ma = s.ma;
+  out.power_loss = -(px * strips.vx + py * strips.vy) + s.shear_loss;
   // Back to the pocket frame.
   const auto turn = [cb, sb](double x, double y) { return std::array<double, 2>{cb * x - sb * y, sb * x + cb * y}; };
   const auto p = turn(px, py), sh = turn(sx, sy), mo = turn(mx, my);
