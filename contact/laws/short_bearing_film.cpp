@@ -36,8 +36,8 @@ ShortBearingForce evaluate_short_bearing(const ShortBearingFilm& f, std::array<d
   // d(phi) = root dpsi / (1 + eps cos psi) = arc / w2 (w2 below), and the pressure's constant.
   const double arc = root * dpsi / (1.0 + eps), pressure = l_cubed / 12.0 * R;
   // The half angles psi_k / 2 by rotation: (hc, hs) = (cos, sin)(psi_k / 2), no trigonometry per point.
-  const double step_c = std::cos(0.5 * dpsi), step_s = std::sin(0.5 * dpsi);
   double hc = std::cos(0.25 * dpsi), hs = std::sin(0.25 * dpsi);
+  const double step_c = hc * hc - hs * hs, step_s = 2.0 * hc * hs;  // the step dpsi / 2 by doubling
   double fx = 0, fy = 0, inverse_film = 0;
   for (int k = 0; k < f.points; ++k) {
     // phi = 2 atan(ratio tan(psi / 2)) in half-angle form: w2 = hc^2 + u^2 = (1 + eps cos psi) / (1 + eps).
