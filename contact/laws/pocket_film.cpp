@@ -29,6 +29,27 @@ struct Sums {
   double px = 0, py = 0, sx = 0, sy = 0, sa = 0, mx = 0, my = 0, ma = 0, shear_loss = 0;
 };
 
+/// The ratio table's G(t) over a block (ReynoldsRatioTable::at): the arithmetic in the vector units,
+/// the nodes gathered lane by lane.
+Block load_integral(const Block& t) {
+  const ReynoldsRatioTable& table = reynolds_line_ratio_table();
+  constexpr int n = ReynoldsRatioTable::intervals;
+  const Block x = (t.max(-1.0).min(1.0) + 1.0) * (n / 2.0);
+  const Eigen::Array<int, lanes, 1> node = x.cast<int>().max(0).min(n - 1);
+  const Block u = x - node.cast<double>(), a = 1.0 - u;
+  Block v0, s0, v1, s1;
+  for (int i = 0; i < lanes; ++i) {
+    const auto k = static_cast<std::size_t>(node[i]);
+    v0[i] = table.value(k);
+    s0[i] = table.slope(k);
+    v1[i] = table.value(k + 1);
+    s1[i] = table.slope(k + 1);
+  }
+  const Block hermite = (1.0 + 2.0 * u) * a.square() * v0 + u * a.square() * s0 + u.square() * (3.0 - 2.0 * u) * v1 +
+                        u.square() * (u - 1.0) * s1;
+  return hermite.max(0.0);
+}
+
 /// One block of strips, (hc, hs) = (cos, sin)(psi / 2) of Sommerfeld's variable psi, weighted by `mask`.
 void add_block(const Strips& s, const Block& hc, const Block& hs, const Block& mask, Sums& out) {
   // tan(gamma / 2) = ratio tan(psi / 2) in half-angle form; w2 = cos^2 + u^2 = (1 + grid_eps cos psi) /
@@ -48,9 +69,7 @@ void add_block(const Strips& s, const Block& hc, const Block& hs, const Block& m
   const Block den_safe = (den > 0.0).select(den, Block::Ones());
   const Block inv = (root_h0 * den_safe).inverse();
   const Block inv_root_h0 = den_safe * inv, t = sig * root_h0 * inv;
-  const ReynoldsRatioTable& table = reynolds_line_ratio_table();
-  Block g;
-  for (int i = 0; i < lanes; ++i) g[i] = table.at(t[i]);
+  const Block g = load_integral(t);
   const Block arc = mask * inv_w2;
   const Block load = s.load_scale * arc * (rho.square() * h0 + sig.square()).sqrt() * inv_root_h0.cube() * g;
   out.px -= (load * cg).sum();
@@ -102,7 +121,7 @@ Sums sum_strips(const Strips& s, int points) {
 
 PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m) {
   PocketFilmForce out;
-  const double size = std::hypot(m.offset[0], m.offset[1]);
+  const double size = std::sqrt(m.offset[0] * m.offset[0] + m.offset[1] * m.offset[1]);  // no std::hypot: slow
   double check = size;
   for (int i = 0; i < 3; ++i) check += m.velocity[static_cast<std::size_t>(i)] + m.angular_velocity[static_cast<std::size_t>(i)];
   if (!std::isfinite(check) || f.points < 1 || !(f.clearance > 0) || !(f.ball_radius > 0)) {
@@ -111,7 +130,7 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   }
   // The floored minimum film and the eccentricity ratio the film sees (as the short journal bearing's).
   const double c = f.clearance, floor = f.film_floor, h_min = c - size;
-  const double h_floor = floor > 0 ? 0.5 * (h_min + floor + std::hypot(h_min - floor, floor)) : std::max(h_min, 0.0);
+  const double h_floor = floor > 0 ? 0.5 * (h_min + floor + std::sqrt((h_min - floor) * (h_min - floor) + floor * floor)) : std::max(h_min, 0.0);
   out.minimum_film = h_floor;
   const double eps = std::max(0.0, 1.0 - h_floor / c);
   if (!(eps < 1.0)) return out;  // no floor and the film closed: the dry contact alone
@@ -140,7 +159,7 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   const auto p = turn(px, py), sh = turn(sx, sy), mo = turn(mx, my);
   out.force_on_ball = {p[0] + sh[0], p[1] + sh[1], sa};
   out.moment_on_ball = {mo[0], mo[1], ma};
-  out.pressure_force = std::hypot(px, py);
+  out.pressure_force = std::sqrt(px * px + py * py);
   out.shear_force = std::sqrt(sx * sx + sy * sy + sa * sa);
   out.valid = std::isfinite(px + py + sx + sy + sa + mx + my + ma);
   return out;

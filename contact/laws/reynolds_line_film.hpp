@@ -58,6 +58,8 @@ class ReynoldsRatioTable {
     const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
     return std::max(0.0, h00 * value_[k] + h10 * slope_[k] + h01 * value_[k + 1] + h11 * slope_[k + 1]);
   }
+  double value(std::size_t k) const { return value_[k]; }  ///< G at node k (t = -1 + k step)
+  double slope(std::size_t k) const { return slope_[k]; }  ///< step dG/dt at node k
 
  private:
   std::array<double, intervals + 1> value_{}, slope_{};  ///< G and step dG/dt at the nodes
