@@ -87,24 +87,26 @@ void add_block(const Strips& s, const Block& hc, const Block& hs, const Block& m
   out.shear_loss += (drag * (v_t.square() + v_a.square())).sum();
 }
 
-/// All the strips: psi_k = (k + 1/2) dpsi, the half angles of the first block by rotation, of the
-/// next ones by rotating the block (no trigonometry per strip).
+/// All the strips: psi_k = (k + 1/2) dpsi; the half angles of the first block by rotations that
+/// double the filled lanes each time (the step dpsi / 2 doubled as it goes), of the next blocks by
+/// rotating the block by lanes dpsi / 2: one sine and cosine a call, no trigonometry per strip.
 Sums sum_strips(const Strips& s, int points) {
-  // One sine and cosine: the first half angle dpsi / 4; the step dpsi / 2 and the block's rotation
-  // lanes dpsi / 2 = 2^4 steps by doubling the angle.
-  static_assert(lanes == 16);
+  static_assert((lanes & (lanes - 1)) == 0, "lanes: a power of 2");
   const double dpsi = 2.0 * std::numbers::pi / points;
-  const auto twice = [](std::array<double, 2> a) { return std::array<double, 2>{a[0] * a[0] - a[1] * a[1], 2.0 * a[0] * a[1]}; };
-  const std::array<double, 2> start{std::cos(0.25 * dpsi), std::sin(0.25 * dpsi)}, step = twice(start);
-  const std::array<double, 2> block = twice(twice(twice(twice(step))));
-  const double step_c = step[0], step_s = step[1], block_c = block[0], block_s = block[1];
   Block hc, hs;
-  hc[0] = start[0];
-  hs[0] = start[1];
-  for (int i = 1; i < lanes; ++i) {
-    hc[i] = hc[i - 1] * step_c - hs[i - 1] * step_s;
-    hs[i] = hs[i - 1] * step_c + hc[i - 1] * step_s;
+  hc[0] = std::cos(0.25 * dpsi);
+  hs[0] = std::sin(0.25 * dpsi);
+  double turn_c = hc[0] * hc[0] - hs[0] * hs[0], turn_s = 2.0 * hc[0] * hs[0];  // dpsi / 2
+  for (int filled = 1; filled < lanes; filled *= 2) {
+    for (int i = 0; i < filled; ++i) {
+      hc[filled + i] = hc[i] * turn_c - hs[i] * turn_s;
+      hs[filled + i] = hs[i] * turn_c + hc[i] * turn_s;
+    }
+    const double c2 = turn_c * turn_c - turn_s * turn_s;
+    turn_s = 2.0 * turn_c * turn_s;
+    turn_c = c2;
   }
+  const double block_c = turn_c, block_s = turn_s;  // lanes dpsi / 2
   Sums out;
   for (int first = 0; first < points; first += lanes) {
     Block mask = Block::Ones();
