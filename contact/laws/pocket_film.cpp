@@ -34,8 +34,10 @@ struct Sums {
 Block load_integral(const Block& t) {
   const ReynoldsRatioTable& table = reynolds_line_ratio_table();
   constexpr int n = ReynoldsRatioTable::intervals;
-  const Block x = (t.max(-1.0).min(1.0) + 1.0) * (n / 2.0);
-  const Eigen::Array<int, lanes, 1> node = x.cast<int>().max(0).min(n - 1);
+  // Clamped to [-1, 1] by comparisons, which also send a NaN (a film whose sums come out invalid) to
+  // a node rather than an integer conversion of NaN.
+  const Block x = ((t >= -1.0).select((t <= 1.0).select(t, 1.0), -1.0) + 1.0) * (n / 2.0);
+  const Eigen::Array<int, lanes, 1> node = x.cast<int>().min(n - 1);
   const Block u = x - node.cast<double>(), a = 1.0 - u;
   Block v0, s0, v1, s1;
   for (int i = 0; i < lanes; ++i) {

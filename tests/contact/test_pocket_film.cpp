@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <variant>
 #include <vector>
@@ -192,6 +193,15 @@ TEST(PocketFilm, BlocksAgreeWithStripByStrip) {
   }
   std::printf("[ pocket ] blocks against strip by strip: %.2g relative at worst\n", worst);
   EXPECT_LT(worst, 1e-11);
+}
+
+// Non-finite motions, and finite ones whose film overflows, give an invalid film, not a crash.
+TEST(PocketFilm, OverflowAndNonFiniteAreInvalid) {
+  const double e = 0.5 * clearance, inf = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(evaluate_pocket_film(pocket(), {{e, 0}, {inf, 0, 0}, {0, 0, 0}}).valid);
+  EXPECT_FALSE(evaluate_pocket_film(pocket(), {{e, 0}, {0, 0, 0}, {0, std::nan(""), 0}}).valid);
+  EXPECT_FALSE(evaluate_pocket_film(pocket(), {{e, 0}, {1e300, -1e300, 1e300}, {1e300, 1e300, -1e300}}).valid);
+  EXPECT_TRUE(evaluate_pocket_film(pocket(), {{e, 0}, {1e-3, 0, 0}, {0, 100, 0}}).valid);
 }
 
 // ---- the lubricated pocket segment ----------------------------------------------------------------
