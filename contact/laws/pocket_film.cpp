@@ -121,6 +121,38 @@ Sums sum_strips(const Strips& s, int points) {
   return out;
 }
 
+/// The strips' constants for a film at eccentricity ratio eps, e along (cb, sb) in the pocket frame.
+Strips make_strips(const PocketFilm& f, const PocketMotion& m, double eps, double cb, double sb) {
+  const double c = f.clearance, rb = f.ball_radius, rp = rb + c, eta = f.viscosity;
+  const auto& v = m.velocity;
+  const auto& w = m.angular_velocity;
+  // The grid's eccentricity: the film's, held below grid_eccentricity by a smooth minimum, so that the
+  // strips stay dense where the film is thin without leaving the thick side bare (where a separating
+  // or sliding ball's film carries its load).
+  const double cap = f.grid_eccentricity, q = eps / cap, q2 = q * q, q4 = q2 * q2;
+  const double grid_eps = cap < 1.0 ? eps / std::sqrt(std::sqrt(std::sqrt(1.0 + q4 * q4))) : eps;
+  const double root = std::sqrt(1.0 - grid_eps * grid_eps);
+  const double arc = rp * root * (2.0 * std::numbers::pi / f.points) / (1.0 + grid_eps);  // times 1 / w2
+  const double sqrt_2rb = std::sqrt(2.0 * rb);
+  return {.c = c, .eps = eps, .rb = rb, .slope = c * eps / rp, .sqrt_2rb = sqrt_2rb,
+          .ratio = std::sqrt((1.0 - grid_eps) / (1.0 + grid_eps)), .load_scale = 24.0 * eta * rb * arc,
+          .drag_scale = eta * std::numbers::pi * sqrt_2rb * arc, .vx = cb * v[0] + sb * v[1],
+          .vy = -sb * v[0] + cb * v[1], .va = v[2], .wx = cb * w[0] + sb * w[1], .wy = -sb * w[0] + cb * w[1],
+          .spin_t = rb * w[2], .shear = f.shear};
+}
+
+/// The sums turned back from the frame of e to the pocket frame.
+void finish(const Sums& s, const Strips& strips, double cb, double sb, PocketFilmForce& out) {
+  out.power_loss = -(s.px * strips.vx + s.py * strips.vy) + s.shear_loss;
+  const auto turn = [cb, sb](double x, double y) { return std::array<double, 2>{cb * x - sb * y, sb * x + cb * y}; };
+  const auto p = turn(s.px, s.py), sh = turn(s.sx, s.sy), mo = turn(s.mx, s.my);
+  out.force_on_ball = {p[0] + sh[0], p[1] + sh[1], s.sa};
+  out.moment_on_ball = {mo[0], mo[1], s.ma};
+  out.pressure_force = std::sqrt(s.px * s.px + s.py * s.py);
+  out.shear_force = std::sqrt(s.sx * s.sx + s.sy * s.sy + s.sa * s.sa);
+  out.valid = std::isfinite(s.px + s.py + s.sx + s.sy + s.sa + s.mx + s.my + s.ma);
+}
+
 }  // namespace
 
 PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m) {
@@ -134,38 +166,14 @@ PocketFilmForce evaluate_pocket_film(const PocketFilm& f, const PocketMotion& m)
   }
   // The floored minimum film and the eccentricity ratio the film sees (as the short journal bearing's).
   const double c = f.clearance, floor = f.film_floor, h_min = c - size;
-  const double h_floor = floor > 0 ? 0.5 * (h_min + floor + std::sqrt((h_min - floor) * (h_min - floor) + floor * floor)) : std::max(h_min, 0.0);
+  const double over = h_min - floor;
+  const double h_floor = floor > 0 ? 0.5 * (h_min + floor + std::sqrt(over * over + floor * floor)) : std::max(h_min, 0.0);
   out.minimum_film = h_floor;
   const double eps = std::max(0.0, 1.0 - h_floor / c);
   if (!(eps < 1.0)) return out;  // no floor and the film closed: the dry contact alone
   const double cb = size > 0 ? m.offset[0] / size : 1.0, sb = size > 0 ? m.offset[1] / size : 0.0;
-  const double rb = f.ball_radius, rp = rb + c, eta = f.viscosity;
-  const auto& v = m.velocity;
-  const auto& w = m.angular_velocity;
-  // The grid's eccentricity: the film's, held below grid_eccentricity by a smooth minimum, so that the
-  // strips stay dense where the film is thin without leaving the thick side bare (where a separating
-  // or sliding ball's film carries its load).
-  const double cap = f.grid_eccentricity, q = eps / cap, q2 = q * q, q4 = q2 * q2;
-  const double grid_eps = cap < 1.0 ? eps / std::sqrt(std::sqrt(std::sqrt(1.0 + q4 * q4))) : eps;
-  const double root = std::sqrt(1.0 - grid_eps * grid_eps);
-  const double arc = rp * root * (2.0 * std::numbers::pi / f.points) / (1.0 + grid_eps);  // times 1 / w2
-  const double sqrt_2rb = std::sqrt(2.0 * rb);
-  const Strips strips{.c = c, .eps = eps, .rb = rb, .slope = c * eps / rp, .sqrt_2rb = sqrt_2rb,
-                      .ratio = std::sqrt((1.0 - grid_eps) / (1.0 + grid_eps)), .load_scale = 24.0 * eta * rb * arc,
-                      .drag_scale = eta * std::numbers::pi * sqrt_2rb * arc, .vx = cb * v[0] + sb * v[1],
-                      .vy = -sb * v[0] + cb * v[1], .va = v[2], .wx = cb * w[0] + sb * w[1],
-                      .wy = -sb * w[0] + cb * w[1], .spin_t = rb * w[2], .shear = f.shear};
-  const Sums s = sum_strips(strips, f.points);
-  const double px = s.px, py = s.py, sx = s.sx, sy = s.sy, sa = s.sa, mx = s.mx, my = s.my, ma = s.ma;
-  out.power_loss = -(px * strips.vx + py * strips.vy) + s.shear_loss;
-  // Back to the pocket frame.
-  const auto turn = [cb, sb](double x, double y) { return std::array<double, 2>{cb * x - sb * y, sb * x + cb * y}; };
-  const auto p = turn(px, py), sh = turn(sx, sy), mo = turn(mx, my);
-  out.force_on_ball = {p[0] + sh[0], p[1] + sh[1], sa};
-  out.moment_on_ball = {mo[0], mo[1], ma};
-  out.pressure_force = std::sqrt(px * px + py * py);
-  out.shear_force = std::sqrt(sx * sx + sy * sy + sa * sa);
-  out.valid = std::isfinite(px + py + sx + sy + sa + mx + my + ma);
+  const Strips strips = make_strips(f, m, eps, cb, sb);
+  finish(sum_strips(strips, f.points), strips, cb, sb, out);
   return out;
 }
 
