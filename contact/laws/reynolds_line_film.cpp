@@ -102,36 +102,6 @@ class LoadTable {
   std::array<double, intervals + 1> value_{}, slope_{};
 };
 
-/// G(t), t = sigma / (|rho| + |sigma|): nodes uniform in t over [-1, 1], values and slopes from the
-/// phi table (dG/dt = G'(phi) dphi/dt, dphi/dt = 1 / ((1 - |t|)^2 + t^2)), Hermite between them.
-class RatioTable {
- public:
-  static constexpr int intervals = 1024;
-  RatioTable() {
-    const double step = 2.0 / intervals, d = 1e-6;
-    for (int i = 0; i <= intervals; ++i) {
-      const double t = -1.0 + step * i;
-      const auto g = [](double x) { return reynolds_line_load_integral(std::atan2(x, 1.0 - std::abs(x))); };
-      value_[static_cast<std::size_t>(i)] = g(t);
-      const double lo = std::max(t - d, -1.0), hi = std::min(t + d, 1.0);
-      slope_[static_cast<std::size_t>(i)] = (g(hi) - g(lo)) / (hi - lo);
-    }
-  }
-  double at(double t) const {
-    const double step = 2.0 / intervals;
-    const double x = (std::clamp(t, -1.0, 1.0) + 1.0) / step;
-    const int i = std::min(static_cast<int>(x), intervals - 1);
-    const double u = x - i;
-    const std::size_t k = static_cast<std::size_t>(i);
-    const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
-    const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
-    return std::max(0.0, h00 * value_[k] + h10 * step * slope_[k] + h01 * value_[k + 1] + h11 * step * slope_[k + 1]);
-  }
-
- private:
-  std::array<double, intervals + 1> value_{}, slope_{};
-};
-
 }  // namespace
 
 double reynolds_line_load_integral(double phi) {
@@ -139,10 +109,25 @@ double reynolds_line_load_integral(double phi) {
   return table.at(phi);
 }
 
-double reynolds_line_load_integral_of_ratio(double t) {
-  static const RatioTable table;
-  return table.at(t);
+// G(t), t = sigma / (|rho| + |sigma|): nodes uniform in t over [-1, 1], values and slopes from the
+// phi table (dG/dt = G'(phi) dphi/dt, dphi/dt = 1 / ((1 - |t|)^2 + t^2)), Hermite between them.
+ReynoldsRatioTable::ReynoldsRatioTable() {
+  const double d = 1e-6;
+  for (int i = 0; i <= intervals; ++i) {
+    const double t = -1.0 + step * i;
+    const auto g = [](double x) { return reynolds_line_load_integral(std::atan2(x, 1.0 - std::abs(x))); };
+    value_[static_cast<std::size_t>(i)] = g(t);
+    const double lo = std::max(t - d, -1.0), hi = std::min(t + d, 1.0);
+    slope_[static_cast<std::size_t>(i)] = step * (g(hi) - g(lo)) / (hi - lo);
+  }
 }
+
+const ReynoldsRatioTable& reynolds_line_ratio_table() {
+  static const ReynoldsRatioTable table;
+  return table;
+}
+
+double reynolds_line_load_integral_of_ratio(double t) { return reynolds_line_ratio_table().at(t); }
 
 double reynolds_line_load_per_length(double viscosity, double reduced_radius, double h0, double u_m,
                                      double film_rate) {

@@ -21,6 +21,10 @@
 // Reynolds solver with cavitation.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
 namespace raceway::contact {
 
 /// G(phi) and the outlet X_c for a motion direction phi in [-pi/2, pi/2] (clamped).
@@ -37,6 +41,30 @@ double reynolds_line_load_integral(double phi);
 /// callers that have rho >= 0 and sigma and would rather not take an arctangent: tabulated once (1025
 /// nodes) from reynolds_line_load_integral and interpolated by cubic Hermite splines, within 1e-6 of it.
 double reynolds_line_load_integral_of_ratio(double t);
+
+/// The table behind reynolds_line_load_integral_of_ratio, for loops that would rather inline the
+/// lookup (the pocket film's strips): at(t) is that function.
+class ReynoldsRatioTable {
+ public:
+  static constexpr int intervals = 1024;
+  static constexpr double step = 2.0 / intervals;
+  ReynoldsRatioTable();
+  double at(double t) const {
+    const double x = (std::clamp(t, -1.0, 1.0) + 1.0) * (intervals / 2.0);
+    const int i = std::min(static_cast<int>(x), intervals - 1);
+    const double u = x - i;
+    const auto k = static_cast<std::size_t>(i);
+    const double h00 = (1 + 2 * u) * (1 - u) * (1 - u), h10 = u * (1 - u) * (1 - u);
+    const double h01 = u * u * (3 - 2 * u), h11 = u * u * (u - 1);
+    return std::max(0.0, h00 * value_[k] + h10 * slope_[k] + h01 * value_[k + 1] + h11 * slope_[k + 1]);
+  }
+  double value(std::size_t k) const { return value_[k]; }  ///< G at node k (t = -1 + k step)
+  double slope(std::size_t k) const { return slope_[k]; }  ///< step dG/dt at node k
+
+ private:
+  std::array<double, intervals + 1> value_{}, slope_{};  ///< G and step dG/dt at the nodes
+};
+const ReynoldsRatioTable& reynolds_line_ratio_table();
 
 /// The film's load per unit length [N/m] of a rigid cylinder of radius R on a plane at film
 /// thickness h0 > 0, entrainment speed u_m (either sign) and approach rate dh0/dt (< 0 approaching),

@@ -1,5 +1,6 @@
 #include "contact/laws/short_bearing_film.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -32,19 +33,28 @@ ShortBearingForce evaluate_short_bearing(const ShortBearingFilm& f, std::array<d
   const double rolling = 6.0 * mu * (journal_speed + bore_speed) * eps * c;  // times sin(phi)
   const double ratio = std::sqrt((1.0 - eps) / (1.0 + eps)), root = std::sqrt(1.0 - eps * eps);
   const double dpsi = 2.0 * std::numbers::pi / f.points;
+  // d(phi) = root dpsi / (1 + eps cos psi) = arc / w2 (w2 below), and the pressure's constant.
+  const double arc = root * dpsi / (1.0 + eps), pressure = l_cubed / 12.0 * R;
+  // The half angles psi_k / 2 by rotation: (hc, hs) = (cos, sin)(psi_k / 2), no trigonometry per point.
+  double hc = std::cos(0.25 * dpsi), hs = std::sin(0.25 * dpsi);
+  const double step_c = hc * hc - hs * hs, step_s = 2.0 * hc * hs;  // the step dpsi / 2 by doubling
   double fx = 0, fy = 0, inverse_film = 0;
   for (int k = 0; k < f.points; ++k) {
-    const double psi = (k + 0.5) * dpsi;
-    const double phi = 2.0 * std::atan2(ratio * std::sin(0.5 * psi), std::cos(0.5 * psi));
-    const double weight = root / (1.0 + eps * std::cos(psi)) * dpsi;  // d(phi)
-    const double cp = std::cos(phi), sp = std::sin(phi);
-    const double h = c * (1.0 - eps * cp);
+    // phi = 2 atan(ratio tan(psi / 2)) in half-angle form: w2 = hc^2 + u^2 = (1 + eps cos psi) / (1 + eps).
+    const double u = ratio * hs, hc2 = hc * hc, u2 = u * u;
+    const double inv_w2 = 1.0 / (hc2 + u2);
+    const double cp = (hc2 - u2) * inv_w2, sp = 2.0 * u * hc * inv_w2;
+    const double next_c = hc * step_c - hs * step_s;
+    hs = hs * step_c + hc * step_s;
+    hc = next_c;
+    const double weight = arc * inv_w2;
+    const double inv_h = 1.0 / (c * (1.0 - eps * cp));
     const double g = rolling * sp - 12.0 * mu * (rate_x * cp + rate_y * sp);
-    inverse_film += weight / h;
-    if (g >= 0) continue;  // cavitated
-    const double w = -g * l_cubed / (12.0 * h * h * h);
-    fx -= w * R * cp * weight;
-    fy -= w * R * sp * weight;
+    inverse_film += weight * inv_h;
+    // The cavitated half carries nothing: w = max(0, -g) L^3 / (12 h^3).
+    const double w = std::max(0.0, -g) * pressure * (inv_h * inv_h * inv_h) * weight;
+    fx -= w * cp;
+    fy -= w * sp;
   }
   out.on_journal = {cb * fx - sb * fy, sb * fx + cb * fy};
   // Couette shear of the relative rotation: tau = mu R (omega_j - omega_b) / h over the surface.
