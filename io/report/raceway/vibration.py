@@ -60,10 +60,19 @@ def characteristic_frequencies(out, cage_hz=None):
     d = 2 * _root_attr(f, "element_radius")
     dm = 2 * _root_attr(f, "pitch_radius")
     ratio = d * math.cos(_root_attr(f, "nominal_contact_angle")) / dm
+    if _bearing_type(f) == "tapered_roller" and "epicyclic_cage_speed_rpm" in summary:
+        # Rollers on two cones about a common apex: the run's own rolling-without-slip cage speed
+        # (the summary's, from the cup and cone angles); D cos a / d_m is what gives it here.
+        ratio = 1 - 2 * abs(float(summary["epicyclic_cage_speed_rpm"])) / 60.0 / f_i
     no_slip = 0.5 * f_i * (1 - ratio)
     measured = abs(float(summary["cage_speed_rpm"])) / 60.0 if cage_hz is None else cage_hz
     return _frequencies(z, ratio, dm / d, f_i, measured) | {
         "kinematic": _frequencies(z, ratio, dm / d, f_i, no_slip), "slip": 1.0 - measured / no_slip}
+
+
+def _bearing_type(f):
+    value = f.attrs.get("bearing_type", b"")
+    return value.decode() if isinstance(value, bytes) else str(value)
 
 
 def _frequencies(z, ratio, dm_over_d, f_i, f_c):
