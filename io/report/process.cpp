@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -13,7 +15,8 @@ extern char** environ;  // NOLINT: POSIX, for posix_spawn
 
 namespace raceway::report {
 
-int run_process(const std::vector<std::string>& args, std::string& error) {
+int run_process(const std::vector<std::string>& args, std::string& error,
+                const std::function<void(pid_t)>& while_waiting) {
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -31,10 +34,16 @@ int run_process(const std::vector<std::string>& args, std::string& error) {
     return -1;
   }
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, while_waiting ? WNOHANG : 0);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) {
       error = std::strerror(errno);
       return -1;
+    }
+    if (done == 0) {  // still running (WNOHANG)
+      while_waiting(pid);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);

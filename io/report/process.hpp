@@ -2,6 +2,9 @@
 // default signal mask, waited for.
 #pragma once
 
+#include <sys/types.h>
+
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,6 +15,9 @@ namespace raceway::report {
 /// The child starts with no signal blocked: raceway blocks its stop signals in every thread
 /// (solver/run/stop_signals.hpp) and a mask is inherited across exec, so a child started as it is
 /// would ignore Ctrl-C.
-int run_process(const std::vector<std::string>& args, std::string& error);
+/// `while_waiting`, when given, is called with the child's pid about every 100 ms until it ends
+/// (e.g. to pass a stop request on to it); without it the wait blocks.
+int run_process(const std::vector<std::string>& args, std::string& error,
+                const std::function<void(pid_t)>& while_waiting = {});
 
 }  // namespace raceway::report

@@ -2,15 +2,8 @@
 #include "solver/driver/atlas_command.hpp"
 
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cerrno>
-#include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <thread>
 #include <cstdlib>
 #include <filesystem>
 #include <vector>
@@ -21,8 +14,6 @@
 #include "io/report/report.hpp"
 #include "solver/run/stop_signals.hpp"
 
-extern char** environ;  // NOLINT: POSIX, for posix_spawn
-
 namespace raceway::driver {
 
 namespace {
@@ -32,40 +23,13 @@ namespace {
 /// exit status, or -1 with `error` saying why.
 int run_passing_stop(const std::vector<std::string>& args, std::string& error) {
   run::accept_stop_requests();
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t none;
-  sigemptyset(&none);
-  posix_spawnattr_setsigmask(&attributes, &none);  // this process blocks them in every thread
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], nullptr, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  if (rc != 0) {
-    error = std::strerror(rc);
-    return -1;
-  }
   bool passed = false;
-  int status = 0;
-  while (true) {
-    const pid_t done = waitpid(pid, &status, WNOHANG);
-    if (done == pid) break;
-    if (done < 0 && errno != EINTR) {
-      error = std::strerror(errno);
-      return -1;
-    }
+  return report::run_process(args, error, [&](pid_t pid) {
     if (const int signal = run::stop_request().load(); signal != 0 && !passed) {
       kill(pid, signal);
       passed = true;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  error = WIFSIGNALED(status) ? fmt::format("killed by signal {}", WTERMSIG(status)) : "ended abnormally";
-  return -1;
+  });
 }
 
 }  // namespace
