@@ -33,6 +33,20 @@ class ScopedTimer {
 
 bool implicit_method(scene::IntegrationMethod m) { return m != scene::IntegrationMethod::erk; }
 
+/// A serial vector's clone, filled with zeros. CVODE allocates its history (the Nordsieck array
+/// zn) by cloning the state vector and reads one entry before it writes it: when the largest order
+/// is raised without a restart (the automatic order's probe of order 5 after a run at order 2),
+/// its estimate of the step at order q+1 (cvComputeEtaqp1) subtracts zn[qmax], the corrector saved
+/// at the previous qmax, which no step has written since. Read uninitialised, that value was
+/// whatever the heap held, and runs whose heap history differed (the collective output's
+/// allocations) took different orders and left each other partway. Zeros make that first estimate
+/// a fixed function of the step (the corrector's own norm), the same in every run.
+N_Vector clone_zeroed(N_Vector w) {
+  N_Vector v = N_VClone_Serial(w);  // copies w's operations, this one included: clones of clones too
+  if (v != nullptr) N_VConst_Serial(0.0, v);
+  return v;
+}
+
 }  // namespace
 
 struct Integrator::Impl {
@@ -162,6 +176,7 @@ Integrator::Integrator(DynamicSystem& equations, const scene::SolverSpec& spec, 
   const auto n = static_cast<sunindextype>(z0.size());
   stepping::check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
   s.y = N_VNew_Serial(n, s.ctx);
+  s.y->ops->nvclone = clone_zeroed;
   std::copy(z0.begin(), z0.end(), N_VGetArrayPointer(s.y));
   s.error = N_VClone(s.y);
   s.weights = N_VClone(s.y);

@@ -413,10 +413,6 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
     sample_zdot_.resize(static_cast<std::size_t>(model_.state_size));
     totals_.count_also(*sample_eq_, sample_executor_);
   }
-  if (scene_.solver.automatic_order && options_.shared_output && options_.on_info)
-    options_.on_info("warning: --parallel-output with the automatic BDF order is not bitwise reproducible from run to "
-                     "run (a known defect: about 1 run in 8 differs, docs/output_layout.md); give [solver] max_order "
-                     "for reproducible results, or write with rank 0 (the default)");
   if (scene_.solver.automatic_order) {
     order_choice_.emplace(t0, numerics::OrderChoiceSettings{.high_order = scene_.solver.max_order});
     if (resumed) order_choice_->restore(resumed->values);
