@@ -47,7 +47,7 @@ constexpr Row kRows[] = {
     // ---- [bearing] ------------------------------------------------------------------------------
     {.section = "bearing", .key = "designation", .kind = text, .field = FIELD(scene.designation), .def = absent,
      .example = "6205",
-     .meaning = "a catalogue bearing (docs/catalogue.md: 60, 62, 63, 72..B, QJ2.., NU2.. series): fills every key of "
+     .meaning = "a catalogue bearing (docs/catalogue.md: 60, 62, 63, 72..B, QJ2.., NU, NJ, NUP, 302, 322 series): fills every key of "
                 "[bearing] and [cage], the model and first-scene defaults that the scene does not give; `raceway "
                 "check` lists them"},
     {.section = "bearing", .key = "type", .kind = choice, .field = FIELD(scene.bearing.type),

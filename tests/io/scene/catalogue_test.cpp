@@ -34,15 +34,17 @@ constexpr double kGravity = 9.80665;
 
 bool is_angular(const std::string& d) { return d.back() == 'B'; }
 bool is_four_point(const std::string& d) { return d.starts_with("QJ"); }
+bool is_tapered(const std::string& d) { return d.starts_with("302") || d.starts_with("322"); }
 
 /// Radial load 1 N per mm^2 of bore times width (80 N for the 6000, 1875 N for the QJ215); angular
-/// contact bearings carry 1.5 times it axially (all balls loaded at 40 deg), four-point ones 2 times.
+/// contact bearings carry 1.5 times it axially (all balls loaded at 40 deg), four-point ones 2 times,
+/// tapered ones 0.75 times it pushing the cone into the cup (-z).
 struct Loads {
   double fy = 0, fz = 0;
 };
 Loads loads_for(const scene::Scene& catalogue_scene, const std::string& d) {
   const double fr = 1e6 * catalogue_scene.bearing.inner_bore_diameter * catalogue_scene.bearing.ring_width;
-  return {-fr, is_angular(d) ? 1.5 * fr : is_four_point(d) ? 2 * fr : 0.0};
+  return {-fr, is_angular(d) ? 1.5 * fr : is_four_point(d) ? 2 * fr : is_tapered(d) ? -0.75 * fr : 0.0};
 }
 
 /// The first scene a user writes: a designation, a speed and a load.
@@ -232,10 +234,12 @@ TEST_P(CatalogueRun, TwoRevolutionsWithFiniteCageMetricsAndBalancedLoads) {
 
 // NJ and NUP bearings differ from the NU of the same size in their ribs alone, which the planar model
 // (the catalogue's first scene for rollers) does not have: their planar runs would repeat the NU's.
+// The tapered bearings (spatial roller models, far dearer per revolution) are checked in
+// catalogue_tapered_test.cpp, one of them seated and run.
 std::vector<std::string> distinct_first_scenes() {
   std::vector<std::string> out;
   for (const std::string& d : scene::catalogue_designations())
-    if (!d.starts_with("NJ") && !d.starts_with("NUP")) out.push_back(d);
+    if (!d.starts_with("NJ") && !d.starts_with("NUP") && !is_tapered(d)) out.push_back(d);
   return out;
 }
 
