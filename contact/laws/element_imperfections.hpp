@@ -16,6 +16,12 @@
 // surface stands out by h(R^T n): the approach grows by h, as for a race's imperfection. Its rate:
 // the contact point moves over the ball as the contact frame turns at Omega_n and the ball at w,
 // d(R^T n)/dt = R^T ((Omega_n - w) x n).
+//
+// A roller's imperfections are the same description round its circumference: the roller's frame has
+// its z axis along the roller's axis, the longitude phi about that axis places the spall (`angle`,
+// `length` along the circumference), and the spall's `width` runs along the axis, centred on the
+// roller's middle: a race slice at `axial` from the middle sees it where |axial| <= width / 2.
+// Waviness: the roller's radius deviation sum A_k cos(n_k phi + phase_k), the same along its length.
 #pragma once
 
 #include "contact/laws/race_imperfections.hpp"
@@ -34,6 +40,16 @@ struct ElementHeight {
 /// angular velocity of the contact frame (bearing frame); ball_rate: the ball's.
 ElementHeight element_height(const RaceImperfections& e, const Mat3& ball_rotation, const Vec3& n,
                              const Vec3& frame_rate, const Vec3& ball_rate);
+
+/// The height of a roller's surface (imperfections `e`, race_radius = ball_radius = the roller's
+/// radius) at a contact in the direction d (bearing frame, from the roller's axis towards the
+/// contact) at `axial` from the roller's middle along its axis; roller_rotation: its orientation
+/// (body z the axis); frame_rate, roller_rate: the angular velocities of d and of the roller.
+ElementHeight roller_height(const RaceImperfections& e, const Mat3& roller_rotation, const Vec3& d, double axial,
+                            const Vec3& frame_rate, const Vec3& roller_rate);
+
+/// The angle [rad] about the roller's axis between its spall's centre and the contact direction d.
+double roller_spall_distance(const RaceImperfections& e, const Mat3& roller_rotation, const Vec3& d);
 
 /// The angle [rad] between the spall's centre on the ball and the contact normal n (bearing frame).
 double element_spall_distance(const RaceImperfections& e, const Mat3& ball_rotation, const Vec3& n);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "contact/laws/damping.hpp"
+#include "contact/laws/element_imperfections.hpp"
 
 namespace raceway::contact {
 
@@ -71,10 +72,25 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
     n = ring.rotation * rc.normal_local;
     point = ring.position + ring.rotation * rc.point_local;
   }
+  // The rate of S's azimuth about the ring's axis in the ring's frame (the imperfections' surfaces pass
+  // under S): azimuth_moment / rho^2.
+  double azimuth_moment = 0;
+  if (s.imperfections || s.roller_imperfections) {
+    const Vec3 centre_velocity = roller.velocity + roller.angular_velocity.cross(centre - roller.position);
+    const Vec3 local_rate = ring.rotation.transpose() *
+                            (centre_velocity - ring.velocity - ring.angular_velocity.cross(centre - ring.position));
+    azimuth_moment = local.x() * local_rate.y() - local.y() * local_rate.x();
+  }
   RaceHeight surface;
   if (s.imperfections) {
     surface = race_height(*s.imperfections, std::atan2(local.y(), local.x()) - ring.spin_angle, local.z());
     approach += surface.height;
+  }
+  ElementHeight own;
+  if (s.roller_imperfections) {  // -n: from the roller's axis to the contact; n turns with S's azimuth
+    own = roller_height(*s.roller_imperfections, roller.rotation, -n, s.position,
+                        ring.angular_velocity + azimuth_moment / (rho * rho) * ring.rotation.col(2), roller.angular_velocity);
+    approach += own.height;
   }
   out.diagnostics.approach = approach;
   if (!(approach > 0)) return out;
@@ -84,12 +100,8 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
   const Vec3 v_roller = roller.velocity + roller.angular_velocity.cross(point - roller.position);
   const Vec3 relative = v_roller - v_ring;
   double approach_rate = -n.dot(relative);
-  if (s.imperfections) {  // the surface's height passing under S: its azimuth rate in the ring's frame
-    const Vec3 centre_velocity = roller.velocity + roller.angular_velocity.cross(centre - roller.position);
-    const Vec3 local_rate = ring.rotation.transpose() *
-                            (centre_velocity - ring.velocity - ring.angular_velocity.cross(centre - ring.position));
-    approach_rate += surface.per_azimuth * (local.x() * local_rate.y() - local.y() * local_rate.x()) / (rho * rho);
-  }
+  if (s.imperfections) approach_rate += surface.per_azimuth * azimuth_moment / (rho * rho);
+  if (s.roller_imperfections) approach_rate += own.rate;
 
   const double elastic = s.stiffness * std::pow(approach, palmgren_exponent);
   const DampedForce q = hunt_crossley(elastic, s.damping_factor, approach_rate);

@@ -34,6 +34,12 @@
 // the approach grows by the height and its rate by the height's change as S moves round the race.
 // The roller's radius limits its drop into a short spall as a ball's does (the rolling direction's
 // curvature). Without imperfections nothing changes, bit for bit.
+//
+// The roller's own imperfections (a spall, waviness on it: contact/laws/element_imperfections.hpp)
+// stand out of the roller at the contact's direction from its axis in the roller's frame (its
+// orientation then carries its angle about its axis) and at the slice's place along it: the approach
+// grows by that height and its rate by the height's change as the roller turns relative to the
+// contact's normal (which turns with S's azimuth about the ring's axis).
 #pragma once
 
 #include <memory>
@@ -56,6 +62,7 @@ struct RollerSliceSegment {
   double max_approach = 0;    ///< m
   TractionCurve traction;
   std::shared_ptr<const RaceImperfections> imperfections;  ///< the race's spall and waviness; null: perfect
+  std::shared_ptr<const RaceImperfections> roller_imperfections;  ///< the roller's own; null: a perfect roller
 };
 
 /// Slice j of a sliced roller-race contact.

@@ -64,13 +64,17 @@ void waviness_lists_match(const Row&, const Section& s, Bind& b) {
 void element_spall_given(const Row&, const Section& s, Bind& b) {
   SpallSpec& spall = b.scene.rolling_element.spall;
   spall.present = true;
-  const double quarter = 0.25 * std::numbers::pi * b.scene.bearing.ball.ball_diameter;
+  const BearingGeometry& g = b.scene.bearing;
+  const bool ball = g.is_ball_bearing();
+  const double quarter = 0.25 * std::numbers::pi * (ball ? g.ball.ball_diameter : g.roller_diameter);
   const Section table = s.sub("spall");
+  const char* what = ball ? "ball" : "roller";
   for (const auto& [key, size] : {std::pair{"length", spall.length}, std::pair{"width", spall.width}}) {
+    if (!ball && std::string_view(key) == "width") continue;  // along a roller's axis: any width up to its length
     table.check(size < quarter, key, [&] {
-      return fmt::format("a ball's spall {} of {} reaches over a quarter of the ball's circumference ({}); the "
-                         "ball's two race contacts, half a circumference apart, meet it one at a time",
-                         key, mm(size), mm(quarter));
+      return fmt::format("a {}'s spall {} of {} reaches over a quarter of the {}'s circumference ({}); the "
+                         "{}'s two race contacts, half a circumference apart, meet it one at a time",
+                         what, key, mm(size), what, mm(quarter), what);
     });
   }
 }

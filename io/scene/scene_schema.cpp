@@ -378,28 +378,33 @@ constexpr Row kRows[] = {
     {.section = "*_ring.waviness", .key = "phases", .kind = number_list, .field = FIELD(ring->waviness.phases),
      .dim = dim::angle, .def = absent, .example = "[\"0 deg\", \"90 deg\"]", .meaning = "of each term; absent: all 0"},
 
-    // ---- [rolling_element]: optional; a ball's own spall and waviness (ball bearings) -----------
+    // ---- [rolling_element]: optional; a ball's or roller's own spall and waviness (spatial scenes)
     {.section = "rolling_element", .key = "spall", .kind = table, .field = nullptr, .def = absent,
-     .bearings = ball_bearings, .elsewhere = kBallOnly, .then = element_spall_given, .sub = "rolling_element.spall",
-     .meaning = "a spall on one ball, round its equator; it turns with the ball (docs/vibration.md)"},
+     .bearings = spatial_bearings, .elsewhere = kSpatialOnlyElementDefect, .then = element_spall_given,
+     .sub = "rolling_element.spall",
+     .meaning = "a spall on one ball (round its equator) or roller (round its circumference); it turns with it "
+                "(docs/vibration.md)"},
     {.section = "rolling_element", .key = "waviness", .kind = table, .field = nullptr, .def = absent,
-     .bearings = ball_bearings, .elsewhere = kBallOnly, .then = element_waviness_given,
+     .bearings = spatial_bearings, .elsewhere = kSpatialOnlyElementDefect, .then = element_waviness_given,
      .sub = "rolling_element.waviness",
-     .meaning = "one ball's waviness round its equator: radius deviation sum A_k cos(n_k phi + phase_k)"},
+     .meaning = "one ball's waviness round its equator, or one roller's round its circumference: radius deviation "
+                "sum A_k cos(n_k phi + phase_k)"},
     {.section = "rolling_element.spall", .key = "element", .kind = integer,
      .field = FIELD(scene.rolling_element.spall_element), .bounds = kElementIndex, .example = "0",
-     .meaning = "the ball that carries it: ball[element]"},
+     .meaning = "the ball or roller that carries it: ball[element] or roller[element]"},
     {.section = "rolling_element.spall", .key = "angle", .kind = number,
      .field = FIELD(scene.rolling_element.spall.angle), .dim = dim::angle, .bounds = kSpallAngle, .def = value(0),
      .example = "90 deg",
-     .meaning = "the spall's centre round the ball's equator, in the ball's frame (at the start the bearing's: 0 "
-                "along x)"},
+     .meaning = "the spall's centre round the ball's equator or the roller's circumference, in its own frame (at "
+                "the start the bearing's: 0 along x)"},
     {.section = "rolling_element.spall", .key = "length", .kind = number,
      .field = FIELD(scene.rolling_element.spall.length), .dim = dim::length, .bounds = kSpallSize,
-     .example = "0.178 mm", .meaning = "along the equator"},
+     .example = "0.178 mm", .meaning = "along the equator (a roller: round its circumference)"},
     {.section = "rolling_element.spall", .key = "width", .kind = number,
      .field = FIELD(scene.rolling_element.spall.width), .dim = dim::length, .bounds = kSpallSize,
-     .example = "0.178 mm", .meaning = "across the equator (the contacts' track must cross it)"},
+     .example = "0.178 mm",
+     .meaning = "across the equator (the contacts' track must cross it); a roller: along its axis, centred on its "
+                "middle (the race slices within it meet it)"},
     {.section = "rolling_element.spall", .key = "depth", .kind = number,
      .field = FIELD(scene.rolling_element.spall.depth), .dim = dim::length, .bounds = kSpallSize,
      .example = "0.28 mm", .meaning = "depth; a race reaches at most r - sqrt(r^2 - (length/2)^2) into it"},
@@ -408,7 +413,7 @@ constexpr Row kRows[] = {
      .noun = "spall edge", .meaning = "sharp: the race pivots on the edges; smooth: a raised cosine"},
     {.section = "rolling_element.waviness", .key = "element", .kind = integer,
      .field = FIELD(scene.rolling_element.waviness_element), .bounds = kElementIndex, .example = "0",
-     .meaning = "the ball that carries it: ball[element]"},
+     .meaning = "the ball or roller that carries it: ball[element] or roller[element]"},
     {.section = "rolling_element.waviness", .key = "orders", .kind = integer_list,
      .field = FIELD(scene.rolling_element.waviness.orders), .bounds = {.lo = 1, .hi = 1000}, .example = "[2, 4]",
      .meaning = "lobes round the ball's equator, one per term"},

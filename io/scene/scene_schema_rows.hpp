@@ -24,6 +24,9 @@ inline constexpr std::string_view kBallOnly =
 inline constexpr std::string_view kSpatialOnlyDefect =
     "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\"): a planar roller's line "
     "contact has no place across the race for a defect";
+inline constexpr std::string_view kSpatialOnlyElementDefect =
+    "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\"): a planar roller has no "
+    "angle about its own axis to carry a defect round";
 inline constexpr std::string_view kSpatialOnlyHousing =
     "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\")";
 inline constexpr std::string_view kSpatialCage =

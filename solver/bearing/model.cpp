@@ -141,6 +141,22 @@ void add_rolling_elements(Model& m, const char* name, double mass, double axial_
   }
 }
 
+namespace {
+void roller_states(Model& m, Body& r, bool spin_angle) {
+  add_states(m, r, sx, VariableClass::position, {"x", "y", "z"});
+  add_state(m, r, sax, VariableClass::angle, "axis_angle_x");
+  add_state(m, r, say, VariableClass::angle, "axis_angle_y");
+  if (spin_angle) add_state(m, r, saz, VariableClass::angle, "spin_angle");
+  add_states(m, r, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+  add_states(m, r, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
+}
+}  // namespace
+
+void (*spatial_roller_states(bool spin_angle))(Model&, Body&) {
+  if (spin_angle) return [](Model& m, Body& r) { roller_states(m, r, true); };
+  return [](Model& m, Body& r) { roller_states(m, r, false); };
+}
+
 double annulus_mass(double density, double r_in, double r_out, double width) {
   return density * std::numbers::pi * (r_out * r_out - r_in * r_in) * width;
 }
@@ -218,7 +234,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
       if (body.ball_orientation)
         k.rotation = cardan_rotation(v[sax], v[say], v[saz]);  // a ball that carries a defect
       else if (body.slot[sax] >= 0)
-        k.rotation = cardan_rotation(v[sax], v[say], 0.0);  // a spatial roller's axis
+        k.rotation = cardan_rotation(v[sax], v[say], v[saz]);  // a spatial roller (its spin angle with a defect)
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:

@@ -41,8 +41,8 @@ namespace raceway::bearing {
 /// coordinate c or -1 (not a state). Angles: ring tilts (sax, say) or the cage's Cardan angles.
 /// Angular velocities: balls and spatial rollers in the bearing frame; rings (swx, swy) tilt rates
 /// and swz the spin about the ring's axis; the cage in its own frame. A spatial roller's angles are
-/// sax, say: the direction of its axis R e_z, R = Rx(ax) Ry(ay) (its angle about its own axis is
-/// not a state). A planar body uses sx, sy, saz, svx, svy, swz.
+/// sax, say: the direction of its axis R e_z, R = Rx(ax) Ry(ay) (its angle about its own axis, saz
+/// of R = Rx Ry Rz, is a state only with a roller's own defect in the scene). A planar body uses sx, sy, saz, svx, svy, swz.
 enum Coordinate : int { sx = 0, sy, sz, sax, say, saz, svx, svy, svz, swx, swy, swz };
 inline constexpr int coordinate_count = 12;
 
@@ -66,6 +66,8 @@ struct Body {
   bool ball_orientation = false;
   /// A spatial roller: its axis angles sax, say are states.
   bool is_roller_axis() const { return kind == BodyKind::rolling_element && slot[3] >= 0 && !ball_orientation; }
+  /// A spatial roller whose angle about its own axis is a state too (saz: a roller's own defect turns with it).
+  bool has_roller_spin_angle() const { return is_roller_axis() && slot[5] >= 0; }
   bool has_states() const { return size > 0; }
   bool has(Coordinate c) const { return slot[c] >= 0; }
 };
@@ -279,5 +281,9 @@ void add_states(Model& m, Body& b, Coordinate first, VariableClass cls, const st
 /// before velocities), each one contiguous block.
 void add_rolling_elements(Model& m, const char* name, double mass, double axial_inertia, double transverse_inertia,
                           void (*add_states)(Model&, Body&));
+/// A spatial roller's states: position, its axis's two angles, velocity, angular velocity (11); with
+/// spin_angle (a roller's own defect in the scene) its angle about its own axis too, after the axis's
+/// angles (12: R = Rx(ax) Ry(ay) Rz(az), the roller's frame turning with it).
+void (*spatial_roller_states(bool spin_angle))(Model&, Body&);
 
 }  // namespace raceway::bearing

@@ -38,6 +38,19 @@ std::shared_ptr<const contact::RaceImperfections> element_imperfections(const sc
   return out;
 }
 
+std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared) {
+  const auto own = element_imperfections(scene, k, m.radius_of_element(k));
+  if (!own) return shared;
+  std::vector<int> laws;
+  for (const int law : shared) {
+    contact::RollerSliceSegment copy = std::get<contact::RollerSliceSegment>(m.laws[static_cast<std::size_t>(law)]);
+    copy.roller_imperfections = own;
+    m.laws.push_back(std::move(copy));
+    laws.push_back(static_cast<int>(m.laws.size()) - 1);
+  }
+  return laws;
+}
+
 namespace {
 
 constexpr double two_pi = 2.0 * std::numbers::pi;
@@ -82,6 +95,35 @@ double element_limit(const contact::BallGrooveSegment& law, const contact::Spati
   const double within = 2.0 * half / speed / steps_within_spall;
   const double distance = contact::element_spall_distance(e, ball.rotation, frame.n) - half;
   return distance <= 0 ? within : std::max(within, distance / speed);
+}
+
+/// The step limit for a roller's own spall at one race (its contact's direction: the ring's radial
+/// line through the roller's centre, towards the race; the roller's spin about its axis relative to it).
+double roller_limit(const contact::RollerSliceSegment& law, const contact::SpatialKinematics& ring,
+                    const contact::SpatialKinematics& roller) {
+  const contact::Vec3 rel = roller.position - ring.position;
+  const contact::Vec3 p = ring.rotation.transpose() * rel;
+  const double rho2 = p.x() * p.x() + p.y() * p.y();
+  if (!(rho2 > 0)) return std::numeric_limits<double>::infinity();
+  const contact::Vec3 p_dot =
+      ring.rotation.transpose() * (roller.velocity - ring.velocity - ring.angular_velocity.cross(rel));
+  const double azimuth_rate = (p.x() * p_dot.y() - p.y() * p_dot.x()) / rho2;
+  const contact::Vec3 radial = ring.rotation * contact::Vec3(p.x(), p.y(), 0.0);
+  const contact::Vec3 d = law.outer ? radial : contact::Vec3(-radial);
+  const contact::Vec3 frame_rate = ring.angular_velocity + azimuth_rate * ring.rotation.col(2);
+  const double speed = std::abs((roller.angular_velocity - frame_rate).dot(roller.rotation.col(2)));
+  if (!(speed > 0)) return std::numeric_limits<double>::infinity();
+  const contact::RaceImperfections& e = *law.roller_imperfections;
+  const double half = contact::spall_half_angle(e);
+  const double within = 2.0 * half / speed / steps_within_spall;
+  const double distance = contact::roller_spall_distance(e, roller.rotation, d) - half;
+  return distance <= 0 ? within : std::max(within, distance / speed);
+}
+
+/// The roller's own imperfections a roller slice's law carries, or null.
+const contact::RaceImperfections* roller_own(const Model& m, const Segment& seg) {
+  if (seg.kind != SegmentKind::roller_inner_slice && seg.kind != SegmentKind::roller_outer_slice) return nullptr;
+  return m.law<contact::RollerSliceSegment>(seg).roller_imperfections.get();
 }
 
 /// The race's imperfections a race segment's law carries (a ball groove or a roller slice), or null.
@@ -143,6 +185,23 @@ std::string describe_race_imperfections(const Model& m) {
                          seg.element, e->waviness.orders[k], 1e6 * e->waviness.amplitudes[k],
                          e->waviness.phases[k] * 180 / std::numbers::pi);
   }
+  for (const Segment& seg : m.segments) {  // a roller's own defect: its first inner slice's law holds it
+    const contact::RaceImperfections* e = roller_own(m, seg);
+    if (!e || seg.kind != SegmentKind::roller_inner_slice || !seg.name.ends_with("slice[0]")) continue;
+    if (e->has_spall)
+      out += fmt::format("  roller[{}]: spall at {:.4g} deg round its circumference (roller frame), {:.4g} mm long, "
+                         "{:.4g} mm wide (along its axis), {:.4g} mm deep, {} edges: a race reaches at most {:.4g} um "
+                         "into it; the rollers' angles about their axes are states\n",
+                         seg.element, e->spall.angle * 180 / std::numbers::pi, 1e3 * e->spall.length,
+                         1e3 * e->spall.width, 1e3 * e->spall.depth,
+                         e->spall.edge == contact::SpallEdge::sharp ? "sharp" : "smooth",
+                         1e6 * contact::spall_effective_depth(e->spall, e->ball_radius));
+    for (std::size_t k = 0; k < e->waviness.orders.size(); ++k)
+      out += fmt::format("  roller[{}]: waviness of order {} round its circumference, amplitude {:.4g} um, phase "
+                         "{:.4g} deg\n",
+                         seg.element, e->waviness.orders[k], 1e6 * e->waviness.amplitudes[k],
+                         e->waviness.phases[k] * 180 / std::numbers::pi);
+  }
   return out;
 }
 
@@ -150,6 +209,8 @@ bool has_spall(const Model& m) {
   for (const Segment& seg : m.segments) {
     const contact::RaceImperfections* race = race_of(m, seg);
     if (race && race->has_spall) return true;
+    const contact::RaceImperfections* own = roller_own(m, seg);
+    if (own && own->has_spall) return true;
     if (!is_ball_groove(seg)) continue;
     const auto& element = m.law<contact::BallGrooveSegment>(seg).element_imperfections;
     if (element && element->has_spall) return true;
@@ -167,12 +228,15 @@ double spall_step_limit(const Model& m, double t, const double* z) {
     const auto* law = ball ? &m.law<contact::BallGrooveSegment>(seg) : nullptr;
     const bool element = law && law->element_imperfections && law->element_imperfections->has_spall;
     const bool same_roller = !ball && previous && previous->kind == seg.kind && previous->element == seg.element;
-    if (race && !ball) previous = &seg;
-    if ((!race || !race->has_spall || same_roller) && !element) continue;
+    if (seg.kind == SegmentKind::roller_inner_slice || seg.kind == SegmentKind::roller_outer_slice) previous = &seg;
+    const contact::RaceImperfections* own = same_roller ? nullptr : roller_own(m, seg);
+    const bool roller_spall = own && own->has_spall;
+    if ((!race || !race->has_spall || same_roller) && !element && !roller_spall) continue;
     any = true;
     const contact::SpatialKinematics ring = m.kinematics(seg.body_a, t, z), body = m.kinematics(seg.body_b, t, z);
     if (race && race->has_spall && !same_roller) limit = std::min(limit, ball_limit(*race, ring, body));
     if (element) limit = std::min(limit, element_limit(*law, ring, body));
+    if (roller_spall) limit = std::min(limit, roller_limit(m.law<contact::RollerSliceSegment>(seg), ring, body));
   }
   return any ? limit : 0.0;
 }

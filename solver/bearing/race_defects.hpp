@@ -14,6 +14,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "contact/laws/race_imperfections.hpp"
 #include "io/scene/scene.hpp"
@@ -29,6 +30,10 @@ std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene
 /// radius r) for its ball-groove laws; null when ball k is perfect.
 std::shared_ptr<const contact::RaceImperfections> element_imperfections(const scene::Scene& scene, int k, double r);
 
+/// Roller k's slice laws (a spatial roller bearing): `shared`, the laws every perfect roller uses,
+/// or, where roller k carries its own defect ([rolling_element]), copies of them that carry it.
+std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared);
+
 /// Lines for the model's description (raceway check): each race's spall and waviness, or "".
 std::string describe_race_imperfections(const Model& m);
 
@@ -39,7 +44,8 @@ inline constexpr double steps_within_spall = 10;
 bool has_spall(const Model& m);
 /// The largest step at (t, z) that lets no ball enter or cross a spall unseen [s]; 0 when the model
 /// has no spall (no limit). A ball's own spall: at most the step that turns it to the nearer
-/// contact's edge at the ball's spin relative to the contact frame; a tenth of its passage within.
+/// contact's edge at the ball's spin relative to the contact frame; a tenth of its passage within. A
+/// roller's own spall alike, at its spin about its axis relative to each race contact's normal.
 double spall_step_limit(const Model& m, double t, const double* z);
 
 }  // namespace raceway::bearing

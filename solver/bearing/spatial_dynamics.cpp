@@ -2,8 +2,8 @@
 // come out of the equations); balls are spheres (I dw/dt = M); rollers are bodies of revolution
 // whose axis a = R e_z (R = Rx(ax) Ry(ay)) turns with their angular velocity w (bearing frame):
 // Euler's equations in the bearing frame, I dw/dt = M - w x (I w) with I = I_t (1 - a a^T) + I_a a a^T,
-// and the angles' rates from w (their angle about their own axis is no state: nothing depends on
-// it); the cage uses Euler's equations in
+// and the angles' rates from w (their angle about their own axis is no state unless a roller's own
+// defect, which turns with it, is in the scene); the cage uses Euler's equations in
 // its principal frame (I = diag(I_t, I_t, I_z)), exact for any tilt short of 90 degrees; rings the
 // small-tilt rotor equations with the gyroscopic coupling of their spin.
 #include <cmath>
@@ -236,12 +236,14 @@ class SpatialDynamics final : public BodyDynamics {
   /// w x (I w) = (I_a - I_t) (a . w) (w x a), taken through I^-1 (r holds I^-1 M).
   static void roller_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
     const auto& sl = body.slot;
-    const Mat3 rotation = cardan_rotation(z[sl[sax]], z[sl[say]], 0.0);
+    const double spin_angle = sl[saz] >= 0 ? z[sl[saz]] : 0.0;  // a state only with a roller's own defect
+    const Mat3 rotation = cardan_rotation(z[sl[sax]], z[sl[say]], spin_angle);
     const Vec3 a = rotation.col(2);
     const Vec3 w(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
-    const Vec3 angle_rates = cardan_rates(z[sl[say]], 0.0, rotation.transpose() * w);
+    const Vec3 angle_rates = cardan_rates(z[sl[say]], spin_angle, rotation.transpose() * w);
     zdot[sl[sax]] = angle_rates.x();
     zdot[sl[say]] = angle_rates.y();
+    if (sl[saz] >= 0) zdot[sl[saz]] = angle_rates.z();
     const Vec3 gyro = (body.axial_inertia - body.transverse_inertia) * a.dot(w) * w.cross(a);
     const Vec3 along = a.dot(gyro) * a;
     const Vec3 correction = (gyro - along) / body.transverse_inertia + along / body.axial_inertia;

@@ -5,7 +5,7 @@
 // A roller carries x, y, z, the two angles of its axis (tilt and skew: R = Rx(ax) Ry(ay) maps its
 // body z, the axis, into the bearing frame) and its angular velocity in the bearing frame: 11 states.
 // Its angle about its own axis is no state: a body of revolution's contacts do not depend on it (the
-// planar roller's reason, kept here), while its spin is a full rate of the angular velocity, whose
+// planar roller's reason, kept here; with a roller's own defect in the scene every roller's is, 12 states), while its spin is a full rate of the angular velocity, whose
 // Euler equations (spatial_dynamics.cpp) couple spin, tilt and skew. The cage keeps its full pose, as
 // a ball bearing's; rings as a spatial ball bearing's (axial, tilt, misalignment).
 //
@@ -135,13 +135,7 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double rr = m.element_radius, l = g.roller_length;
   const double mass = scene.material(g.roller_material).density * pi * rr * rr * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * rr * rr, mass * (3.0 * rr * rr + l * l) / 12.0,
-                       [](Model& model, Body& r) {
-                         add_states(model, r, sx, VariableClass::position, {"x", "y", "z"});
-                         add_state(model, r, sax, VariableClass::angle, "axis_angle_x");
-                         add_state(model, r, say, VariableClass::angle, "axis_angle_y");
-                         add_states(model, r, svx, VariableClass::velocity, {"vx", "vy", "vz"});
-                         add_states(model, r, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
-                       });
+                       spatial_roller_states(scene.rolling_element.any()));
 }
 
 /// The roller's profile (BearingGeometry::roller_profile) with the races' modulus.
@@ -246,11 +240,13 @@ void add_segments(Model& m, const scene::Scene& scene) {
   const double e_bar = e_star(roller_mat, scene.material(cs.material));
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
-    for (std::size_t j = 0; j < inner_slices.size(); ++j)
-      m.segments.push_back({SegmentKind::roller_inner_slice, m.inner_ring, body, inner_slices[j], k,
+    const std::vector<int> inner = roller_slice_laws(m, scene, k, inner_slices);
+    const std::vector<int> outer = roller_slice_laws(m, scene, k, outer_slices);
+    for (std::size_t j = 0; j < inner.size(); ++j)
+      m.segments.push_back({SegmentKind::roller_inner_slice, m.inner_ring, body, inner[j], k,
                             fmt::format("roller[{}]/inner_race/slice[{}]", k, j)});
-    for (std::size_t j = 0; j < outer_slices.size(); ++j)
-      m.segments.push_back({SegmentKind::roller_outer_slice, m.outer_ring, body, outer_slices[j], k,
+    for (std::size_t j = 0; j < outer.size(); ++j)
+      m.segments.push_back({SegmentKind::roller_outer_slice, m.outer_ring, body, outer[j], k,
                             fmt::format("roller[{}]/outer_race/slice[{}]", k, j)});
     const double pocket = 2.0 * pi * k / m.element_count;
     for (const int side : {+1, -1}) {
@@ -293,8 +289,11 @@ std::string describe_spatial_roller_model(const Model& m) {
   for (const auto& b : m.bodies) {
     if (b.kind == BodyKind::rolling_element && b.index > 0) continue;
     const char* why = b.kind == BodyKind::rolling_element
-                          ? "each roller: position, its axis's two angles (tilt, skew), velocity, angular velocity; "
-                            "no angle about its own axis (a body of revolution)"
+                          ? (b.has_roller_spin_angle()
+                                 ? "each roller: position, its axis's two angles (tilt, skew), its angle about its "
+                                   "axis (a roller's defect turns with it), velocity, angular velocity"
+                                 : "each roller: position, its axis's two angles (tilt, skew), velocity, angular "
+                                   "velocity; no angle about its own axis (a body of revolution)")
                       : b.kind == BodyKind::cage ? "full pose and body-frame angular velocity"
                                                  : "as its motion, axial freedom and tilt make them states";
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} / {:.4g} kg m^2 (axial / transverse), {} states: {}\n",

@@ -148,13 +148,7 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double mean_square = (r1 * r1 + r1 * r2 + r2 * r2) / 3.0;
   const double mass = scene.material(scene.bearing.roller_material).density * pi * mean_square * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * mean_square, mass * (3.0 * mean_square + l * l) / 12.0,
-                       [](Model& model, Body& r) {
-                         add_states(model, r, sx, VariableClass::position, {"x", "y", "z"});
-                         add_state(model, r, sax, VariableClass::angle, "axis_angle_x");
-                         add_state(model, r, say, VariableClass::angle, "axis_angle_y");
-                         add_states(model, r, svx, VariableClass::velocity, {"vx", "vy", "vz"});
-                         add_states(model, r, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
-                       });
+                       spatial_roller_states(scene.rolling_element.any()));
 }
 
 /// The cone's back rib against the large end, placed so that a nominal roller just touches it.
@@ -242,11 +236,13 @@ void add_segments(Model& m, const scene::Scene& scene) {
   const double e_bar = e_star(scene.material(g.roller_material), scene.material(cs.material));
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
-    for (std::size_t j = 0; j < inner_slices.size(); ++j)
-      m.segments.push_back({SegmentKind::roller_inner_slice, m.inner_ring, body, inner_slices[j], k,
+    const std::vector<int> inner = roller_slice_laws(m, scene, k, inner_slices);
+    const std::vector<int> outer = roller_slice_laws(m, scene, k, outer_slices);
+    for (std::size_t j = 0; j < inner.size(); ++j)
+      m.segments.push_back({SegmentKind::roller_inner_slice, m.inner_ring, body, inner[j], k,
                             fmt::format("roller[{}]/inner_race/slice[{}]", k, j)});
-    for (std::size_t j = 0; j < outer_slices.size(); ++j)
-      m.segments.push_back({SegmentKind::roller_outer_slice, m.outer_ring, body, outer_slices[j], k,
+    for (std::size_t j = 0; j < outer.size(); ++j)
+      m.segments.push_back({SegmentKind::roller_outer_slice, m.outer_ring, body, outer[j], k,
                             fmt::format("roller[{}]/outer_race/slice[{}]", k, j)});
     const double pocket = 2.0 * pi * k / m.element_count;
     for (const int side : {+1, -1}) {

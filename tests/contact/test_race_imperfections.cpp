@@ -203,6 +203,63 @@ TEST(ElementHeight, GrooveContactApproachFollowsTheBall) {
   EXPECT_EQ(evaluate(defective, ring, ball).diagnostics.approach, clean.diagnostics.approach);
 }
 
+
+// A roller's own defect (element_imperfections.hpp: round its circumference, its width along the
+// axis) turns with the roller: a roller turned by beta about its axis carries a waviness of order n
+// to the contact at longitude psi + pi - beta in its frame (the inner race's contact faces the ring
+// axis), its approach's rate as orbit and spin advance together is the derivative along that
+// motion (central differences, through the damping), and a spall drops the slices within its
+// width when turned to the contact and none when turned away.
+TEST(ElementHeight, RollerDefectTurnsWithTheRoller) {
+  const slice::SliceCase c{"inner_middle", false, 4};
+  const RollerSliceSegment perfect = slice::make(c, true, false);
+  auto own = std::make_shared<RaceImperfections>();
+  own->race_radius = own->ball_radius = perfect.roller_radius;
+  own->waviness = {{3}, {1.5e-6}, {0.4}};
+  RollerSliceSegment wavy = perfect;
+  wavy.roller_imperfections = own;
+  const double omega = 150.0, spin = -900.0, approach0 = 6e-6, psi0 = 0.37, beta0 = 1.1;
+  SpatialKinematics ring;
+  const double rho = slice::inner_race_radius + perfect.roller_radius - perfect.drop - approach0;
+  auto roller_at = [&](double t) {
+    SpatialKinematics roller;
+    const double psi = psi0 + omega * t, beta = beta0 + spin * t;
+    roller.position = rho * ball::radial(psi) - perfect.position * Vec3::UnitZ();  // the slice centre at z = 0
+    roller.velocity = omega * Vec3::UnitZ().cross(roller.position);
+    roller.rotation = Eigen::AngleAxisd(beta, Vec3::UnitZ()).toRotationMatrix();
+    roller.angular_velocity = spin * Vec3::UnitZ();
+    return roller;
+  };
+  const double height = 1.5e-6 * std::cos(3 * (psi0 + pi - beta0) + 0.4);
+  EXPECT_NEAR(evaluate(perfect, ring, roller_at(0)).diagnostics.approach, approach0, 1e-15);
+  const SpatialSegmentResult at = evaluate(wavy, ring, roller_at(0));
+  EXPECT_NEAR(at.diagnostics.approach, approach0 + height, 1e-15);
+  const double h = 1e-9;
+  const double rate = (evaluate(wavy, ring, roller_at(h)).diagnostics.approach -
+                       evaluate(wavy, ring, roller_at(-h)).diagnostics.approach) / (2 * h);
+  EXPECT_GT(std::abs(rate), 1e-3);  // the waviness does turn through the contact
+  const double elastic = perfect.stiffness * std::pow(approach0 + height, palmgren_exponent);
+  const double expected = hunt_crossley(elastic, perfect.damping_factor, rate).force;
+  EXPECT_NEAR(at.diagnostics.normal_force, expected, 1e-6 * expected);
+
+  auto pit = std::make_shared<RaceImperfections>(*own);
+  pit->waviness = {};
+  pit->has_spall = true;
+  pit->spall = {.angle = psi0 + pi - beta0, .length = 2e-3, .width = 1e-3, .depth = 1e-6, .edge = SpallEdge::sharp};
+  RollerSliceSegment spalled = perfect;
+  spalled.roller_imperfections = pit;
+  EXPECT_NEAR(evaluate(spalled, ring, roller_at(0)).diagnostics.approach, approach0 - 1e-6, 1e-15);
+  const double half_turn = pi / spin;  // the roller turned by a half turn, the orbit by a little
+  EXPECT_NEAR(evaluate(spalled, ring, roller_at(half_turn)).diagnostics.approach,
+              evaluate(perfect, ring, roller_at(half_turn)).diagnostics.approach, 1e-15);
+  const slice::SliceCase end{"inner_end", false, 9};  // 4.5 mm from the middle: beyond the width
+  RollerSliceSegment end_slice = slice::make(end, true, false);
+  const double end_approach = evaluate(end_slice, ring, roller_at(0)).diagnostics.approach;
+  end_slice.roller_imperfections = pit;
+  EXPECT_EQ(evaluate(end_slice, ring, roller_at(0)).diagnostics.approach, end_approach);
+  EXPECT_NEAR(roller_spall_distance(*pit, roller_at(0).rotation, -ball::radial(psi0)), 0.0, 1e-12);
+}
+
 }  // namespace
 
 // A roller's slice on a wavy inner race (order 5, 2 um) orbiting at Omega: the approach is the

@@ -36,6 +36,10 @@ the run's measured cage speed (raceway.vibration.characteristic_frequencies), th
   roller_inner: the same bearing with the spall on its inner race instead (80 ms): BPFI and harmonics
     2 and 3, and the sidebands BPFI -+ the shaft frequency, within 1 % and at least 2 times their
     floor (measured within 0.2 %, 3.8 to 5.3 times).
+  roller_spall: the same bearing, preloaded by 20 um, with a 0.5 x 4 mm spall on roller[0] instead (80
+    ms): the lines at twice and four times the roller's spin relative to the cage (measured from
+    /rollers/angular_velocity) within 1 %, at least 5 and 3 times their floors (measured 14 and 9);
+    the report's BSF within 1 % of the measured spin, its table marking BSF x2 and no race line.
   tapered_outer: jobs/scenes/30206_tapered.toml (3000 r/min, 4 kN radial, 3 kN axial) for 80 ms in the
     same housing with a 1 x 4 mm spall in its cup's load zone: BPFO and harmonics 2 to 4 within 1 %
     of kinematics after slip, each at least 3 times its floor (measured within 0.013 %, 33 to 111
@@ -299,6 +303,45 @@ def case_roller_inner(raceway, work):
         line(vib, freq, amp, f["BPFI"] + sign * f["shaft"], name, 0.01, 2.0)
 
 
+def roller_bsf(path, element=0, start=0.01):
+    """Roller[element]'s spin relative to the cage [Hz], measured: the mean of its angular velocity about
+    the bearing's axis less the cage's, from `start` on."""
+    with h5py.File(path, "r") as h:
+        t = h["time"][()].reshape(-1)
+        keep = t >= start
+        spin = np.asarray(h["rollers/angular_velocity"])[keep, element, 2]
+        cage = np.asarray(h["cage/angular_velocity"]).reshape(t.size, -1)[keep, -1]
+    return abs(float(np.mean(spin - cage))) / (2 * np.pi)
+
+
+def case_roller_spall(raceway, work):
+    """A spall on roller[0] meets the inner and the outer race once each per turn of the roller relative
+    to the cage: a line at 2 BSF (BSF measured from the roller's spin) and its harmonic 4 BSF; the
+    report's BSF (rolling without slip on the inner race at the measured cage speed) within 1 % of the
+    measured spin, its table marking BSF x2 and no race line. A 20 um preload loads every roller all
+    round, so that the spall strikes at every half turn (under a clearance only in the load zone,
+    which spreads the line into a comb 2 BSF -+ k FTF of nearly equal lines)."""
+    text = ROLLER_SCENE.replace('end_time = "40 ms"', 'end_time = "80 ms"').replace(
+        'spall = { angle = "-90 deg"', '# no outer spall').replace(
+        '[bearing]\n', '[bearing]\nradial_clearance = "-20 um"\n') + (
+        '[rolling_element]\nspall = { element = 0, angle = "0 deg", length = "0.5 mm", width = "4 mm", '
+        'depth = "0.1 mm" }\n')
+    path = os.path.join(work, "roller_spall.toml")
+    open(path, "w", encoding="utf-8").write(text)
+    out = run(raceway, path, os.path.join(work, "roller_spall.h5"))
+    vib, f, freq, amp = analyse(out)
+    bsf = roller_bsf(out)
+    print(f"roller BSF measured {bsf:.2f} Hz, the report's {f['BSF']:.2f} Hz "
+          f"({100 * (f['BSF'] / bsf - 1):+.3f} %), FTF {f['FTF']:.2f} Hz", file=sys.stderr)
+    check(abs(f["BSF"] / bsf - 1) <= 0.01, "the report's BSF within 1 % of the roller's measured spin")
+    line(vib, freq, amp, 2 * bsf, "roller 2 BSF", 0.01, 5.0)
+    line(vib, freq, amp, 4 * bsf, "roller 4 BSF", 0.01, 3.0)
+    rows = {(r["name"], r["harmonic"]): r for r in vib.energy_table(freq, amp, f)}
+    check(rows[("BSF", 2)]["carries_energy"], "the report's table: BSF x2 carries energy")
+    check(not rows[("BPFO", 1)]["carries_energy"] and not rows[("BPFI", 1)]["carries_energy"],
+          "the report's table: no race line (BPFO, BPFI) carries energy")
+
+
 def case_tapered_outer(raceway, source, work):
     text = open(os.path.join(source, "jobs", "scenes", "30206_tapered.toml"), encoding="utf-8").read()
     text = text.replace('end_time = "10 ms"', 'end_time = "80 ms"').replace('output_interval = "0.25 ms"',
@@ -395,7 +438,7 @@ def main():
             {"outer": case_outer, "inner": case_inner, "waviness": case_waviness, "clean": case_clean,
              "report": case_report, "ball_spall": case_ball_spall,
              "ball_waviness": case_ball_waviness, "roller_outer": case_roller_outer,
-             "roller_inner": case_roller_inner,
+             "roller_inner": case_roller_inner, "roller_spall": case_roller_spall,
              "tapered_outer": lambda r, w: case_tapered_outer(r, source, w)}[case](raceway, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
