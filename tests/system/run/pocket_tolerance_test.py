@@ -8,7 +8,7 @@ one case per ctest:
   converges: the pocket impulse and peak of the summary's step-resolved totals, at the shipped
     tolerances (Adams, rtol 1e-6) with pocket_tolerance_factor = 30, within 1 % of a tight run
     (rtol 1e-9), where the shipped tolerances without it are more than 2 % off the impulse
-    (measured: -5.1 % without, +0.03 % with; perf/studies/results/pocket_convergence.md).
+    (measured: -5.1 % without; -0.41 % in impulse, -0.76 % in peak with; perf/studies/results/pocket_convergence.md).
   impacts: 6309 R3 over 21 ms, the first impacts on the leading side of pockets 0 and 1 (near
     20 ms, over by 20.2 ms; the window's only contacts on those two pocket sides): each one's
     impulse and peak at the shipped tolerances (BDF, rtol 1e-6) with pocket_tolerance_factor = 10
