@@ -36,7 +36,7 @@ TEST(PocketTolerance, OffByDefault) {
 // The cage turned until ball 0 presses into a bar of its pocket: that ball's translational
 // velocities get the factor, its other states, the cage's, the other balls' and the rings' keep theirs; turned back to the pocket's middle,
 // nothing changes.
-TEST(PocketTolerance, TightensTheTouchingBallAndTheCage) {
+TEST(PocketTolerance, TightensTheTouchingBallsVelocities) {
   const double factor = 30;
   const scene::Scene s = scene_with_factor(factor);
   const Model m = build_model(s);
