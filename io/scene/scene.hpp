@@ -367,8 +367,8 @@ struct SolverSpec {
   /// (solver/numerics/order_choice.hpp); the scene's default unless it gives max_order.
   bool automatic_order = false;
   double rtol = 1e-6;
-  /// Tolerances this many times tighter on a rolling element and the cage while the element touches
-  /// its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).
+  /// Tolerances this many times tighter on a rolling element's translational velocities while the
+  /// element touches its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).
   double pocket_tolerance_factor = 1;
   /// Absolute tolerances per variable class (SI).
   double atol_position = 0;          ///< m

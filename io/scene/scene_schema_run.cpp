@@ -259,8 +259,8 @@ constexpr Row kRows[] = {
      .field = FIELD(scene.solver.pocket_tolerance_factor), .dim = dim::none, .bounds = {.lo = 1, .hi = 1e6},
      .def = value(1),
      .meaning = "while a rolling element touches its cage pocket (or is within 1e-4 of its radius of it), the "
-                "tolerances of its states and the cage's are this many times tighter (a pocket contact's approach, "
-                "nanometres, lies far below rtol times the pitch radius); 1: off"},
+                "tolerances of its translational velocities are this many times tighter (a pocket contact's approach "
+                "velocity lies far below rtol times the element's orbital speed); 1: off"},
     {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
      .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
     {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",

@@ -29,6 +29,9 @@ told apart:
            A run whose path has drifted from the reference's (a chaotic cage) matches few events:
            the totals then compare statistics of different impacts, not the same impacts.
 
+Cost: steps and right-hand sides, and both in % of the default run's (steps_pct, rhs_pct; the
+default run is made before the candidates).
+
 Appends one row per run and measurement to --out (TSV) and prints it. Needs h5py, numpy (Debian's
 python3-*). Runs sequentially; cpu_s is the child's user + system time.
 """
@@ -161,7 +164,7 @@ def main():
     new = not os.path.exists(args.out)
     table = open(args.out, "a")
     if new:
-        table.write("scene\tend_time\trun\tmethod\trtol\tsteps\trhs\tcpu_s\tmeasure\timpulse_n_s\tpeak_n\tevents"
+        table.write("scene\tend_time\trun\tmethod\trtol\tsteps\trhs\tsteps_pct\trhs_pct\tcpu_s\tmeasure\timpulse_n_s\tpeak_n\tevents"
                     "\timpulse_err_pct\tpeak_err_pct\tworst_impulse_err_pct\tworst_peak_err_pct\n")
     with tempfile.TemporaryDirectory() as workdir:
         for name in args.scenes:
@@ -173,9 +176,12 @@ def main():
             for c in args.candidate:
                 label, keys = c.split(":", 1)
                 runs.append((label, dict(kv.split("=", 1) for kv in keys.split(",") if kv)))
-            ref, ref_events = {}, []
+            ref, ref_events, default = {}, [], None
             for tag, keys in runs:
                 s = run_one(args.binary, name, keys, ends.get(name), workdir, tag)
+                if tag == "default":
+                    default = s
+                s["default"] = default
                 events = impacts(s["h5"])
                 with h5py.File(s["h5"], "r") as f:
                     t = f["time"][()].ravel()
@@ -199,8 +205,10 @@ def main():
 
 
 def write_row(table, name, ends, tag, s, keys, measure, values):
+    d = s["default"]
+    pct = lambda k: f"{100 * (s[k] / d[k] - 1):+.1f}" if d else ""
     row = [name, ends.get(name, ""), tag, s["method"], keys.get("solver.rtol", "shipped"), s["steps"],
-           s["rhs_evaluations"], f"{s['cpu_s']:.2f}", measure] + values
+           s["rhs_evaluations"], pct("steps"), pct("rhs_evaluations"), f"{s['cpu_s']:.2f}", measure] + values
     table.write("\t".join(str(x) for x in row) + "\n")
     table.flush()
     print("\t".join(str(x) for x in row), flush=True)

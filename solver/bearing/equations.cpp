@@ -107,13 +107,17 @@ void Equations::adjust_error_weights(double t, const double* z, double* ewt) con
     std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
                model_.laws[static_cast<std::size_t>(seg.law)]);
     if (!(rec[SegmentRecord::diagnostics + approach_field] > -pocket_margin_)) continue;
-    pocket_touched_[static_cast<std::size_t>(seg.body_a)] = 1;
-    pocket_touched_[static_cast<std::size_t>(seg.body_b)] = 1;
+    for (const int b : {seg.body_a, seg.body_b})
+      if (model_.bodies[static_cast<std::size_t>(b)].kind == BodyKind::rolling_element)
+        pocket_touched_[static_cast<std::size_t>(b)] = 1;
   }
+  // Only the element's translational velocities: the relative tolerance on its orbital velocity is
+  // far looser than the approach velocities of a pocket contact (docs/integration_methods.md).
   for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
     if (!pocket_touched_[b]) continue;
     const Body& body = model_.bodies[b];
-    for (int i = body.offset; i < body.offset + body.size; ++i) ewt[i] *= pocket_weight_factor_;
+    for (int i = body.offset; i < body.offset + body.size; ++i)
+      if (model_.state_class[static_cast<std::size_t>(i)] == VariableClass::velocity) ewt[i] *= pocket_weight_factor_;
   }
 }
 

@@ -42,7 +42,7 @@ class Equations final : public numerics::DynamicSystem {
   std::vector<double> absolute_tolerance() const override { return model_.absolute_tolerance(); }
   bool adjusts_error_weights() const override { return pocket_weight_factor_ > 1 && !pocket_segments_.empty(); }
   /// While a rolling element touches its pocket, or is within pocket_margin_ of it, the error
-  /// weights of its states and the cage's are multiplied by pocket_weight_factor_.
+  /// weights of its translational velocities are multiplied by pocket_weight_factor_.
   void adjust_error_weights(double t, const double* z, double* ewt) const override;
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   int rhs(double t, const double* z, double* zdot) override;

@@ -1,5 +1,5 @@
 // [solver] pocket_tolerance_factor (Equations::adjust_error_weights): while a ball touches its pocket,
-// or is within 1e-4 of its radius of it, the error weights of its states and the cage's are
+// or is within 1e-4 of its radius of it, the error weights of its translational velocities are
 // multiplied by the factor; every other weight is left as it was, and a factor of 1 leaves
 // SUNDIALS' own weights in place (no weight function at all).
 #include <gtest/gtest.h>
@@ -33,10 +33,10 @@ TEST(PocketTolerance, OffByDefault) {
   EXPECT_FALSE(eq.adjusts_error_weights());
 }
 
-// The cage turned until ball 0 presses into a bar of its pocket: that ball's states and the cage's
-// get the factor, the other balls' and the rings' keep theirs; turned back to the pocket's middle,
+// The cage turned until ball 0 presses into a bar of its pocket: that ball's translational
+// velocities get the factor, its other states, the cage's, the other balls' and the rings' keep theirs; turned back to the pocket's middle,
 // nothing changes.
-TEST(PocketTolerance, TightensTheTouchingBallAndTheCage) {
+TEST(PocketTolerance, TightensTheTouchingBallsVelocities) {
   const double factor = 30;
   const scene::Scene s = scene_with_factor(factor);
   const Model m = build_model(s);
@@ -80,20 +80,25 @@ TEST(PocketTolerance, TightensTheTouchingBallAndTheCage) {
   w = ones;
   eq.adjust_error_weights(0.0, touching.data(), w.data());
   const Body& b0 = m.bodies[static_cast<std::size_t>(ball0)];
-  const Body& c = m.bodies[static_cast<std::size_t>(cage)];
   int tightened = 0;
   for (std::size_t i = 0; i < w.size(); ++i) {
-    const auto in = [&](const Body& b) { return static_cast<int>(i) >= b.offset && static_cast<int>(i) < b.offset + b.size; };
-    if (in(b0) || in(c)) {
+    const bool velocity = m.state_class[i] == VariableClass::velocity;
+    const bool in_ball0 = static_cast<int>(i) >= b0.offset && static_cast<int>(i) < b0.offset + b0.size;
+    const Body* owner = nullptr;
+    for (const Body& b : m.bodies)
+      if (static_cast<int>(i) >= b.offset && static_cast<int>(i) < b.offset + b.size) owner = &b;
+    ASSERT_NE(owner, nullptr);
+    if (in_ball0 && velocity) {
       EXPECT_EQ(w[i], factor) << "state " << i;
       ++tightened;
     } else if (w[i] != 1.0) {
       // Another ball the same turn brought to its bar (the pockets are evenly spaced) is allowed,
-      // and only with the factor.
+      // and only its velocities, only with the factor.
       EXPECT_EQ(w[i], factor) << "state " << i;
+      EXPECT_TRUE(velocity && owner->kind == BodyKind::rolling_element) << "state " << i;
     }
   }
-  EXPECT_EQ(tightened, b0.size + c.size);
+  EXPECT_EQ(tightened, b0.has(svz) ? 3 : 2);
 }
 
 }  // namespace
