@@ -71,7 +71,7 @@ locked_output)
   export HDF5_USE_FILE_LOCKING=FALSE
   "$raceway" run "$work/short.toml" -o "$work/out.h5" >"$work/first.log" 2>&1 &
   first=$!
-  for _ in $(seq 1 100); do [[ -e "$work/out.h5.partial" ]] && break; sleep 0.05; done
+  for _ in $(seq 1 600); do [[ -e "$work/out.h5.partial" ]] && break; sleep 0.05; done  # up to 30 s: a loaded machine starts slowly
   [[ -e "$work/out.h5.partial" ]] || fail "the first run created no .partial file"
   run run "$work/short.toml" -o "$work/out.h5"
   [[ $rc -eq 2 ]] || fail "second run: exit code $rc, expected 2"
@@ -84,7 +84,7 @@ locked_output)
   # A run killed by SIGKILL leaves its lock file; the kernel released the lock, so the next run goes.
   "$raceway" run "$work/short.toml" -o "$work/killed.h5" >"$work/killed.log" 2>&1 &
   victim=$!
-  for _ in $(seq 1 100); do [[ -e "$work/killed.h5.partial" ]] && break; sleep 0.05; done
+  for _ in $(seq 1 600); do [[ -e "$work/killed.h5.partial" ]] && break; sleep 0.05; done
   kill -KILL "$victim"
   wait "$victim" 2>/dev/null
   [[ -e "$work/killed.h5.lock" ]] || fail "no lock file left by the killed run (the test cannot tell)"
