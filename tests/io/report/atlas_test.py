@@ -11,7 +11,8 @@ than a grid of the same accuracy), search_resume (a killed atlas resumed loses n
 gives the uninterrupted atlas), search_stop (SIGTERM: exit 4, resumed likewise), search_ends (the
 uncertainty band small enough; a failed point), bad_files (file,
 line, key, reason, exit 2, nothing created),
-run_6205 (a tiny real atlas through the executable: table, map, certification).
+run_6205 (a tiny real atlas through the executable: table, map, certification), shipped_files
+(every atlas file of jobs/atlas/ passes --check).
 """
 import csv
 import json
@@ -35,7 +36,7 @@ import atlas_certify as ac  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
 
-NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "search_ends", "run_6205"}
+NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "search_ends", "run_6205", "shipped_files"}
 if CASE in NEEDS_SKLEARN and not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
     sys.exit(77)
@@ -473,9 +474,21 @@ def case_run_6205():
         print("; ".join(f"{q['id']} {q['class']} CDI {q['metric']:.3g}" for q in pts))
 
 
+def case_shipped_files():
+    """Every atlas file the project ships passes `raceway atlas FILE --check` (its keys, and its base
+    scene at every corner of the ranges, each realisation and the convergence rtol) and creates nothing."""
+    folder = os.path.join(SOURCE, "jobs", "atlas")
+    files = sorted(f for f in os.listdir(folder) if f.endswith(".toml"))
+    check("qj215_speed_radial.toml" in files and "6205_speed_unbalance.toml" in files, f"shipped atlases {files}")
+    for name in files:
+        p = subprocess.run([RACEWAY, "atlas", os.path.join(folder, name), "--check"], capture_output=True, text=True)
+        check(p.returncode == 0, f"{name}: --check exit {p.returncode}: {(p.stdout + p.stderr)[-400:]}")
+
+
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
          "search_stop": case_search_stop, "search_ends": case_search_ends,
-         "bad_files": case_bad_files, "run_6205": case_run_6205}
+         "bad_files": case_bad_files, "run_6205": case_run_6205,
+         "shipped_files": case_shipped_files}
 CASES[CASE]()
 sys.exit(1 if failures else 0)
