@@ -139,6 +139,9 @@ def write_map(atlas, state, folder):
                         hatches=["////"])
         cmap = matplotlib.colors.ListedColormap([CLASS_COLOURS[c] for c in model.classes_])
         axes[0].pcolormesh(gx, gy, z, cmap=cmap, alpha=0.25, shading="auto", vmin=-0.5, vmax=len(index) - 0.5)
+    elif len(set(labels)) == 1:  # one class seen: nothing to separate, no boundary drawn
+        axes[0].text(0.5, 0.02, f"every point {labels[0]}: no boundary found inside the ranges",
+                     transform=axes[0].transAxes, ha="center", va="bottom", fontsize=9)
     px, _ = _axis(atlas, 0, units[:, 0]) if len(units) else (np.array([]), "")
     py, _ = _axis(atlas, 1, units[:, 1]) if len(units) else (np.array([]), "")
     for cls in [c for c in CLASS_COLOURS if c in labels]:
