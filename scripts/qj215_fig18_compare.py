@@ -80,7 +80,7 @@ def rtol(runs, rtol_dir):
         base = next(r for r in runs if r["model"] == "lubricated X=0.03" and key(r) == key(t))
         print(f"rtol check at {key(t)}: cage speed {base['cage_speed_rpm']:.4f} (1e-6, {base['steps']} steps) against "
               f"{t['cage_speed_rpm']:.4f} rpm (1e-7, {t['steps']} steps): "
-              f"{1e6 * (t['cage_speed_rpm'] / base['cage_speed_rpm'] - 1):+.1f} ppm; its change from dry "
+              f"{t['cage_speed_rpm'] / base['cage_speed_rpm'] - 1:+.2g} relative; its change from dry "
               f"{base['cage_speed_rpm'] - dry_speed(runs, key(t)):+.4f} against "
               f"{t['cage_speed_rpm'] - dry_speed(runs, key(t)):+.4f} rpm")
 
