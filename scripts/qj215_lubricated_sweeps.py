@@ -8,6 +8,9 @@ Usage: qj215_lubricated_sweeps.py OUT.png [CAMPAIGNS_DIR]
 CAMPAIGNS_DIR: where the campaign_table.csv folders are (default docs/campaigns). Prints one table
 per sweep (means over the realisations, their range in brackets) and draws the ratios against the
 swept value. Needs numpy, matplotlib.
+       qj215_lubricated_sweeps.py --orbits OUT.png LABEL=RUN.h5 [LABEL=RUN.h5 ...]
+draws the cage centre's orbit of each run at its own scale: the first two thirds of the run grey,
+the last third (the metrics' window of these campaigns) in colour. Needs h5py too.
 """
 import csv
 import pathlib
@@ -87,7 +90,34 @@ def plot(all_points, path):
     fig.savefig(path, dpi=110)
 
 
+def plot_orbits(path, specs):
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(specs), figsize=(3.2 * len(specs), 3.6), squeeze=False)
+    for ax, spec in zip(axes[0], specs):
+        label, _, h5_path = spec.partition("=")
+        with h5py.File(h5_path, "r") as f:
+            p = 1e6 * f["cage/position"][:, :2]
+        start = 2 * len(p) // 3
+        ax.plot(p[:start + 1, 0], p[:start + 1, 1], color="0.75", lw=0.4)
+        ax.plot(p[start:, 0], p[start:, 1], lw=0.6)
+        reach = 1.1 * float(np.max(np.abs(p)))
+        ax.set_aspect("equal")
+        ax.set_xlim(-reach, reach)
+        ax.set_ylim(-reach, reach)
+        ax.set_title(f"{label}\nlast third within {float(np.max(np.hypot(*p[start:].T))):.2g} um", fontsize=8)
+        ax.set_xlabel("x, um")
+    axes[0][0].set_ylabel("y, um")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
 def main(argv):
+    if len(argv) >= 4 and argv[1] == "--orbits":
+        plot_orbits(argv[2], argv[3:])
+        return 0
     if len(argv) < 2:
         print(__doc__, file=sys.stderr)
         return 2
