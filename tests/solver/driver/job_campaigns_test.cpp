@@ -86,6 +86,7 @@ TEST(JobScenes, QJ215LubricatedCampaignsCarryTheTestGreasesBaseOil) {
                                 {"qj215_fig18_rtol", 1, 20, 100, 0, {0.03}},
                                 {"qj215_speed_lubricated", 10, 60, 600, 50e-6, {0.03}},
                                 {"qj215_speed_lubricated_long", 6, 180, 600, 50e-6, {0.03}},
+                                {"qj215_speed_lubricated_whirl", 4, 400, 600, 50e-6, {0.03}},
                                 {"qj215_axial_lubricated", 10, 60, 600, 50e-6, {0.03}},
                                 {"qj215_radial_lubricated", 8, 60, 600, 50e-6, {0.03}}};
   for (const Case& c : cases) {
