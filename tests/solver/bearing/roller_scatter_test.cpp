@@ -49,6 +49,7 @@ pocket_clearance = "0.2 mm"
 [inner_ring]
 motion = "driven"
 speed = "1 rpm"
+translation = "fixed"
 [outer_ring]
 motion = "fixed"
 [contact.roller_race]
