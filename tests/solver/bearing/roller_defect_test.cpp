@@ -121,6 +121,7 @@ TEST(RollerDefect, StepLimitStopsAtTheContact) {
 
 constexpr const char* kTapered = R"(
 [scene]
+name = "tapered roller spall"
 end_time = "0.01 s"
 output_interval = "1 ms"
 model = "spatial"

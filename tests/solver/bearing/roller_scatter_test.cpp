@@ -90,11 +90,13 @@ TEST(RollerScatter, SceneDrawsOneDeviationPerRollerFromTheSeed) {
   }
   for (const Segment& seg : m.segments) {
     const bool slice = seg.kind == SegmentKind::roller_inner_slice || seg.kind == SegmentKind::roller_outer_slice;
-    if (slice)
+    if (slice) {
       EXPECT_DOUBLE_EQ(m.law<contact::RollerSliceSegment>(seg).roller_radius, m.radius_of_element(seg.element))
           << seg.name;
-    if (seg.kind == SegmentKind::cage_bar_front)
+    }
+    if (seg.kind == SegmentKind::cage_bar_front) {
       EXPECT_DOUBLE_EQ(m.law<contact::RollerPocketBarSegment>(seg).roller_radius, m.radius_of_element(seg.element));
+    }
   }
   EXPECT_EQ(nominal.laws.size() + 2 * 10 * 13, m.laws.size()) << "each roller's own 2 x 10 slice laws";
 }
