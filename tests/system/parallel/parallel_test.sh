@@ -155,7 +155,7 @@ print(int(0.9 * (a['evaluations_rhs'] + a['evaluations_jacobian'])))" "$work/np2
     --inject-pause "$evaluations:60" >"$work/log" 2>&1 &
   local job=$! launcher ranks
   for _ in $(seq 600); do [[ -e "$work/killed.h5.checkpoint" ]] && break; sleep 0.05; done
-  sleep 3  # into the pause (the whole run takes a few seconds)
+  sleep 1  # into the pause (the whole run takes about a second; a kill before it is after a checkpoint too)
   launcher=$(pgrep -P "$job" | head -n 1)
   ranks=$(pgrep -P "$launcher" | tr '\n' ' ')
   kill -KILL $ranks "$launcher" 2>/dev/null
