@@ -65,11 +65,11 @@ sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fi
 # The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each), its
 # rollers' diameters scattered and a spall on roller 0 (every roller's angle about its axis a state),
 # 10 degrees ahead of its outer race contact at the start (it strikes it at about 0.3 ms), and a
-# checkpoint every 0.5 ms (the kill and resume below).
+# checkpoint every 1 ms (the kill and resume below).
 sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
   -e 's/^\[bearing\]$/[bearing]\nroller_diameter_scatter = "1 um"\nscatter_seed = 5/' \
   "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/spatial_roller.toml"
-printf '[output]\ncheckpoint_interval = "0.5 ms"\n[rolling_element]\nspall = { element = 0, angle = "-80 deg", %s\n' \
+printf '[output]\ncheckpoint_interval = "1 ms"\n[rolling_element]\nspall = { element = 0, angle = "-80 deg", %s\n' \
   'length = "0.5 mm", width = "4 mm", depth = "0.1 mm" }' >>"$work/spatial_roller.toml"
 
 bitwise() {
@@ -143,9 +143,9 @@ print('rank task seconds', list(s)); sys.exit(0 if sum(s[1:]) > 0 and (s[0] > 0)
   "${compare[@]}" "$work/np1.h5" "${files[@]}" || fail "outputs differ (see above)"
 }
 
-# killed_resumed SCENE: np 2 paused by rank 0 before its evaluation at 90 % of the np 2 run's
-# (--inject-pause), after the scene's checkpoints; the job killed in the pause and resumed at np 1:
-# the file bitwise the uninterrupted np 1 run's ($work/np1.h5 of bitwise).
+# killed_resumed SCENE: np 2, killed as soon as its first checkpoint is on disk (rank 0 pauses
+# before its evaluation at 90 % of the np 2 run's, --inject-pause, so that the run cannot end
+# first), resumed at np 1: the file bitwise the uninterrupted np 1 run's ($work/np1.h5 of bitwise).
 killed_resumed() {
   local scene=$1 evaluations
   evaluations=$(/usr/bin/python3 -c "import sys, h5py; a = h5py.File(sys.argv[1])['scheduler'].attrs; \
@@ -155,7 +155,6 @@ print(int(0.9 * (a['evaluations_rhs'] + a['evaluations_jacobian'])))" "$work/np2
     --inject-pause "$evaluations:60" >"$work/log" 2>&1 &
   local job=$! launcher ranks
   for _ in $(seq 600); do [[ -e "$work/killed.h5.checkpoint" ]] && break; sleep 0.05; done
-  sleep 1  # into the pause (the whole run takes about a second; a kill before it is after a checkpoint too)
   launcher=$(pgrep -P "$job" | head -n 1)
   ranks=$(pgrep -P "$launcher" | tr '\n' ' ')
   kill -KILL $ranks "$launcher" 2>/dev/null
