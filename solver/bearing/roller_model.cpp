@@ -333,7 +333,8 @@ std::string describe_roller_model(const Model& m) {
     if (repeated && b.index > 0 && b.index < count - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", b.name, b.mass,
                        b.axial_inertia, b.size, b.offset, b.offset + b.size, why);
-    if (repeated && b.index == 0 && count > 2) out += fmt::format("  ... ({} more rollers alike)\n", count - 2);
+    if (repeated && b.index == 0 && count > 2)
+      out += fmt::format("  ... ({} more rollers{})\n", count - 2, m.element_radii.empty() ? " alike" : ", each of its own diameter");
   }
   for (const auto& node : m.nodes) out += node->describe(m);
   out += fmt::format("border states {}, roller blocks {} x {}\n", m.border_size, m.element_count, m.block_size);
