@@ -1,4 +1,4 @@
-// The rules of a race's imperfections (spall, waviness), of the balls' and pockets' scatter and of the
+// The rules of a race's imperfections (spall, waviness), of the balls', rollers' and pockets' scatter and of the
 // housing (scene_rules.hpp).
 #include <cmath>
 #include <numbers>
@@ -92,7 +92,7 @@ void one_per_element(const Section& s, std::string_view key, const std::vector<d
   const int count = b.scene.bearing.rolling_elements;
   s.check(static_cast<int>(list.size()) == count, key, [&] {
     return fmt::format("{} values for {} {}s; give one per {} ({} first)", list.size(), count, what, what,
-                       std::string(what) == "ball" ? "ball[0]" : "pocket 0");
+                       std::string(what) == "pocket" ? "pocket 0" : std::string(what) + "[0]");
   });
 }
 
@@ -117,6 +117,18 @@ void ball_diameters_drawn(const Row& row, const Section& s, Bind& b) {
   BearingGeometry& g = b.scene.bearing;
   draw_unless_given(s, row.key, "ball_diameter_deviations", g.ball_diameter_scatter, g.ball_diameter_deviations, b,
                     ScatterStream::element_diameter);
+}
+
+void roller_deviations_per_roller(const Row& row, const Section& s, Bind& b) {
+  one_per_element(s, row.key, b.scene.bearing.roller_diameter_deviations, b, "roller");
+}
+
+/// The rollers' diameters: drawn from the balls' stream of the seed (a bearing has balls or rollers,
+/// never both).
+void roller_diameters_drawn(const Row& row, const Section& s, Bind& b) {
+  BearingGeometry& g = b.scene.bearing;
+  draw_unless_given(s, row.key, "roller_diameter_deviations", g.roller_diameter_scatter, g.roller_diameter_deviations,
+                    b, ScatterStream::element_diameter);
 }
 
 void pocket_deviations_per_pocket(const Row& row, const Section& s, Bind& b) {

@@ -113,12 +113,17 @@ struct BearingGeometry {
   double ring_width = 0;                ///< m, width of both rings (default: roller_length)
   std::string roller_material;          ///< key into Scene::materials (rollers or balls)
   std::string ring_material;            ///< key into Scene::materials
-  long scatter_seed = 1;                ///< seed of the drawn scatter (ball diameters, pocket clearances)
+  long scatter_seed = 1;                ///< seed of the drawn scatter (ball and roller diameters, pocket clearances)
   /// Ball bearings, the balls' diameter scatter (docs/vibration.md): ball k's diameter is
   /// ball.ball_diameter + ball_diameter_deviations[k]; the list is given or drawn from a normal
   /// distribution of standard deviation ball_diameter_scatter (scatter_seed). Empty: every ball nominal.
   double ball_diameter_scatter = 0;              ///< m, standard deviation
   std::vector<double> ball_diameter_deviations;  ///< m, one per ball, or empty
+  /// Roller bearings, the rollers' diameter scatter: roller k's diameter (a tapered roller's at
+  /// every section) is roller_diameter + roller_diameter_deviations[k], given or drawn like the
+  /// balls' (roller_diameter_scatter, scatter_seed). Empty: every roller nominal.
+  double roller_diameter_scatter = 0;              ///< m, standard deviation
+  std::vector<double> roller_diameter_deviations;  ///< m, one per roller, or empty
   BallGeometry ball;                    ///< ball bearings
   RollerGeometry roller;                ///< spatial cylindrical and tapered roller bearings
   bool is_ball_bearing() const { return type != BearingType::cylindrical_roller && type != BearingType::tapered_roller; }

@@ -120,6 +120,8 @@ void element_waviness_given(const Row& row, const Section& s, Bind& b);
 /// list has one value per ball (pocket); a scatter draws that list (scatter_draws.hpp).
 void ball_deviations_per_ball(const Row& row, const Section& s, Bind& b);
 void ball_diameters_drawn(const Row& row, const Section& s, Bind& b);
+void roller_deviations_per_roller(const Row& row, const Section& s, Bind& b);
+void roller_diameters_drawn(const Row& row, const Section& s, Bind& b);
 void pocket_deviations_per_pocket(const Row& row, const Section& s, Bind& b);
 void pocket_clearances_drawn(const Row& row, const Section& s, Bind& b);
 std::optional<std::string> housing_holds_fixed_outer_ring(const Section& s, const Bind& b);

@@ -117,9 +117,9 @@ constexpr Row kRows[] = {
     {.section = "bearing", .key = "ring_material", .kind = material, .field = FIELD(scene.bearing.ring_material),
      .def = word("steel"), .meaning = "material of both rings"},
     {.section = "bearing", .key = "scatter_seed", .kind = integer, .field = FIELD(scene.bearing.scatter_seed),
-     .bounds = {.lo = 0, .hi = 4294967295.0}, .def = value(1), .bearings = ball_bearings, .elsewhere = kBallOnly,
-     .meaning = "seed of the drawn scatter (ball_diameter_scatter, [cage] pocket_clearance_scatter): one seed draws the "
-                "same values on every machine and rank count"},
+     .bounds = {.lo = 0, .hi = 4294967295.0}, .def = value(1),
+     .meaning = "seed of the drawn scatter (ball_diameter_scatter, roller_diameter_scatter, [cage] "
+                "pocket_clearance_scatter): one seed draws the same values on every machine and rank count"},
     {.section = "bearing", .key = "ball_diameter_deviations", .kind = number_list,
      .field = FIELD(scene.bearing.ball_diameter_deviations), .dim = dim::length, .bounds = kScatterDeviation,
      .def = absent, .bearings = ball_bearings, .elsewhere = kBallOnly, .then = ball_deviations_per_ball,
@@ -130,6 +130,17 @@ constexpr Row kRows[] = {
      .def = value(0), .bearings = ball_bearings, .elsewhere = kBallOnly, .then = ball_diameters_drawn,
      .meaning = "standard deviation of the balls' diameters about ball_diameter, drawn with scatter_seed (0: every ball "
                 "nominal; not with ball_diameter_deviations)"},
+    {.section = "bearing", .key = "roller_diameter_deviations", .kind = number_list,
+     .field = FIELD(scene.bearing.roller_diameter_deviations), .dim = dim::length, .bounds = kScatterDeviation,
+     .def = absent, .bearings = roller_bearings, .elsewhere = kRollerOnly, .then = roller_deviations_per_roller,
+     .example = "[\"0.5 um\", \"-0.2 um\", ...]",
+     .meaning = "each roller's diameter minus roller_diameter (a tapered roller's at every section), one per roller "
+                "(roller[0] first; docs/vibration.md)"},
+    {.section = "bearing", .key = "roller_diameter_scatter", .kind = number,
+     .field = FIELD(scene.bearing.roller_diameter_scatter), .dim = dim::length, .bounds = kScatter,
+     .def = value(0), .bearings = roller_bearings, .elsewhere = kRollerOnly, .then = roller_diameters_drawn,
+     .meaning = "standard deviation of the rollers' diameters about roller_diameter, drawn with scatter_seed (0: every "
+                "roller nominal; not with roller_diameter_deviations)"},
 
     {.section = "bearing", .key = "roller_profile", .kind = choice, .field = FIELD(scene.bearing.roller.profile),
      .def = word("straight"), .bearings = spatial_rollers, .elsewhere = kSpatialRoller, .options = kRollerProfiles,

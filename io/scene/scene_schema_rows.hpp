@@ -21,6 +21,9 @@ inline constexpr Default empty_table = value(0);
 // Why a key is rejected where the bearing or contact does not take it.
 inline constexpr std::string_view kBallOnly =
     "only for ball bearings (type = \"deep_groove_ball\", \"four_point_contact_ball\" or \"angular_contact_ball\")";
+inline constexpr std::string_view kRollerOnly =
+    "only for roller bearings (type = \"cylindrical_roller\" or \"tapered_roller\"); a ball bearing's is "
+    "ball_diameter_scatter or ball_diameter_deviations";
 inline constexpr std::string_view kSpatialOnlyDefect =
     "only for spatial scenes (ball bearings, or roller bearings with model = \"spatial\"): a planar roller's line "
     "contact has no place across the race for a defect";

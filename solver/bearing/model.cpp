@@ -157,6 +157,23 @@ void (*spatial_roller_states(bool spin_angle))(Model&, Body&) {
   return [](Model& m, Body& r) { roller_states(m, r, false); };
 }
 
+void set_roller_radii(Model& m, const scene::BearingGeometry& g) {
+  m.element_radii.clear();
+  for (const double deviation : g.roller_diameter_deviations) m.element_radii.push_back(0.5 * (g.roller_diameter + deviation));
+}
+
+std::string describe_roller_diameters(const Model& m) {
+  if (m.element_radii.empty()) return {};
+  const scene::BearingGeometry& g = m.params().bearing;
+  std::string values;
+  for (const double d : g.roller_diameter_deviations) values += fmt::format("{}{:+.4g}", values.empty() ? "" : " ", 1e6 * d);
+  const std::string how = g.roller_diameter_scatter > 0
+                              ? fmt::format("drawn, standard deviation {:.4g} um, scatter_seed {}",
+                                            1e6 * g.roller_diameter_scatter, g.scatter_seed)
+                              : std::string("given");
+  return fmt::format("  roller diameters ({}): D + [{}] um\n", how, values);
+}
+
 double annulus_mass(double density, double r_in, double r_out, double width) {
   return density * std::numbers::pi * (r_out * r_out - r_in * r_in) * width;
 }

@@ -161,7 +161,8 @@ struct Model {
 
   // Geometry, kept for start-up, output and diagnostics.
   double pitch_radius = 0, element_radius = 0;  ///< element_radius: the nominal one
-  /// Ball bearings with a diameter scatter: each ball's radius (ball[k]); empty: every ball nominal.
+  /// A diameter scatter: each ball's or roller's radius (element k; a tapered roller's at its middle);
+  /// empty: every rolling element nominal.
   std::vector<double> element_radii;
   /// The radius of rolling element k.
   double radius_of_element(int k) const { return element_radii.empty() ? element_radius : element_radii[std::size_t(k)]; }
@@ -285,5 +286,10 @@ void add_rolling_elements(Model& m, const char* name, double mass, double axial_
 /// spin_angle (a roller's own defect in the scene) its angle about its own axis too, after the axis's
 /// angles (12: R = Rx(ax) Ry(ay) Rz(az), the roller's frame turning with it).
 void (*spatial_roller_states(bool spin_angle))(Model&, Body&);
+/// Roller bearings with a diameter scatter ([bearing] roller_diameter_deviations): each roller's
+/// radius, roller_diameter / 2 plus half its deviation, into m.element_radii (left empty without one).
+void set_roller_radii(Model& m, const scene::BearingGeometry& g);
+/// `raceway check`'s line for the rollers' diameters, each deviation in micrometres; empty without a scatter.
+std::string describe_roller_diameters(const Model& m);
 
 }  // namespace raceway::bearing

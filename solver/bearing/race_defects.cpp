@@ -38,13 +38,16 @@ std::shared_ptr<const contact::RaceImperfections> element_imperfections(const sc
   return out;
 }
 
-std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared) {
+std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared,
+                                   double reach_per_radius) {
   const auto own = element_imperfections(scene, k, m.radius_of_element(k));
-  if (!own) return shared;
+  if (!own && m.element_radii.empty()) return shared;
+  const double grow = (m.radius_of_element(k) - m.element_radius) * reach_per_radius;
   std::vector<int> laws;
   for (const int law : shared) {
     contact::RollerSliceSegment copy = std::get<contact::RollerSliceSegment>(m.laws[static_cast<std::size_t>(law)]);
     copy.roller_imperfections = own;
+    copy.roller_radius += grow;
     m.laws.push_back(std::move(copy));
     laws.push_back(static_cast<int>(m.laws.size()) - 1);
   }

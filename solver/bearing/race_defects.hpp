@@ -30,9 +30,13 @@ std::shared_ptr<const contact::RaceImperfections> race_imperfections(const scene
 /// radius r) for its ball-groove laws; null when ball k is perfect.
 std::shared_ptr<const contact::RaceImperfections> element_imperfections(const scene::Scene& scene, int k, double r);
 
-/// Roller k's slice laws (a spatial roller bearing): `shared`, the laws every perfect roller uses,
-/// or, where roller k carries its own defect ([rolling_element]), copies of them that carry it.
-std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared);
+/// Roller k's slice laws (a spatial roller bearing): `shared`, the laws every perfect nominal roller
+/// uses, or, where roller k carries its own defect ([rolling_element]) or the rollers' diameters
+/// scatter, copies of them that carry the defect and reach farther by roller k's radius less the
+/// nominal one times `reach_per_radius` (the slice's roller_radius is measured along the race's
+/// normal: 1 on a cylindrical race, cos(gamma) for a tapered roller of half angle gamma).
+std::vector<int> roller_slice_laws(Model& m, const scene::Scene& scene, int k, const std::vector<int>& shared,
+                                   double reach_per_radius = 1.0);
 
 /// Lines for the model's description (raceway check): each race's spall and waviness, or "".
 std::string describe_race_imperfections(const Model& m);

@@ -90,12 +90,25 @@ void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   add_cage_bridges(m, scene, geo.r_out - geo.r_in);
 }
 
+/// A scattered roller's mass and inertias follow its own diameter (a solid cylinder of the length l).
+void scale_rollers(Model& m, double nominal_mass, double l) {
+  if (m.element_radii.empty()) return;
+  for (Body& b : m.bodies) {
+    if (b.kind != BodyKind::rolling_element) continue;
+    const double r = m.radius_of_element(b.index), scale = r / m.element_radius;
+    b.mass = nominal_mass * scale * scale;
+    b.axial_inertia = 0.5 * b.mass * r * r;
+    if (b.transverse_inertia > 0) b.transverse_inertia = b.mass * (3.0 * r * r + l * l) / 12.0;
+  }
+}
+
 void add_rollers(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double rr = m.element_radius;
   const double roller_mass = scene.material(g.roller_material).density * pi * rr * rr * g.roller_length;
   add_rolling_elements(m, "roller", roller_mass, 0.5 * roller_mass * rr * rr, 0.0,
                        [](Model& model, Body& r) { add_planar_states(model, r, true, false, true); });
+  scale_rollers(m, roller_mass, g.roller_length);
 }
 
 /// Line-contact law and traction of one contact: derived constants once, here.
@@ -178,18 +191,28 @@ void add_roller_segments(Model& m, const scene::Scene& scene) {
   const double bar_width = cs.bar_width > 0 ? cs.bar_width : g.roller_length;
   const auto bar_law = laws.law(scene.roller_cage, steel, scene.material(cs.material), bar_width);
   const auto bar_traction = LineLaws::traction(scene.roller_cage);
-  const double rr = m.element_radius;
-  contact::RollerRaceSegment inner_race{m.inner_race_radius, rr, false, race_law, race_traction, std::nullopt};
-  contact::RollerRaceSegment outer_race{m.outer_race_radius, rr, true, race_law, race_traction, std::nullopt};
+  const double rr0 = m.element_radius;
+  contact::RollerRaceSegment inner_race{m.inner_race_radius, rr0, false, race_law, race_traction, std::nullopt};
+  contact::RollerRaceSegment outer_race{m.outer_race_radius, rr0, true, race_law, race_traction, std::nullopt};
   add_race_film(inner_race, scene);
   add_race_film(outer_race, scene);
-  const int inner = add_law(m, inner_race);
-  const int outer = add_law(m, outer_race);
+  const int shared_inner = add_law(m, inner_race);
+  const int shared_outer = add_law(m, outer_race);
   const int outer_marker = outer_race_marker(m);  // a point on a flexible rim, or the ring's centre
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
     const double pocket = 2.0 * pi * k / m.element_count;
     const double half = 0.5 * cs.pocket_clearance;
+    // A scattered roller: race laws of its own radius (its film too); the shared ones otherwise.
+    const double rr = m.radius_of_element(k);
+    int inner = shared_inner, outer = shared_outer;
+    if (!m.element_radii.empty()) {
+      for (auto* race : {&inner_race, &outer_race}) race->roller_radius = rr;
+      add_race_film(inner_race, scene);
+      add_race_film(outer_race, scene);
+      inner = add_law(m, inner_race);
+      outer = add_law(m, outer_race);
+    }
     contact::CageBarSegment front_bar{m.pitch_radius, pocket, half, rr, +1, bar_law, bar_traction, std::nullopt};
     contact::CageBarSegment rear_bar{m.pitch_radius, pocket, half, rr, -1, bar_law, bar_traction, std::nullopt};
     add_bar_film(front_bar, scene, bar_width);
@@ -247,6 +270,7 @@ void set_geometry(Model& m, const scene::Scene& scene) {
   m.element_radius = 0.5 * g.roller_diameter;
   m.inner_race_radius = 0.5 * g.inner_race_diameter();
   m.outer_race_radius = 0.5 * g.outer_race_diameter();
+  set_roller_radii(m, g);
 }
 
 void add_rings(Model& m, const scene::Scene& scene) {
@@ -309,7 +333,8 @@ std::string describe_roller_model(const Model& m) {
     if (repeated && b.index > 0 && b.index < count - 1) continue;
     out += fmt::format("  {:<12} mass {:.4g} kg, inertia {:.4g} kg m^2, {} states [{}..{}): {}\n", b.name, b.mass,
                        b.axial_inertia, b.size, b.offset, b.offset + b.size, why);
-    if (repeated && b.index == 0 && count > 2) out += fmt::format("  ... ({} more rollers alike)\n", count - 2);
+    if (repeated && b.index == 0 && count > 2)
+      out += fmt::format("  ... ({} more rollers{})\n", count - 2, m.element_radii.empty() ? " alike" : ", each of its own diameter");
   }
   for (const auto& node : m.nodes) out += node->describe(m);
   out += fmt::format("border states {}, roller blocks {} x {}\n", m.border_size, m.element_count, m.block_size);
@@ -337,6 +362,7 @@ std::string describe_roller_model(const Model& m) {
   } else {
     out += "  no cage_land segment: the cage is guided by the rollers\n";
   }
+  out += describe_roller_diameters(m);
   out += describe_bridge_segments(m);
   out += describe_ring_mode_segments(m);
   out += fmt::format("geometry: pitch radius {:.4f} mm, races {:.4f} / {:.4f} mm, roller radius {:.4f} mm\n",

@@ -17,6 +17,19 @@ using contact::PlanarKinematics;
 
 namespace {
 
+/// Each roller's inner and outer race laws, roller k's at 2 k and 2 k + 1.
+std::vector<const contact::RollerRaceSegment*> roller_race_laws(const Model& m) {
+  std::vector<const contact::RollerRaceSegment*> laws(static_cast<std::size_t>(2 * m.element_count), nullptr);
+  for (const Segment& seg : m.segments) {
+    const bool inner = seg.kind == SegmentKind::roller_inner_race;
+    if (!inner && seg.kind != SegmentKind::roller_outer_race) continue;
+    laws[static_cast<std::size_t>(2 * seg.element + (inner ? 0 : 1))] = &m.law<contact::RollerRaceSegment>(seg);
+  }
+  for (const auto* law : laws)
+    if (!law) throw std::logic_error("start-up: a roller without its two race segments");
+  return laws;
+}
+
 struct Seating {
   const Model& m;
   double t0;
@@ -25,6 +38,7 @@ struct Seating {
   double spin = 0;                 // roller spin of the returned state [rad/s]
   double ring_speed[2] = {0, 0};   // inner, outer ring rotation speeds at t0 [rad/s]
   std::optional<CarrierFrame> frame = carrier_frame(m.params().carrier, t0);  // planetary bearings
+  std::vector<const contact::RollerRaceSegment*> race_laws = roller_race_laws(m);  // roller k's inner, outer
 
   /// The kinematics the returned state will have: rings at rest but for their drive speed, the
   /// roller orbiting at the epicyclic speed with its rolling spin (so damping and traction are in
@@ -34,18 +48,15 @@ struct Seating {
     return {rho * std::cos(psi), rho * std::sin(psi), 0, -orbit * rho * std::sin(psi), orbit * rho * std::cos(psi), spin};
   }
 
-  /// The race law of ring r (0 inner, 1 outer).
-  const contact::RollerRaceSegment& race(int r) const {
-    return m.law<contact::RollerRaceSegment>(
-        *m.first_segment(r == 0 ? SegmentKind::roller_inner_race : SegmentKind::roller_outer_race));
-  }
+  /// The race law of ring r (0 inner, 1 outer) on roller k: its own where the rollers' diameters scatter.
+  const contact::RollerRaceSegment& race(int r, int k) const { return *race_laws[static_cast<std::size_t>(2 * k + r)]; }
 
   double azimuth(int k) const { return load_direction + 2.0 * std::numbers::pi * k / m.element_count; }
 
   /// Radial contact force of a race on a roller centred at radius rho along azimuth psi, given the
   /// ring centre. Positive = along the outward radial direction e_psi.
-  double race_force(int segment, double cx, double cy, double rho, double psi) const {
-    const auto& seg = race(segment);
+  double race_force(int segment, int k, double cx, double cy, double rho, double psi) const {
+    const auto& seg = race(segment, k);
     const auto r = contact::evaluate(seg, ring_at(segment, cx, cy), roller_at(rho, psi));
     return r.on_b.fx * std::cos(psi) + r.on_b.fy * std::sin(psi);
   }
@@ -56,7 +67,7 @@ struct Seating {
     const double psi = azimuth(k);
     const double mass = m.bodies[m.first_element + k].mass;
     auto residual = [&](double rho) {
-      const double r = race_force(0, inner[0], inner[1], rho, psi) + race_force(1, outer[0], outer[1], rho, psi) +
+      const double r = race_force(0, k, inner[0], inner[1], rho, psi) + race_force(1, k, outer[0], outer[1], rho, psi) +
                        mass * orbit * orbit * rho - mass * m.gravity * std::sin(psi);
       if (!frame) return r;
       // The carrier's field along the radius (its tangential part is left to the cage).
@@ -93,7 +104,7 @@ struct Seating {
       const double psi = azimuth(k);
       const PlanarKinematics roller = roller_at(rho, psi);
       for (int r = 0; r < 2; ++r) {
-        const auto res = contact::evaluate(race(r), ring_at(r, centre[r][0], centre[r][1]), roller);
+        const auto res = contact::evaluate(race(r, k), ring_at(r, centre[r][0], centre[r][1]), roller);
         force[r][0] += res.on_a.fx;
         force[r][1] += res.on_a.fy;
       }

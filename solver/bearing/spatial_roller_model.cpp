@@ -85,6 +85,7 @@ void set_geometry(Model& m, const scene::Scene& scene) {
   m.element_radius = 0.5 * g.roller_diameter;
   m.inner_race_radius = 0.5 * g.inner_race_diameter();
   m.outer_race_radius = 0.5 * g.outer_race_diameter();
+  set_roller_radii(m, g);
   // The planar model of the same scene: its seating starts this one.
   scene::Scene planar = scene;
   planar.scene.model = scene::ModelKind::planar;
@@ -136,6 +137,14 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double mass = scene.material(g.roller_material).density * pi * rr * rr * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * rr * rr, mass * (3.0 * rr * rr + l * l) / 12.0,
                        spatial_roller_states(scene.rolling_element.any()));
+  if (m.element_radii.empty()) return;
+  for (Body& b : m.bodies) {  // a scattered roller's mass and inertias follow its own diameter
+    if (b.kind != BodyKind::rolling_element) continue;
+    const double r = m.radius_of_element(b.index);
+    b.mass = mass * (r / rr) * (r / rr);
+    b.axial_inertia = 0.5 * b.mass * r * r;
+    b.transverse_inertia = b.mass * (3.0 * r * r + l * l) / 12.0;
+  }
 }
 
 /// The roller's profile (BearingGeometry::roller_profile) with the races' modulus.
@@ -252,7 +261,7 @@ void add_segments(Model& m, const scene::Scene& scene) {
     for (const int side : {+1, -1}) {
       const int law = add_law(m, contact::make_roller_pocket_bar_segment(
                                      e_bar, bar_width, scene.roller_cage.normal.slices, m.pitch_radius, pocket,
-                                     0.5 * cs.pocket_clearance, m.element_radius, side, damping_of(scene.roller_cage),
+                                     0.5 * cs.pocket_clearance, m.radius_of_element(k), side, damping_of(scene.roller_cage),
                                      max_approach(m), traction_curve(scene.roller_cage)));
       m.segments.push_back({side > 0 ? SegmentKind::cage_bar_front : SegmentKind::cage_bar_rear, m.cage, body, law, k,
                             fmt::format("roller[{}]/cage_bar_{}", k, side > 0 ? "front" : "rear")});
@@ -313,6 +322,7 @@ std::string describe_spatial_roller_model(const Model& m) {
                        s.damping_factor, s.traction.friction_coefficient);
   }
   out += describe_race_imperfections(m);
+  out += describe_roller_diameters(m);
   if (const Segment* rib = m.first_segment(SegmentKind::roller_flange)) {
     const auto& f = m.law<contact::RollerFlangeSegment>(*rib);
     out += fmt::format("  ribs: {} {} ends (radius {:.4g} mm) on ribs at {:.3g} deg, end play {:.4g} mm, Hertz K = {:.4g}\n",

@@ -80,6 +80,7 @@ void set_geometry(Model& m, const scene::Scene& scene) {
   m.outer_race_radius = m.pitch_radius + m.element_radius * std::cos(t.half_angle) * std::cos(t.cup_angle);
   m.cone_angle = t.cone_angle;
   m.cup_angle = t.cup_angle;
+  set_roller_radii(m, g);
 }
 
 void add_rings(Model& m, const scene::Scene& scene) {
@@ -149,6 +150,15 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double mass = scene.material(scene.bearing.roller_material).density * pi * mean_square * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * mean_square, mass * (3.0 * mean_square + l * l) / 12.0,
                        spatial_roller_states(scene.rolling_element.any()));
+  if (m.element_radii.empty()) return;
+  for (Body& b : m.bodies) {  // a scattered roller: every section's radius grows by half its deviation
+    if (b.kind != BodyKind::rolling_element) continue;
+    const double grow = m.radius_of_element(b.index) - m.element_radius, a = r1 + grow, c = r2 + grow;
+    const double square = (a * a + a * c + c * c) / 3.0;
+    b.mass = mass * square / mean_square;
+    b.axial_inertia = 0.5 * b.mass * square;
+    b.transverse_inertia = b.mass * (3.0 * square + l * l) / 12.0;
+  }
 }
 
 /// The cone's back rib against the large end, placed so that a nominal roller just touches it.
@@ -236,8 +246,8 @@ void add_segments(Model& m, const scene::Scene& scene) {
   const double e_bar = e_star(scene.material(g.roller_material), scene.material(cs.material));
   for (int k = 0; k < m.element_count; ++k) {
     const int body = m.first_element + k;
-    const std::vector<int> inner = roller_slice_laws(m, scene, k, inner_slices);
-    const std::vector<int> outer = roller_slice_laws(m, scene, k, outer_slices);
+    const std::vector<int> inner = roller_slice_laws(m, scene, k, inner_slices, std::cos(t.half_angle));
+    const std::vector<int> outer = roller_slice_laws(m, scene, k, outer_slices, std::cos(t.half_angle));
     for (std::size_t j = 0; j < inner.size(); ++j)
       m.segments.push_back({SegmentKind::roller_inner_slice, m.inner_ring, body, inner[j], k,
                             fmt::format("roller[{}]/inner_race/slice[{}]", k, j)});
@@ -248,7 +258,7 @@ void add_segments(Model& m, const scene::Scene& scene) {
     for (const int side : {+1, -1}) {
       const int law = add_law(m, contact::make_roller_pocket_bar_segment(
                                      e_bar, bar_width, scene.roller_cage.normal.slices, m.pitch_radius, pocket,
-                                     0.5 * cs.pocket_clearance, m.element_radius, side, damping_of(scene.roller_cage),
+                                     0.5 * cs.pocket_clearance, m.radius_of_element(k), side, damping_of(scene.roller_cage),
                                      max_approach(m), traction_curve(scene.roller_cage)));
       m.segments.push_back({side > 0 ? SegmentKind::cage_bar_front : SegmentKind::cage_bar_rear, m.cage, body, law, k,
                             fmt::format("roller[{}]/cage_bar_{}", k, side > 0 ? "front" : "rear")});
@@ -290,6 +300,7 @@ std::string describe(const Model& m) {
                        f.hertz.stiffness);
   }
   out += describe_race_imperfections(m);
+  out += describe_roller_diameters(m);
   out += fmt::format("state layout: border {} states (rings, cage), then {} blocks of {} (rollers)\n", m.border_size,
                      m.element_count, m.block_size);
   return out;

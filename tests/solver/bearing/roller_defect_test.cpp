@@ -6,10 +6,13 @@
 //  2. the angles turn with the roller: the rates the dynamics give move R = Rx Ry Rz as dR/dt =
 //     [w]x R (against a finite difference of the rotation), and the axis stays R e_z of the first two;
 //  3. the step limit: the roller's spall turning towards a race contact limits the step to the time
-//     it takes to reach the contact's edge at the roller's spin; at the contact, a tenth of its passage.
+//     it takes to reach the contact's edge at the roller's spin; at the contact, a tenth of its passage;
+//  4. a tapered roller's spall, turned once round with the roller seated between cone and cup, meets
+//     the cone and the cup once each, half a turn apart, for as long as its length takes.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -18,6 +21,7 @@
 #include "solver/bearing/body_dynamics.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/race_defects.hpp"
+#include "solver/bearing/startup.hpp"
 
 namespace raceway::bearing {
 namespace {
@@ -113,6 +117,92 @@ TEST(RollerDefect, StepLimitStopsAtTheContact) {
   EXPECT_NEAR(spall_step_limit(m, 0.0, z.data()), (behind - half) / spin, 1e-12);
   z[std::size_t(roller.slot[saz])] = psi - std::numbers::pi / 6;  // the spall at the outer contact
   EXPECT_NEAR(spall_step_limit(m, 0.0, z.data()), 2 * half / spin / steps_within_spall, 1e-12);
+}
+
+constexpr const char* kTapered = R"(
+[scene]
+name = "tapered roller spall"
+end_time = "0.01 s"
+output_interval = "1 ms"
+model = "spatial"
+[bearing]
+type = "tapered_roller"
+rolling_elements = 17
+roller_diameter = "7.5 mm"
+roller_length = "12 mm"
+pitch_diameter = "46 mm"
+cup_angle = "14 deg"
+inner_bore_diameter = "30 mm"
+outer_outside_diameter = "62 mm"
+ring_width = "16 mm"
+corner_radius = "0.6 mm"
+roller_end = "spherical"
+rib_angle = "1 deg"
+[cage]
+guidance = "rolling_element"
+pocket_clearance = "0.3 mm"
+material = "steel"
+[inner_ring]
+motion = "driven"
+speed = "3000 rpm"
+translation = "free"
+axial = "free"
+load = { fy = "-4 kN", fz = "-3 kN" }
+[outer_ring]
+motion = "fixed"
+[contact.roller_race]
+slices = 12
+[rolling_element]
+spall = { element = 0, angle = "90 deg", length = "0.5 mm", width = "4 mm", depth = "0.1 mm" }
+)";
+
+// The 30206's roller 0 seated (at azimuth 0, its spall 90 degrees from both contacts), then turned
+// about its axis through a whole turn in 7200 steps: the drop of its middle slice's approach (against
+// the same law without the defect) on the cone and on the cup. Each is one run of turn angles, of
+// the spall's angular length 0.5 mm / r (within two steps; the slice's centre sees the pit where its
+// contact direction lies within it), and the two runs' centres lie half a turn apart (within two
+// steps): the two contacts face each other across the roller.
+TEST(RollerDefect, TaperedSpallMeetsConeAndCupOncePerTurn) {
+  const Model m = build_model(scene::parse_scene(kTapered, "tapered"));
+  ASSERT_EQ(m.block_size, 12);
+  std::vector<double> z = initial_state(m, 0.0).state;
+  const Body& roller = m.bodies[std::size_t(m.first_element)];
+  const double start = z[std::size_t(roller.slot[saz])];
+  const int steps = 7200;
+  const double step = 2 * std::numbers::pi / steps;
+  std::vector<double> centres;
+  for (const SegmentKind kind : {SegmentKind::roller_inner_slice, SegmentKind::roller_outer_slice}) {
+    const Segment* middle = nullptr;
+    for (const Segment& seg : m.segments)
+      if (seg.kind == kind && seg.element == 0 && seg.name.ends_with("slice[5]")) middle = &seg;
+    ASSERT_NE(middle, nullptr);
+    const auto& law = m.law<contact::RollerSliceSegment>(*middle);
+    ASSERT_NE(law.roller_imperfections, nullptr);
+    contact::RollerSliceSegment clean = law;
+    clean.roller_imperfections = nullptr;
+    std::vector<int> inside;
+    for (int i = 0; i < steps; ++i) {
+      z[std::size_t(roller.slot[saz])] = start + i * step;
+      const auto ring = m.kinematics(middle->body_a, 0.0, z.data()), body = m.kinematics(middle->body_b, 0.0, z.data());
+      const double drop = contact::evaluate(clean, ring, body).diagnostics.approach -
+                          contact::evaluate(law, ring, body).diagnostics.approach;
+      EXPECT_GE(drop, -1e-15);
+      if (drop > 1e-13) inside.push_back(i);
+    }
+    ASSERT_FALSE(inside.empty()) << segment_kind_name(kind) << ": the spall never met the race";
+    // One contiguous run (it may wrap past the end of the turn).
+    int breaks = 0;
+    for (std::size_t j = 1; j < inside.size(); ++j) breaks += inside[j] != inside[j - 1] + 1;
+    const bool wraps = inside.front() == 0 && inside.back() == steps - 1;
+    EXPECT_EQ(breaks, wraps ? 1 : 0) << segment_kind_name(kind) << ": the spall meets the race more than once a turn";
+    const double length = 0.5e-3 / law.roller_imperfections->ball_radius;
+    EXPECT_NEAR(double(inside.size()) * step, length, 2 * step) << segment_kind_name(kind);
+    const double centre = wraps ? 0.0 : 0.5 * (inside.front() + inside.back()) * step;
+    std::printf("[ tapered spall ] %s: met over %zu steps of %d, centred at %.4f rad of turn\n",
+                segment_kind_name(kind), inside.size(), steps, centre);
+    centres.push_back(centre);
+  }
+  EXPECT_NEAR(std::abs(centres[1] - centres[0]), std::numbers::pi, 2 * step) << "cone and cup half a turn apart";
 }
 
 }  // namespace

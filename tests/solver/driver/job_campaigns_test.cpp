@@ -69,5 +69,48 @@ TEST(JobScenes, QJ215SweepCampaignsAreTheValidationSceneSwept) {
   }
 }
 
+// The test grease's twins (docs/campaigns/qj215_whirl.md, "Lubricated cage contacts and drag"): the
+// Figure 18 points (600..2000 r/min x Fa 1000..2000 N), dry, lubricated and at rtol 1e-7, and the
+// unbalance sweeps with their longer runs and rtol check, each the validation scene with the LGMT 3
+// base oil at 40 degC, where the data sheet's 125 mm^2/s is the viscosity itself (890 kg/m^3 x
+// 125e-6 m^2/s = 0.11125 Pa s, no Walther fit between), both cage films and the drag; the dry
+// Figure 18 campaign has none of it.
+TEST(JobScenes, QJ215LubricatedCampaignsCarryTheTestGreasesBaseOil) {
+  struct Case {
+    std::string campaign;
+    std::size_t scenes;
+    double revolutions, samples, unbalance;
+    std::vector<double> fractions;  // the oil volume fractions the campaign sweeps or sets
+  };
+  const std::vector<Case> cases{{"qj215_fig18_dry", 12, 20, 100, 0, {0.0}},
+                                {"qj215_fig18_lubricated", 24, 20, 100, 0, {0.03, 0.3}},
+                                {"qj215_fig18_rtol", 1, 20, 100, 0, {0.03}},
+                                {"qj215_speed_lubricated", 10, 60, 600, 50e-6, {0.03}},
+                                {"qj215_speed_lubricated_long", 6, 180, 600, 50e-6, {0.03}},
+                                {"qj215_speed_lubricated_whirl", 4, 400, 600, 50e-6, {0.03}},
+                                {"qj215_speed_lubricated_rtol", 1, 180, 600, 50e-6, {0.03}},
+                                {"qj215_axial_lubricated", 10, 60, 600, 50e-6, {0.03}},
+                                {"qj215_radial_lubricated", 8, 60, 600, 50e-6, {0.03}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.campaign);
+    const auto campaign = load_campaign((kSourceDir / "jobs" / "campaigns" / (c.campaign + ".toml")).string());
+    ASSERT_EQ(campaign.scenes.size(), c.scenes);
+    const bool dry = c.fractions[0] == 0.0;
+    for (std::size_t n = 0; n < campaign.scenes.size(); ++n) {
+      const scene::Scene s = campaign_scene(campaign, campaign.scenes[n]);
+      const double turns_per_second = s.inner_ring.speed(0.0) / (2 * pi);
+      EXPECT_NEAR(turns_per_second * s.scene.end_time, c.revolutions, 1e-9);
+      EXPECT_NEAR(s.scene.output_interval * turns_per_second, 1.0 / c.samples, 1e-12);
+      EXPECT_DOUBLE_EQ(s.cage.mass_eccentricity, c.unbalance);
+      EXPECT_DOUBLE_EQ(s.lubricant.oil_volume_fraction, c.fractions[n * c.fractions.size() / c.scenes]);
+      EXPECT_EQ(s.ball_cage.normal.id, dry ? contact::LawId::hertz : contact::LawId::pocket_film);
+      EXPECT_EQ(s.cage_land.normal.id, dry ? contact::LawId::palmgren : contact::LawId::short_bearing);
+      EXPECT_NEAR(s.lubricant.viscosity, dry ? 0.0 : 0.11125, 1e-9);
+      EXPECT_EQ(s.ball_race.traction.id, contact::LawId::tanh_traction);
+      EXPECT_DOUBLE_EQ(s.solver.rtol, c.campaign.ends_with("_rtol") ? 1e-7 : 1e-6);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace raceway::driver

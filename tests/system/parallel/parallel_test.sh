@@ -11,6 +11,9 @@
 #     Also with tasks claimed on demand (--tail-share): every task (1) at np 2, 30 % with forced
 #     re-plans at np 3, every task by the workers alone (--master-share 0) at np 3. And with the
 #     commands and replies by message instead of shared memory (--exchange messages) at np 4 and np 3.
+#   bitwise_spatial_roller: the same on seed 002 in space with its rollers' diameters scattered and a
+#     spall on roller 0 (the rollers' angles about their axes are states); and killed at np 2 after a
+#     checkpoint, resumed at np 1: bitwise the np 1 run.
 #   bitwise_cut: the same on a short run of the high-fidelity scene (6309_R3_fine_traction: its
 #     ball-race contacts cut into traction-grid blocks, sub-tasks the master combines), where the
 #     plans really cut segments over ranks (checked in the plan log lines).
@@ -59,9 +62,15 @@ sed -e 's/^end_time = .*/end_time = "3 ms"/' -e 's/^\[bearing\]$/[bearing]\nball
   -e 's/^\[cage\]$/[cage]\npocket_clearance_scatter = "5 um"/' \
   "$source_dir/jobs/scenes/6309_R3.toml" >"$work/spatial.toml"
 sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fine_traction.toml" >"$work/cut.toml"
-# The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each).
+# The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each), its
+# rollers' diameters scattered and a spall on roller 0 (every roller's angle about its axis a state),
+# 10 degrees ahead of its outer race contact at the start (it strikes it at about 0.3 ms), and a
+# checkpoint every 1 ms (the kill and resume below).
 sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
+  -e 's/^\[bearing\]$/[bearing]\nroller_diameter_scatter = "1 um"\nscatter_seed = 5/' \
   "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/spatial_roller.toml"
+printf '[output]\ncheckpoint_interval = "1 ms"\n[rolling_element]\nspall = { element = 0, angle = "-80 deg", %s\n' \
+  'length = "0.5 mm", width = "4 mm", depth = "0.1 mm" }' >>"$work/spatial_roller.toml"
 
 bitwise() {
   local scene=$1
@@ -132,6 +141,29 @@ print('rank task seconds', list(s)); sys.exit(0 if sum(s[1:]) > 0 and (s[0] > 0)
     fail "--master-share 0 np 3: exit code $rc: $(tail -3 "$work/log")"
   fi
   "${compare[@]}" "$work/np1.h5" "${files[@]}" || fail "outputs differ (see above)"
+}
+
+# killed_resumed SCENE: np 2, killed as soon as its first checkpoint is on disk (rank 0 pauses
+# before its evaluation at 90 % of the np 2 run's, --inject-pause, so that the run cannot end
+# first), resumed at np 1: the file bitwise the uninterrupted np 1 run's ($work/np1.h5 of bitwise).
+killed_resumed() {
+  local scene=$1 evaluations
+  evaluations=$(/usr/bin/python3 -c "import sys, h5py; a = h5py.File(sys.argv[1])['scheduler'].attrs; \
+print(int(0.9 * (a['evaluations_rhs'] + a['evaluations_jacobian'])))" "$work/np2.h5") ||
+    { fail "no evaluation count in np2.h5"; return; }
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$raceway" run "$scene" -o "$work/killed.h5" \
+    --inject-pause "$evaluations:60" >"$work/log" 2>&1 &
+  local job=$! launcher ranks
+  for _ in $(seq 600); do [[ -e "$work/killed.h5.checkpoint" ]] && break; sleep 0.05; done
+  launcher=$(pgrep -P "$job" | head -n 1)
+  ranks=$(pgrep -P "$launcher" | tr '\n' ' ')
+  kill -KILL $ranks "$launcher" 2>/dev/null
+  wait "$job" 2>/dev/null
+  for rank in $ranks; do for _ in $(seq 200); do kill -0 "$rank" 2>/dev/null || break; sleep 0.05; done; done
+  [[ -e "$work/killed.h5.checkpoint" && ! -e "$work/killed.h5" ]] || { fail "the job was not killed after a checkpoint"; return; }
+  "$raceway" run "$scene" -o "$work/killed.h5" --resume >"$work/log" 2>&1 || { fail "resume: $(tail -3 "$work/log")"; return; }
+  grep -q "resuming .* from its" "$work/log" || fail "the run did not resume from the checkpoint: $(tail -3 "$work/log")"
+  "${compare[@]}" "$work/np1.h5" "$work/killed.h5" || fail "killed at np 2 and resumed at np 1: outputs differ"
 }
 
 injected() {
@@ -286,7 +318,13 @@ bitwise_spatial)
   "$raceway" check "$work/spatial.toml" 2>&1 | grep -q "ball diameters (drawn" || fail "the scene's balls are not scattered"
   bitwise "$work/spatial.toml"
   ;;
-bitwise_spatial_roller) bitwise "$work/spatial_roller.toml" ;;
+bitwise_spatial_roller)
+  "$raceway" check "$work/spatial_roller.toml" >"$work/check" 2>&1 || fail "check: $(tail -3 "$work/check")"
+  grep -q "roller diameters (drawn" "$work/check" || fail "the scene's rollers are not scattered"
+  grep -q "roller\[0\]: spall" "$work/check" || fail "the scene's roller 0 carries no spall"
+  bitwise "$work/spatial_roller.toml"
+  killed_resumed "$work/spatial_roller.toml"
+  ;;
 bitwise_cut)
   bitwise "$work/cut.toml"
   # Segments were really cut over ranks in some plan (the 13 blocks of a loaded contact).
