@@ -1,7 +1,9 @@
 """How an atlas point is certified (docs/atlas.md, "Certification").
 
 - settled: the window (settling_time .. end_time) is cut into `blocks` equal blocks; the metric of
-  each block and of its successor differ by at most block_tolerance. Each block's own class is
+  each block and of its successor differ by at most block_tolerance, and the cage centre's orbit
+  does not grow from block to block by more than the factor 1 + growth_tolerance in all (a slowly
+  growing whirl keeps a small metric and small steps while its radius doubles). Each block's own class is
   recorded as evidence, not required to be the window's: a block shorter than a whirl turn cannot
   show a whirl. A point that is not settled is recorded as such (its class stands, flagged): the
   run was too short for it.
@@ -32,14 +34,25 @@ def block_slices(n, blocks):
     return [slice(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:])]
 
 
-def settled(block_metrics, block_classes, window_class, tolerance):
-    """The settledness evidence of a window from its blocks' metrics and classes."""
+def orbit_growth(block_radii):
+    """Last block's orbit radius over the first's when the radius grows from every block to the next
+    (a whirl still growing), else 1."""
+    r = [float(v) for v in block_radii]
+    if len(r) < 2 or not all(math.isfinite(v) and v > 0 for v in r):
+        return 1.0
+    return r[-1] / r[0] if all(b > a for a, b in zip(r[:-1], r[1:])) else 1.0
+
+
+def settled(block_metrics, block_classes, window_class, tolerance, block_radii=(), growth_tolerance=math.inf):
+    """The settledness evidence of a window from its blocks' metrics, classes and orbit radii."""
     values = [float(v) for v in block_metrics]
     steps = [abs(b - a) for a, b in zip(values[:-1], values[1:])]
     worst = max(steps) if steps else 0.0
-    ok = bool(all(math.isfinite(s) for s in steps) and worst <= tolerance)
+    growth = orbit_growth(block_radii)
+    ok = bool(all(math.isfinite(s) for s in steps) and worst <= tolerance and growth <= 1 + growth_tolerance)
     return {"ok": ok, "block_metric": values, "block_class": list(block_classes), "largest_step": worst,
-            "tolerance": tolerance, "classes_agree": all(c == window_class for c in block_classes)}
+            "tolerance": tolerance, "orbit_growth": growth, "growth_tolerance": growth_tolerance,
+            "classes_agree": all(c == window_class for c in block_classes)}
 
 
 def in_convergence_sample(index, share):

@@ -15,7 +15,7 @@ from cage_motion import CLASSES, THRESHOLDS
 
 ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "metric", "classes", "budget_points",
               "budget_core_hours", "batch_size", "set", "stop_band_share"}
-CERTIFY_KEYS = {"blocks", "block_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
+CERTIFY_KEYS = {"blocks", "block_tolerance", "growth_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
                 "realisation_key", "realisations", "ci_target"}
 PARAMETER_KEYS = {"key", "name", "range", "unit"}
 METRICS = ("cage_dynamics_indicator", "orbit_ratio", "vortex_radius_ratio", "sigma_v", "impact_rate",
@@ -127,6 +127,8 @@ def _certify(c, raw):
     out = {"blocks": c.number("certify", "blocks", raw.get("blocks", 3), 2, 20, integer=True),
            "block_tolerance": c.number("certify", "block_tolerance", raw.get("block_tolerance", 0.05), 0,
                                        low_open=True),
+           "growth_tolerance": c.number("certify", "growth_tolerance", raw.get("growth_tolerance", 0.25), 0,
+                                        low_open=True),
            "convergence_sample": c.number("certify", "convergence_sample", raw.get("convergence_sample", 0.25), 0, 1),
            "convergence_rtol": c.number("certify", "convergence_rtol", raw.get("convergence_rtol", 1e-7), 0, 0.01,
                                         low_open=True),

@@ -109,7 +109,8 @@ class SimulatorModel:
         for s in ac.block_slices(len(window), a["certify"]["blocks"]):
             t0, t1 = run.time[window[s.start]], run.time[window[s.stop - 1]]
             blocks.append(cm.classify_run(run, t0, t1, cage_mass=mass, overrides=a["thresholds"]))
-        m["blocks"] = [{"metric": b[a["metric"]], "class": b["motion_class"]} for b in blocks]
+        m["blocks"] = [{"metric": b[a["metric"]], "class": b["motion_class"], "orbit_radius_m": b["orbit_radius_m"]}
+                       for b in blocks]
         m["wall_s"] = wall
         m["output"] = os.path.relpath(out + ".h5", os.path.dirname(self.folder))
         return m

@@ -11,6 +11,7 @@ uninterrupted one.
 """
 import hashlib
 import json
+import math
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
@@ -84,8 +85,10 @@ def mapped_class(cls, classes):
 def certify(model, atlas, point, sets, base):
     """The point's certification (atlas_certify) and the wall time of its extra runs."""
     c, metric = atlas["certify"], atlas["metric"]
-    cert = {"settled": ac.settled([b["metric"] for b in base["blocks"]], [b["class"] for b in base["blocks"]],
-                                  base["motion_class"], c["block_tolerance"])}
+    blocks = base["blocks"]
+    cert = {"settled": ac.settled([b["metric"] for b in blocks], [b["class"] for b in blocks], base["motion_class"],
+                                  c["block_tolerance"], [b.get("orbit_radius_m", math.nan) for b in blocks],
+                                  c["growth_tolerance"])}
     wall = 0.0
     cert["converged"] = {"checked": False}
     if ac.in_convergence_sample(point["index"], c["convergence_sample"]):

@@ -160,6 +160,14 @@ def case_certify():
           f"a metric drifting 0.06 a block passed a tolerance of 0.05: {s}")
     s = ac.settled([0.10, 0.10, float("nan")], ["stable"] * 3, "stable", 0.05)
     check(not s["ok"], "a block without a metric passed")
+    # A whirl still growing (its radius doubling over the window) keeps a small metric and small
+    # steps: the orbit's growth catches it; a steady orbit with noise passes.
+    s = ac.settled([0.010, 0.012, 0.014], ["stable"] * 3, "stable", 0.05, [3.0e-6, 4.3e-6, 6.1e-6], 0.25)
+    check(not s["ok"] and abs(s["orbit_growth"] - 6.1 / 3.0) < 1e-12, f"a growing orbit passed: {s}")
+    s = ac.settled([0.010, 0.010, 0.010], ["stable"] * 3, "stable", 0.05, [3.0e-6, 2.97e-6, 3.02e-6], 0.25)
+    check(s["ok"] and s["orbit_growth"] == 1.0, f"a steady orbit failed: {s}")
+    s = ac.settled([0.010, 0.010, 0.010], ["stable"] * 3, "stable", 0.05, [3.0e-6, 3.3e-6, 3.6e-6], 0.25)
+    check(s["ok"] and abs(s["orbit_growth"] - 1.2) < 1e-12, f"growth 1.2 failed a tolerance of 0.25: {s}")
     check([i for i in range(10) if ac.in_convergence_sample(i, 0.25)] == [0, 4, 8], "every 4th point rerun")
     check(not any(ac.in_convergence_sample(i, 0.0) for i in range(10)), "a zero sample reruns points")
     c = ac.converged("unstable", 0.40, "unstable", 0.43, 1e-7, 0.05)
