@@ -6,7 +6,11 @@
 //     commands it has taken) (scheduler/replies.cpp, scheduler/command_channel.cpp);
 //   with the shared exchange: the command word (the commands rank 0 has written), then the command
 //     buffer (command_size doubles, whole lines);
-//   per task a slot: the rank that evaluated it, its seconds, its record (the largest phase's size).
+//   per task a slot: the rank that evaluated it, its seconds, its record. A phase's slots lie one
+//     after the other, each whole cache lines (slot_stride of the phase's record size), so the
+//     records of an evaluation are one dense block: the rhs's 24-double records take 4 lines a task,
+//     not the Jacobian's 40, and no two tasks share a line (two ranks never write one).
+//   The layout starts on a cache line, whatever address MPI hands out.
 #pragma once
 
 #include <mpi.h>
@@ -41,8 +45,16 @@ class NodeWindow {
   }
   std::int64_t& command_word() const { return *command_word_; }
   double* command_buffer() const { return command_buffer_; }
-  /// Task `task`'s slot: [0] rank, [1] seconds, then the record.
-  double* slot(int task) const { return slots_ + static_cast<std::size_t>(task) * slot_size_; }
+  /// Doubles between two tasks' slots in a phase whose records have `record_size` doubles: the
+  /// rank, the seconds and the record, rounded up to whole cache lines.
+  static std::size_t slot_stride(std::size_t record_size) { return whole_lines(2 + record_size); }
+  static std::size_t whole_lines(std::size_t n) { return (n + word_stride - 1) / word_stride * word_stride; }
+  /// Writes a whole slot (`stride` doubles from `from`) around the writer's caches (x86's
+  /// non-temporal stores): the line goes to memory without first being fetched from the reader's
+  /// cache, which held it since the last evaluation. Ordered before what sync() orders.
+  static void stream_slot(double* slot, const double* from, std::size_t stride);
+  /// Task `task`'s slot in a phase of slot_stride `stride`: [0] rank, [1] seconds, then the record.
+  double* slot(int task, std::size_t stride) const { return slots_ + static_cast<std::size_t>(task) * stride; }
 
  private:
   MPI_Comm node_comm_ = MPI_COMM_NULL;
@@ -52,7 +64,6 @@ class NodeWindow {
   std::int64_t* command_word_ = nullptr;
   double* command_buffer_ = nullptr;
   double* slots_ = nullptr;
-  std::size_t slot_size_ = 0;
 };
 
 }  // namespace raceway::scheduler

@@ -76,9 +76,10 @@ void ReplyExchange::collect(int phase, const RankTaskLists& lists, std::vector<M
     channel_.await_workers(NodeWindow::reply_word, evaluation, "answer", phase, evaluation);
     channel_.replies_in();  // a worker takes a command before it replies to it
     window_->sync();        // the words before the slots
+    const std::size_t stride = NodeWindow::slot_stride(catalogue_.record_size[static_cast<std::size_t>(phase)]);
     for (int w = 1; w < watch_.size(); ++w)
       for (const int task : lists[static_cast<std::size_t>(w)]) {
-        const double* slot = window_->slot(task);
+        const double* slot = window_->slot(task, stride);
         place_record(phase, task, w, slot + 2, slot[1], records, seconds, busy);
       }
     return;
@@ -115,18 +116,16 @@ void ReplyExchange::expect_subtree(int phase, const RankTaskLists& lists) {
   }
 }
 
+double* ReplyExchange::slot_of(int phase, int task) const {
+  return window_->slot(task, NodeWindow::slot_stride(catalogue_.record_size[static_cast<std::size_t>(phase)]));
+}
+
 void ReplyExchange::send(int phase, const RankTaskLists& lists, const double* full, const double* seconds,
                          long evaluation) {
   const int rank = watch_.rank();
   const auto& mine = lists[static_cast<std::size_t>(rank)];
   const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
-  if (window_) {  // the records and seconds into their slots, then the reply word
-    for (std::size_t i = 0; i < mine.size(); ++i) {
-      double* slot = window_->slot(mine[i]);
-      slot[0] = rank;
-      slot[1] = seconds[i];
-      std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), slot + 2);
-    }
+  if (window_) {  // the tasks wrote their records and seconds into their slots: the reply word
     window_->sync();  // the slots before the word
     store_word(window_->reply_line(rank, NodeWindow::reply_word), evaluation);
     return;

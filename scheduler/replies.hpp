@@ -58,7 +58,14 @@ class ReplyExchange {
 
   /// Worker, before it computes: posts the receives of its subtree's replies (tree).
   void expect_subtree(int phase, const RankTaskLists& lists);
-  /// Worker, after: its tasks' `full` records and `seconds` (in the order of its list) to rank 0.
+  /// Both: the replies go through the node window. A worker's tasks then write their records and
+  /// seconds straight into their slots (slot_of) as they run, each record while it is fresh in the
+  /// worker's cache, and its reply is one word; by message a worker packs them after its last task.
+  bool through_window() const { return window_ != nullptr; }
+  /// Worker, through the window: task `task`'s slot in `phase` (NodeWindow::slot).
+  double* slot_of(int phase, int task) const;
+  /// Worker, after: its tasks' `full` records and `seconds` (in the order of its list) to rank 0
+  /// (through the window: they are in the slots already, and `full` and `seconds` are not read).
   void send(int phase, const RankTaskLists& lists, const double* full, const double* seconds, long evaluation);
 
  private:

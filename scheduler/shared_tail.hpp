@@ -51,19 +51,27 @@ class SharedTail {
 template <class Run>
 double SharedTail::evaluate(int phase, std::size_t record_size, Run run, double* records, double* seconds) {
   const auto& tail = parts_[phase].tasks;
+  const std::size_t stride = NodeWindow::slot_stride(record_size);
+  std::vector<double> scratch(records ? 0 : stride, 0.0);  // a worker's slot, streamed into the window
   double spent = 0;
   auto last = std::chrono::steady_clock::now();
   for (std::int64_t position; (position = claims_.claim(rank_)) >= 0;) {
     const int task = tail[static_cast<std::size_t>(position)];
     const auto t = static_cast<std::size_t>(task);
-    double* slot = window_->slot(task);
-    run(task, std::span<double>(records ? records + t * record_size : slot + 2, record_size));
+    double* slot = window_->slot(task, stride);
+    run(task, std::span<double>(records ? records + t * record_size : scratch.data() + 2, record_size));
     const auto now = std::chrono::steady_clock::now();
     const double s = std::chrono::duration<double>(now - last).count();
     last = now;
     spent += s;
-    slot[0] = rank_;
-    (records ? seconds[t] : slot[1]) = s;
+    if (records) {
+      slot[0] = rank_;
+      seconds[t] = s;
+    } else {
+      scratch[0] = rank_;
+      scratch[1] = s;
+      NodeWindow::stream_slot(slot, scratch.data(), stride);
+    }
   }
   if (!records) window_->sync();  // the slots are written before this rank's reply leaves
   return spent;
