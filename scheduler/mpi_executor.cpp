@@ -201,7 +201,9 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   const auto run_one = [&](int t, std::span<double> record) { run_task(phase, context, task, t, record); };
   if (tail_.has_tail(phase) && policy_.capacity()[0] > 0)  // not with --master-share 0
-    busy[0] += tail_.evaluate(phase, rs, run_one, records.data(), seconds.data());
+    busy[0] += tail_.evaluate(phase, rs, run_one, records.data(), seconds.data(), [&] {
+      return replies_.through_window() && replies_.place_announced(phase, tasks_of_[phase], evaluation_, records, seconds, busy);
+    });
   if (size() > 1) replies_.collect(phase, tasks_of_[phase], requests, request_rank, evaluation_, records, seconds, busy);
   if (tail_.has_tail(phase)) tail_.collect(phase, rs, records, seconds, busy);
   account(phase, context, busy, RankWatch::now_seconds() - wall_start);
@@ -296,13 +298,14 @@ void MpiExecutor::serve_evaluation(int phase, std::size_t rs, const TaskFunction
     scratch[0] = rank();
     evaluate_own(phase, context, rs, function, [&](std::size_t, int) { return std::pair{scratch.data() + 2, scratch.data() + 1}; },
                  [&](std::size_t, int t) { NodeWindow::stream_slot(replies_.slot_of(phase, t), scratch.data(), stride); });
+    replies_.fixed_done(evaluation_);  // rank 0 may place them between its tail tasks
   } else {
     evaluate_own(phase, context, rs, function, [&](std::size_t i, int) {
       return std::pair{full.data() + i * rs, seconds.data() + i};
     }, [](std::size_t, int) {});
   }
   const auto run_one = [&](int t, std::span<double> record) { run_task(phase, context, function, t, record); };
-  if (tail_.has_tail(phase)) tail_.evaluate(phase, rs, run_one, nullptr, nullptr);
+  if (tail_.has_tail(phase)) tail_.evaluate(phase, rs, run_one, nullptr, nullptr, [] { return false; });
   replies_.send(phase, tasks_of_[phase], full.data(), seconds.data(), evaluation_);
 }
 

@@ -3,7 +3,8 @@
 // (word_stride int64s) per word so that no two ranks write one line:
 //   per rank its tail claim word (scheduler/tail_claims.hpp);
 //   per rank its reply line: reply_word (the last evaluation it replied to), taken_word (the
-//     commands it has taken) (scheduler/replies.cpp, scheduler/command_channel.cpp);
+//     commands it has taken), fixed_word (the last evaluation whose fixed list is in its slots)
+//     (scheduler/replies.cpp, scheduler/command_channel.cpp);
 //   with the shared exchange: the command word (the commands rank 0 has written), then the command
 //     buffer (command_size doubles, whole lines);
 //   per task a slot: the rank that evaluated it, its seconds, its record. A phase's slots lie one
@@ -23,7 +24,7 @@ namespace raceway::scheduler {
 class NodeWindow {
  public:
   static constexpr std::size_t word_stride = 8;
-  static constexpr std::size_t reply_word = 0, taken_word = 1;
+  static constexpr std::size_t reply_word = 0, taken_word = 1, fixed_word = 2;
 
   NodeWindow() = default;
   NodeWindow(const NodeWindow&) = delete;

@@ -33,9 +33,11 @@ class SharedTail {
 
   /// Claims and evaluates tail tasks until none is left, with run(task, record): rank 0's into
   /// `records` (at their task, record_size each) and `seconds`, a worker's (records nullptr) into the
-  /// slots. Returns the seconds this rank spent on them (each task's include its claim).
-  template <class Run>
-  double evaluate(int phase, std::size_t record_size, Run run, double* records, double* seconds);
+  /// slots. Before each claim, between(): true when it did work of its own (rank 0 placing a
+  /// worker's records), which then counts in no task's seconds. Returns the seconds this rank spent
+  /// on the tasks (each task's include its claim).
+  template <class Run, class Between>
+  double evaluate(int phase, std::size_t record_size, Run run, double* records, double* seconds, Between between);
   /// Master, after every reply: the workers' tail records from the slots into place.
   void collect(int phase, std::size_t record_size, std::vector<double>& records, std::vector<double>& seconds,
                std::vector<double>& busy) const;
@@ -48,14 +50,18 @@ class SharedTail {
   TailParts parts_[phase_count];
 };
 
-template <class Run>
-double SharedTail::evaluate(int phase, std::size_t record_size, Run run, double* records, double* seconds) {
+template <class Run, class Between>
+double SharedTail::evaluate(int phase, std::size_t record_size, Run run, double* records, double* seconds,
+                            Between between) {
   const auto& tail = parts_[phase].tasks;
   const std::size_t stride = NodeWindow::slot_stride(record_size);
   std::vector<double> scratch(records ? 0 : stride, 0.0);  // a worker's slot, streamed into the window
   double spent = 0;
   auto last = std::chrono::steady_clock::now();
-  for (std::int64_t position; (position = claims_.claim(rank_)) >= 0;) {
+  for (;;) {
+    if (between()) last = std::chrono::steady_clock::now();  // its time is no task's
+    const std::int64_t position = claims_.claim(rank_);
+    if (position < 0) break;
     const int task = tail[static_cast<std::size_t>(position)];
     const auto t = static_cast<std::size_t>(task);
     double* slot = window_->slot(task, stride);
