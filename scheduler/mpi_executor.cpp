@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "scheduler/schedule_logging.hpp"
+#include "scheduler/task_clock.hpp"
 
 namespace raceway::scheduler {
 
@@ -153,13 +154,11 @@ void MpiExecutor::evaluate_own(int phase, std::span<const double> context, std::
     watch_.fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) +
                 ": injected failure at evaluation " + std::to_string(evaluation_) + " (test-only option --inject-failure)");
   const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank())];
-  auto last = std::chrono::steady_clock::now();  // one clock reading per task: a task's seconds run to the next's start
+  TaskClock clock;  // one reading per task: a task's seconds run to the next's start
   for (std::size_t i = 0; i < mine.size(); ++i) {
     const auto [record, seconds] = place(i, mine[i]);
     run_task(phase, context, task, mine[i], std::span<double>(record, record_size));
-    const auto now = std::chrono::steady_clock::now();
-    *seconds = std::chrono::duration<double>(now - last).count();
-    last = now;
+    *seconds = clock.lap();
     done(i, mine[i]);
   }
 }

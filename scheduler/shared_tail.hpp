@@ -5,12 +5,12 @@
 // fixed list. Once rank 0 has every reply, it copies the workers' slots into place.
 #pragma once
 
-#include <chrono>
 #include <span>
 #include <vector>
 
 #include "scheduler/executor.hpp"
 #include "scheduler/node_window.hpp"
+#include "scheduler/task_clock.hpp"
 #include "scheduler/tail_claims.hpp"
 
 namespace raceway::scheduler {
@@ -57,18 +57,16 @@ double SharedTail::evaluate(int phase, std::size_t record_size, Run run, double*
   const std::size_t stride = NodeWindow::slot_stride(record_size);
   std::vector<double> scratch(records ? 0 : stride, 0.0);  // a worker's slot, streamed into the window
   double spent = 0;
-  auto last = std::chrono::steady_clock::now();
+  TaskClock clock;
   for (;;) {
-    if (between()) last = std::chrono::steady_clock::now();  // its time is no task's
+    if (between()) clock.lap();  // its time is no task's
     const std::int64_t position = claims_.claim(rank_);
     if (position < 0) break;
     const int task = tail[static_cast<std::size_t>(position)];
     const auto t = static_cast<std::size_t>(task);
     double* slot = window_->slot(task, stride);
     run(task, std::span<double>(records ? records + t * record_size : scratch.data() + 2, record_size));
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last).count();
-    last = now;
+    const double s = clock.lap();
     spent += s;
     if (records) {
       slot[0] = rank_;
