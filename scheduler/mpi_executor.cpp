@@ -296,7 +296,10 @@ void MpiExecutor::serve_evaluation(int phase, std::size_t rs, const TaskFunction
     std::vector<double> scratch(stride, 0.0);
     scratch[0] = rank();
     evaluate_own(phase, context, rs, function, [&](std::size_t, int) { return std::pair{scratch.data() + 2, scratch.data() + 1}; },
-                 [&](std::size_t, int t) { NodeWindow::stream_slot(replies_.slot_of(phase, t), scratch.data(), stride); });
+                 [&](std::size_t, int t) {  // the lines that hold what crosses ranks (catalogue's used size)
+                   const auto used = static_cast<std::size_t>(catalogue_.used(phase, t));
+                   NodeWindow::stream_slot(replies_.slot_of(phase, t), scratch.data(), NodeWindow::whole_lines(2 + used));
+                 });
     replies_.fixed_done(evaluation_);  // rank 0 may place them between its tail tasks
   } else {
     evaluate_own(phase, context, rs, function, [&](std::size_t i, int) {

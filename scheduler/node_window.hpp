@@ -50,7 +50,7 @@ class NodeWindow {
   /// rank, the seconds and the record, rounded up to whole cache lines.
   static std::size_t slot_stride(std::size_t record_size) { return whole_lines(2 + record_size); }
   static std::size_t whole_lines(std::size_t n) { return (n + word_stride - 1) / word_stride * word_stride; }
-  /// Writes a whole slot (`stride` doubles from `from`) around the writer's caches (x86's
+  /// Writes the first `stride` doubles (whole lines) of a slot from `from` around the writer's caches (x86's
   /// non-temporal stores): the line goes to memory without first being fetched from the reader's
   /// cache, which held it since the last evaluation. Ordered before what sync() orders.
   static void stream_slot(double* slot, const double* from, std::size_t stride);
