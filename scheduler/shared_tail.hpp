@@ -1,8 +1,10 @@
 // The plan's tail in a run: the claim words (scheduler/tail_claims.hpp) and the task slots of the
 // node window (scheduler/node_window.hpp). Every rank done with its fixed list claims tail tasks
-// until none is left; rank 0 writes its tail records in place, a worker writes each record, with its
-// rank and seconds, to its task's slot, then (after a memory barrier) gives its usual reply for its
-// fixed list. Once rank 0 has every reply, it copies the workers' slots into place.
+// until none is left; rank 0 writes its tail records in place, a worker streams each record, with
+// its rank and seconds, into its task's slot, then (after a memory barrier) gives its usual reply.
+// Between its claims rank 0 places the fixed lists the workers have announced (the `between`
+// hook), so the copy out of the window is shared out by the tail like a task; once rank 0 has every
+// reply, it copies the workers' tail slots (and any fixed list not yet placed) into place.
 #pragma once
 
 #include <span>
