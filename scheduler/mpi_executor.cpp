@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "scheduler/schedule_logging.hpp"
+#include "scheduler/task_clock.hpp"
 
 namespace raceway::scheduler {
 
@@ -146,19 +147,19 @@ void MpiExecutor::run_task(int phase, std::span<const double> context, const Tas
   }
 }
 
+template <class Place, class Done>
 void MpiExecutor::evaluate_own(int phase, std::span<const double> context, std::size_t record_size,
-                               const TaskFunction& task, double* records, double* seconds, bool in_task_order) const {
+                               const TaskFunction& task, Place place, Done done) const {
   if (rank() == options_.inject_failure_rank && evaluation_ == options_.inject_failure_evaluation)
     watch_.fail(std::string("in a ") + phase_name(phase) + " task at evaluation " + std::to_string(evaluation_) +
                 ": injected failure at evaluation " + std::to_string(evaluation_) + " (test-only option --inject-failure)");
   const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank())];
-  auto last = std::chrono::steady_clock::now();  // one clock reading per task: a task's seconds run to the next's start
+  TaskClock clock;  // one reading per task: a task's seconds run to the next's start
   for (std::size_t i = 0; i < mine.size(); ++i) {
-    const auto at = in_task_order ? static_cast<std::size_t>(mine[i]) : i;
-    run_task(phase, context, task, mine[i], std::span<double>(records + at * record_size, record_size));
-    const auto now = std::chrono::steady_clock::now();
-    seconds[at] = std::chrono::duration<double>(now - last).count();
-    last = now;
+    const auto [record, seconds] = place(i, mine[i]);
+    run_task(phase, context, task, mine[i], std::span<double>(record, record_size));
+    *seconds = clock.lap();
+    done(i, mine[i]);
   }
 }
 
@@ -192,12 +193,16 @@ void MpiExecutor::run(Phase phase_enum, std::span<const double> context, int tas
   seconds.resize(static_cast<std::size_t>(task_count));
   // The master's own tasks write their records in place (whole: zero beyond what they use, as a
   // worker's placed ones are).
-  evaluate_own(phase, context, rs, task, records.data(), seconds.data(), true);
+  evaluate_own(phase, context, rs, task, [&](std::size_t, int t) {
+    return std::pair{records.data() + static_cast<std::size_t>(t) * rs, seconds.data() + t};
+  }, [](std::size_t, int) {});
   std::vector<double> busy(static_cast<std::size_t>(size()), 0.0);
   for (const int t : tasks_of_[phase][0]) busy[0] += seconds[static_cast<std::size_t>(t)];
   const auto run_one = [&](int t, std::span<double> record) { run_task(phase, context, task, t, record); };
   if (tail_.has_tail(phase) && policy_.capacity()[0] > 0)  // not with --master-share 0
-    busy[0] += tail_.evaluate(phase, rs, run_one, records.data(), seconds.data());
+    busy[0] += tail_.evaluate(phase, rs, run_one, records.data(), seconds.data(), [&] {
+      return replies_.through_window() && replies_.place_announced(phase, tasks_of_[phase], evaluation_, records, seconds, busy);
+    });
   if (size() > 1) replies_.collect(phase, tasks_of_[phase], requests, request_rank, evaluation_, records, seconds, busy);
   if (tail_.has_tail(phase)) tail_.collect(phase, rs, records, seconds, busy);
   account(phase, context, busy, RankWatch::now_seconds() - wall_start);
@@ -268,19 +273,42 @@ void MpiExecutor::serve(const TaskCatalogue& catalogue, const OutputHandler& on_
         command.task_count != catalogue.task_count)
       watch_.fail(std::string("rank 0 asks for ") + phase_name(phase) + " tasks this rank's catalogue does not have");
     evaluation_ = command.number;
-    const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank())];
     const auto rs = static_cast<std::size_t>(command.record_size);
-    replies_.expect_subtree(phase, tasks_of_[phase]);  // received while it computes
-    full.resize(mine.size() * rs);
-    seconds.resize(mine.size());
-    const auto context = channel_.payload();
-    evaluate_own(phase, context, rs, function, full.data(), seconds.data(), false);
-    const auto run_one = [&](int t, std::span<double> record) { run_task(phase, context, function, t, record); };
-    if (tail_.has_tail(phase)) tail_.evaluate(phase, rs, run_one, nullptr, nullptr);
-    replies_.send(phase, tasks_of_[phase], full.data(), seconds.data(), evaluation_);
-    if (on_output && phase == static_cast<int>(Phase::rhs))  // what an output command would sample
+    serve_evaluation(phase, rs, function, full, seconds);
+    if (on_output && phase == static_cast<int>(Phase::rhs)) {  // what an output command would sample
+      const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank())];
+      if (replies_.through_window())  // the records are in their slots: after the reply, off rank 0's way
+        for (std::size_t i = 0; i < mine.size(); ++i) std::copy_n(replies_.slot_of(phase, mine[i]) + 2, rs, full.data() + i * rs);
       keep_whole_pieces(catalogue.parent, piece_tasks, mine, full, rs, last_rhs_tasks_, last_rhs_records_);
+    }
   }
+}
+
+void MpiExecutor::serve_evaluation(int phase, std::size_t rs, const TaskFunction& function, std::vector<double>& full,
+                                   std::vector<double>& seconds) {
+  const auto& mine = tasks_of_[phase][static_cast<std::size_t>(rank())];
+  replies_.expect_subtree(phase, tasks_of_[phase]);  // received while it computes
+  full.resize(mine.size() * rs);
+  seconds.resize(mine.size());
+  const auto context = channel_.payload();
+  if (replies_.through_window()) {
+    const std::size_t stride = NodeWindow::slot_stride(rs);
+    std::vector<double> scratch(stride, 0.0);
+    scratch[0] = rank();
+    evaluate_own(phase, context, rs, function, [&](std::size_t, int) { return std::pair{scratch.data() + 2, scratch.data() + 1}; },
+                 [&](std::size_t, int t) {  // the lines that hold what crosses ranks (catalogue's used size)
+                   const auto used = static_cast<std::size_t>(catalogue_.used(phase, t));
+                   NodeWindow::stream_slot(replies_.slot_of(phase, t), scratch.data(), NodeWindow::whole_lines(2 + used));
+                 });
+    replies_.fixed_done(evaluation_);  // rank 0 may place them between its tail tasks
+  } else {
+    evaluate_own(phase, context, rs, function, [&](std::size_t i, int) {
+      return std::pair{full.data() + i * rs, seconds.data() + i};
+    }, [](std::size_t, int) {});
+  }
+  const auto run_one = [&](int t, std::span<double> record) { run_task(phase, context, function, t, record); };
+  if (tail_.has_tail(phase)) tail_.evaluate(phase, rs, run_one, nullptr, nullptr, [] { return false; });
+  replies_.send(phase, tasks_of_[phase], full.data(), seconds.data(), evaluation_);
 }
 
 }  // namespace raceway::scheduler

@@ -141,10 +141,16 @@ class MpiExecutor final : public Executor {
   /// would wait for its record for ever).
   void run_task(int phase, std::span<const double> context, const TaskFunction& function, int task,
                 std::span<double> record) const;
-  /// This rank's fixed list of the phase's plan: records and seconds in task order (at task t) or
-  /// packed in the order of the rank's list.
+  /// This rank's fixed list of the phase's plan: the i-th task t's record (record_size doubles) and
+  /// seconds where place(i, t) says ({record, seconds}: rank 0's in task order, a worker's in the
+  /// order of its list or in a scratch slot), then done(i, t) (a worker streams the scratch slot
+  /// into the node window).
+  template <class Place, class Done>
   void evaluate_own(int phase, std::span<const double> context, std::size_t record_size, const TaskFunction& task,
-                    double* records, double* seconds, bool in_task_order) const;
+                    Place place, Done done) const;
+  /// Worker: its part of an evaluation (fixed list, tail, reply); the records it evaluated into `full`.
+  void serve_evaluation(int phase, std::size_t record_size, const TaskFunction& function, std::vector<double>& full,
+                        std::vector<double>& seconds);
   /// Master, after an evaluation: the cost model and the schedule log.
   void account(int phase, std::span<const double> context, const std::vector<double>& busy, double wall);
 

@@ -57,9 +57,39 @@ void ReplyExchange::place_record(int phase, int task, int w, const double* value
   busy[static_cast<std::size_t>(w)] += task_seconds;
 }
 
+void ReplyExchange::place_slots(int phase, const std::vector<int>& list, int w, std::vector<double>& records,
+                                std::vector<double>& seconds, std::vector<double>& busy) const {
+  const std::size_t stride = NodeWindow::slot_stride(catalogue_.record_size[static_cast<std::size_t>(phase)]);
+  for (const int task : list) {
+    const double* slot = window_->slot(task, stride);
+    place_record(phase, task, w, slot + 2, slot[1], records, seconds, busy);
+  }
+}
+
+bool ReplyExchange::place_announced(int phase, const RankTaskLists& lists, long evaluation, std::vector<double>& records,
+                                    std::vector<double>& seconds, std::vector<double>& busy) {
+  bool placed = false;
+  for (int w = 1; w < watch_.size(); ++w) {
+    auto& done = placed_[static_cast<std::size_t>(w)];
+    if (done || load_word(window_->reply_line(w, NodeWindow::fixed_word)) < evaluation) continue;
+    window_->sync();  // the word before the slots
+    place_slots(phase, lists[static_cast<std::size_t>(w)], w, records, seconds, busy);
+    done = placed = true;
+  }
+  return placed;
+}
+
+void ReplyExchange::fixed_done(long evaluation) const {
+  window_->sync();  // the slots before the word
+  store_word(window_->reply_line(watch_.rank(), NodeWindow::fixed_word), evaluation);
+}
+
 void ReplyExchange::post_receives(int phase, const RankTaskLists& lists, std::vector<MPI_Request>& requests,
                                   std::vector<int>& ranks) {
-  if (window_) return;
+  if (window_) {
+    placed_.assign(static_cast<std::size_t>(watch_.size()), 0);
+    return;
+  }
   for (const int c : tree_children(0, watch_.size())) {
     auto& buf = receive_[static_cast<std::size_t>(c)];
     buf.resize(subtree_reply_size(phase, lists, c));
@@ -77,10 +107,7 @@ void ReplyExchange::collect(int phase, const RankTaskLists& lists, std::vector<M
     channel_.replies_in();  // a worker takes a command before it replies to it
     window_->sync();        // the words before the slots
     for (int w = 1; w < watch_.size(); ++w)
-      for (const int task : lists[static_cast<std::size_t>(w)]) {
-        const double* slot = window_->slot(task);
-        place_record(phase, task, w, slot + 2, slot[1], records, seconds, busy);
-      }
+      if (!placed_[static_cast<std::size_t>(w)]) place_slots(phase, lists[static_cast<std::size_t>(w)], w, records, seconds, busy);
     return;
   }
   if (!requests.empty())
@@ -115,18 +142,16 @@ void ReplyExchange::expect_subtree(int phase, const RankTaskLists& lists) {
   }
 }
 
+double* ReplyExchange::slot_of(int phase, int task) const {
+  return window_->slot(task, NodeWindow::slot_stride(catalogue_.record_size[static_cast<std::size_t>(phase)]));
+}
+
 void ReplyExchange::send(int phase, const RankTaskLists& lists, const double* full, const double* seconds,
                          long evaluation) {
   const int rank = watch_.rank();
   const auto& mine = lists[static_cast<std::size_t>(rank)];
   const auto rs = static_cast<std::size_t>(catalogue_.record_size[static_cast<std::size_t>(phase)]);
-  if (window_) {  // the records and seconds into their slots, then the reply word
-    for (std::size_t i = 0; i < mine.size(); ++i) {
-      double* slot = window_->slot(mine[i]);
-      slot[0] = rank;
-      slot[1] = seconds[i];
-      std::copy_n(full + i * rs, catalogue_.used(phase, mine[i]), slot + 2);
-    }
+  if (window_) {  // the tasks wrote their records and seconds into their slots: the reply word
     window_->sync();  // the slots before the word
     store_word(window_->reply_line(rank, NodeWindow::reply_word), evaluation);
     return;

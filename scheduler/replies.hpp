@@ -56,9 +56,24 @@ class ReplyExchange {
   void collect(int phase, const RankTaskLists& lists, std::vector<MPI_Request>& requests, const std::vector<int>& ranks,
                long evaluation, std::vector<double>& records, std::vector<double>& seconds, std::vector<double>& busy);
 
+  /// Master, through the window, between its own tail tasks: places the fixed lists of the workers
+  /// that have announced theirs (fixed_done) for this evaluation and were not placed yet, so that
+  /// the copy out of the window is part of what the tail balances. True when it placed one.
+  bool place_announced(int phase, const RankTaskLists& lists, long evaluation, std::vector<double>& records,
+                       std::vector<double>& seconds, std::vector<double>& busy);
+  /// Worker, through the window, after its fixed list: its slots are written (fixed_word).
+  void fixed_done(long evaluation) const;
+
   /// Worker, before it computes: posts the receives of its subtree's replies (tree).
   void expect_subtree(int phase, const RankTaskLists& lists);
-  /// Worker, after: its tasks' `full` records and `seconds` (in the order of its list) to rank 0.
+  /// Both: the replies go through the node window. A worker's tasks then write their records and
+  /// seconds straight into their slots (slot_of) as they run, each record while it is fresh in the
+  /// worker's cache, and its reply is one word; by message a worker packs them after its last task.
+  bool through_window() const { return window_ != nullptr; }
+  /// Worker, through the window: task `task`'s slot in `phase` (NodeWindow::slot).
+  double* slot_of(int phase, int task) const;
+  /// Worker, after: its tasks' `full` records and `seconds` (in the order of its list) to rank 0
+  /// (through the window: they are in the slots already, and `full` and `seconds` are not read).
   void send(int phase, const RankTaskLists& lists, const double* full, const double* seconds, long evaluation);
 
  private:
@@ -67,6 +82,9 @@ class ReplyExchange {
   std::size_t subtree_reply_size(int phase, const RankTaskLists& lists, int r) const;
   void place_record(int phase, int task, int w, const double* values, double task_seconds, std::vector<double>& records,
                     std::vector<double>& seconds, std::vector<double>& busy) const;
+  /// Master, through the window: worker w's fixed list from its slots into place.
+  void place_slots(int phase, const std::vector<int>& list, int w, std::vector<double>& records,
+                   std::vector<double>& seconds, std::vector<double>& busy) const;
 
   MPI_Comm comm_;
   const RankWatch& watch_;
@@ -74,6 +92,7 @@ class ReplyExchange {
   const TaskCatalogue& catalogue_;
   const NodeWindow* window_ = nullptr;  ///< the shared exchange's, else nullptr (messages)
   std::vector<std::vector<double>> receive_;  ///< master: per child its subtree's reply
+  std::vector<char> placed_;                   ///< master, through the window: per worker, its fixed list placed
   std::vector<double> reply_;                  ///< worker: its subtree's reply
   std::vector<MPI_Request> from_;              ///< worker: its children's replies
 };

@@ -1,6 +1,5 @@
-#include <chrono>
-
 #include "scheduler/executor.hpp"
+#include "scheduler/task_clock.hpp"
 
 namespace raceway::scheduler {
 
@@ -11,14 +10,11 @@ void SerialExecutor::run(Phase phase, std::span<const double> context, int task_
   const int p = static_cast<int>(phase);
   records.resize(static_cast<std::size_t>(task_count) * record_size);
   seconds_[p].resize(task_count);
-  using clock = std::chrono::steady_clock;
-  auto last = clock::now();
+  TaskClock clock;
   for (int i = 0; i < task_count; ++i) {
     task(context, i, std::span<double>(records.data() + static_cast<std::size_t>(i) * record_size, record_size));
-    const auto now = clock::now();
-    seconds_[p][i] = std::chrono::duration<double>(now - last).count();
+    seconds_[p][i] = clock.lap();
     totals_[p] += seconds_[p][i];
-    last = now;
   }
   ++runs_[p];
 }

@@ -20,9 +20,10 @@ void SharedTail::mark(std::vector<int>& owner, std::span<const double> cost) con
 void SharedTail::collect(int phase, std::size_t record_size, std::vector<double>& records, std::vector<double>& seconds,
                          std::vector<double>& busy) const {
   window_->sync();  // every reply is in: the workers' slots are written
+  const std::size_t stride = NodeWindow::slot_stride(record_size);
   for (const int task : parts_[phase].tasks) {
     const auto t = static_cast<std::size_t>(task);
-    const double* slot = window_->slot(task);
+    const double* slot = window_->slot(task, stride);
     const auto r = static_cast<std::size_t>(slot[0]);
     if (r == 0) continue;  // rank 0's own, already in place
     std::copy_n(slot + 2, record_size, records.data() + t * record_size);
