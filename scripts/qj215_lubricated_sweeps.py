@@ -91,27 +91,9 @@ def plot(all_points, path):
 
 
 def plot_orbits(path, specs):
-    import h5py
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(specs), figsize=(3.2 * len(specs), 3.6), squeeze=False)
-    for ax, spec in zip(axes[0], specs):
-        label, _, h5_path = spec.partition("=")
-        with h5py.File(h5_path, "r") as f:
-            p = 1e6 * f["cage/position"][:, :2]
-        start = 2 * len(p) // 3
-        ax.plot(p[:start + 1, 0], p[:start + 1, 1], color="0.75", lw=0.4)
-        ax.plot(p[start:, 0], p[start:, 1], lw=0.6)
-        reach = 1.1 * float(np.max(np.abs(p)))
-        ax.set_aspect("equal")
-        ax.set_xlim(-reach, reach)
-        ax.set_ylim(-reach, reach)
-        ax.set_title(f"{label}\nlast third within {float(np.max(np.hypot(*p[start:].T))):.2g} um", fontsize=8)
-        ax.set_xlabel("x, um")
-    axes[0][0].set_ylabel("y, um")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    """Each run's orbit at its own scale, the last third (these campaigns' window) in colour."""
+    from qj215_whirl_compare import plot_orbits as draw  # the dry campaigns' drawing, at another scale
+    draw(path, specs, clearance_um=None, window_from=(2, 3))
 
 
 def main(argv):

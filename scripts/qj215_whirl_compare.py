@@ -206,7 +206,11 @@ def plot(axis, stats, rows, path, rtol_rows=()):
     fig.savefig(path, dpi=110)
 
 
-def plot_orbits(path, specs, clearance_um=100.0):
+def plot_orbits(path, specs, clearance_um=100.0, window_from=(1, 2)):
+    """The cage centre's orbit of each LABEL=RUN.h5 in `specs`: the run up to window_from (a fraction,
+    numerator and denominator) of its samples grey, the rest (the metrics' window) in colour. With
+    clearance_um, the guiding gap drawn and every run at its scale; with None, each run at its own
+    scale and the title saying how far its window reaches."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -216,14 +220,18 @@ def plot_orbits(path, specs, clearance_um=100.0):
         label, _, h5_path = spec.partition("=")
         with h5py.File(h5_path, "r") as f:
             p = 1e6 * f["cage/position"][:, :2]
-        half = len(p) // 2
-        ax.plot(clearance_um * np.cos(circle), clearance_um * np.sin(circle), "k--", lw=0.6)
-        ax.plot(p[:half + 1, 0], p[:half + 1, 1], color="0.75", lw=0.4)
-        ax.plot(p[half:, 0], p[half:, 1], lw=0.6)
+        start = window_from[0] * len(p) // window_from[1]
+        if clearance_um is not None:
+            ax.plot(clearance_um * np.cos(circle), clearance_um * np.sin(circle), "k--", lw=0.6)
+        ax.plot(p[:start + 1, 0], p[:start + 1, 1], color="0.75", lw=0.4)
+        ax.plot(p[start:, 0], p[start:, 1], lw=0.6)
+        reach = 1.15 * clearance_um if clearance_um is not None else 1.1 * float(np.max(np.abs(p)))
         ax.set_aspect("equal")
-        ax.set_xlim(-1.15 * clearance_um, 1.15 * clearance_um)
-        ax.set_ylim(-1.15 * clearance_um, 1.15 * clearance_um)
-        ax.set_title(label, fontsize=8)
+        ax.set_xlim(-reach, reach)
+        ax.set_ylim(-reach, reach)
+        title = label if clearance_um is not None else \
+            f"{label}\nlast third within {float(np.max(np.hypot(*p[start:].T))):.2g} um"
+        ax.set_title(title, fontsize=8)
         ax.set_xlabel("x, um")
     axes[0][0].set_ylabel("y, um")
     fig.tight_layout()
