@@ -21,6 +21,7 @@
 #include "solver/bearing/body_dynamics.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/race_defects.hpp"
+#include "tests/support/tapered_30206_scene.hpp"
 #include "solver/bearing/startup.hpp"
 
 namespace raceway::bearing {
@@ -119,43 +120,6 @@ TEST(RollerDefect, StepLimitStopsAtTheContact) {
   EXPECT_NEAR(spall_step_limit(m, 0.0, z.data()), 2 * half / spin / steps_within_spall, 1e-12);
 }
 
-constexpr const char* kTapered = R"(
-[scene]
-name = "tapered roller spall"
-end_time = "0.01 s"
-output_interval = "1 ms"
-model = "spatial"
-[bearing]
-type = "tapered_roller"
-rolling_elements = 17
-roller_diameter = "7.5 mm"
-roller_length = "12 mm"
-pitch_diameter = "46 mm"
-cup_angle = "14 deg"
-inner_bore_diameter = "30 mm"
-outer_outside_diameter = "62 mm"
-ring_width = "16 mm"
-corner_radius = "0.6 mm"
-roller_end = "spherical"
-rib_angle = "1 deg"
-[cage]
-guidance = "rolling_element"
-pocket_clearance = "0.3 mm"
-material = "steel"
-[inner_ring]
-motion = "driven"
-speed = "3000 rpm"
-translation = "free"
-axial = "free"
-load = { fy = "-4 kN", fz = "-3 kN" }
-[outer_ring]
-motion = "fixed"
-[contact.roller_race]
-slices = 12
-[rolling_element]
-spall = { element = 0, angle = "90 deg", length = "0.5 mm", width = "4 mm", depth = "0.1 mm" }
-)";
-
 // The 30206's roller 0 seated (at azimuth 0, its spall 90 degrees from both contacts), then turned
 // about its axis through a whole turn in 7200 steps: the drop of its middle slice's approach (against
 // the same law without the defect) on the cone and on the cup. Each is one run of turn angles, of
@@ -163,7 +127,10 @@ spall = { element = 0, angle = "90 deg", length = "0.5 mm", width = "4 mm", dept
 // contact direction lies within it), and the two runs' centres lie half a turn apart (within two
 // steps): the two contacts face each other across the roller.
 TEST(RollerDefect, TaperedSpallMeetsConeAndCupOncePerTurn) {
-  const Model m = build_model(scene::parse_scene(kTapered, "tapered"));
+  const std::string spall =
+      "[rolling_element]\nspall = { element = 0, angle = \"90 deg\", length = \"0.5 mm\", width = \"4 mm\", "
+      "depth = \"0.1 mm\" }\n";
+  const Model m = build_model(scene::parse_scene(test::tapered_30206_scene("", spall), "tapered"));
   ASSERT_EQ(m.block_size, 12);
   std::vector<double> z = initial_state(m, 0.0).state;
   const Body& roller = m.bodies[std::size_t(m.first_element)];

@@ -21,6 +21,7 @@
 #include "io/scene/scene_parser.hpp"
 #include "solver/bearing/model.hpp"
 #include "solver/bearing/startup.hpp"
+#include "tests/support/tapered_30206_scene.hpp"
 
 namespace raceway::bearing {
 namespace {
@@ -150,42 +151,6 @@ TEST(RollerScatter, LargerRollerCarriesWhatTheLineContactGives) {
 
 namespace raceway::bearing {
 namespace {
-constexpr const char* kTapered = R"(
-[scene]
-name = "tapered scatter"
-end_time = "0.01 s"
-output_interval = "1 ms"
-model = "spatial"
-[bearing]
-type = "tapered_roller"
-rolling_elements = 17
-roller_diameter = "7.5 mm"
-roller_length = "12 mm"
-pitch_diameter = "46 mm"
-cup_angle = "14 deg"
-inner_bore_diameter = "30 mm"
-outer_outside_diameter = "62 mm"
-ring_width = "16 mm"
-corner_radius = "0.6 mm"
-roller_end = "spherical"
-rib_angle = "1 deg"
-)";
-constexpr const char* kTaperedRest = R"(
-[cage]
-guidance = "rolling_element"
-pocket_clearance = "0.3 mm"
-material = "steel"
-[inner_ring]
-motion = "driven"
-speed = "3000 rpm"
-translation = "free"
-axial = "free"
-load = { fy = "-4 kN", fz = "-3 kN" }
-[outer_ring]
-motion = "fixed"
-[contact.roller_race]
-slices = 12
-)";
 
 /// Roller k's middle slices' approaches on cone and cup at the state z.
 std::pair<double, double> middle_approaches(const Model& m, const std::vector<double>& z, int k) {
@@ -210,9 +175,9 @@ std::pair<double, double> middle_approaches(const Model& m, const std::vector<do
 // inner ring yields, its other 16 rollers taking up a part (its neighbours lose 70 to 80 N each). So
 // the change must lie between 80 % and 100 % of the held-ring value, and the neighbours carry less.
 TEST(RollerScatter, TaperedLargerRollerCarriesMore) {
-  const Model nominal = build_model(scene::parse_scene(std::string(kTapered) + kTaperedRest, "nominal"));
+  const Model nominal = build_model(scene::parse_scene(test::tapered_30206_scene(), "nominal"));
   const Model larger =
-      build_model(scene::parse_scene(std::string(kTapered) + one_larger(17, 13, "2 um") + kTaperedRest, "larger"));
+      build_model(scene::parse_scene(test::tapered_30206_scene(one_larger(17, 13, "2 um")), "larger"));
   const double gamma = 0.5 * (larger.cup_angle - larger.cone_angle);
   for (std::size_t j = 0; j < larger.segments.size(); ++j) {
     const Segment& seg = larger.segments[j];
