@@ -162,6 +162,19 @@ void set_roller_radii(Model& m, const scene::BearingGeometry& g) {
   for (const double deviation : g.roller_diameter_deviations) m.element_radii.push_back(0.5 * (g.roller_diameter + deviation));
 }
 
+void scale_scattered_rollers(Model& m, double nominal_mass, double r_small, double r_large, double length) {
+  if (m.element_radii.empty()) return;
+  const double nominal_square = (r_small * r_small + r_small * r_large + r_large * r_large) / 3.0;
+  for (Body& b : m.bodies) {
+    if (b.kind != BodyKind::rolling_element) continue;
+    const double grow = m.radius_of_element(b.index) - m.element_radius, a = r_small + grow, c = r_large + grow;
+    const double square = (a * a + a * c + c * c) / 3.0;  // the sections' mean square radius
+    b.mass = nominal_mass * square / nominal_square;
+    b.axial_inertia = 0.5 * b.mass * square;
+    if (b.transverse_inertia > 0) b.transverse_inertia = b.mass * (3.0 * square + length * length) / 12.0;
+  }
+}
+
 std::string describe_roller_diameters(const Model& m) {
   if (m.element_radii.empty()) return {};
   const scene::BearingGeometry& g = m.params().bearing;

@@ -289,6 +289,11 @@ void (*spatial_roller_states(bool spin_angle))(Model&, Body&);
 /// Roller bearings with a diameter scatter ([bearing] roller_diameter_deviations): each roller's
 /// radius, roller_diameter / 2 plus half its deviation, into m.element_radii (left empty without one).
 void set_roller_radii(Model& m, const scene::BearingGeometry& g);
+/// A diameter scatter's rollers (m.element_radii): each one's mass and inertias from its own sections,
+/// every section's radius grown by the roller's radius less the nominal one (a frustum of end radii
+/// r_small, r_large and the given length; a cylinder's are equal). Planar rollers (no transverse
+/// inertia) keep none. Nothing without a scatter.
+void scale_scattered_rollers(Model& m, double nominal_mass, double r_small, double r_large, double length);
 /// `raceway check`'s line for the rollers' diameters, each deviation in micrometres; empty without a scatter.
 std::string describe_roller_diameters(const Model& m);
 

@@ -90,25 +90,13 @@ void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   add_cage_bridges(m, scene, geo.r_out - geo.r_in);
 }
 
-/// A scattered roller's mass and inertias follow its own diameter (a solid cylinder of the length l).
-void scale_rollers(Model& m, double nominal_mass, double l) {
-  if (m.element_radii.empty()) return;
-  for (Body& b : m.bodies) {
-    if (b.kind != BodyKind::rolling_element) continue;
-    const double r = m.radius_of_element(b.index), scale = r / m.element_radius;
-    b.mass = nominal_mass * scale * scale;
-    b.axial_inertia = 0.5 * b.mass * r * r;
-    if (b.transverse_inertia > 0) b.transverse_inertia = b.mass * (3.0 * r * r + l * l) / 12.0;
-  }
-}
-
 void add_rollers(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double rr = m.element_radius;
   const double roller_mass = scene.material(g.roller_material).density * pi * rr * rr * g.roller_length;
   add_rolling_elements(m, "roller", roller_mass, 0.5 * roller_mass * rr * rr, 0.0,
                        [](Model& model, Body& r) { add_planar_states(model, r, true, false, true); });
-  scale_rollers(m, roller_mass, g.roller_length);
+  scale_scattered_rollers(m, roller_mass, rr, rr, g.roller_length);
 }
 
 /// Line-contact law and traction of one contact: derived constants once, here.

@@ -137,14 +137,7 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double mass = scene.material(g.roller_material).density * pi * rr * rr * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * rr * rr, mass * (3.0 * rr * rr + l * l) / 12.0,
                        spatial_roller_states(scene.rolling_element.any()));
-  if (m.element_radii.empty()) return;
-  for (Body& b : m.bodies) {  // a scattered roller's mass and inertias follow its own diameter
-    if (b.kind != BodyKind::rolling_element) continue;
-    const double r = m.radius_of_element(b.index);
-    b.mass = mass * (r / rr) * (r / rr);
-    b.axial_inertia = 0.5 * b.mass * r * r;
-    b.transverse_inertia = b.mass * (3.0 * r * r + l * l) / 12.0;
-  }
+  scale_scattered_rollers(m, mass, rr, rr, l);
 }
 
 /// The roller's profile (BearingGeometry::roller_profile) with the races' modulus.

@@ -150,15 +150,7 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const double mass = scene.material(scene.bearing.roller_material).density * pi * mean_square * l;
   add_rolling_elements(m, "roller", mass, 0.5 * mass * mean_square, mass * (3.0 * mean_square + l * l) / 12.0,
                        spatial_roller_states(scene.rolling_element.any()));
-  if (m.element_radii.empty()) return;
-  for (Body& b : m.bodies) {  // a scattered roller: every section's radius grows by half its deviation
-    if (b.kind != BodyKind::rolling_element) continue;
-    const double grow = m.radius_of_element(b.index) - m.element_radius, a = r1 + grow, c = r2 + grow;
-    const double square = (a * a + a * c + c * c) / 3.0;
-    b.mass = mass * square / mean_square;
-    b.axial_inertia = 0.5 * b.mass * square;
-    b.transverse_inertia = b.mass * (3.0 * square + l * l) / 12.0;
-  }
+  scale_scattered_rollers(m, mass, r1, r2, l);
 }
 
 /// The cone's back rib against the large end, placed so that a nominal roller just touches it.
