@@ -150,6 +150,47 @@ def case_motion_thresholds():
         pass
 
 
+# ---- a sub-synchronous whirl over 2 s at 5 kHz, the cage at 20 Hz (40 revolutions) -------------------
+TG = np.arange(10000) * 2e-4
+OMEGA_G = 2 * math.pi * 20.0
+
+
+def whirl_with_subsync(growth, amplitude, ratio=0.58):
+    """A synchronous circle of 1 um plus a whirl at `ratio` of the cage speed, `amplitude` [m] at the
+    start, growing `growth` per cage revolution, with 0.05 um of noise."""
+    rev = OMEGA_G * TG / (2 * math.pi)
+    z = 1e-6 * np.exp(1j * OMEGA_G * TG) + amplitude * np.exp(growth * rev) * np.exp(1j * ratio * OMEGA_G * TG)
+    noise = 5e-8 * np.random.default_rng(11).standard_normal((2, TG.size))
+    z = z + noise[0] + 1j * noise[1]
+    return cm.classify(TG, z.real, z.imag, C, OMEGA_G, pockets=9)
+
+
+def case_motion_growth():
+    """A half-speed whirl growing 0.018 per cage revolution (as the QJ215's at 1000 N, 3000 r/min) is
+    unstable, the same decaying is stable, a synchronous circle is stable; the thresholds move it."""
+    m = whirl_with_subsync(0.018, 2e-6)
+    print(f"growing whirl: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.4g} per revolution, "
+          f"amplitude {m['subsync_amplitude_ratio']:.3g} c at {m['subsync_frequency_ratio']:.3g} of the cage speed, "
+          f"rho {m['orbit_ratio']:.3g}")
+    check(m["motion_class"] == "unstable" and "sub-synchronous" in m["reasons"][0], f"growing whirl: {m['reasons']}")
+    check(abs(m["subsync_growth_per_rev"] - 0.018) < 0.0005, f"growth {m['subsync_growth_per_rev']} != 0.018")
+    check(abs(m["subsync_frequency_ratio"] - 0.58) < 0.05, f"frequency ratio {m['subsync_frequency_ratio']}")
+    check(m["orbit_ratio"] < 0.2, f"the growing whirl is still inside the stable orbit ratio: {m['orbit_ratio']}")
+    m = whirl_with_subsync(-0.018, 6e-6)
+    print(f"decaying whirl: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.4g}")
+    check(m["motion_class"] == "stable" and abs(m["subsync_growth_per_rev"] + 0.018) < 0.0005, f"decaying: {m}")
+    m = whirl_with_subsync(0.0, 0.0)
+    print(f"synchronous circle: {m['motion_class']}, sub-synchronous amplitude {m['subsync_amplitude_ratio']:.3g} c")
+    check(m["motion_class"] == "stable" and m["subsync_amplitude_ratio"] < 1e-3, f"synchronous circle: {m}")
+    m = whirl_with_subsync(0.018, 0.2e-6)  # grows to 0.4 um: below 0.01 c
+    check(m["motion_class"] == "stable" and m["subsync_growth_per_rev"] > 0.01, f"a tiny growing whirl: {m}")
+    for overrides in ({"whirl_growth_rate": 0.02}, {"whirl_growth_min_amplitude": 0.1}):
+        cls = cm.classify_metrics(whirl_with_subsync(0.018, 2e-6), overrides)[0]
+        check(cls == "stable", f"growing whirl with {overrides}: {cls}")
+    m = classify(*circular_whirl())  # 10 cage revolutions: fewer than 3 segments of 4, no growth measured
+    check(math.isnan(m["subsync_growth_per_rev"]) and m["motion_class"] == "circling", f"short window: {m}")
+
+
 def case_certify():
     s = ac.settled([0.10, 0.12, 0.11], ["stable"] * 3, "stable", 0.05)
     check(s["ok"] and abs(s["largest_step"] - 0.02) < 1e-12, f"blocks within tolerance: {s}")
@@ -168,6 +209,8 @@ def case_certify():
     check(s["ok"] and s["orbit_growth"] == 1.0, f"a steady orbit failed: {s}")
     s = ac.settled([0.010, 0.010, 0.010], ["stable"] * 3, "stable", 0.05, [3.0e-6, 3.3e-6, 3.6e-6], 0.25)
     check(s["ok"] and abs(s["orbit_growth"] - 1.2) < 1e-12, f"growth 1.2 failed a tolerance of 0.25: {s}")
+    s = ac.settled([0.010, 0.012, 0.014], ["unstable"] * 3, "unstable", 0.05, [3.0e-6, 4.3e-6, 6.1e-6], 0.25)
+    check(s["ok"] and abs(s["orbit_growth"] - 6.1 / 3.0) < 1e-12, f"an unstable point's growth unsettled it: {s}")
     check([i for i in range(10) if ac.in_convergence_sample(i, 0.25)] == [0, 4, 8], "every 4th point rerun")
     check(not any(ac.in_convergence_sample(i, 0.0) for i in range(10)), "a zero sample reruns points")
     c = ac.converged("unstable", 0.40, "unstable", 0.43, 1e-7, 0.05)
@@ -494,6 +537,7 @@ def case_shipped_files():
 
 
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
+         "motion_growth": case_motion_growth,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
          "search_stop": case_search_stop, "search_ends": case_search_ends,
          "bad_files": case_bad_files, "run_6205": case_run_6205,
