@@ -225,6 +225,31 @@ def case_certify():
     check(ac.certified(cert) and "3 realisations" in ac.summary(cert), f"summary {ac.summary(cert)}")
 
 
+def case_windows():
+    """A window in cage revolutions: each point's settling and end time from its kinematic cage speed."""
+    from atlas_file import read_atlas_file
+    from atlas_models import PointFailed, revolution_times
+    speed = 2 * math.pi * 20.0  # 20 cage revolutions a second: 0.05 s each
+    for s in (speed, -speed):
+        settling, end = revolution_times(s, 10, 30)
+        check(abs(settling - 0.5) < 1e-12 and abs(end - 2.0) < 1e-12, f"10 + 30 revolutions at {s}: {settling}, {end}")
+    settling, end = revolution_times(8 * speed, 10, 30)  # eight times the speed: an eighth of the time
+    check(abs(settling - 0.0625) < 1e-12 and abs(end - 0.25) < 1e-12, f"at 8 times the speed: {settling}, {end}")
+    try:
+        revolution_times(0.0, 10, 30)
+        check(False, "a cage at rest got a window in revolutions")
+    except PointFailed:
+        pass
+    with tempfile.TemporaryDirectory() as tmp:
+        text = STANDIN_ATLAS.replace('end_time = "20 ms"\nsettling_time = "10 ms"',
+                                     'settling_cage_revolutions = 10\nwindow_cage_revolutions = 30')
+        a = read_atlas_file(write_atlas(tmp, text))
+        check(a["settling_cage_revolutions"] == 10 and a["window_cage_revolutions"] == 30 and a["end_time_s"] is None,
+              f"revolution keys read: {a['settling_cage_revolutions']}, {a['window_cage_revolutions']}")
+        a = read_atlas_file(write_atlas(tmp, STANDIN_ATLAS))
+        check(a["window_cage_revolutions"] is None and abs(a["end_time_s"] - 0.02) < 1e-15, "end_time read")
+
+
 def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 401)):
     """Largest error over the speeds of the load at which the classifier's class turns stable."""
     grid = np.array([[a, b] for a in speeds for b in loads])
@@ -456,6 +481,14 @@ def case_bad_files():
     bad_in_file(good + "\n[thresholds]\ncircling_sigma_v = -1\n", 26, "thresholds.circling_sigma_v", ["at least 0"])
     bad_in_file(good.replace('batch_size = 4', 'batch_size = 4\nset = {{ "inner_ring.speed" = "1 rpm" }}'), 9,
                 "atlas.set", ["also a parameter"])
+    revolutions = good.replace('end_time = "20 ms"\nsettling_time = "10 ms"',
+                               'settling_cage_revolutions = 10\nwindow_cage_revolutions = 30')
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30', 'window_cage_revolutions = 0'), 5,
+                "atlas.window_cage_revolutions", ["greater than 0"])
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30\n', ''), 4, "atlas.settling_cage_revolutions",
+                ["needs window_cage_revolutions"])
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30', 'window_cage_revolutions = 30\nend_time = "1 s"'),
+                6, "atlas.end_time", ["kinematic cage speed"])
     # Through the executable: exit 2 before anything is created; values the scene refuses, found by
     # `raceway check` before any point, name the line that set them.
     bad_by_executable(good.replace('end_time = "20 ms"', 'end_time = "20"'), 4, "atlas.end_time", ["positive time"])
@@ -537,7 +570,7 @@ def case_shipped_files():
 
 
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
-         "motion_growth": case_motion_growth,
+         "motion_growth": case_motion_growth, "windows": case_windows,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
          "search_stop": case_search_stop, "search_ends": case_search_ends,
          "bad_files": case_bad_files, "run_6205": case_run_6205,
