@@ -57,6 +57,7 @@ THRESHOLDS = {
     "impact_energy_ratio_min": 0.1,  # ... unless their energy is below this share of the whirl energy
     "whirl_growth_rate": 0.005,    # a sub-synchronous whirl growing faster (per cage revolution) ...
     "whirl_growth_min_amplitude": 0.01,  # ... at an amplitude of at least this share of the clearance: unstable
+    "whirl_sustained_amplitude": 0.05,  # a sub-synchronous whirl this large (share of the clearance), not decaying: unstable
 }
 
 # The sub-synchronous band (whirl frequency / cage frequency, either direction) where an oil whirl
@@ -150,15 +151,19 @@ def subsync_growth(time, x, y, clearance, cage_speed_mean):
     return out
 
 
-def growing_whirl(m, t):
-    """The reason a window's sub-synchronous whirl makes it unstable (it grows faster than
+def oil_whirl(m, t):
+    """The reason a window's sub-synchronous whirl makes it unstable, or None: it grows faster than
     whirl_growth_rate per cage revolution at an amplitude of at least whirl_growth_min_amplitude of
-    the clearance: an oil whirl), or None."""
+    the clearance (an oil whirl setting in), or it is at least whirl_sustained_amplitude of the
+    clearance and decays no faster than whirl_growth_rate (an oil whirl that has grown)."""
     rate, amplitude = m.get("subsync_growth_per_rev", math.nan), m.get("subsync_amplitude_ratio", math.nan)
+    where = f"sub-synchronous whirl at {m.get('subsync_frequency_ratio', math.nan):.3g} of the cage speed"
     if rate > t["whirl_growth_rate"] and amplitude >= t["whirl_growth_min_amplitude"]:
-        return (f"sub-synchronous whirl at {m['subsync_frequency_ratio']:.3g} of the cage speed grows "
-                f"{rate:.3g} > {t['whirl_growth_rate']:.3g} per cage revolution at amplitude {amplitude:.3g} "
-                f">= {t['whirl_growth_min_amplitude']:.3g} of the clearance")
+        return (f"{where} grows {rate:.3g} > {t['whirl_growth_rate']:.3g} per cage revolution at amplitude "
+                f"{amplitude:.3g} >= {t['whirl_growth_min_amplitude']:.3g} of the clearance")
+    if amplitude >= t["whirl_sustained_amplitude"] and rate >= -t["whirl_growth_rate"]:
+        return (f"{where} of {amplitude:.3g} >= {t['whirl_sustained_amplitude']:.3g} of the clearance, "
+                f"not decaying (growth {rate:.3g} >= -{t['whirl_growth_rate']:.3g} per cage revolution)")
     return None
 
 
@@ -206,7 +211,7 @@ def classify_metrics(m, overrides=None):
                       and not energy <= t["impact_energy_ratio_min"])  # NaN energy: the rate decides
     impact_note = (f"impact rate {m.get('impact_rate', 0.0):.3g} > {t['impact_rate_max']:.3g} per pocket and "
                    f"revolution at energy ratio {energy:.3g} > {t['impact_energy_ratio_min']:.3g}")
-    growing = growing_whirl(m, t)
+    growing = oil_whirl(m, t)
     if m["orbit_ratio"] < t["stable_orbit_ratio"]:
         if impacts_ok and not growing:
             return "stable", [f"orbit ratio {m['orbit_ratio']:.3g} < {t['stable_orbit_ratio']:.3g}"]

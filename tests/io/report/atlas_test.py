@@ -167,7 +167,8 @@ def whirl_with_subsync(growth, amplitude, ratio=0.58):
 
 def case_motion_growth():
     """A half-speed whirl growing 0.018 per cage revolution (as the QJ215's at 1000 N, 3000 r/min) is
-    unstable, the same decaying is stable, a synchronous circle is stable; the thresholds move it."""
+    unstable, the same decaying is stable, a synchronous circle is stable, a large steady one is
+    unstable; the thresholds move them."""
     m = whirl_with_subsync(0.018, 2e-6)
     print(f"growing whirl: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.4g} per revolution, "
           f"amplitude {m['subsync_amplitude_ratio']:.3g} c at {m['subsync_frequency_ratio']:.3g} of the cage speed, "
@@ -187,6 +188,16 @@ def case_motion_growth():
     for overrides in ({"whirl_growth_rate": 0.02}, {"whirl_growth_min_amplitude": 0.1}):
         cls = cm.classify_metrics(whirl_with_subsync(0.018, 2e-6), overrides)[0]
         check(cls == "stable", f"growing whirl with {overrides}: {cls}")
+    # A whirl that has grown: steady at 8 um (0.08 c, as the QJ215's 15 um at 7125 r/min and 3222 N)
+    # is unstable; steady at 3 um (0.03 c) is stable; the threshold moves it.
+    m = whirl_with_subsync(0.0, 8e-6)
+    print(f"steady whirl of 8 um: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.3g}, "
+          f"amplitude {m['subsync_amplitude_ratio']:.3g} c")
+    check(m["motion_class"] == "unstable" and "not decaying" in m["reasons"][0], f"steady 8 um whirl: {m['reasons']}")
+    check(abs(m["subsync_growth_per_rev"]) < 0.001, f"steady whirl's growth {m['subsync_growth_per_rev']}")
+    check(whirl_with_subsync(0.0, 3e-6)["motion_class"] == "stable", "a steady whirl of 0.03 c not stable")
+    check(cm.classify_metrics(m, {"whirl_sustained_amplitude": 0.2})[0] == "stable",
+          "a steady whirl of 0.08 c with whirl_sustained_amplitude 0.2: not stable")
     m = classify(*circular_whirl())  # 10 cage revolutions: fewer than 3 segments of 4, no growth measured
     check(math.isnan(m["subsync_growth_per_rev"]) and m["motion_class"] == "circling", f"short window: {m}")
 
