@@ -111,11 +111,22 @@ def spectral_peak_share(x, y):
     return float(sum(power[(k + d) % n] for d in (-1, 0, 1)) / total)
 
 
+def without_synchronous(time, z, cage_speed_mean):
+    """z less its least-squares fit by a constant and circles at the cage's speed either way: the
+    unbalance's synchronous circle would otherwise leak into the sub-synchronous band of a segment
+    of a few revolutions (its spectral lines are a quarter of the cage's frequency apart)."""
+    t = time - time[0]
+    basis = np.column_stack([np.ones_like(t), np.exp(1j * cage_speed_mean * t), np.exp(-1j * cage_speed_mean * t)])
+    coefficients, *_ = np.linalg.lstsq(basis, z, rcond=None)
+    return z - basis @ coefficients
+
+
 def subsync_line(time, x, y, cage_speed_mean):
     """Amplitude [m] and frequency / cage frequency (signed: + with the cage) of the strongest line of
-    the centre's displacement (its own mean removed, Hann window: a whirl a e^(i w t) on a spectral
-    bin gives a) with |frequency / cage frequency| in SUBSYNC_BAND; NaN where the band holds no bin."""
-    z = (x - np.mean(x)) + 1j * (y - np.mean(y))
+    the centre's displacement (its own mean and synchronous circle removed, Hann window: a whirl
+    a e^(i w t) on a spectral bin gives a) with |frequency / cage frequency| in SUBSYNC_BAND; NaN
+    where the band holds no bin."""
+    z = without_synchronous(time, x + 1j * y, cage_speed_mean)
     w = np.hanning(len(z))
     spectrum = np.abs(np.fft.fft(z * w)) / np.sum(w)
     ratio = np.fft.fftfreq(len(z), (time[-1] - time[0]) / (len(z) - 1)) * TWO_PI / cage_speed_mean
