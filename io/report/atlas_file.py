@@ -13,8 +13,9 @@ import tomllib
 
 from cage_motion import CLASSES, THRESHOLDS
 
-ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "metric", "classes", "budget_points",
-              "budget_core_hours", "batch_size", "set", "stop_band_share"}
+ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "window_cage_revolutions", "settling_cage_revolutions",
+              "metric", "classes", "budget_points", "budget_core_hours", "batch_size", "set", "stop_band_share"}
+REVOLUTION_KEYS = ("settling_cage_revolutions", "window_cage_revolutions")
 CERTIFY_KEYS = {"blocks", "block_tolerance", "growth_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
                 "realisation_key", "realisations", "ci_target"}
 PARAMETER_KEYS = {"key", "name", "range", "unit"}
@@ -148,6 +149,31 @@ def _certify(c, raw):
     return out
 
 
+def _window(c, raw):
+    """The window: end_time and settling_time (every point), or settling_cage_revolutions and
+    window_cage_revolutions (each point's times from its kinematic cage speed: atlas_models)."""
+    given = [k for k in REVOLUTION_KEYS if k in raw]
+    if not given:
+        w = {"end_time_s": c.time("atlas", "end_time", raw.get("end_time")),
+             "settling_time_s": c.time("atlas", "settling_time", raw.get("settling_time")),
+             "settling_cage_revolutions": None, "window_cage_revolutions": None}
+        if not w["settling_time_s"] < w["end_time_s"]:
+            c.fail("atlas.settling_time", "must be shorter than end_time (the window is what follows it)")
+        return w
+    for key in REVOLUTION_KEYS:
+        if key not in raw:
+            c.fail(f"atlas.{given[0]}", f"needs {key} too (the window in cage revolutions needs both)")
+    for key in ("end_time", "settling_time"):
+        if key in raw:
+            c.fail(f"atlas.{key}", "not with the window in cage revolutions: each point's end time follows "
+                   "from its kinematic cage speed")
+    return {"end_time_s": None, "settling_time_s": None,
+            "settling_cage_revolutions": c.number("atlas", "settling_cage_revolutions",
+                                                  raw["settling_cage_revolutions"], 0),
+            "window_cage_revolutions": c.number("atlas", "window_cage_revolutions", raw["window_cage_revolutions"],
+                                                0, low_open=True)}
+
+
 def _atlas(c, raw, path):
     if not isinstance(raw, dict):
         c.fail("atlas", "the [atlas] table is missing")
@@ -158,11 +184,8 @@ def _atlas(c, raw, path):
     scene = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(path)), scene))
     if not os.path.isfile(scene):
         c.fail("atlas.scene", f"no such file: {scene}")
-    a = {"name": raw.get("name", os.path.splitext(os.path.basename(path))[0]), "scene": scene,
-         "end_time_s": c.time("atlas", "end_time", raw.get("end_time")),
-         "settling_time_s": c.time("atlas", "settling_time", raw.get("settling_time"))}
-    if not a["settling_time_s"] < a["end_time_s"]:
-        c.fail("atlas.settling_time", "must be shorter than end_time (the window is what follows it)")
+    a = {"name": raw.get("name", os.path.splitext(os.path.basename(path))[0]), "scene": scene}
+    a.update(_window(c, raw))
     a["metric"] = raw.get("metric", "cage_dynamics_indicator")
     if a["metric"] not in METRICS:
         c.fail("atlas.metric", f"must be one of {', '.join(METRICS)}, not {a['metric']!r}")

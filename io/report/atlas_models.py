@@ -53,6 +53,16 @@ def unit_value(value, unit):
     return f"{value:.10g} {unit}"
 
 
+def revolution_times(cage_speed, settling_revolutions, window_revolutions):
+    """(settling_time, end_time) [s] of a window of `window_revolutions` cage revolutions after
+    `settling_revolutions`, at the kinematic cage speed `cage_speed` [rad/s, either sign]."""
+    speed = abs(float(cage_speed))
+    if not (math.isfinite(speed) and speed > 0):
+        raise PointFailed(f"kinematic cage speed {cage_speed!r} rad/s: no window in cage revolutions")
+    period = 2.0 * math.pi / speed
+    return settling_revolutions * period, (settling_revolutions + window_revolutions) * period
+
+
 class SimulatorModel:
     """Runs `raceway run BASE --set ...` per point into DIR/points and classifies its output."""
 
@@ -61,13 +71,38 @@ class SimulatorModel:
         self.folder = os.path.join(folder, "points")
         os.makedirs(self.folder, exist_ok=True)
 
-    def base_sets(self):
-        a = self.atlas
-        sets = {k: set_text(v) for k, v in a["set"].items()}
-        sets["scene.end_time"] = f"{a['end_time_s']:.10g} s"
+    def base_sets(self, end_time):
+        sets = {k: set_text(v) for k, v in self.atlas["set"].items()}
+        sets["scene.end_time"] = f"{end_time:.10g} s"
         return sets
 
-    def _run(self, name, sets):
+    def kinematic_cage_speed(self, name, sets):
+        """The kinematic cage speed [rad/s] of the scene with `sets` at its start (/cage/epicyclic_speed of
+        a run two microseconds long)."""
+        from raceway import RacewayOutput
+
+        out = os.path.join(self.folder, name + "_kinematic.h5")
+        args = [self.raceway, "run", self.atlas["scene"], "-o", out]
+        for key, value in {**self.base_sets(2e-6), **sets, "scene.output_interval": "1 us"}.items():
+            args += ["--set", f"{key}={value}"]
+        done = subprocess.run(args, capture_output=True, text=True, check=False)
+        if done.returncode != 0:
+            tail = " | ".join((done.stdout + done.stderr).strip().splitlines()[-2:])
+            raise PointFailed(f"the kinematic cage speed's run exited with {done.returncode}: {tail}")
+        with RacewayOutput(out) as f:
+            speed = float(np.asarray(f["cage/epicyclic_speed"], dtype=float)[0])
+        os.remove(out)
+        return speed
+
+    def times(self, name, sets):
+        """(settling_time, end_time) [s] of a run: the atlas's, or its window in cage revolutions."""
+        a = self.atlas
+        if a["window_cage_revolutions"] is None:
+            return a["settling_time_s"], a["end_time_s"]
+        return revolution_times(self.kinematic_cage_speed(name, sets), a["settling_cage_revolutions"],
+                                a["window_cage_revolutions"])
+
+    def _run(self, name, sets, end_time):
         out = os.path.join(self.folder, name)
         for stale in (out + ".h5", out + ".h5.partial", out + ".h5.checkpoint"):
             if os.path.exists(stale):
@@ -75,7 +110,7 @@ class SimulatorModel:
         # No --summary-json: the summary is in the output (root attribute summary_json), and the
         # rating lives it would add cost a Python start per run.
         args = [self.raceway, "run", self.atlas["scene"], "-o", out + ".h5"]
-        for key, value in {**self.base_sets(), **sets}.items():
+        for key, value in {**self.base_sets(end_time), **sets}.items():
             args += ["--set", f"{key}={value}"]
         start = time.monotonic()
         with open(out + ".log", "w", encoding="utf-8") as log, _RUNNING_LOCK:
@@ -99,12 +134,14 @@ class SimulatorModel:
         from report_data import read_run
 
         name = point_id + (f"_{tag}" if tag else "")
-        out, wall = self._run(name, sets)
+        settling, end = self.times(name, sets)
+        out, wall = self._run(name, sets, end)
         run = read_run(out + ".h5")
         mass = cm.output_cage_mass(out + ".h5")
         a = self.atlas
-        m = cm.classify_run(run, a["settling_time_s"], cage_mass=mass, overrides=a["thresholds"])
-        window = np.nonzero(run.time >= a["settling_time_s"])[0]
+        m = cm.classify_run(run, settling, cage_mass=mass, overrides=a["thresholds"])
+        m["settling_time_s"], m["end_time_s"] = settling, end
+        window = np.nonzero(run.time >= settling)[0]
         blocks = []
         for s in ac.block_slices(len(window), a["certify"]["blocks"]):
             t0, t1 = run.time[window[s.start]], run.time[window[s.stop - 1]]

@@ -15,7 +15,8 @@ import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
                   "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j",
-                  "impact_energy_ratio")
+                  "impact_energy_ratio", "subsync_growth_per_rev", "subsync_amplitude_ratio", "subsync_frequency_ratio")
+WINDOW_COLUMNS = ("settling_time_s", "end_time_s")  # with a window in cage revolutions: each point's own
 CLASS_COLOURS = {"stable": "tab:green", "circling": "tab:blue", "unstable": "tab:red"}
 BAND_UNCERTAINTY = search.BAND_UNCERTAINTY  # the band drawn round the boundary
 
@@ -49,6 +50,8 @@ def table_rows(atlas, state):
                     atlas["metric"]: p.get("metric")})
         m = p.get("metrics", {})
         row.update({k: m.get(k) for k in METRIC_COLUMNS if k != atlas["metric"]})
+        if atlas.get("window_cage_revolutions") is not None:
+            row.update({k: m.get(k) for k in WINDOW_COLUMNS})
         cert = p.get("certification", {})
         row.update({"certified": p.get("certified"), "certified_by": p.get("certified_by", p.get("error", "")),
                     "settled_largest_step": cert.get("settled", {}).get("largest_step"),

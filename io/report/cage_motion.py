@@ -55,7 +55,17 @@ THRESHOLDS = {
     "circling_sigma_v": 0.5,       # seed 001's velocity deviation at most this for a regular whirl
     "impact_rate_max": 1.0,        # pocket impacts per pocket and cage revolution at most (stable, circling) ...
     "impact_energy_ratio_min": 0.1,  # ... unless their energy is below this share of the whirl energy
+    "whirl_growth_rate": 0.005,    # a sub-synchronous whirl growing faster (per cage revolution) ...
+    "whirl_growth_min_amplitude": 0.01,  # ... at an amplitude of at least this share of the clearance: unstable
+    "whirl_sustained_amplitude": 0.05,  # a sub-synchronous whirl this large (share of the clearance), not decaying: unstable
 }
+
+# The sub-synchronous band (whirl frequency / cage frequency, either direction) where an oil whirl
+# lies, the window's segments for its growth and the cage revolutions a segment needs at least
+# (its spectrum resolves 1 / revolutions of the cage's frequency: 4 separate half speed from 0 and 1).
+SUBSYNC_BAND = (0.2, 0.8)
+SUBSYNC_SEGMENTS = 4
+SUBSYNC_MIN_REVOLUTIONS = 4.0
 
 CLASSES = ("stable", "circling", "unstable")
 
@@ -101,6 +111,73 @@ def spectral_peak_share(x, y):
     return float(sum(power[(k + d) % n] for d in (-1, 0, 1)) / total)
 
 
+def without_synchronous(time, z, cage_speed_mean):
+    """z less its least-squares fit by a constant and circles at the cage's speed either way: the
+    unbalance's synchronous circle would otherwise leak into the sub-synchronous band of a segment
+    of a few revolutions (its spectral lines are a quarter of the cage's frequency apart)."""
+    t = time - time[0]
+    basis = np.column_stack([np.ones_like(t), np.exp(1j * cage_speed_mean * t), np.exp(-1j * cage_speed_mean * t)])
+    coefficients, *_ = np.linalg.lstsq(basis, z, rcond=None)
+    return z - basis @ coefficients
+
+
+def subsync_line(time, x, y, cage_speed_mean):
+    """Amplitude [m] and frequency / cage frequency (signed: + with the cage) of the strongest line of
+    the centre's displacement (its own mean and synchronous circle removed, Hann window: a whirl
+    a e^(i w t) on a spectral bin gives a) with |frequency / cage frequency| in SUBSYNC_BAND; NaN
+    where the band holds no bin."""
+    z = without_synchronous(time, x + 1j * y, cage_speed_mean)
+    w = np.hanning(len(z))
+    spectrum = np.abs(np.fft.fft(z * w)) / np.sum(w)
+    ratio = np.fft.fftfreq(len(z), (time[-1] - time[0]) / (len(z) - 1)) * TWO_PI / cage_speed_mean
+    band = (np.abs(ratio) >= SUBSYNC_BAND[0]) & (np.abs(ratio) <= SUBSYNC_BAND[1])
+    if not band.any():
+        return math.nan, math.nan
+    k = int(np.argmax(np.where(band, spectrum, -1.0)))
+    return float(spectrum[k]), float(ratio[k])
+
+
+def subsync_growth(time, x, y, clearance, cage_speed_mean):
+    """The sub-synchronous whirl's growth over the window: its amplitude (subsync_line) in each of up
+    to SUBSYNC_SEGMENTS equal segments of at least SUBSYNC_MIN_REVOLUTIONS cage revolutions, the
+    least-squares slope of its logarithm against cage revolutions (growth rate per cage revolution:
+    0.01 grows e-fold in 100 revolutions), the last segment's amplitude / clearance and frequency /
+    cage frequency. NaN (no measure) with fewer than three such segments."""
+    revolutions = abs(cage_speed_mean) * float(time[-1] - time[0]) / TWO_PI if math.isfinite(cage_speed_mean) else 0.0
+    segments = min(SUBSYNC_SEGMENTS, int(revolutions // SUBSYNC_MIN_REVOLUTIONS))
+    out = {"subsync_amplitudes_m": [], "subsync_growth_per_rev": math.nan, "subsync_amplitude_ratio": math.nan,
+           "subsync_frequency_ratio": math.nan}
+    if segments < 3:
+        return out
+    edges = np.linspace(0, len(time), segments + 1).astype(int)
+    lines = [subsync_line(time[a:b], x[a:b], y[a:b], cage_speed_mean) for a, b in zip(edges[:-1], edges[1:])]
+    amplitudes = np.array([a for a, _ in lines])
+    mids = np.array([abs(cage_speed_mean) * (0.5 * (time[a] + time[b - 1]) - time[0]) / TWO_PI
+                     for a, b in zip(edges[:-1], edges[1:])])
+    out["subsync_amplitudes_m"] = amplitudes.tolist()
+    out["subsync_frequency_ratio"] = lines[-1][1]
+    out["subsync_amplitude_ratio"] = _ratio(float(amplitudes[-1]), clearance)
+    if np.all(amplitudes > 0) and np.all(np.isfinite(amplitudes)):
+        out["subsync_growth_per_rev"] = float(np.polyfit(mids, np.log(amplitudes), 1)[0])
+    return out
+
+
+def oil_whirl(m, t):
+    """The reason a window's sub-synchronous whirl makes it unstable, or None: it grows faster than
+    whirl_growth_rate per cage revolution at an amplitude of at least whirl_growth_min_amplitude of
+    the clearance (an oil whirl setting in), or it is at least whirl_sustained_amplitude of the
+    clearance and decays no faster than whirl_growth_rate (an oil whirl that has grown)."""
+    rate, amplitude = m.get("subsync_growth_per_rev", math.nan), m.get("subsync_amplitude_ratio", math.nan)
+    where = f"sub-synchronous whirl at {m.get('subsync_frequency_ratio', math.nan):.3g} of the cage speed"
+    if rate > t["whirl_growth_rate"] and amplitude >= t["whirl_growth_min_amplitude"]:
+        return (f"{where} grows {rate:.3g} > {t['whirl_growth_rate']:.3g} per cage revolution at amplitude "
+                f"{amplitude:.3g} >= {t['whirl_growth_min_amplitude']:.3g} of the clearance")
+    if amplitude >= t["whirl_sustained_amplitude"] and rate >= -t["whirl_growth_rate"]:
+        return (f"{where} of {amplitude:.3g} >= {t['whirl_sustained_amplitude']:.3g} of the clearance, "
+                f"not decaying (growth {rate:.3g} >= -{t['whirl_growth_rate']:.3g} per cage revolution)")
+    return None
+
+
 def orbit_metrics(time, x, y, clearance, cage_speed_mean, vx=None, vy=None):
     """The orbit's metrics (module docstring) of the centre path x(t), y(t) [m] over the window."""
     time, x, y = (np.asarray(a, dtype=float) for a in (time, x, y))
@@ -119,6 +196,7 @@ def orbit_metrics(time, x, y, clearance, cage_speed_mean, vx=None, vy=None):
          "sigma_v": _ratio(float(np.std(speed, ddof=1)), float(np.mean(speed))),
          "spectral_peak_share": spectral_peak_share(x, y)}
     m.update(whirl_metrics(time, x, y, cage_speed_mean))
+    m.update(subsync_growth(time, x, y, clearance, cage_speed_mean))
     rho = m["orbit_ratio"] if math.isfinite(m["orbit_ratio"]) else 0.0
     m["cage_dynamics_indicator"] = min(1.0, rho) * (1.0 - m["spectral_peak_share"])
     return m
@@ -144,11 +222,12 @@ def classify_metrics(m, overrides=None):
                       and not energy <= t["impact_energy_ratio_min"])  # NaN energy: the rate decides
     impact_note = (f"impact rate {m.get('impact_rate', 0.0):.3g} > {t['impact_rate_max']:.3g} per pocket and "
                    f"revolution at energy ratio {energy:.3g} > {t['impact_energy_ratio_min']:.3g}")
+    growing = oil_whirl(m, t)
     if m["orbit_ratio"] < t["stable_orbit_ratio"]:
-        if impacts_ok:
+        if impacts_ok and not growing:
             return "stable", [f"orbit ratio {m['orbit_ratio']:.3g} < {t['stable_orbit_ratio']:.3g}"]
-        return "unstable", [impact_note]
-    reasons = []
+        return "unstable", [r for r in (None if impacts_ok else impact_note, growing) if r]
+    reasons = [growing] if growing else []
     if m["whirl_turns"] < t["circling_min_turns"]:
         reasons.append(f"{m['whirl_turns']} whole whirl turns < {t['circling_min_turns']:.3g}")
     if not m["vortex_radius_ratio"] <= t["circling_vortex_ratio"]:

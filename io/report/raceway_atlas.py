@@ -49,7 +49,8 @@ def log(message):
 def checks(atlas):
     """(atlas file key, --set overrides) of every scene checked before the atlas runs."""
     base = {k: set_text(v) for k, v in atlas["set"].items()}
-    base["scene.end_time"] = f"{atlas['end_time_s']:.10g} s"
+    if atlas["end_time_s"] is not None:  # a window in cage revolutions: the scene's own end time here
+        base["scene.end_time"] = f"{atlas['end_time_s']:.10g} s"
     params = atlas["parameters"]
     for corner in itertools.product(*[p["range"] for p in params]):
         sets = dict(base)

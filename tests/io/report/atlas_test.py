@@ -150,6 +150,58 @@ def case_motion_thresholds():
         pass
 
 
+# ---- a sub-synchronous whirl over 2 s at 5 kHz, the cage at 20 Hz (40 revolutions) -------------------
+TG = np.arange(10000) * 2e-4
+OMEGA_G = 2 * math.pi * 20.0
+
+
+def whirl_with_subsync(growth, amplitude, ratio=0.58):
+    """A synchronous circle of 1 um plus a whirl at `ratio` of the cage speed, `amplitude` [m] at the
+    start, growing `growth` per cage revolution, with 0.05 um of noise."""
+    rev = OMEGA_G * TG / (2 * math.pi)
+    z = 1e-6 * np.exp(1j * OMEGA_G * TG) + amplitude * np.exp(growth * rev) * np.exp(1j * ratio * OMEGA_G * TG)
+    noise = 5e-8 * np.random.default_rng(11).standard_normal((2, TG.size))
+    z = z + noise[0] + 1j * noise[1]
+    return cm.classify(TG, z.real, z.imag, C, OMEGA_G, pockets=9)
+
+
+def case_motion_growth():
+    """A half-speed whirl growing 0.018 per cage revolution (as the QJ215's at 1000 N, 3000 r/min) is
+    unstable, the same decaying is stable, a synchronous circle is stable, a large steady one is
+    unstable; the thresholds move them."""
+    m = whirl_with_subsync(0.018, 2e-6)
+    print(f"growing whirl: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.4g} per revolution, "
+          f"amplitude {m['subsync_amplitude_ratio']:.3g} c at {m['subsync_frequency_ratio']:.3g} of the cage speed, "
+          f"rho {m['orbit_ratio']:.3g}")
+    check(m["motion_class"] == "unstable" and "sub-synchronous" in m["reasons"][0], f"growing whirl: {m['reasons']}")
+    check(abs(m["subsync_growth_per_rev"] - 0.018) < 0.0005, f"growth {m['subsync_growth_per_rev']} != 0.018")
+    check(abs(m["subsync_frequency_ratio"] - 0.58) < 0.05, f"frequency ratio {m['subsync_frequency_ratio']}")
+    check(m["orbit_ratio"] < 0.2, f"the growing whirl is still inside the stable orbit ratio: {m['orbit_ratio']}")
+    m = whirl_with_subsync(-0.018, 6e-6)
+    print(f"decaying whirl: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.4g}")
+    check(m["motion_class"] == "stable" and abs(m["subsync_growth_per_rev"] + 0.018) < 0.0005, f"decaying: {m}")
+    m = whirl_with_subsync(0.0, 0.0)
+    print(f"synchronous circle: {m['motion_class']}, sub-synchronous amplitude {m['subsync_amplitude_ratio']:.3g} c")
+    check(m["motion_class"] == "stable" and m["subsync_amplitude_ratio"] < 1e-3, f"synchronous circle: {m}")
+    m = whirl_with_subsync(0.018, 0.2e-6)  # grows to 0.4 um: below 0.01 c
+    check(m["motion_class"] == "stable" and m["subsync_growth_per_rev"] > 0.01, f"a tiny growing whirl: {m}")
+    for overrides in ({"whirl_growth_rate": 0.02}, {"whirl_growth_min_amplitude": 0.1}):
+        cls = cm.classify_metrics(whirl_with_subsync(0.018, 2e-6), overrides)[0]
+        check(cls == "stable", f"growing whirl with {overrides}: {cls}")
+    # A whirl that has grown: steady at 8 um (0.08 c, as the QJ215's 15 um at 7125 r/min and 3222 N)
+    # is unstable; steady at 3 um (0.03 c) is stable; the threshold moves it.
+    m = whirl_with_subsync(0.0, 8e-6)
+    print(f"steady whirl of 8 um: {m['motion_class']}, growth {m['subsync_growth_per_rev']:.3g}, "
+          f"amplitude {m['subsync_amplitude_ratio']:.3g} c")
+    check(m["motion_class"] == "unstable" and "not decaying" in m["reasons"][0], f"steady 8 um whirl: {m['reasons']}")
+    check(abs(m["subsync_growth_per_rev"]) < 0.001, f"steady whirl's growth {m['subsync_growth_per_rev']}")
+    check(whirl_with_subsync(0.0, 3e-6)["motion_class"] == "stable", "a steady whirl of 0.03 c not stable")
+    check(cm.classify_metrics(m, {"whirl_sustained_amplitude": 0.2})[0] == "stable",
+          "a steady whirl of 0.08 c with whirl_sustained_amplitude 0.2: not stable")
+    m = classify(*circular_whirl())  # 10 cage revolutions: fewer than 3 segments of 4, no growth measured
+    check(math.isnan(m["subsync_growth_per_rev"]) and m["motion_class"] == "circling", f"short window: {m}")
+
+
 def case_certify():
     s = ac.settled([0.10, 0.12, 0.11], ["stable"] * 3, "stable", 0.05)
     check(s["ok"] and abs(s["largest_step"] - 0.02) < 1e-12, f"blocks within tolerance: {s}")
@@ -168,6 +220,8 @@ def case_certify():
     check(s["ok"] and s["orbit_growth"] == 1.0, f"a steady orbit failed: {s}")
     s = ac.settled([0.010, 0.010, 0.010], ["stable"] * 3, "stable", 0.05, [3.0e-6, 3.3e-6, 3.6e-6], 0.25)
     check(s["ok"] and abs(s["orbit_growth"] - 1.2) < 1e-12, f"growth 1.2 failed a tolerance of 0.25: {s}")
+    s = ac.settled([0.010, 0.012, 0.014], ["unstable"] * 3, "unstable", 0.05, [3.0e-6, 4.3e-6, 6.1e-6], 0.25)
+    check(s["ok"] and abs(s["orbit_growth"] - 6.1 / 3.0) < 1e-12, f"an unstable point's growth unsettled it: {s}")
     check([i for i in range(10) if ac.in_convergence_sample(i, 0.25)] == [0, 4, 8], "every 4th point rerun")
     check(not any(ac.in_convergence_sample(i, 0.0) for i in range(10)), "a zero sample reruns points")
     c = ac.converged("unstable", 0.40, "unstable", 0.43, 1e-7, 0.05)
@@ -180,6 +234,31 @@ def case_certify():
     check(not ac.confidence([1.0, 2.0, 3.0], 2.4)["ok"], "a half-width of 2.48 passed a target of 2.4")
     cert = {"settled": {"ok": True}, "converged": {"checked": False}, "realisations": r}
     check(ac.certified(cert) and "3 realisations" in ac.summary(cert), f"summary {ac.summary(cert)}")
+
+
+def case_windows():
+    """A window in cage revolutions: each point's settling and end time from its kinematic cage speed."""
+    from atlas_file import read_atlas_file
+    from atlas_models import PointFailed, revolution_times
+    speed = 2 * math.pi * 20.0  # 20 cage revolutions a second: 0.05 s each
+    for s in (speed, -speed):
+        settling, end = revolution_times(s, 10, 30)
+        check(abs(settling - 0.5) < 1e-12 and abs(end - 2.0) < 1e-12, f"10 + 30 revolutions at {s}: {settling}, {end}")
+    settling, end = revolution_times(8 * speed, 10, 30)  # eight times the speed: an eighth of the time
+    check(abs(settling - 0.0625) < 1e-12 and abs(end - 0.25) < 1e-12, f"at 8 times the speed: {settling}, {end}")
+    try:
+        revolution_times(0.0, 10, 30)
+        check(False, "a cage at rest got a window in revolutions")
+    except PointFailed:
+        pass
+    with tempfile.TemporaryDirectory() as tmp:
+        text = STANDIN_ATLAS.replace('end_time = "20 ms"\nsettling_time = "10 ms"',
+                                     'settling_cage_revolutions = 10\nwindow_cage_revolutions = 30')
+        a = read_atlas_file(write_atlas(tmp, text))
+        check(a["settling_cage_revolutions"] == 10 and a["window_cage_revolutions"] == 30 and a["end_time_s"] is None,
+              f"revolution keys read: {a['settling_cage_revolutions']}, {a['window_cage_revolutions']}")
+        a = read_atlas_file(write_atlas(tmp, STANDIN_ATLAS))
+        check(a["window_cage_revolutions"] is None and abs(a["end_time_s"] - 0.02) < 1e-15, "end_time read")
 
 
 def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 401)):
@@ -413,6 +492,14 @@ def case_bad_files():
     bad_in_file(good + "\n[thresholds]\ncircling_sigma_v = -1\n", 26, "thresholds.circling_sigma_v", ["at least 0"])
     bad_in_file(good.replace('batch_size = 4', 'batch_size = 4\nset = {{ "inner_ring.speed" = "1 rpm" }}'), 9,
                 "atlas.set", ["also a parameter"])
+    revolutions = good.replace('end_time = "20 ms"\nsettling_time = "10 ms"',
+                               'settling_cage_revolutions = 10\nwindow_cage_revolutions = 30')
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30', 'window_cage_revolutions = 0'), 5,
+                "atlas.window_cage_revolutions", ["greater than 0"])
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30\n', ''), 4, "atlas.settling_cage_revolutions",
+                ["needs window_cage_revolutions"])
+    bad_in_file(revolutions.replace('window_cage_revolutions = 30', 'window_cage_revolutions = 30\nend_time = "1 s"'),
+                6, "atlas.end_time", ["kinematic cage speed"])
     # Through the executable: exit 2 before anything is created; values the scene refuses, found by
     # `raceway check` before any point, name the line that set them.
     bad_by_executable(good.replace('end_time = "20 ms"', 'end_time = "20"'), 4, "atlas.end_time", ["positive time"])
@@ -494,6 +581,7 @@ def case_shipped_files():
 
 
 CASES = {"motion_classes": case_motion_classes, "motion_thresholds": case_motion_thresholds,
+         "motion_growth": case_motion_growth, "windows": case_windows,
          "certify": case_certify, "search_accuracy": case_search_accuracy, "search_resume": case_search_resume,
          "search_stop": case_search_stop, "search_ends": case_search_ends,
          "bad_files": case_bad_files, "run_6205": case_run_6205,
