@@ -1,8 +1,8 @@
 """The atlas's loop (docs/atlas.md): batches of points proposed by the search, each run, classified
 and certified, the state file written after every finished point, the table and the map at the end.
 
-The state file DIR/atlas_state.json holds the atlas's identity (its file's and base scene's text),
-the batch size, and every point: planned (proposed, not finished), done or failed, with its
+The state file DIR/atlas_state.json holds the atlas's identity (its settings but the budgets, and
+its base scene's text: a finished atlas resumed with larger budgets goes on searching), the batch size, and every point: planned (proposed, not finished), done or failed, with its
 results. A stop signal (SIGINT, SIGTERM, SIGUSR1) starts no new run, asks the running ones to
 stop and leaves their points planned (exit 4). A stopped or killed atlas resumed with --resume
 runs the planned points again and goes on; since a
@@ -27,7 +27,22 @@ class AtlasStateError(Exception):
     """The folder holds another atlas, or no atlas where --resume expects one (exit 2)."""
 
 
+# What an atlas's points do not depend on: its budgets (how far the search goes; raised on --resume
+# they extend a finished atlas), where its files lie, and its file's text as such (comments).
+NOT_IDENTITY = ("budget_points", "budget_core_hours", "stop_band_share", "text", "lines", "path", "scene")
+
+
 def identity(atlas):
+    """The atlas's identity: its parsed settings but the budgets, and its base scene's text."""
+    with open(atlas["scene"], "rb") as f:
+        scene = f.read()
+    settings = {k: v for k, v in atlas.items() if k not in NOT_IDENTITY}
+    text = json.dumps(settings, sort_keys=True, default=str, allow_nan=True)
+    return hashlib.sha256(text.encode() + b"\0" + scene).hexdigest()
+
+
+def text_identity(atlas):
+    """The identity atlases written before the budgets could be raised kept: the file's own text."""
     with open(atlas["scene"], "rb") as f:
         scene = f.read()
     return hashlib.sha256(atlas["text"].encode() + b"\0" + scene).hexdigest()
@@ -49,9 +64,11 @@ def open_state(atlas, folder, resume, batch_size):
                                   "or another folder")
         with open(path, encoding="utf-8") as f:
             state = json.load(f)
-        if state.get("identity") != identity(atlas):
-            raise AtlasStateError(f"{folder} holds another atlas (its atlas file or base scene differs from "
-                                  f"{atlas['path']}): refused, the folder's points would be mislabelled")
+        if state.get("identity") not in (identity(atlas), text_identity(atlas)):
+            raise AtlasStateError(f"{folder} holds another atlas (its settings other than the budgets, or its base "
+                                  f"scene, differ from {atlas['path']}): refused, the folder's points would be "
+                                  "mislabelled")
+        state["identity"] = identity(atlas)
         return state
     os.makedirs(folder, exist_ok=True)
     state = {"identity": identity(atlas), "name": atlas["name"], "batch_size": batch_size, "points": [],

@@ -437,6 +437,28 @@ def case_search_resume():
         check(tables[0] == tables[1], "the resumed atlas's table differs from the uninterrupted one")
         check(os.path.getsize(os.path.join(cut, "atlas.png")) > 10000, "no map")
         print(f"killed after {len(done_before)} of 21 points; resumed: {len(set(after))} points evaluated")
+        # A finished atlas of 13 points (the first batch of 5, two of 4) resumed with a budget of 21
+        # goes on to the uninterrupted atlas of 21; another setting changed is refused.
+        short = os.path.join(tmp, "short.toml")
+        with open(path) as f:
+            text = f.read()
+        with open(short, "w") as f:
+            f.write(text.replace("budget_points = 21", "budget_points = 13"))
+        grown = os.path.join(tmp, "grown")
+        atlas_script([short, "-o", grown, "--standin", "0.02"]).communicate()
+        with open(os.path.join(grown, "atlas.csv")) as f:
+            check(len(list(csv.reader(f))) == 14, "the atlas of budget 13 has not 13 rows")
+        other = os.path.join(tmp, "other.toml")
+        with open(other, "w") as f:
+            f.write(text.replace('range = [100, 2000]', 'range = [100, 2500]'))
+        refused = atlas_script([other, "-o", grown, "--standin", "0.02", "--resume"])
+        refused.communicate()
+        check(refused.returncode == 2, f"a changed parameter range resumed: exit {refused.returncode}, not 2")
+        extended = atlas_script([path, "-o", grown, "--standin", "0.02", "--resume"])
+        extended.communicate()
+        with open(os.path.join(grown, "atlas.csv")) as f:
+            check(list(csv.reader(f)) == tables[0], "the atlas extended from 13 to 21 points differs from the "
+                  "uninterrupted one")
 
 
 def write_atlas(tmp, text, name="bad.toml"):
