@@ -376,23 +376,26 @@ namespace {
 /// a pair of materials, and a ball-groove contact's Rx changes only with its contact angle (not in
 /// a Jacobian's velocity columns, nor between the film and the rolling resistance of one
 /// evaluation). A hit returns the bits a fresh evaluation gives (the same calls on the same
-/// arguments); it saves about half of the powers and exponentials of a contact.
+/// arguments). The rolling resistance's factors are made when it first asks for them (a contact
+/// without rolling resistance never does).
 struct EhlFactors {
   double g = std::numeric_limits<double>::quiet_NaN(), g_central = 0, g_minimum = 0, g_rolling = 0;
-  double rx = std::numeric_limits<double>::quiet_NaN(), ry = rx, central_shape = 0, minimum_shape = 0, k_rolling = 0;
+  double rx = std::numeric_limits<double>::quiet_NaN(), ry = rx, k = 0, central_shape = 0, minimum_shape = 0,
+         k_rolling = 0;
+  bool has_g_rolling = false, has_k_rolling = false;
 };
 
-const EhlFactors& ehl_factors(double g, double rx, double ry) {
+EhlFactors& ehl_factors(double g, double rx, double ry) {
   thread_local EhlFactors f;
   if (!same_bits(g, f.g)) {
     f.g = g;
-    f.g_central = std::pow(g, 0.53), f.g_minimum = std::pow(g, 0.49), f.g_rolling = std::pow(g, 0.022);
+    f.g_central = std::pow(g, 0.53), f.g_minimum = std::pow(g, 0.49), f.has_g_rolling = false;
   }
   if (!same_bits(rx, f.rx) || !same_bits(ry, f.ry)) {
     f.rx = rx, f.ry = ry;
-    const double k = hamrock_brewe_ellipticity(rx, ry);
-    f.central_shape = 1 - 0.61 * std::exp(-0.73 * k), f.minimum_shape = 1 - std::exp(-0.68 * k);
-    f.k_rolling = std::pow(k, 0.348);
+    f.k = hamrock_brewe_ellipticity(rx, ry);
+    f.central_shape = 1 - 0.61 * std::exp(-0.73 * f.k), f.minimum_shape = 1 - std::exp(-0.68 * f.k);
+    f.has_k_rolling = false;
   }
   return f;
 }
@@ -438,7 +441,9 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
   const double u = lubricant.viscosity * entrainment_speed / (e_prime * rx);
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
-  const EhlFactors& f = ehl_factors(g, rx, ry);
+  EhlFactors& f = ehl_factors(g, rx, ry);
+  if (!f.has_g_rolling) f.g_rolling = std::pow(g, 0.022), f.has_g_rolling = true;
+  if (!f.has_k_rolling) f.k_rolling = std::pow(f.k, 0.348), f.has_k_rolling = true;
   return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::pow(u, 0.66) * std::pow(w, 0.47);
 }
 
@@ -490,7 +495,8 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
   };
   // The viscosity of each distinct shape, evaluated where a cell of this block first needs it.
   std::array<double, max_distinct_shapes> shape_viscosity;
-  std::array<bool, max_distinct_shapes> known{};
+  std::array<bool, max_distinct_shapes> known;
+  if (limiting) std::fill_n(known.begin(), std::min(grid.shapes.size(), max_distinct_shapes), false);
   double fx = 0, fy = 0, mz = 0, power = 0;
   for (std::size_t i = first; i < last; ++i) {
     const GridCell& c = grid.cells[i];
