@@ -106,7 +106,7 @@ std::vector<std::size_t> row_shape(const BodySeries& s, std::vector<std::size_t>
 
 /// Whether the rolling elements' series of a quantity are stored deflated: not their positions,
 /// velocities and accelerations, full-precision trajectories that deflate shrinks by 11-22 % (6309 R3,
-/// QJ215, seed 002) for about a fifth of the compressor's work
+/// QJ215, seed 002) for a fifth to a quarter of the compressor's work
 /// (perf/studies/results/revolution_instructions.md).
 bool compressible(Quantity q) {
   return q != Quantity::position && q != Quantity::velocity && q != Quantity::acceleration;
