@@ -487,11 +487,18 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
   const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
   const double inverse_scale = 1 / traction.slip_velocity_scale;
   const double inverse_h = limiting ? 1 / film_thickness : 0;
+  // Where the exponent reaches the cap (most of a loaded contact) the viscosity is one number,
+  // evaluated once per block: std::min(exponent, cap) is the cap exactly when cap < exponent.
+  const double cap = lubricant.viscosity_exponent_cap;
+  double capped_viscosity = std::numeric_limits<double>::quiet_NaN();
+  bool has_capped = false;
   auto viscosity_at = [&](double p) {
     const double exponent = lubricant.roelands_index > 0
                                 ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
                                 : lubricant.pressure_viscosity * p;
-    return lubricant.viscosity * std::exp(std::min(exponent, lubricant.viscosity_exponent_cap));
+    if (!(cap < exponent)) return lubricant.viscosity * std::exp(std::min(exponent, cap));
+    if (!has_capped) capped_viscosity = lubricant.viscosity * std::exp(cap), has_capped = true;
+    return capped_viscosity;
   };
   // The viscosity of each distinct shape, evaluated where a cell of this block first needs it.
   std::array<double, max_distinct_shapes> shape_viscosity;
