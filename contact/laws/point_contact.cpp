@@ -25,6 +25,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -35,6 +37,10 @@ namespace raceway::contact {
 namespace {
 
 constexpr double pi = std::numbers::pi;
+
+/// Same bits: true when a and b are the same double, bit for bit (-0 and 0 differ, a NaN equals
+/// itself), so a factor kept for a is the one b would give.
+inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 // ---- the ellipticity relation F(m), m = e^2 = 1 - 1/k^2 -----------------------------------------
 
@@ -185,11 +191,17 @@ struct GridCell {
   double area;   // unit disk
   double load;   // fraction of the normal load: area * shape / sum(area * shape)
   double shape;  // sqrt(1 - x^2 - y^2)
+  int shape_index;  // of `shape` in the grid's distinct shapes
 };
+// A grid's cells mirror each other across both axes, and mirrored cells' shapes are mostly the
+// same bits: the pressure-dependent viscosity, an exponential, is evaluated once per distinct shape
+// (the 5 x 5 grid: 6 shapes for 25 cells), with the bits each cell would give.
+inline constexpr std::size_t max_distinct_shapes = 64;
 struct TractionGrid {
   int gx = 0, gy = 0;
   double shape_integral = 0;  // sum area * shape (-> 2 pi / 3 as the grid refines)
   std::vector<GridCell> cells;
+  std::vector<double> shapes;  // the distinct shapes, in order of first appearance
 };
 
 std::unique_ptr<TractionGrid> build_grid(int gx, int gy) {
@@ -212,7 +224,12 @@ std::unique_ptr<TractionGrid> build_grid(int gx, int gy) {
       grid->cells.push_back(c);
     }
   }
-  for (GridCell& c : grid->cells) c.load = c.area * c.shape / grid->shape_integral;
+  for (GridCell& c : grid->cells) {
+    c.load = c.area * c.shape / grid->shape_integral;
+    const auto same = std::find_if(grid->shapes.begin(), grid->shapes.end(), [&](double v) { return same_bits(v, c.shape); });
+    c.shape_index = static_cast<int>(same - grid->shapes.begin());
+    if (same == grid->shapes.end()) grid->shapes.push_back(c.shape);
+  }
   return grid;
 }
 
@@ -352,6 +369,39 @@ HertzPointContact HertzTable::at(double s) const {
 // Houpert's hydrodynamic rolling-resistance fit in the form quoted by Harris & Kotzalas, with the
 // E' Rx^2 scale (see the header).
 
+namespace {
+
+/// The factors of the EHL fits that depend on the material parameter G alone or on the curvature
+/// radii alone, kept for the last arguments seen on this thread: G is a constant of a lubricant and
+/// a pair of materials, and a ball-groove contact's Rx changes only with its contact angle (not in
+/// a Jacobian's velocity columns, nor between the film and the rolling resistance of one
+/// evaluation). A hit returns the bits a fresh evaluation gives (the same calls on the same
+/// arguments). The rolling resistance's factors are made when it first asks for them (a contact
+/// without rolling resistance never does).
+struct EhlFactors {
+  double g = std::numeric_limits<double>::quiet_NaN(), g_central = 0, g_minimum = 0, g_rolling = 0;
+  double rx = std::numeric_limits<double>::quiet_NaN(), ry = rx, k = 0, central_shape = 0, minimum_shape = 0,
+         k_rolling = 0;
+  bool has_g_rolling = false, has_k_rolling = false;
+};
+
+EhlFactors& ehl_factors(double g, double rx, double ry) {
+  thread_local EhlFactors f;
+  if (!same_bits(g, f.g)) {
+    f.g = g;
+    f.g_central = std::pow(g, 0.53), f.g_minimum = std::pow(g, 0.49), f.has_g_rolling = false;
+  }
+  if (!same_bits(rx, f.rx) || !same_bits(ry, f.ry)) {
+    f.rx = rx, f.ry = ry;
+    f.k = hamrock_brewe_ellipticity(rx, ry);
+    f.central_shape = 1 - 0.61 * std::exp(-0.73 * f.k), f.minimum_shape = 1 - std::exp(-0.68 * f.k);
+    f.has_k_rolling = false;
+  }
+  return f;
+}
+
+}  // namespace
+
 FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
                                   double reduced_modulus, const PointLubricant& lubricant) {
   FilmThickness film;
@@ -360,11 +410,9 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   const double u = lubricant.viscosity * entrainment_speed / (e_prime * rx);
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
-  const double k = hamrock_brewe_ellipticity(rx, ry);
-  film.central = 2.69 * std::pow(u, 0.67) * std::pow(g, 0.53) * std::pow(w, -0.067) *
-                 (1 - 0.61 * std::exp(-0.73 * k)) * rx;
-  film.minimum =
-      3.63 * std::pow(u, 0.68) * std::pow(g, 0.49) * std::pow(w, -0.073) * (1 - std::exp(-0.68 * k)) * rx;
+  const EhlFactors& f = ehl_factors(g, rx, ry);
+  film.central = 2.69 * std::pow(u, 0.67) * f.g_central * std::pow(w, -0.067) * f.central_shape * rx;
+  film.minimum = 3.63 * std::pow(u, 0.68) * f.g_minimum * std::pow(w, -0.073) * f.minimum_shape * rx;
   return film;
 }
 
@@ -393,9 +441,10 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
   const double u = lubricant.viscosity * entrainment_speed / (e_prime * rx);
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
-  const double k = hamrock_brewe_ellipticity(rx, ry);
-  return 2.86 * e_prime * rx * rx * std::pow(k, 0.348) * std::pow(g, 0.022) * std::pow(u, 0.66) *
-         std::pow(w, 0.47);
+  EhlFactors& f = ehl_factors(g, rx, ry);
+  if (!f.has_g_rolling) f.g_rolling = std::pow(g, 0.022), f.has_g_rolling = true;
+  if (!f.has_k_rolling) f.k_rolling = std::pow(f.k, 0.348), f.has_k_rolling = true;
+  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::pow(u, 0.66) * std::pow(w, 0.47);
 }
 
 // ---- traction ------------------------------------------------------------------------------------
@@ -438,6 +487,23 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
   const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
   const double inverse_scale = 1 / traction.slip_velocity_scale;
   const double inverse_h = limiting ? 1 / film_thickness : 0;
+  // Where the exponent reaches the cap (most of a loaded contact) the viscosity is one number,
+  // evaluated once per block: std::min(exponent, cap) is the cap exactly when cap < exponent.
+  const double cap = lubricant.viscosity_exponent_cap;
+  double capped_viscosity = std::numeric_limits<double>::quiet_NaN();
+  bool has_capped = false;
+  auto viscosity_at = [&](double p) {
+    const double exponent = lubricant.roelands_index > 0
+                                ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
+                                : lubricant.pressure_viscosity * p;
+    if (!(cap < exponent)) return lubricant.viscosity * std::exp(std::min(exponent, cap));
+    if (!has_capped) capped_viscosity = lubricant.viscosity * std::exp(cap), has_capped = true;
+    return capped_viscosity;
+  };
+  // The viscosity of each distinct shape, evaluated where a cell of this block first needs it.
+  std::array<double, max_distinct_shapes> shape_viscosity;
+  std::array<bool, max_distinct_shapes> known;
+  if (limiting) std::fill_n(known.begin(), std::min(grid.shapes.size(), max_distinct_shapes), false);
   double fx = 0, fy = 0, mz = 0, power = 0;
   for (std::size_t i = first; i < last; ++i) {
     const GridCell& c = grid.cells[i];
@@ -449,10 +515,13 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
     if (limiting) {
       const double p = pressure_scale * c.shape;
       const double tau_limit = lubricant.limiting_shear_coefficient * p;
-      const double exponent = lubricant.roelands_index > 0
-                                  ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
-                                  : lubricant.pressure_viscosity * p;
-      const double eta = lubricant.viscosity * std::exp(std::min(exponent, lubricant.viscosity_exponent_cap));
+      double eta;
+      if (const auto k = static_cast<std::size_t>(c.shape_index); k < max_distinct_shapes) {
+        if (!known[k]) shape_viscosity[k] = viscosity_at(p), known[k] = true;
+        eta = shape_viscosity[k];
+      } else {
+        eta = viscosity_at(p);
+      }
       const double area = c.area * area_scale;
       g = tau_limit > 0 ? eta * inverse_h * area * tanh_over_x(eta * inverse_h * s / tau_limit) : 0;
       if (blended)

@@ -86,9 +86,11 @@ ChunkCompressor::~ChunkCompressor() {
   thread_.join();
 }
 
-std::future<FilteredChunk> ChunkCompressor::submit(std::vector<double> values) {
+std::future<FilteredChunk> ChunkCompressor::submit(std::vector<double> values, bool filtered) {
   std::packaged_task<FilteredChunk()> task(
-      [v = std::move(values), shuffle = shuffle_, level = gzip_level_] { return filter_chunk(v, shuffle, level); });
+      [v = std::move(values), shuffle = filtered && shuffle_, level = filtered ? gzip_level_ : 0] {
+        return filter_chunk(v, shuffle, level);
+      });
   std::future<FilteredChunk> result = task.get_future();
   {
     const std::lock_guard lock(mutex_);

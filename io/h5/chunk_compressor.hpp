@@ -41,8 +41,9 @@ class ChunkCompressor {
   ChunkCompressor(const ChunkCompressor&) = delete;
   ChunkCompressor& operator=(const ChunkCompressor&) = delete;
 
-  /// Queues a chunk (the values are moved in) and returns its filtered bytes to come.
-  std::future<FilteredChunk> submit(std::vector<double> values);
+  /// Queues a chunk (the values are moved in) and returns its filtered bytes to come; `filtered`
+  /// false: the chunk of a series stored without filters (its bytes as they are).
+  std::future<FilteredChunk> submit(std::vector<double> values, bool filtered = true);
 
  private:
   void work();

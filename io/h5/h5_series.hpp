@@ -25,7 +25,9 @@
 //     defined afterwards are its existing datasets cut to `rows` rows less the unwritten ones, which
 //     are buffered again.
 //
-// Storage: series are chunked, shuffled and gzip-compressed (options); fixed arrays contiguous. A
+// Storage: series are chunked, shuffled and gzip-compressed (options), but those defined
+// `compressed = false`, which are chunked alone (full-precision trajectories: deflate shrinks them
+// by 10-20 % for a large share of the output's cost); fixed arrays contiguous. A
 // chunk of whole rows is filtered on a background thread as soon as its rows are appended and
 // stored at the next flush (H5Dwrite_chunk); a series' last, partial chunk is filtered at commit.
 // Shared series are filtered by HDF5's pipeline inside the collective write (HDF5 1.10 has no
@@ -132,9 +134,11 @@ class H5SeriesWriter {
   /// Defines a time series: an extendible chunked double dataset of shape [0 x row_shape...]
   /// (row_shape empty: one scalar per output, dataset shape [0]). Attributes "units" and
   /// "description" are written as variable-length UTF-8 strings. Throws std::invalid_argument if
-  /// the series is already defined or a row dimension is 0.
+  /// the series is already defined or a row dimension is 0. `compressed` false: stored without
+  /// the shuffle and deflate filters (a series that does not compress), whichever path writes it.
   void define_series(const std::string& path, std::vector<std::size_t> row_shape,
-                     const std::string& units, const std::string& description, bool shared = false);
+                     const std::string& units, const std::string& description, bool shared = false,
+                     bool compressed = true);
 
   /// The collective write of the shared series' rows (h5::write_shared_rows on every rank): it
   /// must write them or throw std::runtime_error. Set before the first shared series is defined.
@@ -236,6 +240,7 @@ class H5SeriesWriter {
     bool direct = false;                   // chunks of whole rows, written with H5Dwrite_chunk
     std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
     bool shared = false;                   // written by all ranks together (share_series_with)
+    bool compressed = true;                // shuffled and deflated (options); false: stored as they are
     std::vector<unsigned char> mine;       // shared: per buffered value, whether this process writes it
     unsigned long crc = 0;                 // CRC-32 of the bytes of every row appended (row_checksums)
   };

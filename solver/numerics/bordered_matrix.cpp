@@ -121,17 +121,22 @@ void BorderedFactorization::solve(const double* b, double* x) const {
   const BorderedMatrix& m = *m_;
   const int nb = m.border_size(), bs = m.block_size(), n = m.block_count();
   // Forward: y_k = D_k^-1 b_k; border right-hand side b_b - sum A_bk y_k.
+  // The work vectors keep their sizes between calls (no allocation per solve); each product is
+  // evaluated into its own vector as Eigen evaluates it into a temporary: the same bits.
   work_b_ = Eigen::Map<const Eigen::VectorXd>(b, nb);
-  std::vector<Eigen::VectorXd> y(n);
+  work_y_.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
-    y[k] = block_lu_[k].solve(Eigen::Map<const Eigen::VectorXd>(b + nb + k * bs, bs));
-    work_b_.noalias() -= m.border_to_block[k] * y[k];
+    Eigen::VectorXd& y = work_y_[static_cast<std::size_t>(k)];
+    y = block_lu_[k].solve(Eigen::Map<const Eigen::VectorXd>(b + nb + k * bs, bs));
+    work_b_.noalias() -= m.border_to_block[k] * y;
   }
   work_x_ = schur_lu_.solve(work_b_);
   Eigen::Map<Eigen::VectorXd>(x, nb) = work_x_;
   // Back: x_k = y_k - D_k^-1 A_kb x_b.
-  for (int k = 0; k < n; ++k)
-    Eigen::Map<Eigen::VectorXd>(x + nb + k * bs, bs) = y[k] - block_inv_border_[k] * work_x_;
+  for (int k = 0; k < n; ++k) {
+    work_product_.noalias() = block_inv_border_[k] * work_x_;
+    Eigen::Map<Eigen::VectorXd>(x + nb + k * bs, bs) = work_y_[static_cast<std::size_t>(k)] - work_product_;
+  }
 }
 
 }  // namespace raceway::numerics

@@ -69,7 +69,8 @@ class BorderedFactorization {
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> block_lu_;
   std::vector<Eigen::MatrixXd> block_inv_border_;  ///< D_k^-1 A_kb
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_lu_;
-  mutable Eigen::VectorXd work_b_, work_x_;
+  mutable Eigen::VectorXd work_b_, work_x_, work_product_;
+  mutable std::vector<Eigen::VectorXd> work_y_;  ///< D_k^-1 b_k of a solve
 };
 
 }  // namespace raceway::numerics

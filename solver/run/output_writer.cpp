@@ -104,6 +104,14 @@ std::vector<std::size_t> row_shape(const BodySeries& s, std::vector<std::size_t>
   return leading;
 }
 
+/// Whether the rolling elements' series of a quantity are stored deflated: not their positions,
+/// velocities and accelerations, full-precision trajectories that deflate shrinks by 11-22 % (6309 R3,
+/// QJ215, seed 002) for a fifth to a quarter of the compressor's work
+/// (perf/studies/results/revolution_instructions.md).
+bool compressible(Quantity q) {
+  return q != Quantity::position && q != Quantity::velocity && q != Quantity::acceleration;
+}
+
 double component(const BodySample& s, Quantity q, int c) {
   switch (q) {
     case Quantity::position: return s.position[c];
@@ -379,7 +387,7 @@ OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bo
   const auto n = static_cast<std::size_t>(m.element_count);
   for (const BodySeries& s : element_series(m)) {
     const std::string path = std::string("/") + m.element_group + "/" + s.name;
-    file_.define_series(path, row_shape(s, {n}), s.unit, s.meaning);
+    file_.define_series(path, row_shape(s, {n}), s.unit, s.meaning, false, compressible(s.quantity));
     file_.set_attribute(path, "components", component_names(s));
   }
   define_pocket_steps();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "contact/laws/line_contact.hpp"
@@ -412,6 +413,42 @@ TEST(EhlRollingResistance, PositiveScalesAndVanishesWithoutFilm) {
   EXPECT_EQ(ehl_rolling_resistance(10, 1000, c.rx, c.ry, e_star, dry), 0.0);
   EXPECT_EQ(ehl_rolling_resistance(0, 1000, c.rx, c.ry, e_star, c.lubricant), 0.0);
   EXPECT_EQ(ehl_rolling_resistance(10, 0, c.rx, c.ry, e_star, c.lubricant), 0.0);
+}
+
+// The fits keep their factors of G and of the curvature radii for the last arguments seen on the
+// thread: what came before must not change a bit. A fresh thread (nothing kept) against this one
+// after other lubricants, materials and radii, in both orders of film and rolling resistance.
+TEST(EhlFits, SameBitsWhateverWasEvaluatedBefore) {
+  const double e_star = reduced_modulus(200e9, 0.3, 200e9, 0.3);
+  const FilmCase c = inner_race_film_case();
+  struct Values {
+    double central, minimum, rolling;
+  };
+  auto evaluate = [&](double rx, double ry, double e, const PointLubricant& lub) {
+    const FilmThickness film = hamrock_dowson_film(7, 800, rx, ry, e, lub);
+    return Values{film.central, film.minimum, ehl_rolling_resistance(7, 800, rx, ry, e, lub)};
+  };
+  PointLubricant other = c.lubricant;
+  other.pressure_viscosity *= 1.5;
+  Values fresh{}, fresh_other{};
+  std::thread([&] {
+    fresh = evaluate(c.rx, c.ry, e_star, c.lubricant);
+  }).join();
+  std::thread([&] {
+    fresh_other = evaluate(1.1 * c.rx, c.ry, 0.9 * e_star, other);
+  }).join();
+  for (int round = 0; round < 2; ++round) {
+    const Values a = evaluate(c.rx, c.ry, e_star, c.lubricant);
+    const Values b = evaluate(1.1 * c.rx, c.ry, 0.9 * e_star, other);
+    EXPECT_EQ(ehl_rolling_resistance(7, 800, c.rx, c.ry, e_star, c.lubricant), fresh.rolling);
+    EXPECT_EQ(a.central, fresh.central);
+    EXPECT_EQ(a.minimum, fresh.minimum);
+    EXPECT_EQ(a.rolling, fresh.rolling);
+    EXPECT_EQ(b.central, fresh_other.central);
+    EXPECT_EQ(b.minimum, fresh_other.minimum);
+    EXPECT_EQ(b.rolling, fresh_other.rolling);
+    EXPECT_NE(a.central, b.central);
+  }
 }
 
 }  // namespace

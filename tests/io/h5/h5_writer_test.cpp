@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -179,7 +180,7 @@ namespace {
 std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> stored_chunks(const std::string& file_path) {
   std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> out;
   const hid_t file = H5Fopen(file_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  for (const char* name : {"/time", "/xy", "/wide"}) {
+  for (const char* name : {"/time", "/xy", "/wide", "/raw"}) {
     const hid_t d = H5Dopen2(file, name, H5P_DEFAULT);
     const hid_t space = H5Dget_space(d);
     hsize_t chunks = 0;
@@ -208,7 +209,8 @@ std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> stored_chunks
 // Chunks filtered on the background thread and stored with H5Dwrite_chunk are the chunks HDF5's own
 // filter pipeline stores (shuffle + deflate, and deflate alone), whole and partial, across flushes;
 // a series whose row does not fit a chunk (/wide: 2100 values, 16 KiB chunks) takes HDF5's path;
-// at two gzip levels one after the other (each thread keeps its deflate state between chunks).
+// at two gzip levels one after the other (each thread keeps its deflate state between chunks). A
+// series defined uncompressed (/raw) has no filters on either path: its chunks are its values' bytes.
 TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
   for (const auto& [shuffle, level] : {std::pair{true, 1}, std::pair{false, 1}, std::pair{true, 6}}) {
     std::map<std::string, std::pair<std::uint32_t, std::vector<char>>> chunks[2];
@@ -221,9 +223,12 @@ TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
       auto w = H5SeriesWriter::create(out, options);
       define(w);
       w.define_series("/wide", {2100}, "-", "a row larger than a chunk");
+      w.define_series("/raw", {3}, "-", "stored without filters", false, false);
       std::vector<double> wide(2100);
       for (int r = 0; r < 5000; ++r) {
         append_rows(w, r, r + 1, std::sin(0.01 * r));
+        const double raw[3] = {std::sin(0.1 * r), 1.0 / (r + 1), 0.5};
+        w.append("/raw", raw);
         if (r % 100 == 0) {
           for (std::size_t i = 0; i < wide.size(); ++i) wide[i] = std::cos(0.001 * static_cast<double>(i * r));
           w.append("/wide", wide);
@@ -234,7 +239,23 @@ TEST_F(H5Writer, BackgroundCompressionStoresTheChunksHdf5Stores) {
       chunks[background] = stored_chunks(out);
       EXPECT_EQ(H5Reader(out).doubles("/xy"), H5Reader(path("c0.h5")).doubles("/xy"));
     }
-    EXPECT_EQ(chunks[0].size(), 3u + 5u + 100u) << "chunks of /time, /xy, /wide (2 per row)";
+    EXPECT_EQ(chunks[0].size(), 3u + 5u + 100u + 8u) << "chunks of /time, /xy, /wide (2 per row), /raw";
     EXPECT_TRUE(chunks[0] == chunks[1]) << "shuffle " << shuffle << ", level " << level;
+    // /raw: 682 rows of 24 bytes to a 16 KiB chunk; the first chunk holds rows 0..681 as they are.
+    const auto& first = chunks[1].at("/raw@0,0");
+    EXPECT_EQ(first.first, 0u);
+    ASSERT_EQ(first.second.size(), 682u * 3u * sizeof(double));
+    std::vector<double> values(682u * 3u);
+    std::memcpy(values.data(), first.second.data(), first.second.size());
+    EXPECT_EQ(values[3 * 681], std::sin(0.1 * 681));
+    EXPECT_EQ(values[3 * 681 + 1], 1.0 / 682);
+    const hid_t file = H5Fopen(path("c1.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t raw = H5Dopen2(file, "/raw", H5P_DEFAULT), xy = H5Dopen2(file, "/xy", H5P_DEFAULT);
+    const hid_t raw_plist = H5Dget_create_plist(raw), xy_plist = H5Dget_create_plist(xy);
+    EXPECT_EQ(H5Pget_nfilters(raw_plist), 0);
+    EXPECT_EQ(H5Pget_nfilters(xy_plist), shuffle ? 2 : 1);
+    for (const hid_t h : {raw_plist, xy_plist}) H5Pclose(h);
+    for (const hid_t h : {raw, xy}) H5Dclose(h);
+    H5Fclose(file);
   }
 }
