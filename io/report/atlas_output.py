@@ -62,6 +62,13 @@ def table_rows(atlas, state):
     return rows
 
 
+def shown_path(path):
+    """`path` relative to the working folder where it lies inside it (a table made in a repository
+    names its scene as the repository does, wherever the repository lies), else as it is."""
+    relative = os.path.relpath(path)
+    return path if relative.startswith("..") else relative
+
+
 def write_table(atlas, state, folder):
     rows = table_rows(atlas, state)
     columns = list(rows[0]) if rows else ["id"]
@@ -73,7 +80,7 @@ def write_table(atlas, state, folder):
             w.writerow({k: ("" if v is None else f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
 
     _replace(os.path.join(folder, "atlas.csv"), write_csv)
-    doc = {"name": atlas["name"], "scene": atlas["scene"], "metric": atlas["metric"], "classes": atlas["classes"],
+    doc = {"name": atlas["name"], "scene": shown_path(atlas["scene"]), "metric": atlas["metric"], "classes": atlas["classes"],
            "parameters": atlas["parameters"], "certify": atlas["certify"], "thresholds": atlas["thresholds"],
            "stop": state.get("stop"), "core_hours": state.get("core_hours"), "points": state["points"]}
     _replace(os.path.join(folder, "atlas.json"), lambda f: json.dump(_finite(doc), f, indent=1))
