@@ -91,6 +91,15 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
     cut_ = cut_ || parts > 1;
   }
   for (std::size_t s = 0; s < model.segments.size(); ++s) {
+    const int columns = static_cast<int>(shapes_[s].columns.size());
+    // A cut element's combined record holds its result and columns; its parts hold less.
+    const int used = parts_[s] == 1 ? static_cast<int>(rates_offset(static_cast<int>(s))) + rate_rows * columns
+                                    : SegmentRecord::size + SegmentRecord::wrench_rows * columns;
+    jacobian_record_ = std::max(jacobian_record_, used);
+    for (int part = 0; part < parts_[s]; ++part)
+      if (parts_[s] > 1)
+        jacobian_record_ = std::max(jacobian_record_,
+                                    segment_part_record_size(scheduler::Phase::jacobian, static_cast<int>(s), part));
     const SegmentKind k = model.segments[s].kind;
     if (k == SegmentKind::ball_pocket || k == SegmentKind::cage_bar_front || k == SegmentKind::cage_bar_rear)
       pocket_segments_.push_back(static_cast<int>(s));
@@ -221,7 +230,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   c.function[static_cast<int>(scheduler::Phase::rhs)] = rhs_task_;
   c.function[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_task_;
   c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
-  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
+  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record_;
   // What each task's record carries between ranks: a cut segment's parts their share, an uncut
   // segment its whole record (in the Jacobian: its result and one column per state it depends on).
   for (std::size_t t = 0; t < task_segment_.size(); ++t) {
@@ -342,7 +351,7 @@ int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
-  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record, jacobian_task_,
+  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record_, jacobian_task_,
                 cut_ ? jac_task_records_ : jac_records_);
   if (cut_) combine_jacobian_parts(z);
   jac.set_zero();
@@ -350,7 +359,7 @@ int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac
   Loads contacts{std::vector<Wrench>(model_.bodies.size()), std::vector<double>(contact_.node.size(), 0.0)};
   const JacobianAssembly assembly{model_, *this, t, z, jac};
   for (int s = 0; s < nseg; ++s) {
-    const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * jacobian_record;
+    const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * static_cast<std::size_t>(jacobian_record_);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;

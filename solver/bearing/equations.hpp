@@ -99,9 +99,9 @@ class Equations final : public numerics::DynamicSystem {
   /// marker A, then on marker B, gives where that marker is a body's centre (the dynamics' linear
   /// map, computed in the task so that rank 0's assembly only adds them; zero elsewhere).
   static constexpr int rate_rows = 2 * (coordinate_count - svx);
-  /// Size of a Jacobian task's record.
-  static constexpr int jacobian_record =
-      SegmentRecord::size + (SegmentRecord::wrench_rows + rate_rows) * 2 * coordinate_count;
+  /// Size of a Jacobian task's record: the longest any of this model's tasks fills (an uncut
+  /// element's result, columns and rates; a cut one's part), not the longest any model could.
+  int jacobian_record() const { return jacobian_record_; }
 
  private:
   /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
@@ -149,6 +149,7 @@ class Equations final : public numerics::DynamicSystem {
   bool cut_ = false;             ///< some segment has more than one task
   std::vector<double> task_records_, jac_task_records_;
   std::vector<ElementShape> shapes_;  ///< per element: its Jacobian columns
+  int jacobian_record_ = SegmentRecord::size;
   std::vector<std::vector<Model::RateFollower>> followers_;  ///< per body
   Loads contact_;
   std::vector<Wrench> net_;
