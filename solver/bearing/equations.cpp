@@ -91,11 +91,8 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
     cut_ = cut_ || parts > 1;
   }
   for (std::size_t s = 0; s < model.segments.size(); ++s) {
-    const int columns = static_cast<int>(shapes_[s].columns.size());
-    // A cut element's combined record holds its result and columns; its parts hold less.
-    const int used = parts_[s] == 1 ? static_cast<int>(rates_offset(static_cast<int>(s))) + rate_rows * columns
-                                    : SegmentRecord::size + SegmentRecord::wrench_rows * columns;
-    jacobian_record_ = std::max(jacobian_record_, used);
+    // Its result and columns (a cut element's combined record), or a part's share.
+    jacobian_record_ = std::max(jacobian_record_, SegmentRecord::size + SegmentRecord::wrench_rows * shapes_[s].record_columns());
     for (int part = 0; part < parts_[s]; ++part)
       if (parts_[s] > 1)
         jacobian_record_ = std::max(jacobian_record_,
@@ -191,30 +188,6 @@ void Equations::jacobian_task(std::span<const double> context, int task, std::sp
                                context.data() + 1, rec);
       },
       model_.laws[static_cast<std::size_t>(seg.law)]);
-  write_body_rates(s, context.data() + 1, rec.data());
-}
-
-std::size_t Equations::rates_offset(int s) const {
-  return static_cast<std::size_t>(SegmentRecord::size +
-                                  SegmentRecord::wrench_rows * shapes_[static_cast<std::size_t>(s)].record_columns());
-}
-
-void Equations::write_body_rates(int s, const double* z, double* rec) const {
-  const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  const std::size_t columns = shapes_[static_cast<std::size_t>(s)].columns.size();
-  double* out = rec + rates_offset(s);
-  for (int target = 0; target < 2; ++target) {
-    const auto* centre = std::get_if<BodyCentre>(&model_.markers[static_cast<std::size_t>(target == 0 ? seg.marker_a : seg.marker_b)]);
-    if (!centre || !model_.bodies[static_cast<std::size_t>(centre->body)].has_states()) continue;
-    for (std::size_t column = 0; column < columns; ++column) {
-      const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column + 6 * target;
-      Wrench dw;
-      for (int i = 0; i < 3; ++i) dw.force[i] = d[i], dw.moment[i] = d[3 + i];
-      double rates[coordinate_count];
-      dynamics_->contact_rate_derivative(centre->body, z, dw, rates);
-      std::copy(rates + svx, rates + coordinate_count, out + rate_rows * column + (rate_rows / 2) * target);
-    }
-  }
 }
 
 scheduler::TaskCatalogue Equations::task_catalogue() const {
@@ -240,7 +213,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
       if (parts_[static_cast<std::size_t>(s)] > 1)
         used = segment_part_record_size(phase, s, static_cast<int>(t) - first_task_[static_cast<std::size_t>(s)]);
       else if (phase == scheduler::Phase::jacobian)
-        used = static_cast<int>(rates_offset(s)) + rate_rows * static_cast<int>(shapes_[static_cast<std::size_t>(s)].columns.size());
+        used += SegmentRecord::wrench_rows * shapes_[static_cast<std::size_t>(s)].record_columns();
       c.used_size[static_cast<std::size_t>(phase)].push_back(used);
     }
   }
@@ -286,15 +259,6 @@ void Equations::add_rate_derivative(int b, int state, const double* z, const Wre
     if (rates[f.coordinate] != 0.0) jac.add(f.row, state, f.factor * rates[f.coordinate]);
 }
 
-void Equations::add_rates(int b, int state, const double* rates, numerics::BorderedMatrix& jac) const {
-  const Body& body = model_.bodies[static_cast<std::size_t>(b)];
-  const auto rate = [&](int c) { return c >= svx ? rates[c - svx] : 0.0; };
-  for (int c = svx; c < coordinate_count; ++c)
-    if (body.slot[c] >= 0 && rate(c) != 0.0) jac.add(body.slot[c], state, rate(c));
-  for (const Model::RateFollower& f : followers_[static_cast<std::size_t>(b)])  // relative coordinates
-    if (rate(f.coordinate) != 0.0) jac.add(f.row, state, f.factor * rate(f.coordinate));
-}
-
 void Equations::scatter(const Segment& seg, const double* rec, double t, const double* z, Loads& loads) const {
   for (const bool on_a : {true, false}) {
     const Marker& marker = model_.markers[static_cast<std::size_t>(on_a ? seg.marker_a : seg.marker_b)];
@@ -318,9 +282,6 @@ void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAss
   const Marker* markers[2] = {&model_.markers[static_cast<std::size_t>(seg.marker_a)],
                               &model_.markers[static_cast<std::size_t>(seg.marker_b)]};
   const std::vector<SegmentColumn>& columns = shapes_[static_cast<std::size_t>(s)].columns;
-  // An uncut element's task formed the rates where a marker is a body's centre (write_body_rates).
-  const bool rates_in_record = parts_[static_cast<std::size_t>(s)] == 1;
-  const double* rates = rec + rates_offset(s);
   for (std::size_t column = 0; column < columns.size(); ++column) {
     const SegmentColumn& c = columns[column];
     const double* d = rec + SegmentRecord::size + SegmentRecord::wrench_rows * column;
@@ -328,12 +289,6 @@ void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAss
     for (const int state : {c.state, c.also}) {
       if (state < 0) continue;
       for (int target = 0; target < 2; ++target) {
-        const auto* centre = std::get_if<BodyCentre>(markers[target]);
-        if (rates_in_record && centre) {
-          if (model_.bodies[static_cast<std::size_t>(centre->body)].has_states())
-            add_rates(centre->body, state, rates + rate_rows * column + (rate_rows / 2) * target, assembly.jac);
-          continue;
-        }
         Wrench dw;
         for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
         marker_add_rate_derivative(model_, *markers[target], assembly, state, dw);

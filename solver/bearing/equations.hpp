@@ -94,13 +94,8 @@ class Equations final : public numerics::DynamicSystem {
   /// task functions, for an executor's
   /// attach() on the master and serve() on the workers: every rank evaluates the same code.
   scheduler::TaskCatalogue task_catalogue() const;
-  /// Per state column of an uncut element's Jacobian record, after all its wrench columns: the
-  /// rates of the velocity-type coordinates (svx .. swz) that the column's wrench derivative on
-  /// marker A, then on marker B, gives where that marker is a body's centre (the dynamics' linear
-  /// map, computed in the task so that rank 0's assembly only adds them; zero elsewhere).
-  static constexpr int rate_rows = 2 * (coordinate_count - svx);
   /// Size of a Jacobian task's record: the longest any of this model's tasks fills (an uncut
-  /// element's result, columns and rates; a cut one's part), not the longest any model could.
+  /// element's result and columns; a cut one's part), not the longest any model could.
   int jacobian_record() const { return jacobian_record_; }
 
  private:
@@ -109,12 +104,6 @@ class Equations final : public numerics::DynamicSystem {
   void jacobian_task(std::span<const double> context, int task, std::span<double> rec) const;
   /// Element s's Jacobian terms from its record, through its markers.
   void add_segment_jacobian(int s, const double* rec, const JacobianAssembly& assembly) const;
-  /// Where an uncut element's record holds its columns' rates (rate_rows each), and the task's part
-  /// that writes them (z: the context's state).
-  std::size_t rates_offset(int s) const;
-  void write_body_rates(int s, const double* z, double* rec) const;
-  /// add_rate_derivative with the rates already formed (rate_rows / 2 of them, from svx on).
-  void add_rates(int b, int state, const double* rates, numerics::BorderedMatrix& jac) const;
   /// Adds an element's record's wrenches to the loads through its markers.
   void scatter(const Segment& seg, const double* rec, double t, const double* z, Loads& loads) const;
   /// The scheduler's identity of a marker (a body with states, a node), or -1.
