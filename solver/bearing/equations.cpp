@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <type_traits>
@@ -289,8 +290,13 @@ void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAss
     for (const int state : {c.state, c.also}) {
       if (state < 0) continue;
       for (int target = 0; target < 2; ++target) {
+        const double* w = d + 6 * target;
+        // A body's rates are linear in the wrench: a zero derivative adds nothing (an element out
+        // of contact, most pocket bars and the slices outside the load zone).
+        if (std::holds_alternative<BodyCentre>(*markers[target]) && std::all_of(w, w + 6, [](double v) { return v == 0.0; }))
+          continue;
         Wrench dw;
-        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+        for (int i = 0; i < 3; ++i) dw.force[i] = w[i], dw.moment[i] = w[3 + i];
         marker_add_rate_derivative(model_, *markers[target], assembly, state, dw);
       }
     }
