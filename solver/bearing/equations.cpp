@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <type_traits>
@@ -91,6 +92,12 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
     cut_ = cut_ || parts > 1;
   }
   for (std::size_t s = 0; s < model.segments.size(); ++s) {
+    // Its result and columns (a cut element's combined record), or a part's share.
+    jacobian_record_ = std::max(jacobian_record_, SegmentRecord::size + SegmentRecord::wrench_rows * shapes_[s].record_columns());
+    for (int part = 0; part < parts_[s]; ++part)
+      if (parts_[s] > 1)
+        jacobian_record_ = std::max(jacobian_record_,
+                                    segment_part_record_size(scheduler::Phase::jacobian, static_cast<int>(s), part));
     const SegmentKind k = model.segments[s].kind;
     if (k == SegmentKind::ball_pocket || k == SegmentKind::cage_bar_front || k == SegmentKind::cage_bar_rear)
       pocket_segments_.push_back(static_cast<int>(s));
@@ -197,7 +204,7 @@ scheduler::TaskCatalogue Equations::task_catalogue() const {
   c.function[static_cast<int>(scheduler::Phase::rhs)] = rhs_task_;
   c.function[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_task_;
   c.record_size[static_cast<int>(scheduler::Phase::rhs)] = SegmentRecord::size;
-  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record;
+  c.record_size[static_cast<int>(scheduler::Phase::jacobian)] = jacobian_record_;
   // What each task's record carries between ranks: a cut segment's parts their share, an uncut
   // segment its whole record (in the Jacobian: its result and one column per state it depends on).
   for (std::size_t t = 0; t < task_segment_.size(); ++t) {
@@ -283,8 +290,13 @@ void Equations::add_segment_jacobian(int s, const double* rec, const JacobianAss
     for (const int state : {c.state, c.also}) {
       if (state < 0) continue;
       for (int target = 0; target < 2; ++target) {
+        const double* w = d + 6 * target;
+        // A body's rates are linear in the wrench: a zero derivative adds nothing (an element out
+        // of contact, most pocket bars and the slices outside the load zone).
+        if (std::holds_alternative<BodyCentre>(*markers[target]) && std::all_of(w, w + 6, [](double v) { return v == 0.0; }))
+          continue;
         Wrench dw;
-        for (int i = 0; i < 3; ++i) dw.force[i] = d[6 * target + i], dw.moment[i] = d[6 * target + 3 + i];
+        for (int i = 0; i < 3; ++i) dw.force[i] = w[i], dw.moment[i] = w[3 + i];
         marker_add_rate_derivative(model_, *markers[target], assembly, state, dw);
       }
     }
@@ -300,7 +312,7 @@ int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
-  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record, jacobian_task_,
+  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record_, jacobian_task_,
                 cut_ ? jac_task_records_ : jac_records_);
   if (cut_) combine_jacobian_parts(z);
   jac.set_zero();
@@ -308,7 +320,7 @@ int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac
   Loads contacts{std::vector<Wrench>(model_.bodies.size()), std::vector<double>(contact_.node.size(), 0.0)};
   const JacobianAssembly assembly{model_, *this, t, z, jac};
   for (int s = 0; s < nseg; ++s) {
-    const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * jacobian_record;
+    const double* rec = jac_records_.data() + static_cast<std::size_t>(s) * static_cast<std::size_t>(jacobian_record_);
     if (rec[SegmentRecord::valid] == 0.0) {
       status = 1;
       last_invalid_ = s;

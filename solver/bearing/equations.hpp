@@ -94,8 +94,9 @@ class Equations final : public numerics::DynamicSystem {
   /// task functions, for an executor's
   /// attach() on the master and serve() on the workers: every rank evaluates the same code.
   scheduler::TaskCatalogue task_catalogue() const;
-  /// Size of a Jacobian task's record.
-  static constexpr int jacobian_record = SegmentRecord::size + SegmentRecord::wrench_rows * 2 * coordinate_count;
+  /// Size of a Jacobian task's record: the longest any of this model's tasks fills (an uncut
+  /// element's result and columns; a cut one's part), not the longest any model could.
+  int jacobian_record() const { return jacobian_record_; }
 
  private:
   /// Task functions: context = [t, z...] (see scheduler::TaskFunction).
@@ -137,6 +138,7 @@ class Equations final : public numerics::DynamicSystem {
   bool cut_ = false;             ///< some segment has more than one task
   std::vector<double> task_records_, jac_task_records_;
   std::vector<ElementShape> shapes_;  ///< per element: its Jacobian columns
+  int jacobian_record_ = SegmentRecord::size;
   std::vector<std::vector<Model::RateFollower>> followers_;  ///< per body
   Loads contact_;
   std::vector<Wrench> net_;

@@ -203,12 +203,6 @@ Mat3 cardan_rotation(double ax, double ay, double az) {
       .toRotationMatrix();
 }
 
-namespace {
-
-/// cardan_rotation(ax, ay, az) of the angles last asked for in slot `slot`, on this thread: a
-/// right-hand side asks for a ring's or the cage's kinematics once per segment and traction part
-/// (a ring: twice per ball and part), each time with the same angles. The rotation is a function of
-/// the three angles alone, so a hit (the same bits) returns exactly what the call would.
 const Mat3& memo_rotation(std::size_t slot, double ax, double ay, double az) {
   struct Entry {
     std::uint64_t key[3];
@@ -227,8 +221,6 @@ const Mat3& memo_rotation(std::size_t slot, double ax, double ay, double az) {
   }
   return e.rotation;
 }
-
-}  // namespace
 
 Vec3 cardan_rates(double ay, double az, const Vec3& w) {
   const double cb = std::cos(ay), sb = std::sin(ay), cc = std::cos(az), sc = std::sin(az);
@@ -261,10 +253,10 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
   k.velocity = Vec3(v[svx], v[svy], v[svz]);
   switch (body.kind) {
     case BodyKind::rolling_element:
-      if (body.ball_orientation)
-        k.rotation = cardan_rotation(v[sax], v[say], v[saz]);  // a ball that carries a defect
-      else if (body.slot[sax] >= 0)
-        k.rotation = cardan_rotation(v[sax], v[say], v[saz]);  // a spatial roller (its spin angle with a defect)
+      // A ball that carries a defect, or a spatial roller (its spin angle with a defect): every one
+      // of a roller's slices asks for the same rotation.
+      if (body.ball_orientation || body.slot[sax] >= 0)
+        k.rotation = memo_rotation(2 * static_cast<std::size_t>(b), v[sax], v[say], v[saz]);
       k.angular_velocity = Vec3(v[swx], v[swy], v[swz]);
       break;
     case BodyKind::cage:

@@ -239,6 +239,13 @@ std::vector<double> physical_absolute_tolerance(const ModelParameters& p, const 
 
 /// R = Rx(ax) Ry(ay) Rz(az).
 contact::Mat3 cardan_rotation(double ax, double ay, double az);
+/// cardan_rotation(ax, ay, az) of the angles last asked for in slot `slot`, on this thread: a
+/// right-hand side asks for a body's kinematics once per segment and traction part (a roller: once
+/// per slice), each time with the same angles, and the Jacobian's assembly a roller's axis once per
+/// column. The rotation is a function of the three angles alone, so a hit (the same bits) returns
+/// exactly what the call would. Slots: 2 b for body b's rotation in its kinematics, 2 b + 1 for a
+/// second one of the same body (a ring's tilt alone, a roller's axis without its spin angle).
+const contact::Mat3& memo_rotation(std::size_t slot, double ax, double ay, double az);
 /// Rates of the Cardan x-y-z angles from a body-frame angular velocity (singular at ay = +-90 deg,
 /// far beyond any cage tilt).
 contact::Vec3 cardan_rates(double ay, double az, const contact::Vec3& body_angular_velocity);

@@ -174,7 +174,7 @@ void Equations::jacobian_part(const double* context, int s, int part, std::span<
 }
 
 void Equations::combine_jacobian_parts(const double* z) {
-  const std::size_t size = jacobian_record;
+  const auto size = static_cast<std::size_t>(jacobian_record_);
   gather_segments(first_task_, parts_, jac_task_records_, size, jac_records_, [&](std::size_t s, const double* first, double* out) {
     const int parts = parts_[s];
     // The base point is part 0's first evaluation.

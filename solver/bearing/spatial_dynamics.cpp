@@ -65,7 +65,8 @@ class SpatialDynamics final : public BodyDynamics {
         for (int d = 0; d < 3; ++d) rates[swx + d] = w.moment[d] / body.axial_inertia;
         break;
       case BodyKind::cage: {
-        const Mat3 r = cardan_rotation(z[body.slot[sax]], z[body.slot[say]], z[body.slot[saz]]);
+        const Mat3& r =
+            memo_rotation(2 * static_cast<std::size_t>(b), z[body.slot[sax]], z[body.slot[say]], z[body.slot[saz]]);
         const Vec3 m_body = r.transpose() * w.moment;
         rates[swx] = m_body.x() / body.transverse_inertia;
         rates[swy] = m_body.y() / body.transverse_inertia;
@@ -228,16 +229,18 @@ class SpatialDynamics final : public BodyDynamics {
     return -body.mass * w.cross(w.cross(rho));
   }
 
-  static Vec3 roller_axis(const Body& body, const double* z) {
-    return cardan_rotation(z[body.slot[sax]], z[body.slot[say]], 0.0).col(2);
+  Vec3 roller_axis(const Body& body, const double* z) const {
+    const auto b = static_cast<std::size_t>(&body - m_.bodies.data());
+    return memo_rotation(2 * b + 1, z[body.slot[sax]], z[body.slot[say]], 0.0).col(2);
   }
 
   /// A roller: its axis angles' rates from w (bearing frame), and Euler's gyroscopic term
   /// w x (I w) = (I_a - I_t) (a . w) (w x a), taken through I^-1 (r holds I^-1 M).
-  static void roller_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
+  void roller_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) const {
     const auto& sl = body.slot;
     const double spin_angle = sl[saz] >= 0 ? z[sl[saz]] : 0.0;  // a state only with a roller's own defect
-    const Mat3 rotation = cardan_rotation(z[sl[sax]], z[sl[say]], spin_angle);
+    const Mat3 rotation =
+        memo_rotation(2 * static_cast<std::size_t>(&body - m_.bodies.data()), z[sl[sax]], z[sl[say]], spin_angle);
     const Vec3 a = rotation.col(2);
     const Vec3 w(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
     const Vec3 angle_rates = cardan_rates(z[sl[say]], spin_angle, rotation.transpose() * w);

@@ -7,7 +7,9 @@
 // roller's state driven far from its rolling one (a 0.3 rad tilt, w off its axis).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -98,6 +100,24 @@ TEST(SpatialRollerDynamics, TorqueFreeSymmetricTop) {
   const double expected = std::remainder(precession * end, 2 * std::numbers::pi);
   EXPECT_NEAR(turned, expected, 1e-6) << "precession rate " << precession << " rad/s";
   EXPECT_GT(std::abs(axis(z).dot(Vec3::UnitZ()) - std::cos(0.3) * std::cos(0.2)), 1e-3);  // the axis did move
+}
+
+// The per-thread memo of rotations (a roller's slices and Jacobian columns ask for its rotation
+// again and again) returns exactly what cardan_rotation returns, whatever the order of the calls:
+// angles that differ in one of the three only, in the last bit only, slots taken in turn.
+TEST(MemoRotation, ReturnsCardanRotationsBitsWhateverTheOrderOfCalls) {
+  const double a = 0.3, b = -0.2, c = 1.1;
+  const double next = std::nextafter(b, 1.0);
+  const double angles[][3] = {{a, b, c}, {a, b, 0.0}, {a, next, c}, {0.0, b, c}, {a, b, c}, {a, b, -0.0}};
+  for (int round = 0; round < 2; ++round)
+    for (std::size_t slot : {std::size_t{0}, std::size_t{7}, std::size_t{0}})
+      for (const auto& x : angles) {
+        const Mat3 memo = memo_rotation(slot, x[0], x[1], x[2]);
+        const Mat3 direct = cardan_rotation(x[0], x[1], x[2]);
+        for (int i = 0; i < 9; ++i)
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(memo.data()[i]), std::bit_cast<std::uint64_t>(direct.data()[i]))
+              << "slot " << slot << " angles " << x[0] << " " << x[1] << " " << x[2];
+      }
 }
 
 }  // namespace
