@@ -74,12 +74,16 @@ h5() {
   "$python" -c "import h5py, numpy as np, sys; f = h5py.File(sys.argv[1], 'r'); print($2)" "$1" 2>&1 | tail -1
 }
 
-# reference NP [OPTION...]: the uninterrupted run; sets $reference_ms, its wall time in milliseconds.
+# reference NP [OPTION...]: the uninterrupted run; sets $reference_ms, its wall time in milliseconds
+# from the output's layout on ("readable from here on") to its end: the stretch a kill can land in
+# (mpirun's and the model's start-up before it are most of a short run's wall on a loaded machine).
 reference() {
   local np=$1 t0
   shift
+  : >"$work/log"
   t0=$(date +%s%N)
   launch "$np" "$work/ref.h5" "$@"
+  wait_for_line "$work/log" "readable from here on" && t0=$(date +%s%N)
   wait "$pid" || fail "the uninterrupted run failed: $(diagnosis)"
   reference_ms=$((($(date +%s%N) - t0) / 1000000))
 }
