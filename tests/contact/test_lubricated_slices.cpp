@@ -5,7 +5,9 @@
 // the planar contact's normal force, traction (Couette and Poiseuille) and film thickness. Checked on
 // both races, apart and overlapping, in pure rolling and with sliding, with and without EHD
 // traction. The planar contact point lies midway between the surfaces and the slices' on the race, so
-// the entrainment speeds differ by (approach / 2) / race_radius, below 1e-3 here: the tolerance.
+// the entrainment speeds differ by (approach / 2) / race_radius and the slips by the roller's spin
+// times that half gap: normal forces within 1e-3, tractions within 1e-3 of themselves and 2.5e-3 of
+// the normal force (near pure rolling, where that slip difference is all the slip).
 // The slice's forward-difference Jacobian (as the equations form it) is checked against central
 // differences, with the film and its traction, as the other lubricated segments are.
 #include <gtest/gtest.h>
@@ -108,7 +110,7 @@ TEST(LubricatedSlices, SlicesOfAStraightRollerSumToThePlanarFilm) {
         place(s, outer, ring, roller, ring3, roller3);
         const SegmentResult planar = evaluate(planar_race(outer, traction), ring, roller);
         ASSERT_TRUE(planar.valid);
-        ASSERT_GT(planar.diagnostics.normal_force, 10.0);  // a loaded film
+        ASSERT_GT(planar.diagnostics.normal_force, 5.0);  // a loaded film
         Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
         double normal = 0, film = 0;
         for (const RollerSliceSegment& seg : slice_race(outer, traction)) {
@@ -120,14 +122,17 @@ TEST(LubricatedSlices, SlicesOfAStraightRollerSumToThePlanarFilm) {
           film += r.diagnostics.film_thickness / slices;
         }
         const double scale = std::hypot(planar.on_b.fx, planar.on_b.fy);
+        const double normal_planar = planar.diagnostics.normal_force;
         const double tangential = std::abs(planar.diagnostics.traction_force);
         const double error = std::hypot(force.x() - planar.on_b.fx, force.y() - planar.on_b.fy) / scale;
         worst = std::max(worst, error);
-        EXPECT_NEAR(normal, planar.diagnostics.normal_force, 1e-3 * planar.diagnostics.normal_force);
-        EXPECT_LT(error, 1e-3);
-        // The traction alone (Couette, Poiseuille or the curve), through the roller's moment.
-        EXPECT_NEAR(moment.z(), planar.on_b.mz, 1e-3 * tangential * roller_radius + 1e-9);
-        EXPECT_NEAR(std::hypot(moment.x(), moment.y()), 0.0, 1e-9 * scale * length);  // aligned: no tilting moment
+        EXPECT_NEAR(normal, normal_planar, 1e-3 * normal_planar);
+        EXPECT_LT(error, 2.5e-3);
+        // The traction alone (Couette, Poiseuille or the curve), through the roller's moment: within
+        // 1e-3 of it, and 2.5e-3 of the normal force near pure rolling, where the two contact points'
+        // slips differ by the roller's spin times half the gap (some 1e-3 m/s: the curve's slope
+        // 0.1 / (0.05 m/s) makes that 1.5e-3 N per N).
+        EXPECT_NEAR(moment.z() / roller_radius, planar.on_b.mz / roller_radius, 1e-3 * tangential + 2.5e-3 * normal_planar);
         EXPECT_GT(film, 0.05e-6);
         EXPECT_NEAR(std::abs(force.z()), 0.0, 1e-9 * scale);
       }
@@ -157,13 +162,15 @@ TEST(LubricatedSlices, SliceFilmCarriesItsShareOfTheLoad) {
 // slice, with the film (apart, touching and overlapping) and with EHD traction.
 TEST(LubricatedSlices, JacobianAgainstCentralDifferences) {
   using Shape = JacobianShape<SpatialKinematics>;
+  // Forward steps as the spatial segments' conformance suite takes them; the central reference ten
+  // times larger. Round-off floor: 1e-12 |F| / step (the film's Newton solve converges to 1e-15 of h).
   SpatialSteps steps{};
   for (int side = 0; side < 2; ++side)
     for (int k = 0; k < 3; ++k) {
-      steps[12 * side + k] = 2e-12;
-      steps[12 * side + 3 + k] = 1e-10;
+      steps[12 * side + k] = 1e-10;
+      steps[12 * side + 3 + k] = 1e-9;
       steps[12 * side + 6 + k] = 1e-7;
-      steps[12 * side + 9 + k] = 1e-5;
+      steps[12 * side + 9 + k] = 1e-6;
     }
   for (const bool outer : {false, true}) {
     const RollerSliceSegment seg = slice_race(outer, true)[3];
@@ -179,7 +186,8 @@ TEST(LubricatedSlices, JacobianAgainstCentralDifferences) {
       SpatialJacobian forward{};
       ASSERT_TRUE(segment_jacobian(seg, a, b, base, steps, forward));
       for (int j = 0; j < 24; ++j) {
-        const double h = 100 * steps[static_cast<std::size_t>(j)];
+        const double h = 10 * steps[static_cast<std::size_t>(j)];
+        const double floor = 1e-12 * base.on_b.force.norm() / steps[static_cast<std::size_t>(j)];
         auto shifted = [&](double d) {
           SpatialKinematics pa = a, pb = b;
           Shape::perturb(j < 12 ? pa : pb, j % 12, d);
@@ -192,7 +200,7 @@ TEST(LubricatedSlices, JacobianAgainstCentralDifferences) {
           column += std::abs(central);
           error += std::abs(central - forward[i][static_cast<std::size_t>(j)]);
         }
-        EXPECT_LE(error, 2e-3 * column + 1e-6) << "column " << j << " approach " << approach << " outer " << outer;
+        EXPECT_LE(error, 1e-3 * column + 12 * floor) << "column " << j << " approach " << approach << " outer " << outer;
       }
     }
   }
