@@ -8,7 +8,9 @@
 // Roller loads: each roller's inner-race load (the sum of its slices' normal forces, spatial)
 // averaged over the window, and the largest load at each sample; cage speed: its mean over the window.
 // Measured: mean loads 0.073 % of the largest, the largest load at each sample within 0.31 %, cage
-// speed 0.043 %.
+// speed 0.043 %. With the races lubricated (Moes EHD film and EHD traction, planar line contacts
+// against the spatial model's slices; window 5 to 10 ms): mean loads 0.010 %, the largest load at
+// each sample within 0.25 %, cage speed 0.0006 %.
 #include <gtest/gtest.h>
 
 #include <algorithm>
