@@ -336,6 +336,10 @@ std::string describe_spatial_roller_model(const Model& m) {
                        "Hunt-Crossley {:.3g} s/m, traction mu {:.3g}\n",
                        count[static_cast<int>(SegmentKind::roller_inner_slice)] / m.element_count, s.stiffness,
                        s.damping_factor, s.traction.friction_coefficient);
+    if (s.ehd)
+      out += fmt::format("  race films: Moes EHD line contact per slice (eta {:.4g} mPa s, alpha {:.4g} 1/GPa), {}\n",
+                         1e3 * s.ehd->law.film.viscosity, 1e9 * s.ehd->law.film.pressure_viscosity,
+                         s.ehd->traction ? "Couette and Poiseuille traction" : "the traction curve on the film's force");
   }
   out += describe_race_imperfections(m);
   out += describe_roller_diameters(m);
