@@ -26,7 +26,8 @@ constexpr LawEntry kLaws[] = {
      "[lubricant] viscosity and limiting_shear_coefficient); the tanh curve where there is no film"},
     {LawRole::normal, LawId::moes_ehd, "moes_ehd", roller_race_contact,
      "EHD line contact (seed 003 eq. 8-9): Palmgren's law carrying a Moes film (Martin's rigid-isoviscous "
-     "constant), fully flooded up to a gap of 2 % of the roller radius (needs [lubricant] viscosity)"},
+     "constant), fully flooded up to a gap of 2 % of the roller radius; spatial cylindrical roller bearings: "
+     "each race slice a film of its width (needs [lubricant] viscosity)"},
     {LawRole::traction, LawId::ehd_traction, "ehd", roller_race_contact,
      "EHD traction (seed 003 eq. 10): Couette friction linear in the slide-to-roll ratio up to "
      "friction_coefficient (saturating at 5 %; slip_velocity_scale keeps it finite at rest) and the Poiseuille "

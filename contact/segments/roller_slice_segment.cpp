@@ -1,5 +1,6 @@
 #include "contact/segments/roller_slice_segment.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact/laws/damping.hpp"
@@ -24,6 +25,56 @@ RaceContact cone_contact(const RollerSliceSegment& s, const Vec3& local, double 
   rc.normal_local = s.outer ? Vec3(-n_race) : n_race;
   rc.point_local = local - d * n_race;
   return rc;
+}
+
+/// The relative motion at the contact point: B's velocity less A's, its tangent-plane part (the
+/// slip) and the approach rate.
+struct SliceMotion {
+  Vec3 relative, slip;
+  double approach_rate = 0;
+};
+
+/// The lubricated slice (the header's "Lubricated"): the film's force and traction into `out`.
+/// `rolling` is the unit rolling direction t, `ring_speed` the ring surface's speed along it
+/// relative to the contact point.
+void ehd_slice(const RollerSliceSegment& s, const SpatialKinematics& ring, const SpatialKinematics& roller,
+               const Vec3& n, const Vec3& point, double approach, const SliceMotion& v, const Vec3& rolling,
+               double ring_speed, SpatialSegmentResult& out) {
+  const EhdRaceFilm& film = *s.ehd;
+  EhdLineLaw law = film.law;
+  law.film.reduced_radius = 1.0 / (1.0 / s.roller_radius + (s.outer ? -1.0 : 1.0) / s.race_radius);
+  const double entrainment = ring_speed + 0.5 * v.slip.dot(rolling);
+  const EhdState st = evaluate_ehd(law, -approach, std::abs(entrainment));
+  out.valid = out.valid && st.valid && std::isfinite(entrainment);
+  if (st.force == 0 || !std::isfinite(st.force) || !std::isfinite(entrainment)) return;
+  const double normal = std::max(0.0, st.force * (1.0 + film.damping_factor * v.approach_rate));
+  Vec3 traction = tanh_slip_traction(s.traction.friction_coefficient, s.traction.slip_velocity_scale, normal, v.slip);
+  double poiseuille = 0, rolling_sense = 0;
+  if (film.traction) {
+    const CouetteTraction& c = film.couette;
+    traction = tanh_slip_traction(c.friction_coefficient, c.saturation_ratio * std::hypot(entrainment, c.speed_floor),
+                                  normal, v.slip);
+    poiseuille = law.film.length *
+                 poiseuille_force_per_length(law.film, speed_parameter(law.film, std::abs(entrainment)), st.load_parameter);
+    rolling_sense = std::tanh(entrainment / c.speed_floor);
+  }
+  const Vec3 force = normal * n + traction - (poiseuille * rolling_sense) * rolling;
+  out.on_b.force = force;
+  out.on_b.moment = (point - roller.position).cross(force);
+  out.on_a.force = -force;
+  out.on_a.moment = (point - ring.position).cross(-force);
+  PointDiagnostics& d = out.diagnostics;
+  d.normal_force = normal;
+  d.film_thickness = st.film_thickness;
+  d.slip_velocity = v.slip.norm();
+  d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
+  d.traction_force = (force - normal * n).norm();
+  const Vec3 e_r(roller.position.x(), roller.position.y(), 0.0);
+  const double r = e_r.norm();
+  d.circumferential_force = r > 0 ? force.dot(Vec3::UnitZ().cross(e_r / r)) : 0.0;
+  d.elastic_energy = law.stiffness * std::pow(st.deflection, palmgren_exponent + 1) / (palmgren_exponent + 1);
+  d.power_loss = std::max(0.0, (normal - st.force) * v.approach_rate) - traction.dot(v.slip) +
+                 poiseuille * std::abs(entrainment);
 }
 
 }  // namespace
@@ -73,9 +124,9 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
     point = ring.position + ring.rotation * rc.point_local;
   }
   // The rate of S's azimuth about the ring's axis in the ring's frame (the imperfections' surfaces pass
-  // under S): azimuth_moment / rho^2.
+  // under S, the film's contact point follows S): azimuth_moment / rho^2.
   double azimuth_moment = 0;
-  if (s.imperfections || s.roller_imperfections) {
+  if (s.imperfections || s.roller_imperfections || s.ehd) {
     const Vec3 centre_velocity = roller.velocity + roller.angular_velocity.cross(centre - roller.position);
     const Vec3 local_rate = ring.rotation.transpose() *
                             (centre_velocity - ring.velocity - ring.angular_velocity.cross(centre - ring.position));
@@ -93,7 +144,8 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
     approach += own.height;
   }
   out.diagnostics.approach = approach;
-  if (!(approach > 0)) return out;
+  // A film carries load before the surfaces meet, up to its cutoff gap.
+  if (!(approach > (s.ehd ? -s.ehd->law.film.cutoff : 0.0))) return out;
   if (approach > s.max_approach) out.valid = false;
 
   const Vec3 v_ring = ring.velocity + ring.angular_velocity.cross(point - ring.position);
@@ -102,6 +154,12 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
   double approach_rate = -n.dot(relative);
   if (s.imperfections) approach_rate += surface.per_azimuth * azimuth_moment / (rho * rho);
   if (s.roller_imperfections) approach_rate += own.rate;
+  if (s.ehd) {
+    const Vec3 rolling = ring.rotation * Vec3(-local.y() / rho, local.x() / rho, 0.0);
+    const SliceMotion motion{relative, relative - n.dot(relative) * n, approach_rate};
+    ehd_slice(s, ring, roller, n, point, approach, motion, rolling, -s.race_radius * azimuth_moment / (rho * rho), out);
+    return out;
+  }
 
   const double elastic = s.stiffness * std::pow(approach, palmgren_exponent);
   const DampedForce q = hunt_crossley(elastic, s.damping_factor, approach_rate);

@@ -40,13 +40,29 @@
 // orientation then carries its angle about its axis) and at the slice's place along it: the approach
 // grows by that height and its rate by the height's change as the roller turns relative to the
 // contact's normal (which turns with S's azimuth about the ring's axis).
+//
+// Lubricated (`ehd` set: normal = "moes_ehd"), the slice is an EHD line contact of the slice's width
+// (lubricated_line_contact.hpp): Palmgren's K_j carries the Moes film's load at the slice's own gap
+// (minus its approach) and entrainment speed, so the slices share a roller's load by their own
+// film and deflection as the dry slices do by their approach; the film carries load up to its cutoff
+// gap, apart as well. The film's reduced radius is the slice's: 1/R = 1/roller_radius +- 1/race_radius.
+// With `ehd->traction` the Couette friction of the film acts against the slice's sliding (its
+// tangent-plane slip, rolling and axial, as the dry curve's) and the Poiseuille force of its width
+// against the rolling, both at the contact point; else the traction curve on the film's force. The
+// entrainment speed u_m is the mean of the two surfaces' speeds along the rolling direction
+// t = e_z x e_r of the ring frame relative to the contact point, which follows S about the ring's
+// axis: the ring's -race_radius * (S's azimuth rate in the ring frame), the roller's that plus the
+// slip along t. Cylindrical races only (race_angle = 0). Restricted to the plane this is the planar
+// roller-race film (roller_segments.hpp) of a line contact as long as the slice is wide.
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "contact/laws/race_imperfections.hpp"
 #include "contact/laws/sliced_line_contact.hpp"
 #include "contact/segments/ball_segments.hpp"
+#include "contact/segments/roller_segments.hpp"
 
 namespace raceway::contact {
 
@@ -63,6 +79,9 @@ struct RollerSliceSegment {
   TractionCurve traction;
   std::shared_ptr<const RaceImperfections> imperfections;  ///< the race's spall and waviness; null: perfect
   std::shared_ptr<const RaceImperfections> roller_imperfections;  ///< the roller's own; null: a perfect roller
+  /// The EHD film of the slice (its length the slice's width, K the slice's); null: dry. The
+  /// film's reduced_radius is taken from the radii above when evaluated.
+  std::optional<EhdRaceFilm> ehd;
 };
 
 /// Slice j of a sliced roller-race contact.

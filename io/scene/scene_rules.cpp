@@ -469,9 +469,14 @@ void film_law_has_lubricant(const Row&, const Section& s, Bind& b) {
   if (id == contact::LawId::pocket_film && b.scene.cage.pocket_shape != PocketShape::cylindrical)
     s.fail("normal", "normal = \"pocket_film\" is the film of a ball in a cylindrical pocket (pocket_shape = "
                      "\"cylindrical\"); a spherical pocket's film is not modelled: give normal = \"hertz\"");
-  if (b.spatial_roller())
-    s.fail("normal", fmt::format("normal = \"{}\" is a film law; the spatial roller model's contacts, its cage land's "
-                                 "included, are dry (palmgren): films are modelled in the planar roller bearing",
+  // The spatial cylindrical roller bearing has the EHD film on its race slices; its pocket bars, land and
+  // ribs, and every contact of the tapered roller bearing, are dry.
+  const bool race_slices = b.contact_kind == contact::roller_race_contact && !b.scene.bearing.is_tapered();
+  if (b.spatial_roller() && !(id == contact::LawId::moes_ehd && race_slices))
+    s.fail("normal", fmt::format("normal = \"{}\" is a film law; in the spatial roller model only the cylindrical "
+                                 "roller bearing's race slices have a film (normal = \"moes_ehd\"): its pocket bars "
+                                 "and cage land, and the tapered roller bearing's contacts, are dry (palmgren): their "
+                                 "films are modelled in the planar roller bearing",
                                  b.contact->normal.name()));
   if (!(b.scene.lubricant.viscosity > 0))
     s.fail("normal", fmt::format("normal = \"{}\" is a film law and needs a lubricant: set lubricant.viscosity (and "

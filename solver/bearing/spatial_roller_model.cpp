@@ -217,6 +217,27 @@ void add_land_segment(Model& m, const scene::Scene& scene) {
                         l.outer_land ? "cage/outer_ring_land" : "cage/inner_ring_land"});
 }
 
+/// The EHD film of a race slice where the scene chooses normal = "moes_ehd": a line contact of the
+/// slice's width with its K_j (its reduced radius the slice's own, set when evaluated), fully flooded
+/// up to a gap of 2 % of the roller radius, as the planar race film (roller_model.cpp).
+void add_slice_film(contact::RollerSliceSegment& slice, const contact::SlicedLineContact& sliced,
+                    const scene::Scene& scene, double e_race, double roller_radius) {
+  const scene::ContactSpec& spec = scene.roller_race;
+  if (spec.normal.id != contact::LawId::moes_ehd) return;
+  contact::EhdRaceFilm film;
+  film.law.film.viscosity = scene.lubricant.viscosity;
+  film.law.film.pressure_viscosity = scene.lubricant.pressure_viscosity;
+  film.law.film.reduced_modulus = e_race;
+  film.law.film.length = sliced.slice_width;
+  film.law.film.cutoff = 0.02 * roller_radius;
+  film.law.stiffness = slice.stiffness;
+  film.law.max_approach = slice.max_approach;
+  film.damping_factor = slice.damping_factor;
+  film.traction = spec.traction.id == contact::LawId::ehd_traction;
+  film.couette = {spec.traction.friction_coefficient, 0.05, spec.traction.slip_velocity_scale};
+  slice.ehd = film;
+}
+
 void add_segments(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const auto& cs = scene.cage;
@@ -233,6 +254,8 @@ void add_segments(Model& m, const scene::Scene& scene) {
     auto inner = contact::make_roller_slice_segment(sliced, j, m.inner_race_radius, m.element_radius, false, race_traction);
     auto outer = contact::make_roller_slice_segment(sliced, j, m.outer_race_radius, m.element_radius, true, race_traction);
     inner.imperfections = inner_race, outer.imperfections = outer_race;
+    add_slice_film(inner, sliced, scene, e_race, m.element_radius);
+    add_slice_film(outer, sliced, scene, e_race, m.element_radius);
     inner_slices.push_back(add_law(m, std::move(inner)));
     outer_slices.push_back(add_law(m, std::move(outer)));
   }
@@ -313,6 +336,10 @@ std::string describe_spatial_roller_model(const Model& m) {
                        "Hunt-Crossley {:.3g} s/m, traction mu {:.3g}\n",
                        count[static_cast<int>(SegmentKind::roller_inner_slice)] / m.element_count, s.stiffness,
                        s.damping_factor, s.traction.friction_coefficient);
+    if (s.ehd)
+      out += fmt::format("  race films: Moes EHD line contact per slice (eta {:.4g} mPa s, alpha {:.4g} 1/GPa), {}\n",
+                         1e3 * s.ehd->law.film.viscosity, 1e9 * s.ehd->law.film.pressure_viscosity,
+                         s.ehd->traction ? "Couette and Poiseuille traction" : "the traction curve on the film's force");
   }
   out += describe_race_imperfections(m);
   out += describe_roller_diameters(m);
