@@ -8,6 +8,8 @@
 # where it exists). Every line carries the load average: the machine has 2 cores and is shared;
 # run it when nothing else runs (WAIT_QUIET=S waits up to S seconds for a quiet machine before each
 # run, as run_parallel_benchmarks.sh does). END_TIME shortens or lengthens the scene (default its 20 ms).
+# SCENE names another scene of jobs/scenes (default nj_heavy_spatial_roller; nj_heavy_spatial_roller_oil
+# is the same bearing with the EHD film on every slice); a run's record is appended to the file.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 out="$root/perf/studies/results"
@@ -21,11 +23,12 @@ py=/usr/bin/python3
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 source "$root/perf/bench_lib.sh"  # header, load, wall, median
+scene_name=${SCENE:-nj_heavy_spatial_roller}
 scene="$tmp/heavy_roller.toml"
 if [[ -n "${END_TIME:-}" ]]; then
-  sed "s/^end_time = .*/end_time = \"$END_TIME\"/" "$root/jobs/scenes/nj_heavy_spatial_roller.toml" >"$scene"
+  sed "s/^end_time = .*/end_time = \"$END_TIME\"/" "$root/jobs/scenes/$scene_name.toml" >"$scene"
 else
-  cp "$root/jobs/scenes/nj_heavy_spatial_roller.toml" "$scene"
+  cp "$root/jobs/scenes/$scene_name.toml" "$scene"
 fi
 quiet() {
   [[ -z "${WAIT_QUIET:-}" ]] && return
@@ -40,7 +43,7 @@ quiet() {
 }
 {
   header
-  echo "# heavy spatial roller scene (nj_heavy_spatial_roller.toml${END_TIME:+, end_time $END_TIME}), $runs paired runs"
+  echo "# heavy spatial roller scene ($scene_name.toml${END_TIME:+, end_time $END_TIME}), $runs paired runs"
   w1=() w2=()
   for i in $(seq "$runs"); do
     state=$(quiet)
@@ -62,4 +65,4 @@ quiet() {
   fi
   echo "# replay model (perf/calibration/replay_model.py) from the last one-rank run, measured np=2 beside it"
   "$py" "$root/perf/calibration/replay_model.py" "${network[@]}" --measured-np2 "$speedup" "$tmp/r1.h5" 2>&1 | sed "s|$tmp/||"
-} 2>&1 | tee "$out/spatial_roller_timings.txt"
+} 2>&1 | tee -a "$out/spatial_roller_timings.txt"
