@@ -146,7 +146,7 @@ def subsync_growth(time, x, y, clearance, cage_speed_mean):
     revolutions = abs(cage_speed_mean) * float(time[-1] - time[0]) / TWO_PI if math.isfinite(cage_speed_mean) else 0.0
     segments = min(SUBSYNC_SEGMENTS, int(revolutions // SUBSYNC_MIN_REVOLUTIONS))
     out = {"subsync_amplitudes_m": [], "subsync_growth_per_rev": math.nan, "subsync_amplitude_ratio": math.nan,
-           "subsync_frequency_ratio": math.nan}
+           "subsync_frequency_ratio": math.nan, "subsync_coherent": False}
     if segments < 3:
         return out
     edges = np.linspace(0, len(time), segments + 1).astype(int)
@@ -156,6 +156,11 @@ def subsync_growth(time, x, y, clearance, cage_speed_mean):
                      for a, b in zip(edges[:-1], edges[1:])])
     out["subsync_amplitudes_m"] = amplitudes.tolist()
     out["subsync_frequency_ratio"] = lines[-1][1]
+    # One whirl through the window: its line at the same frequency in every segment, within half a
+    # spectral bin (1 / a segment's cage revolutions). A wandering centre's strongest line jumps
+    # from bin to bin and direction to direction between segments; a film whirl's stays put.
+    half_bin = 0.5 * segments / revolutions
+    out["subsync_coherent"] = bool(all(abs(f - lines[-1][1]) <= half_bin for _, f in lines))
     out["subsync_amplitude_ratio"] = _ratio(float(amplitudes[-1]), clearance)
     if np.all(amplitudes > 0) and np.all(np.isfinite(amplitudes)):
         out["subsync_growth_per_rev"] = float(np.polyfit(mids, np.log(amplitudes), 1)[0])
@@ -163,11 +168,14 @@ def subsync_growth(time, x, y, clearance, cage_speed_mean):
 
 
 def oil_whirl(m, t):
-    """The reason a window's sub-synchronous whirl makes it unstable, or None: it grows faster than
+    """The reason a window's sub-synchronous whirl makes it unstable, or None: a coherent one (the
+    same line in every segment, subsync_growth) that grows faster than
     whirl_growth_rate per cage revolution at an amplitude of at least whirl_growth_min_amplitude of
     the clearance (an oil whirl setting in), or it is at least whirl_sustained_amplitude of the
     clearance and decays no faster than whirl_growth_rate (an oil whirl that has grown)."""
     rate, amplitude = m.get("subsync_growth_per_rev", math.nan), m.get("subsync_amplitude_ratio", math.nan)
+    if not m.get("subsync_coherent", False):
+        return None  # no one whirl: a wandering centre's strongest line changes between segments
     where = f"sub-synchronous whirl at {m.get('subsync_frequency_ratio', math.nan):.3g} of the cage speed"
     if rate > t["whirl_growth_rate"] and amplitude >= t["whirl_growth_min_amplitude"]:
         return (f"{where} grows {rate:.3g} > {t['whirl_growth_rate']:.3g} per cage revolution at amplitude "

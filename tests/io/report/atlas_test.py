@@ -200,6 +200,20 @@ def case_motion_growth():
           "a steady whirl of 0.08 c with whirl_sustained_amplitude 0.2: not stable")
     m = classify(*circular_whirl())  # 10 cage revolutions: fewer than 3 segments of 4, no growth measured
     check(math.isnan(m["subsync_growth_per_rev"]) and m["motion_class"] == "circling", f"short window: {m}")
+    # A wandering centre (a ball-guided cage's): in each quarter of the window a line of another
+    # frequency and direction (+0.75, -0.5, +0.25, -0.75 of the cage speed, as the 6205's), 2 to 5 um:
+    # its strongest line grows from segment to segment but is no one whirl: not unstable by it.
+    # The same amplitudes at one frequency (+0.5) are.
+    for ratios, wanted in (((0.75, -0.5, 0.25, -0.75), "stable"), ((0.5,) * 4, "unstable")):
+        quarter = np.minimum((4 * (TG - TG[0]) / (TG[-1] - TG[0] + 1e-12)).astype(int), 3)
+        amplitude = np.array([2e-6, 3e-6, 4e-6, 5e-6])[quarter]
+        ratio = np.array(ratios)[quarter]
+        z = 1e-6 * np.exp(1j * OMEGA_G * TG) + amplitude * np.exp(1j * ratio * OMEGA_G * TG)
+        m = cm.classify(TG, z.real, z.imag, C, OMEGA_G, pockets=9)
+        print(f"segments' lines at {ratios}: {m['motion_class']}, coherent {m['subsync_coherent']}, "
+              f"growth {m['subsync_growth_per_rev']:.3g}")
+        check(m["motion_class"] == wanted and m["subsync_coherent"] == (wanted == "unstable"),
+              f"lines at {ratios}: {m['motion_class']} (coherent {m['subsync_coherent']}), not {wanted}")
 
 
 def case_certify():
