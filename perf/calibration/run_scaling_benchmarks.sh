@@ -27,9 +27,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 out="$root/perf/calibration/results"
 raceway="${RACEWAY:-$root/build/raceway}"  # RACEWAY=...: a copy, to keep building meanwhile
 runs=${RUNS:-3}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-export OMPI_MCA_mpi_yield_when_idle=${MPI_YIELD:-1}  # as perf/studies/run_parallel_benchmarks.sh
 py=/usr/bin/python3
 tmp="${KEEP_RUNS:-$(mktemp -d)}"  # KEEP_RUNS=DIR: keep the runs there (to replay them again)
 mkdir -p "$tmp"

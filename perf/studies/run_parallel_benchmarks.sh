@@ -19,20 +19,11 @@ raceway="$root/build/raceway"
 runs=${RUNS:-5}
 parts=${PARTS:-"a b c"}
 mkdir -p "$out"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# Open MPI's shared-memory single-copy transfers (CMA) need ptrace rights that containers and some
-# VMs lack; plain copies work everywhere.
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-# Waiting ranks yield the core (sched_yield) instead of spinning: on a shared 2-core machine a
-# spinning rank otherwise steals the time slice its partner needs (measured here: np=2 3.4x
-# slower than np=1 next to two busy neighbours without it, 1.3x with it). Costs nothing when the
-# cores are free. Set MPI_YIELD=0 to measure plain busy polling.
-export OMPI_MCA_mpi_yield_when_idle=${MPI_YIELD:-1}
 py=/usr/bin/python3
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
+source "$root/perf/bench_lib.sh"  # the MPI environment; header, load, wall, median, measure_network
 "$py" "$root/perf/studies/make_parallel_scenes.py" "$root" "$tmp"
-source "$root/perf/bench_lib.sh"  # header, load, wall, median, measure_network
 
 # WAIT_QUIET=S: before every timed run of (a), wait up to S seconds until nothing else is runnable
 # (/proc/loadavg's running count is 1, the reader itself, for 5 checks 1 s apart). A run that

@@ -18,9 +18,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 builds=("$root/${BUILD:-build}/raceway")  # build 0; with BASE=path/to/raceway, build 1 (an A/B)
 [[ -n "${BASE:-}" ]] && builds+=("$BASE")
 runs=${RUNS:-3}
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-export OMPI_MCA_mpi_yield_when_idle=${MPI_YIELD:-1}
 py=/usr/bin/python3
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
