@@ -361,4 +361,30 @@ void Loads::clear() {
   for (double& f : node) f = 0.0;
 }
 
+contact::LineFilm line_film(const scene::Scene& scene, double e_star, double reduced_radius, double length,
+                            double roller_radius) {
+  contact::LineFilm f;
+  f.viscosity = scene.lubricant.viscosity;
+  f.pressure_viscosity = scene.lubricant.pressure_viscosity;
+  f.reduced_modulus = e_star;
+  f.reduced_radius = reduced_radius;
+  f.length = length;
+  f.cutoff = 0.02 * roller_radius;
+  return f;
+}
+
+std::optional<contact::EhdRaceFilm> roller_race_film(const scene::Scene& scene, const contact::LineFilm& film,
+                                                     double stiffness, double max_approach, double damping_factor) {
+  const scene::ContactSpec& spec = scene.roller_race;
+  if (spec.normal.id != contact::LawId::moes_ehd) return std::nullopt;
+  contact::EhdRaceFilm f;
+  f.law.film = film;
+  f.law.stiffness = stiffness;
+  f.law.max_approach = max_approach;
+  f.damping_factor = damping_factor;
+  f.traction = spec.traction.id == contact::LawId::ehd_traction;
+  f.couette = {spec.traction.friction_coefficient, 0.05, spec.traction.slip_velocity_scale};
+  return f;
+}
+
 }  // namespace raceway::bearing

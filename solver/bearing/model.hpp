@@ -19,6 +19,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -303,5 +304,17 @@ void set_roller_radii(Model& m, const scene::BearingGeometry& g);
 void scale_scattered_rollers(Model& m, double nominal_mass, double r_small, double r_large, double length);
 /// `raceway check`'s line for the rollers' diameters, each deviation in micrometres; empty without a scatter.
 std::string describe_roller_diameters(const Model& m);
+
+/// A roller's lubricated line contact (seed 003's films): the scene's lubricant over a contact of
+/// `length`, fully flooded up to a gap of 2 % of the roller radius (the films' load there is below
+/// 1e-3 of a loaded contact's).
+contact::LineFilm line_film(const scene::Scene& scene, double e_star, double reduced_radius, double length,
+                            double roller_radius);
+/// The EHD film of a roller-race line contact (the planar race, or one slice of a spatial roller)
+/// where the scene's roller_race normal law is "moes_ehd"; none otherwise. Its Palmgren stiffness,
+/// largest approach and damping are the dry contact's; with traction = "ehd" the Couette friction
+/// saturates at a slide-to-roll ratio of 5 %.
+std::optional<contact::EhdRaceFilm> roller_race_film(const scene::Scene& scene, const contact::LineFilm& film,
+                                                     double stiffness, double max_approach, double damping_factor);
 
 }  // namespace raceway::bearing

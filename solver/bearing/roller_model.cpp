@@ -121,36 +121,14 @@ struct LineLaws {
 };
 
 /// The lubricated laws of seed 003 where the scene chooses them: the EHD film of a race of radius
-/// `race_radius` (`internal`: the outer race) and the hydrodynamic film of a cage bar. Fully
-/// flooded up to a gap of 2 % of the roller radius (the films' load there is below 1e-3 of a
-/// loaded contact's); the cage film collapses to the dry contact at 0.2 um, the combined roughness
-/// of ground surfaces.
-contact::LineFilm line_film(const scene::Scene& scene, double e_star, double reduced_radius, double length,
-                            double roller_radius) {
-  contact::LineFilm f;
-  f.viscosity = scene.lubricant.viscosity;
-  f.pressure_viscosity = scene.lubricant.pressure_viscosity;
-  f.reduced_modulus = e_star;
-  f.reduced_radius = reduced_radius;
-  f.length = length;
-  f.cutoff = 0.02 * roller_radius;
-  return f;
-}
-
+/// `race_radius` (`internal`: the outer race) and the hydrodynamic film of a cage bar (line_film);
+/// the cage film collapses to the dry contact at 0.2 um, the combined roughness of ground surfaces.
 void add_race_film(contact::RollerRaceSegment& seg, const scene::Scene& scene) {
-  const scene::ContactSpec& spec = scene.roller_race;
-  if (spec.normal.id != contact::LawId::moes_ehd) return;
   const double length = scene.bearing.roller_length;
   const double e_star = seg.law.stiffness / contact::palmgren_stiffness(1.0, length);  // K = c_P E* l^(8/9)
   const double curvature = 1.0 / seg.roller_radius + (seg.internal ? -1.0 : 1.0) / seg.race_radius;
-  contact::EhdRaceFilm film;
-  film.law.film = line_film(scene, e_star, 1.0 / curvature, length, seg.roller_radius);
-  film.law.stiffness = seg.law.stiffness;
-  film.law.max_approach = seg.law.max_approach;
-  film.damping_factor = seg.law.damping_factor;
-  film.traction = spec.traction.id == contact::LawId::ehd_traction;
-  film.couette = {spec.traction.friction_coefficient, 0.05, spec.traction.slip_velocity_scale};
-  seg.ehd = film;
+  seg.ehd = roller_race_film(scene, line_film(scene, e_star, 1.0 / curvature, length, seg.roller_radius),
+                             seg.law.stiffness, seg.law.max_approach, seg.law.damping_factor);
 }
 
 void add_bar_film(contact::CageBarSegment& seg, const scene::Scene& scene, double length) {

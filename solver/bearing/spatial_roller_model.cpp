@@ -218,24 +218,12 @@ void add_land_segment(Model& m, const scene::Scene& scene) {
 }
 
 /// The EHD film of a race slice where the scene chooses normal = "moes_ehd": a line contact of the
-/// slice's width with its K_j (its reduced radius the slice's own, set when evaluated), fully flooded
-/// up to a gap of 2 % of the roller radius, as the planar race film (roller_model.cpp).
+/// slice's width with its K_j (its reduced radius the slice's own, set when evaluated: a scattered
+/// roller's radius is its own), as the planar race film.
 void add_slice_film(contact::RollerSliceSegment& slice, const contact::SlicedLineContact& sliced,
                     const scene::Scene& scene, double e_race, double roller_radius) {
-  const scene::ContactSpec& spec = scene.roller_race;
-  if (spec.normal.id != contact::LawId::moes_ehd) return;
-  contact::EhdRaceFilm film;
-  film.law.film.viscosity = scene.lubricant.viscosity;
-  film.law.film.pressure_viscosity = scene.lubricant.pressure_viscosity;
-  film.law.film.reduced_modulus = e_race;
-  film.law.film.length = sliced.slice_width;
-  film.law.film.cutoff = 0.02 * roller_radius;
-  film.law.stiffness = slice.stiffness;
-  film.law.max_approach = slice.max_approach;
-  film.damping_factor = slice.damping_factor;
-  film.traction = spec.traction.id == contact::LawId::ehd_traction;
-  film.couette = {spec.traction.friction_coefficient, 0.05, spec.traction.slip_velocity_scale};
-  slice.ehd = film;
+  slice.ehd = roller_race_film(scene, line_film(scene, e_race, 0.0, sliced.slice_width, roller_radius), slice.stiffness,
+                               slice.max_approach, slice.damping_factor);
 }
 
 void add_segments(Model& m, const scene::Scene& scene) {
