@@ -27,6 +27,21 @@ RaceContact cone_contact(const RollerSliceSegment& s, const Vec3& local, double 
   return rc;
 }
 
+/// The slice's force on the roller at `point` (its reaction on the ring) and the diagnostics that
+/// follow from it alone: the spin about the normal, the circumferential component.
+void put_force(const Vec3& force, const Vec3& point, const Vec3& n, const SpatialKinematics& ring,
+               const SpatialKinematics& roller, SpatialSegmentResult& out) {
+  out.on_b.force = force;
+  out.on_b.moment = (point - roller.position).cross(force);
+  out.on_a.force = -force;
+  out.on_a.moment = (point - ring.position).cross(-force);
+  PointDiagnostics& d = out.diagnostics;
+  d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
+  const Vec3 e_r(roller.position.x(), roller.position.y(), 0.0);
+  const double r = e_r.norm();
+  d.circumferential_force = r > 0 ? force.dot(Vec3::UnitZ().cross(e_r / r)) : 0.0;
+}
+
 /// The relative motion at the contact point: B's velocity less A's, its tangent-plane part (the
 /// slip) and the approach rate.
 struct SliceMotion {
@@ -59,19 +74,12 @@ void ehd_slice(const RollerSliceSegment& s, const SpatialKinematics& ring, const
     rolling_sense = std::tanh(entrainment / c.speed_floor);
   }
   const Vec3 force = normal * n + traction - (poiseuille * rolling_sense) * rolling;
-  out.on_b.force = force;
-  out.on_b.moment = (point - roller.position).cross(force);
-  out.on_a.force = -force;
-  out.on_a.moment = (point - ring.position).cross(-force);
+  put_force(force, point, n, ring, roller, out);
   PointDiagnostics& d = out.diagnostics;
   d.normal_force = normal;
   d.film_thickness = st.film_thickness;
   d.slip_velocity = v.slip.norm();
-  d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
   d.traction_force = (force - normal * n).norm();
-  const Vec3 e_r(roller.position.x(), roller.position.y(), 0.0);
-  const double r = e_r.norm();
-  d.circumferential_force = r > 0 ? force.dot(Vec3::UnitZ().cross(e_r / r)) : 0.0;
   d.elastic_energy = law.stiffness * std::pow(st.deflection, palmgren_exponent + 1) / (palmgren_exponent + 1);
   d.power_loss = std::max(0.0, (normal - st.force) * v.approach_rate) - traction.dot(v.slip) +
                  poiseuille * std::abs(entrainment);
@@ -169,20 +177,13 @@ SpatialSegmentResult evaluate(const RollerSliceSegment& s, const SpatialKinemati
   const double scale = s.traction.slip_velocity_scale;
   const Vec3 traction = tanh_slip_traction(mu, scale, q.force, slip);
   const Vec3 force = q.force * n + traction;
-  out.on_b.force = force;
-  out.on_b.moment = (point - roller.position).cross(force);
-  out.on_a.force = -force;
-  out.on_a.moment = (point - ring.position).cross(-force);
+  put_force(force, point, n, ring, roller, out);
 
   PointDiagnostics& d = out.diagnostics;
   d.normal_force = q.force;
   d.contact_angle = s.race_angle;  // the normal is the race's own: its angle to the radial plane
   d.slip_velocity = speed;
-  d.spin_velocity = (roller.angular_velocity - ring.angular_velocity).dot(-n);
   d.traction_force = traction.norm();
-  const Vec3 e_r(roller.position.x(), roller.position.y(), 0.0);
-  const double r = e_r.norm();
-  d.circumferential_force = r > 0 ? force.dot(Vec3::UnitZ().cross(e_r / r)) : 0.0;
   d.elastic_energy = elastic * approach / (palmgren_exponent + 1.0);
   d.power_loss = -traction.dot(slip) + q.damping_power;
   return out;

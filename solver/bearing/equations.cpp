@@ -94,8 +94,8 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
   for (std::size_t s = 0; s < model.segments.size(); ++s) {
     // Its result and columns (a cut element's combined record), or a part's share.
     jacobian_record_ = std::max(jacobian_record_, SegmentRecord::size + SegmentRecord::wrench_rows * shapes_[s].record_columns());
-    for (int part = 0; part < parts_[s]; ++part)
-      if (parts_[s] > 1)
+    if (parts_[s] > 1)
+      for (int part = 0; part < parts_[s]; ++part)
         jacobian_record_ = std::max(jacobian_record_,
                                     segment_part_record_size(scheduler::Phase::jacobian, static_cast<int>(s), part));
     const SegmentKind k = model.segments[s].kind;
