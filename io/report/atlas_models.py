@@ -70,6 +70,7 @@ class SimulatorModel:
         self.raceway, self.atlas = raceway, atlas
         self.folder = os.path.join(folder, "points")
         os.makedirs(self.folder, exist_ok=True)
+        self._windows = {}  # point id -> (settling_time, end_time): a point's reruns share its window
 
     def base_sets(self, end_time):
         sets = {k: set_text(v) for k, v in self.atlas["set"].items()}
@@ -94,13 +95,17 @@ class SimulatorModel:
         os.remove(out)
         return speed
 
-    def times(self, name, sets):
-        """(settling_time, end_time) [s] of a run: the atlas's, or its window in cage revolutions."""
+    def times(self, point_id, sets):
+        """(settling_time, end_time) [s] of a point's runs: the atlas's, or its window in cage
+        revolutions, found once per point (the kinematic cage speed is the point's parameters', the
+        same for its tighter-rtol rerun and its realisations)."""
         a = self.atlas
         if a["window_cage_revolutions"] is None:
             return a["settling_time_s"], a["end_time_s"]
-        return revolution_times(self.kinematic_cage_speed(name, sets), a["settling_cage_revolutions"],
-                                a["window_cage_revolutions"])
+        if point_id not in self._windows:
+            self._windows[point_id] = revolution_times(self.kinematic_cage_speed(point_id, sets),
+                                                       a["settling_cage_revolutions"], a["window_cage_revolutions"])
+        return self._windows[point_id]
 
     def _run(self, name, sets, end_time):
         out = os.path.join(self.folder, name)
@@ -134,7 +139,7 @@ class SimulatorModel:
         from report_data import read_run
 
         name = point_id + (f"_{tag}" if tag else "")
-        settling, end = self.times(name, sets)
+        settling, end = self.times(point_id, sets)
         out, wall = self._run(name, sets, end)
         run = read_run(out + ".h5")
         mass = cm.output_cage_mass(out + ".h5")
