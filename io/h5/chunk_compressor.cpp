@@ -72,8 +72,7 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
   return {std::move(out), 0};
 }
 
-ChunkCompressor::ChunkCompressor(bool shuffle, int gzip_level, int core)
-    : shuffle_(shuffle), gzip_level_(gzip_level), thread_([this] { work(); }) {
+ChunkCompressor::ChunkCompressor(int core) : thread_([this] { work(); }) {
   if (core >= 0) bind_thread_to_core(thread_, core);
 }
 
@@ -86,11 +85,9 @@ ChunkCompressor::~ChunkCompressor() {
   thread_.join();
 }
 
-std::future<FilteredChunk> ChunkCompressor::submit(std::vector<double> values, bool filtered) {
+std::future<FilteredChunk> ChunkCompressor::submit(std::vector<double> values, bool shuffle, int gzip_level) {
   std::packaged_task<FilteredChunk()> task(
-      [v = std::move(values), shuffle = filtered && shuffle_, level = filtered ? gzip_level_ : 0] {
-        return filter_chunk(v, shuffle, level);
-      });
+      [v = std::move(values), shuffle, gzip_level] { return filter_chunk(v, shuffle, gzip_level); });
   std::future<FilteredChunk> result = task.get_future();
   {
     const std::lock_guard lock(mutex_);

@@ -36,20 +36,18 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
 class ChunkCompressor {
  public:
   /// `core` >= 0: the thread is bound to that logical CPU alone (io/h5/thread_core.hpp).
-  ChunkCompressor(bool shuffle, int gzip_level, int core = -1);
+  explicit ChunkCompressor(int core = -1);
   ~ChunkCompressor();
   ChunkCompressor(const ChunkCompressor&) = delete;
   ChunkCompressor& operator=(const ChunkCompressor&) = delete;
 
-  /// Queues a chunk (the values are moved in) and returns its filtered bytes to come; `filtered`
-  /// false: the chunk of a series stored without filters (its bytes as they are).
-  std::future<FilteredChunk> submit(std::vector<double> values, bool filtered = true);
+  /// Queues a chunk (the values are moved in) and returns its bytes to come: filter_chunk(values,
+  /// shuffle, gzip_level), the filters of the chunk's dataset.
+  std::future<FilteredChunk> submit(std::vector<double> values, bool shuffle, int gzip_level);
 
  private:
   void work();
 
-  const bool shuffle_;
-  const int gzip_level_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::packaged_task<FilteredChunk()>> queue_;

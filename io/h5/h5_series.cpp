@@ -134,7 +134,7 @@ H5SeriesWriter H5SeriesWriter::open_file(const std::string& final_path, const H5
   }
   w.dxpl_ = H5Pcreate(H5P_DATASET_XFER);  // collective transfer mode goes here later
   if (w.dxpl_ < 0) w.fail("making the data transfer property list", "/");
-  if (options.background_compression) w.compressor_ = std::make_unique<ChunkCompressor>(options.shuffle, options.gzip_level, options.compressor_core);
+  if (options.background_compression) w.compressor_ = std::make_unique<ChunkCompressor>(options.compressor_core);
   return w;
 }
 
@@ -246,8 +246,8 @@ H5SeriesWriter::Hid H5SeriesWriter::create_series_dataset(const std::string& key
   const double nan = std::numeric_limits<double>::quiet_NaN();  // unwritten rows read as NaN, not 0
   if (!dcpl.ok() || H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
       H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &nan) < 0 ||
-      (s.compressed && options_.shuffle && H5Pset_shuffle(dcpl.get()) < 0) ||
-      (s.compressed && options_.gzip_level > 0 && H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options_.gzip_level)) < 0) ||
+      (shuffles(s) && H5Pset_shuffle(dcpl.get()) < 0) ||
+      (gzip_level(s) > 0 && H5Pset_deflate(dcpl.get(), static_cast<unsigned>(gzip_level(s))) < 0) ||
       // A shared series' chunks are allocated (and filled) when the collective write extends it:
       // HDF5 1.10.8's collective filtered write reads a partly written chunk that was never
       // allocated at an undefined address (the last, edge chunk) and fails.
@@ -386,7 +386,7 @@ void H5SeriesWriter::submit_whole_chunks(Series& s) {
     whole.reserve(chunk_values);
     std::swap(whole, s.buffer);
     s.filtered.emplace((s.rows_written + s.handed_rows) / s.chunk_rows,
-                       compressor_->submit(std::move(whole), s.compressed));
+                       submit_chunk(s, std::move(whole)));
     s.handed_rows += s.chunk_rows;
     return;
   }
@@ -394,7 +394,7 @@ void H5SeriesWriter::submit_whole_chunks(Series& s) {
   for (; s.buffer.size() - first >= chunk_values; first += chunk_values, s.handed_rows += s.chunk_rows) {
     const auto begin = s.buffer.begin() + static_cast<std::ptrdiff_t>(first);
     s.filtered.emplace((s.rows_written + s.handed_rows) / s.chunk_rows,
-                       compressor_->submit({begin, begin + static_cast<std::ptrdiff_t>(chunk_values)}, s.compressed));
+                       submit_chunk(s, {begin, begin + static_cast<std::ptrdiff_t>(chunk_values)}));
   }
   if (first > 0) s.buffer.erase(s.buffer.begin(), s.buffer.begin() + static_cast<std::ptrdiff_t>(first));
 }
@@ -462,8 +462,8 @@ void H5SeriesWriter::write_chunks(const std::string& path, Series& s, std::size_
       stored = f->second.get();
       s.filtered.erase(f);
     } else {  // the last, partial chunk, not handed to the compressor: the buffer's rows after the handed ones
-      stored = filter_chunk(padded_chunk(s, done - s.handed_rows, std::min(s.chunk_rows, rows - done)),
-                            s.compressed && options_.shuffle, s.compressed ? options_.gzip_level : 0);
+      stored = filter_chunk(padded_chunk(s, done - s.handed_rows, std::min(s.chunk_rows, rows - done)), shuffles(s),
+                            gzip_level(s));
     }
     offset[0] = static_cast<hsize_t>(chunk * s.chunk_rows);
     if (H5Dwrite_chunk(s.dataset, dxpl_, stored.filter_mask, offset.data(), stored.bytes.size(), stored.bytes.data()) < 0)
@@ -482,7 +482,7 @@ void H5SeriesWriter::write_all_buffers(bool whole_chunks_only) {
       if (!s.direct || s.rows_written % s.chunk_rows != 0 || tail == 0) continue;
       const std::size_t chunk = (s.rows_written + s.handed_rows + rows) / s.chunk_rows;
       if (!s.filtered.contains(chunk))
-        s.filtered.emplace(chunk, compressor_->submit(padded_chunk(s, rows - tail, tail), s.compressed));
+        s.filtered.emplace(chunk, submit_chunk(s, padded_chunk(s, rows - tail, tail)));
     }
   }
   for (auto& [path, s] : series_)

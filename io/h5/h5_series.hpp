@@ -251,6 +251,13 @@ class H5SeriesWriter {
   Hid open_series_dataset(const std::string& key, Series& s);
   void require_open(const char* what) const;
   void write_buffer(const std::string& path, Series& s, bool whole_chunks_only);
+  /// The series' filters: the options' shuffle and deflate, none for a series defined uncompressed.
+  bool shuffles(const Series& s) const { return s.compressed && options_.shuffle; }
+  int gzip_level(const Series& s) const { return s.compressed ? options_.gzip_level : 0; }
+  /// The series' chunk of `values` to the background compressor.
+  std::future<FilteredChunk> submit_chunk(const Series& s, std::vector<double> values) {
+    return compressor_->submit(std::move(values), shuffles(s), gzip_level(s));
+  }
   static std::size_t rows_to_write(const Series& s, bool whole_chunks_only);
   void write_shared(bool whole_chunks_only);  // h5_shared_series.cpp
   void close_handles() noexcept;              // the datasets and the file; the series stay defined
