@@ -1,0 +1,165 @@
+"""The critical cage (pocket) friction coefficient of a ball-driven cage (docs/atlas.md, "The critical
+cage friction"): raceway's own linear model, after the idea of Nogi, Maniwa and Matsuoka (2018,
+docs/references.md), whose formula is not used here.
+
+The model (SI; per ball unless said): the cage centre z = x + i y (mass m_c, planar); Z balls at
+angles phi_j turning at the cage speed w; each pocket in contact, its load varying by
+k d_j + c_p d_j' about the mean, d_j = w_j - u.e_t,j the pocket's compression (w_j the ball's
+circumferential displacement from its rolling position, u the cage's displacement, e_t,j the
+circumferential direction at the ball); the pocket's friction mu times that load, along the ball's
+sliding on the pocket, which is radial (the ball spins about the bearing's axis relative to the
+cage) and points the same way round for a ball pushing its front bar and one pushed by its rear bar;
+the ball held circumferentially by its mass m_b and the slope c_t of its race contacts' traction
+against sliding (inner + outer). The first circumferential harmonic of the balls, v, and the cage
+obey (s = lambda - i w, lambda the cage's exponent in the bearing's frame, m~ = 2 m_c / Z):
+
+    m~ lambda^2 z + (1 - i mu) p(s) (z - v) = 0,   b(s) v = p(s) (z - v),
+    p(s) = k + c_p s,   b(s) = m_b s^2 + c_t s,
+
+so the characteristic polynomial is m~ lambda^2 (b + p) + (1 - i mu) p b = 0. The friction's
+(1 - i mu) makes the pockets' stiffness circulatory (a force of mu Z k / 2 at right angles to the
+displacement, pushing a forward whirl), the balls' traction is a damping fixed in the cage's
+rotating frame (s, not lambda). With m_b = c_p = 0 the crossing lambda = i Omega gives
+Omega = w_n = sqrt(Z k / (2 m_c)) and the closed form
+
+    mu_c = k / (c_t (w_n - |w|))   for w_n > |w|;   0 (unstable without friction) for w_n <= |w|.
+
+critical_friction finds mu_c of the whole model (ball mass, pocket damping) by bisection on the
+largest real part of the roots; full_model_eigenvalues is the same physics with every ball its own
+coordinate (real, in the cage's frame), the tests' independent check of the reduction.
+"""
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+# A pocket counts as loaded where its normal force exceeds this [N] (report_data's contact threshold).
+CONTACT_FORCE = 1e-3
+# The criterion applies where the pockets are in contact at least this share of the window's samples.
+PRELOADED_SHARE = 0.5
+MU_MAX = 100.0  # the search for mu_c ends here: above it, "no critical friction" (inf)
+
+
+@dataclass
+class CageBallModel:
+    """The linear model's inputs (SI): cage mass, ball count, pocket stiffness and damping per pocket,
+    race traction slope per ball (inner + outer), cage speed (either sign), ball mass."""
+    cage_mass: float
+    balls: int
+    pocket_stiffness: float
+    traction_damping: float
+    cage_speed: float
+    ball_mass: float = 0.0
+    pocket_damping: float = 0.0
+    guide_stiffness: float = 0.0
+
+    @property
+    def natural_frequency(self):
+        """w_n = sqrt(Z (k + k_g) / (2 m_c)) [rad/s]: the cage on its pockets with the balls held."""
+        return math.sqrt(self.balls * (self.pocket_stiffness + self.guide_stiffness) / (2.0 * self.cage_mass))
+
+    @property
+    def centred(self):
+        """Whether the pockets' radial guidance holds the cage against its own centrifugal force
+        (k_g > 2 m_c w^2 / Z); if not, cage and balls drift off together whatever the friction."""
+        return self.guide_stiffness > 2.0 * self.cage_mass * self.cage_speed ** 2 / self.balls
+
+
+def closed_form(model):
+    """mu_c of massless balls without pocket damping: k / (c_t (w_n - |w|)); 0 where w_n <= |w|, inf
+    without traction (the balls then follow the cage and nothing pumps)."""
+    gap = model.natural_frequency - abs(model.cage_speed)
+    if gap <= 0 or not model.centred:
+        return 0.0
+    if not model.traction_damping > 0:
+        return math.inf
+    return model.pocket_stiffness / (model.traction_damping * gap)
+
+
+def characteristic_polynomial(model, mu):
+    """Coefficients (highest power first) of m~ lambda^2 (b + p) + (1 - i mu) p b in lambda."""
+    s = np.array([1.0, -1j * abs(model.cage_speed)])  # s = lambda - i w
+    p = np.polyadd(model.pocket_damping * s, [model.pocket_stiffness])
+    b = np.polyadd(model.ball_mass * np.polymul(s, s), model.traction_damping * s)
+    m = 2.0 * model.cage_mass / model.balls
+    cage = [m, 0.0, model.guide_stiffness]  # m~ lambda^2 + k_g
+    poly = np.polyadd(np.polymul(cage, np.polyadd(b, p)), (1.0 - 1j * mu) * np.polymul(p, b))
+    nonzero = np.nonzero(np.abs(poly) > 0)[0]
+    return poly[nonzero[0]:] if nonzero.size else poly
+
+
+def reduced_eigenvalues(model, mu):
+    """The exponents lambda [1/s] of the reduced model (cage and the balls' first harmonic)."""
+    return np.roots(characteristic_polynomial(model, mu))
+
+
+def growth_rate(model, mu, eigenvalues=reduced_eigenvalues):
+    """The largest real part of the exponents [1/s]."""
+    return float(np.max(np.real(eigenvalues(model, mu))))
+
+
+def critical_friction(model, eigenvalues=reduced_eigenvalues, mu_max=MU_MAX):
+    """The smallest mu >= 0 at which the largest real part crosses 0 (bisection after a scan); 0 when
+    unstable without friction, inf when stable up to mu_max. A root at 0 (a ball pattern at rest,
+    cage speed 0) is neutral: real parts within 1e-9 w_n of 0 count as stable."""
+    tol = 1e-9 * model.natural_frequency
+
+    def unstable(mu):
+        return growth_rate(model, mu, eigenvalues) > tol
+
+    if unstable(0.0):
+        return 0.0
+    grid = np.concatenate([np.linspace(0.0, 1.0, 41)[1:], np.geomspace(1.0, mu_max, 41)[1:]])
+    low = 0.0
+    for high in grid:
+        if unstable(high):
+            for _ in range(60):
+                mid = 0.5 * (low + high)
+                low, high = (low, mid) if unstable(mid) else (mid, high)
+            return 0.5 * (low + high)
+        low = high
+    return math.inf
+
+
+def full_model_eigenvalues(model, mu):
+    """The exponents of the model with each ball its own coordinate, in the cage's rotating frame
+    (real coordinates: the cage's a, b along the frame's axes, each ball's w_j; pockets at 2 pi j / Z),
+    shifted to the bearing's frame is unnecessary for the real parts (the frame turns uniformly).
+    Massless balls take c_t w_j' = -(k d_j + c_p d_j') (first order in w_j)."""
+    z, w = model.balls, abs(model.cage_speed)
+    phi = 2.0 * math.pi * np.arange(z) / z
+    e_t = np.column_stack([-np.sin(phi), np.cos(phi)])
+    e_r = np.column_stack([np.cos(phi), np.sin(phi)])
+    push = e_t + mu * e_r  # the pocket load's direction on the cage, friction included
+    k, cp, ct, mb, mc = (model.pocket_stiffness, model.pocket_damping, model.traction_damping, model.ball_mass,
+                         model.cage_mass)
+    # d = w - E u with E = e_t (Z x 2): the pocket compressions.
+    gyro = np.array([[0.0, -2.0 * w], [2.0 * w, 0.0]])  # m_c (u'' + 2 w J u' - w^2 u) = F
+    n = 2 + z
+    stiff = np.zeros((n, n))
+    damp = np.zeros((n, n))
+    stiff[:2, :2] = k * push.T @ e_t + model.guide_stiffness * e_r.T @ e_r - mc * w * w * np.eye(2)
+    stiff[:2, 2:] = -k * push.T
+    damp[:2, :2] = cp * push.T @ e_t + mc * gyro
+    damp[:2, 2:] = -cp * push.T
+    stiff[2:, 2:] = k * np.eye(z)
+    stiff[2:, :2] = -k * e_t
+    damp[2:, 2:] = (ct + cp) * np.eye(z)
+    damp[2:, :2] = -cp * e_t
+    mass = np.diag([mc, mc] + [mb] * z)
+    if mb > 0:
+        inv = np.linalg.inv(mass)
+        a = np.block([[np.zeros((n, n)), np.eye(n)], [-inv @ stiff, -inv @ damp]])
+        return np.linalg.eigvals(a)
+    if cp != 0:
+        raise ValueError("massless balls with pocket damping: not a first-order system here")
+    # states [u (2), u' (2), w (Z)]: m_c u'' = -(stiff u + damp u' + coupling w); c_t w' = -k w + k E u
+    a = np.zeros((4 + z, 4 + z))
+    a[0:2, 2:4] = np.eye(2)
+    a[2:4, 0:2] = -stiff[:2, :2] / mc
+    a[2:4, 2:4] = -damp[:2, :2] / mc
+    a[2:4, 4:] = -stiff[:2, 2:] / mc
+    a[4:, 4:] = -k / ct * np.eye(z)
+    a[4:, 0:2] = k / ct * e_t
+    return np.linalg.eigvals(a)
