@@ -15,7 +15,9 @@ import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
                   "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j",
-                  "impact_energy_ratio", "subsync_growth_per_rev", "subsync_amplitude_ratio", "subsync_frequency_ratio")
+                  "impact_energy_ratio", "subsync_growth_per_rev", "subsync_amplitude_ratio", "subsync_frequency_ratio",
+                  "pocket_friction", "critical_pocket_friction", "pocket_friction_margin",
+                  "critical_pocket_friction_applies")
 WINDOW_COLUMNS = ("settling_time_s", "end_time_s")  # with a window in cage revolutions: each point's own
 CLASS_COLOURS = {"stable": "tab:green", "circling": "tab:blue", "unstable": "tab:red"}
 BAND_UNCERTAINTY = search.BAND_UNCERTAINTY  # the band drawn round the boundary

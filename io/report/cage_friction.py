@@ -62,8 +62,8 @@ class CageBallModel:
     @property
     def centred(self):
         """Whether the pockets' radial guidance holds the cage against its own centrifugal force
-        (k_g > 2 m_c w^2 / Z); if not, cage and balls drift off together whatever the friction."""
-        return self.guide_stiffness > 2.0 * self.cage_mass * self.cage_speed ** 2 / self.balls
+        (k_g >= 2 m_c w^2 / Z); if not, cage and balls drift off together whatever the friction."""
+        return self.guide_stiffness >= 2.0 * self.cage_mass * self.cage_speed ** 2 / self.balls
 
 
 def closed_form(model):
@@ -163,3 +163,135 @@ def full_model_eigenvalues(model, mu):
     a[4:, 4:] = -k / ct * np.eye(z)
     a[4:, 0:2] = k / ct * e_t
     return np.linalg.eigvals(a)
+
+
+# ---- the inputs from a run (docs/atlas.md, "The critical cage friction") --------------------------
+
+def _param(params, key, default=None):
+    return params.get(key, {}).get("value", default)
+
+
+def _ball_mass(model_text):
+    """The ball's mass [kg] from the model's description (its first ball's line); 0 when absent."""
+    found = re.search(r"ball\[0\]\s+mass\s+([0-9.eE+-]+)\s*kg", model_text or "")
+    return float(found[1]) if found else 0.0
+
+
+def not_applicable(params, bearing):
+    """Why the criterion does not apply to the run's bearing and contacts, or None."""
+    if bearing.get("rolling_element", "ball") != "ball":
+        return "a roller bearing (the criterion is the ball pocket's)"
+    if (bearing.get("land_clearance") or 0.0) > 0:
+        return "a land-guided cage (it rides its land, not its balls)"
+    if _param(params, "contact.ball_cage.normal", "hertz") != "hertz":
+        return "a lubricated pocket (its film's shear is not a friction coefficient)"
+    if _param(params, "contact.ball_race.traction", "tanh") not in ("tanh", "none"):
+        return "a race traction law other than tanh (its slope is not taken)"
+    return None
+
+
+def tanh_slope(mu, scale, load, slip):
+    """d F / d(slip) of mu Q tanh(slip / scale) [N s/m]."""
+    return mu * load / scale / np.cosh(np.asarray(slip, dtype=float) / scale) ** 2
+
+
+def traction_damping(out, params, window, balls):
+    """c_t per ball: the slope of its race contacts' tanh traction at their sliding, summed over its
+    inner and outer contacts, averaged over the window and the balls [N s/m]."""
+    if _param(params, "contact.ball_race.traction", "tanh") == "none":
+        return 0.0
+    mu = _param(params, "contact.ball_race.friction_coefficient", 0.1)
+    scale = _param(params, "contact.ball_race.slip_velocity_scale", 0.05)
+    total = 0.0
+    for kind in ("ball_inner_groove", "ball_outer_groove"):
+        if f"segments/{kind}/normal_force" not in out:
+            continue
+        q = np.asarray(out[f"segments/{kind}/normal_force"], dtype=float)[window]
+        slip = np.asarray(out[f"segments/{kind}/slip_velocity"], dtype=float)[window]
+        total += float(np.sum(np.mean(tanh_slope(mu, scale, q, slip), axis=0)))
+    return total / balls
+
+
+def pocket_law(out, window):
+    """The pockets' mean normal force over the window and all pockets, the share of (sample, pocket)
+    pairs in contact, and the Hertz constant K of Q = K delta^1.5 (from the elastic energy
+    E = 2/5 K delta^2.5 of a contact; NaN when no pocket touched)."""
+    q = np.asarray(out["segments/ball_pocket/normal_force"], dtype=float)[window]
+    on = q > CONTACT_FORCE
+    hertz = math.nan
+    if on.any():
+        delta = np.asarray(out["segments/ball_pocket/approach"], dtype=float)[window][on]
+        energy = np.asarray(out["segments/ball_pocket/elastic_energy"], dtype=float)[window][on]
+        hertz = float(np.median(2.5 * energy / delta ** 2.5))
+    return float(np.mean(q)), float(np.mean(on)), hertz
+
+
+def run_inputs(path, start, end=None, cage_mass=None):
+    """The model's inputs from a run's output over start <= t <= end: CageBallModel or None, the
+    pocket friction coefficient, and the evidence (mean pocket load, contact share, why not applied)."""
+    from raceway import RacewayOutput
+
+    with RacewayOutput(path) as out:
+        params = out.summary.get("scene_parameters", {})
+        bearing, attrs = out.bearing, out.attrs
+        t = np.asarray(out.time, dtype=float)
+        window = (t >= start) & (t <= (t[-1] if end is None else end))
+        why = not_applicable(params, bearing)
+        mu = 0.0 if _param(params, "contact.ball_cage.traction", "tanh") == "none" else \
+            _param(params, "contact.ball_cage.friction_coefficient", 0.1)
+        evidence = {"pocket_friction": mu}
+        if why is not None or "segments/ball_pocket/normal_force" not in out:
+            evidence["critical_pocket_friction_note"] = why or "no pocket diagnostics in the output"
+            return None, evidence
+        balls = int(bearing["element_count"])
+        load, share, hertz = pocket_law(out, window)
+        speed = float(np.mean(np.asarray(out["cage/angular_velocity"], dtype=float)[window, 2]))
+        c_t = traction_damping(out, params, window, balls)
+    evidence.update({"mean_pocket_load_n": load, "pocket_contact_share": share, "cage_speed_rad_s": speed,
+                     "traction_damping_n_s_m": c_t})
+    if not (load > 0 and math.isfinite(hertz)):
+        evidence["critical_pocket_friction_note"] = "no pocket touched in the window"
+        return None, evidence
+    k = 1.5 * hertz ** (2.0 / 3.0) * load ** (1.0 / 3.0)  # dQ/d delta at the mean load
+    spherical = _param(params, "cage.pocket_shape", "cylindrical") == "spherical"
+    model = CageBallModel(
+        cage_mass=float(cage_mass) if cage_mass else math.nan, balls=balls, pocket_stiffness=k,
+        traction_damping=c_t, cage_speed=speed, ball_mass=_ball_mass(attrs.get("model", "")),
+        pocket_damping=_param(params, "contact.ball_cage.damping_factor", 0.0) * load
+        if _param(params, "contact.ball_cage.damping", "hunt_crossley") == "hunt_crossley" else 0.0,
+        guide_stiffness=2.0 * load / bearing["pocket_clearance"] if spherical else 0.0)
+    evidence.update({"pocket_stiffness_n_m": k, "ball_mass_kg": model.ball_mass})
+    if share < PRELOADED_SHARE:
+        evidence["critical_pocket_friction_note"] = (
+            f"the pockets touch {share:.2g} of the time (< {PRELOADED_SHARE:g}): not preloaded, the linear "
+            "criterion is a rough guide")
+    return model, evidence
+
+
+def atlas_evidence(path, start, end=None, cage_mass=None):
+    """The atlas's columns (critical_pocket_friction, pocket_friction, pocket_friction_margin = mu / mu_c)
+    and the evidence; `applies` only where the model's assumptions hold (ball-driven, preloaded
+    pockets)."""
+    model, ev = run_inputs(path, start, end, cage_mass)
+    ev.update({"critical_pocket_friction": math.nan, "pocket_friction_margin": math.nan,
+               "critical_pocket_friction_applies": False})
+    if model is None or not math.isfinite(model.cage_mass):
+        ev.setdefault("critical_pocket_friction_note", "no cage mass")
+        return ev
+    mu_c = critical_friction(model)
+    ev["critical_pocket_friction"] = mu_c
+    ev["critical_pocket_friction_closed_form"] = closed_form(model)
+    ev["pocket_friction_margin"] = ev["pocket_friction"] / mu_c if mu_c > 0 else math.inf
+    ev["critical_pocket_friction_applies"] = "critical_pocket_friction_note" not in ev
+    return ev
+
+
+def criterion_reason(ev):
+    """The classification's extra reason when the pocket friction exceeds the critical one (evidence:
+    the simulated class is not changed), else None."""
+    margin = ev.get("pocket_friction_margin", math.nan)
+    if not margin > 1:
+        return None
+    where = "" if ev.get("critical_pocket_friction_applies") else f" ({ev.get('critical_pocket_friction_note')})"
+    return (f"pocket friction {ev['pocket_friction']:.3g} above the linear criterion's critical "
+            f"{ev['critical_pocket_friction']:.3g} (margin {margin:.3g}){where}")

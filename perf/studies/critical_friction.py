@@ -1,0 +1,107 @@
+#!/usr/bin/python3
+"""The critical cage friction against raceway itself (docs/atlas.md, "The critical cage friction").
+
+  perf/studies/critical_friction.py [--binary build/raceway] [--jobs 2] [--work DIR]
+                                    [--out perf/studies/results/critical_friction.json]
+
+Runs the 6205 first scene (a pressed steel cage guided by its balls, spherical pockets) at two
+inner-ring speeds and two axial loads (the radial load off: every ball loaded alike, the model's
+uniform ball set) over the ball-pocket friction coefficient (contact.ball_cage.friction_coefficient),
+each run SETTLE + WINDOW revolutions of its kinematic cage speed. Each run is classified with the
+atlas's cage-motion analysis (io/report/cage_motion.py) over its window and gets the criterion's
+inputs and mu_c (io/report/cage_friction.py) from the same window. Writes one JSON record per run;
+--table prints the markdown table of perf/studies/results/critical_friction.md from it.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "io", "report"))
+
+import cage_friction as cf  # noqa: E402
+import cage_motion as cm  # noqa: E402
+
+SCENE = os.path.join(ROOT, "jobs", "scenes", "6205_first_scene.toml")
+SPEEDS_RPM = (1500, 6000)
+AXIAL_N = (300, 3000)
+MUS = (0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5)
+SETTLE, WINDOW = 6, 12  # cage revolutions (at the kinematic cage speed, 0.4 of the inner ring's)
+CAGE_RATIO = 0.398  # the 6205's kinematic cage speed / inner-ring speed (docs/atlas.md)
+
+
+def run_one(binary, work, speed, axial, mu):
+    name = f"n{speed}_fa{axial}_mu{mu:g}"
+    out = os.path.join(work, name + ".h5")
+    period = 60.0 / (speed * CAGE_RATIO)
+    end = (SETTLE + WINDOW) * period
+    sets = {"inner_ring.speed": f"{speed} rpm", "inner_ring.load.fy": "0 N", "inner_ring.load.fz": f"{axial} N",
+            "contact.ball_cage.friction_coefficient": f"{mu:g}", "scene.end_time": f"{end:.6g} s",
+            "scene.output_interval": f"{period / 200:.6g} s"}
+    args = [binary, "run", SCENE, "-o", out]
+    for k, v in sets.items():
+        args += ["--set", f"{k}={v}"]
+    done = subprocess.run(args, capture_output=True, text=True, check=False)
+    record = {"speed_rpm": speed, "axial_n": axial, "mu": mu, "end_time_s": end, "exit": done.returncode}
+    if done.returncode != 0:
+        record["error"] = (done.stdout + done.stderr).strip().splitlines()[-1:]
+        return record
+    from report_data import read_run
+    run = read_run(out)
+    mass = cm.output_cage_mass(out)
+    m = cm.classify_run(run, SETTLE * period, cage_mass=mass)
+    record.update({k: m[k] for k in ("motion_class", "reasons", "cage_dynamics_indicator", "orbit_ratio",
+                                     "whirl_to_cage_frequency", "impact_rate")})
+    record.update(cf.atlas_evidence(out, SETTLE * period, cage_mass=mass))
+    record["wall_s"] = json.loads(__import__("h5py").File(out)["/"].attrs["summary_json"])["wall_time_s"]
+    os.remove(out)
+    return record
+
+
+def finite(v):
+    return None if isinstance(v, float) and not math.isfinite(v) else v
+
+
+def table(records):
+    lines = ["| inner ring, r/min | axial load, N | mu | class | CDI | orbit ratio | pockets in contact | "
+             "k, N/um | c_t, N s/m | mu_c | mu / mu_c |", "|" + "---|" * 11]
+    for r in records:
+        if r.get("exit"):
+            lines.append(f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | failed | | | | | | | |")
+            continue
+        lines.append(
+            f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | {r['motion_class']} | "
+            f"{r['cage_dynamics_indicator']:.3f} | {r['orbit_ratio']:.3f} | {r['pocket_contact_share']:.2f} | "
+            f"{r['pocket_stiffness_n_m'] / 1e6:.2f} | {r['traction_damping_n_s_m']:.0f} | "
+            f"{(r['critical_pocket_friction'] or math.inf):.3g} | {(r['pocket_friction_margin'] or 0):.3g} |")
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--work", default="/tmp/critical_friction")
+    ap.add_argument("--out", default=os.path.join(HERE, "results", "critical_friction.json"))
+    ap.add_argument("--table", action="store_true", help="print the table of --out and exit")
+    a = ap.parse_args()
+    if a.table:
+        with open(a.out, encoding="utf-8") as f:
+            print(table(json.load(f)))
+        return
+    os.makedirs(a.work, exist_ok=True)
+    todo = [(s, f, mu) for s in SPEEDS_RPM for f in AXIAL_N for mu in MUS]
+    with ThreadPoolExecutor(max_workers=a.jobs) as pool:
+        records = list(pool.map(lambda p: run_one(a.binary, a.work, *p), todo))
+    with open(a.out, "w", encoding="utf-8") as f:
+        json.dump([{k: finite(v) for k, v in r.items()} for r in records], f, indent=1)
+    print(table(records))
+
+
+if __name__ == "__main__":
+    main()
