@@ -67,10 +67,11 @@ class CageBallModel:
 
 
 def closed_form(model):
-    """mu_c of massless balls without pocket damping: k / (c_t (w_n - |w|)); 0 where w_n <= |w|, inf
-    without traction (the balls then follow the cage and nothing pumps)."""
+    """mu_c of massless balls without pocket damping: k / (c_t (w_n - |w|)); 0 where w_n <= |w| (the
+    whirl grows without friction), inf without traction (the balls then follow the cage and nothing
+    pumps). The drift (CageBallModel.centred) is a condition of its own."""
     gap = model.natural_frequency - abs(model.cage_speed)
-    if gap <= 0 or not model.centred:
+    if gap <= 0:
         return 0.0
     if not model.traction_damping > 0:
         return math.inf
@@ -94,19 +95,29 @@ def reduced_eigenvalues(model, mu):
     return np.roots(characteristic_polynomial(model, mu))
 
 
-def growth_rate(model, mu, eigenvalues=reduced_eigenvalues):
-    """The largest real part of the exponents [1/s]."""
-    return float(np.max(np.real(eigenvalues(model, mu))))
+def whirl_roots(model, mu, eigenvalues):
+    """The exponents less the drift's (cage and balls off-centre together, at rest in the cage's frame:
+    the reduced model's root nearest lambda = i |w|, the ball-by-ball model's two nearest 0), whose
+    growth the pockets' clearance bounds in the bearing; what is left is the friction's whirl."""
+    roots = np.asarray(eigenvalues(model, mu))
+    frame, drift = (1j * abs(model.cage_speed), 1) if eigenvalues is reduced_eigenvalues else (0.0, 2)
+    return roots[np.argsort(np.abs(roots - frame))[drift:]]
+
+
+def growth_rate(model, mu, eigenvalues=reduced_eigenvalues, whirl_only=False):
+    """The largest real part of the exponents [1/s] (the drift's left out with whirl_only)."""
+    roots = whirl_roots(model, mu, eigenvalues) if whirl_only else eigenvalues(model, mu)
+    return float(np.max(np.real(roots)))
 
 
 def critical_friction(model, eigenvalues=reduced_eigenvalues, mu_max=MU_MAX):
-    """The smallest mu >= 0 at which the largest real part crosses 0 (bisection after a scan); 0 when
-    unstable without friction, inf when stable up to mu_max. A root at 0 (a ball pattern at rest,
-    cage speed 0) is neutral: real parts within 1e-9 w_n of 0 count as stable."""
+    """The smallest mu >= 0 at which the largest real part of the whirl's roots (whirl_roots) crosses
+    0 (bisection after a scan); 0 when the whirl grows without friction, inf when stable up to mu_max.
+    Real parts within 1e-9 w_n of 0 count as stable (a neutral root)."""
     tol = 1e-9 * model.natural_frequency
 
     def unstable(mu):
-        return growth_rate(model, mu, eigenvalues) > tol
+        return growth_rate(model, mu, eigenvalues, whirl_only=True) > tol
 
     if unstable(0.0):
         return 0.0
@@ -212,6 +223,35 @@ def traction_damping(out, params, window, balls):
     return total / balls
 
 
+def measured_traction_damping(out, window, ball_mass):
+    """c_t as the run shows it: the races' circumferential force on each ball (its mass times its
+    circumferential acceleration less the pocket's force) against the ball's circumferential speed,
+    the least-squares slope over the window and the balls, the ball's angle's cosine and sine (its
+    weight, once a revolution) and a constant fitted beside it [N s/m]; NaN without the series. The
+    ball's own rattling in its pocket is the excitation: the slope of the race contacts as they are
+    (a spinning contact's grid, the ball's spin following), not of the tanh law at the centre's slip."""
+    need = ("balls/position", "balls/velocity", "balls/acceleration", "segments/ball_pocket/circumferential_force")
+    if not ball_mass > 0 or not all(n in out for n in need):
+        return math.nan
+    pos = np.asarray(out["balls/position"], dtype=float)[window]
+    vel = np.asarray(out["balls/velocity"], dtype=float)[window]
+    acc = np.asarray(out["balls/acceleration"], dtype=float)[window]
+    pocket = np.asarray(out["segments/ball_pocket/circumferential_force"], dtype=float)[window]
+    num = den = 0.0
+    for j in range(pos.shape[1]):
+        angle = np.arctan2(pos[:, j, 1], pos[:, j, 0])
+        e_t = np.column_stack([-np.sin(angle), np.cos(angle)])
+        speed = np.sum(vel[:, j, :2] * e_t, axis=1)
+        race = ball_mass * np.sum(acc[:, j, :2] * e_t, axis=1) - pocket[:, j]
+        basis = np.column_stack([np.ones_like(angle), np.cos(angle), np.sin(angle)])
+        # The speed's and the force's parts that the nuisance terms do not explain.
+        dv = speed - basis @ np.linalg.lstsq(basis, speed, rcond=None)[0]
+        df = race - basis @ np.linalg.lstsq(basis, race, rcond=None)[0]
+        num -= float(np.sum(dv * df))
+        den += float(np.sum(dv * dv))
+    return num / den if den > 0 else math.nan
+
+
 def pocket_law(out, window):
     """The pockets' mean normal force over the window and all pockets, the share of (sample, pocket)
     pairs in contact, and the Hertz constant K of Q = K delta^1.5 (from the elastic energy
@@ -246,9 +286,14 @@ def run_inputs(path, start, end=None, cage_mass=None):
         balls = int(bearing["element_count"])
         load, share, hertz = pocket_law(out, window)
         speed = float(np.mean(np.asarray(out["cage/angular_velocity"], dtype=float)[window, 2]))
-        c_t = traction_damping(out, params, window, balls)
+        law_c_t = traction_damping(out, params, window, balls)
+        ball_mass = _ball_mass(attrs.get("model", ""))
+        run_c_t = measured_traction_damping(out, window, ball_mass)
+    # The run's slope where it has one (positive), else the law's at the contacts' sliding.
+    c_t = run_c_t if run_c_t > 0 else law_c_t
     evidence.update({"mean_pocket_load_n": load, "pocket_contact_share": share, "cage_speed_rad_s": speed,
-                     "traction_damping_n_s_m": c_t})
+                     "traction_damping_n_s_m": c_t, "traction_damping_law_n_s_m": law_c_t,
+                     "traction_damping_run_n_s_m": run_c_t})
     if not (load > 0 and math.isfinite(hertz)):
         evidence["critical_pocket_friction_note"] = "no pocket touched in the window"
         return None, evidence
@@ -256,11 +301,13 @@ def run_inputs(path, start, end=None, cage_mass=None):
     spherical = _param(params, "cage.pocket_shape", "cylindrical") == "spherical"
     model = CageBallModel(
         cage_mass=float(cage_mass) if cage_mass else math.nan, balls=balls, pocket_stiffness=k,
-        traction_damping=c_t, cage_speed=speed, ball_mass=_ball_mass(attrs.get("model", "")),
+        traction_damping=c_t, cage_speed=speed, ball_mass=ball_mass,
         pocket_damping=_param(params, "contact.ball_cage.damping_factor", 0.0) * load
         if _param(params, "contact.ball_cage.damping", "hunt_crossley") == "hunt_crossley" else 0.0,
         guide_stiffness=2.0 * load / bearing["pocket_clearance"] if spherical else 0.0)
-    evidence.update({"pocket_stiffness_n_m": k, "ball_mass_kg": model.ball_mass})
+    evidence.update({"pocket_stiffness_n_m": k, "ball_mass_kg": model.ball_mass, "cage_mass_kg": model.cage_mass,
+                     "guide_stiffness_n_m": model.guide_stiffness, "pocket_damping_n_s_m": model.pocket_damping,
+                     "centred": model.centred})
     if share < PRELOADED_SHARE:
         evidence["critical_pocket_friction_note"] = (
             f"the pockets touch {share:.2g} of the time (< {PRELOADED_SHARE:g}): not preloaded, the linear "

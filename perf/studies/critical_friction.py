@@ -10,8 +10,9 @@ uniform ball set) over the ball-pocket friction coefficient (contact.ball_cage.f
 each run SETTLE + WINDOW revolutions of its kinematic cage speed. Each run is classified with the
 atlas's cage-motion analysis (io/report/cage_motion.py) over its window and gets the criterion's
 inputs and mu_c (io/report/cage_friction.py) from the same window. A case's friction values run in
-ascending order and stop after two unstable runs in a row (the onset is bracketed; an unstable run is
-the costly one: tens of times the steps). Writes one JSON record per run (after each run);
+ascending order and stop after two runs in a row that are not stable (circling or unstable: the
+onset is bracketed; such a run is the costly one, tens of times the steps). Writes one JSON record
+per run (after each run); a second call skips the runs --out already holds;
 --table prints the markdown table of perf/studies/results/critical_friction.md from it.
 """
 import argparse
@@ -70,18 +71,45 @@ def finite(v):
     return None if isinstance(v, float) and not math.isfinite(v) else v
 
 
+def record_model(r):
+    """The criterion's model of a record (its stored inputs; records written before the cage's and the
+    guidance's were stored take the 6205's: 0.0377 kg, 2 Q / c with c = 0.159 mm, damping 0.5 s/m x Q)."""
+    q = r["mean_pocket_load_n"]
+    return cf.CageBallModel(
+        cage_mass=r.get("cage_mass_kg") or 0.0377, balls=9, pocket_stiffness=r["pocket_stiffness_n_m"],
+        traction_damping=r["traction_damping_n_s_m"], cage_speed=r["cage_speed_rad_s"], ball_mass=r["ball_mass_kg"],
+        pocket_damping=r.get("pocket_damping_n_s_m", 0.5 * q), guide_stiffness=r.get("guide_stiffness_n_m", 2 * q / 0.159e-3))
+
+
 def table(records):
-    lines = ["| inner ring, r/min | axial load, N | mu | class | CDI | orbit ratio | pockets in contact | "
-             "k, N/um | c_t, N s/m | mu_c | mu / mu_c |", "|" + "---|" * 11]
+    lines = ["| inner ring, r/min | axial load, N | mu | class | CDI | orbit ratio | pockets in contact | mean pocket "
+             "load, N | k, N/um | c_t, N s/m | mu_c | closed form |", "|" + "---|" * 12]
+    cases = {}
     for r in records:
         if r.get("exit"):
-            lines.append(f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | failed | | | | | | | |")
+            lines.append(f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | failed |" + " |" * 8)
             continue
+        m = record_model(r)
+        mu_c, closed = cf.critical_friction(m), cf.closed_form(m)
         lines.append(
             f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | {r['motion_class']} | "
             f"{r['cage_dynamics_indicator']:.3f} | {r['orbit_ratio']:.3f} | {r['pocket_contact_share']:.2f} | "
-            f"{r['pocket_stiffness_n_m'] / 1e6:.2f} | {r['traction_damping_n_s_m']:.0f} | "
-            f"{(r['critical_pocket_friction'] or math.inf):.3g} | {(r['pocket_friction_margin'] or 0):.3g} |")
+            f"{r['mean_pocket_load_n']:.3g} | {m.pocket_stiffness / 1e6:.2f} | {m.traction_damping:.0f} | "
+            f"{mu_c:.3g} | {closed:.3g} |")
+        c = cases.setdefault((r["speed_rpm"], r["axial_n"]), {"stable": [], "moving": [], "mu_c": [], "closed": []})
+        if r["motion_class"] == "stable":
+            c["stable"].append(r["mu"])
+            c["mu_c"].append(mu_c)
+            c["closed"].append(closed)
+        else:
+            c["moving"].append(r["mu"])
+    lines += ["", "| inner ring, r/min | axial load, N | mu_c (stable runs) | closed form | simulated onset |",
+              "|---|---|---|---|---|"]
+    for (speed, axial), c in sorted(cases.items()):
+        low = max(c["stable"], default=math.nan)
+        high = min(c["moving"], default=math.inf)
+        lines.append(f"| {speed} | {axial} | {min(c['mu_c']):.3g}-{max(c['mu_c']):.3g} | "
+                     f"{min(c['closed']):.3g}-{max(c['closed']):.3g} | {low:g} < mu_on <= {high:g} |")
     return "\n".join(lines)
 
 
@@ -99,17 +127,23 @@ def main():
         return
     os.makedirs(a.work, exist_ok=True)
     records, lock = [], threading.Lock()
+    if os.path.exists(a.out):
+        with open(a.out, encoding="utf-8") as f:
+            records = json.load(f)
+    done = {(r["speed_rpm"], r["axial_n"], r["mu"]): r for r in records}
 
     def case(speed, axial):
-        unstable = 0
+        moving = 0
         for mu in MUS:
-            r = run_one(a.binary, a.work, speed, axial, mu)
-            with lock:
-                records.append(r)
-                with open(a.out, "w", encoding="utf-8") as f:
-                    json.dump([{k: finite(v) for k, v in x.items()} for x in records], f, indent=1)
-            unstable = unstable + 1 if r.get("motion_class") == "unstable" else 0
-            if unstable == 2:
+            r = done.get((speed, axial, mu))
+            if r is None:
+                r = run_one(a.binary, a.work, speed, axial, mu)
+                with lock:
+                    records.append(r)
+                    with open(a.out, "w", encoding="utf-8") as f:
+                        json.dump([{k: finite(v) for k, v in x.items()} for x in records], f, indent=1)
+            moving = moving + 1 if r.get("motion_class") in ("circling", "unstable") else 0
+            if moving == 2:
                 return
 
     with ThreadPoolExecutor(max_workers=a.jobs) as pool:

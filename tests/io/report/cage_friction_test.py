@@ -5,8 +5,8 @@
 
 CASE: closed_form (the closed form against the critical friction of the model ball by ball, which
 does not use the reduction to the balls' first harmonic; the reduced roots among its eigenvalues),
-limits (no friction: stable below the cage's natural frequency, unstable above it or without radial
-guidance; mu_c against the traction damping: 1 / c_t without ball mass, rising then falling with
+limits (no friction: stable below the cage's natural frequency, unstable above it; without radial
+guidance the drift grows, not the whirl; mu_c against the traction damping: 1 / c_t without ball mass, rising then falling with
 it), scaling (Z and m_c enter as m_c / Z only; mu_c ~ sqrt(m_c / Z) at rest), atlas_columns (the
 atlas's table carries the columns; a point beyond the criterion gets a reason, not another class),
 run_inputs (a short real run of the 6205: the pocket's Hertz constant from the output against the
@@ -52,7 +52,8 @@ def model(**kw):
 
 def case_closed_form():
     for kw in ({}, {"cage_speed": -125.0}, {"balls": 12, "cage_mass": 0.1}, {"traction_damping": 3000.0},
-               {"pocket_stiffness": 2e5, "cage_speed": 600.0}, {"guide_stiffness": 0.0, "cage_speed": 0.0}):
+               {"pocket_stiffness": 2e5, "cage_speed": 600.0}, {"guide_stiffness": 0.0, "cage_speed": 0.0},
+               {"guide_stiffness": 0.0}):
         m = model(**kw)
         closed = cf.closed_form(m)
         full = cf.critical_friction(m, cf.full_model_eigenvalues)
@@ -89,7 +90,12 @@ def case_limits():
         check((g < 0) == stable, f"guidance {factor} x the centrifugal edge: growth {g:.3g} at mu = 0")
     loose = model(guide_stiffness=0.0)
     check(not loose.centred and cf.growth_rate(loose, 0.0, cf.full_model_eigenvalues) > 0
-          and cf.closed_form(loose) == 0.0, "no radial guidance: the cage should drift off without friction")
+          and cf.growth_rate(loose, 0.0, cf.full_model_eigenvalues, whirl_only=True) < 0,
+          "no radial guidance: cage and balls should drift off without friction, the whirl stay stable")
+    fast = model(pocket_stiffness=100.0, guide_stiffness=0.0, cage_speed=200.0)  # w_n = 109 rad/s < w
+    check(cf.closed_form(fast) == 0.0 and cf.critical_friction(fast, cf.full_model_eigenvalues) == 0.0
+          and cf.growth_rate(fast, 0.0, cf.full_model_eigenvalues, whirl_only=True) > 0,
+          "supercritical cage (w_n < w): the whirl should grow without friction")
     check(cf.closed_form(model(traction_damping=0.0)) == math.inf, "no traction: no critical friction")
     # Massless balls: mu_c ~ 1 / c_t (closed form and bisection alike).
     mus = [cf.critical_friction(model(traction_damping=c)) for c in (200.0, 400.0, 800.0)]
