@@ -120,6 +120,7 @@ def main():
     ap.add_argument("--work", default="/tmp/critical_friction")
     ap.add_argument("--out", default=os.path.join(HERE, "results", "critical_friction.json"))
     ap.add_argument("--table", action="store_true", help="print the table of --out and exit")
+    ap.add_argument("--mus", type=float, nargs="+", default=MUS, help="the friction values to run (ascending)")
     a = ap.parse_args()
     if a.table:
         with open(a.out, encoding="utf-8") as f:
@@ -134,7 +135,7 @@ def main():
 
     def case(speed, axial):
         moving = 0
-        for mu in MUS:
+        for mu in a.mus:
             r = done.get((speed, axial, mu))
             if r is None:
                 r = run_one(a.binary, a.work, speed, axial, mu)
