@@ -78,7 +78,8 @@ def record_model(r):
     return cf.CageBallModel(
         cage_mass=r.get("cage_mass_kg") or 0.0377, balls=9, pocket_stiffness=r["pocket_stiffness_n_m"],
         traction_damping=r["traction_damping_n_s_m"], cage_speed=r["cage_speed_rad_s"], ball_mass=r["ball_mass_kg"],
-        pocket_damping=r.get("pocket_damping_n_s_m", 0.5 * q), guide_stiffness=r.get("guide_stiffness_n_m", 2 * q / 0.159e-3))
+        pocket_damping=r.get("pocket_damping_n_s_m", 0.5 * q),
+        guide_stiffness=r.get("guide_stiffness_n_m", 2 * q / 0.159e-3))
 
 
 def table(records):
