@@ -307,7 +307,7 @@ def run_inputs(path, start, end=None, cage_mass=None):
         guide_stiffness=2.0 * load / bearing["pocket_clearance"] if spherical else 0.0)
     evidence.update({"pocket_stiffness_n_m": k, "ball_mass_kg": model.ball_mass, "cage_mass_kg": model.cage_mass,
                      "guide_stiffness_n_m": model.guide_stiffness, "pocket_damping_n_s_m": model.pocket_damping,
-                     "centred": model.centred})
+                     "centred": bool(model.centred)})
     if share < PRELOADED_SHARE:
         evidence["critical_pocket_friction_note"] = (
             f"the pockets touch {share:.2g} of the time (< {PRELOADED_SHARE:g}): not preloaded, the linear "

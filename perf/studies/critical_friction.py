@@ -68,6 +68,8 @@ def run_one(binary, work, speed, axial, mu):
 
 
 def finite(v):
+    if hasattr(v, "item"):
+        v = v.item()
     return None if isinstance(v, float) and not math.isfinite(v) else v
 
 

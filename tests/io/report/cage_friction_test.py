@@ -207,6 +207,12 @@ def case_run_inputs():
         check(m is not None and 0 < run <= law and m.traction_damping == run,
               f"traction slope: run {run:.4g}, law {law:.4g}, model {getattr(m, 'traction_damping', None)}")
         check(near(ev["mean_pocket_load_n"], load, 1e-9), "mean pocket load")
+        # The atlas writes the evidence into its state file as it is: plain JSON types only.
+        import json
+        try:
+            json.dumps(cf.atlas_evidence(out, 0.02, cage_mass=mass), allow_nan=True)
+        except TypeError as err:
+            check(False, f"the atlas's evidence is not JSON: {err}")
 
 
 if __name__ == "__main__":
