@@ -13,7 +13,8 @@ inputs and mu_c (io/report/cage_friction.py) from the same window. A case's fric
 ascending order and stop after two runs in a row that are not stable (circling or unstable: the
 onset is bracketed; such a run is the costly one, tens of times the steps). Writes one JSON record
 per run (after each run); a second call skips the runs --out already holds;
---table prints the markdown table of perf/studies/results/critical_friction.md from it.
+--table prints the markdown table of perf/studies/results/critical_friction.md from it (with
+--probes FILE, the cases' mu_c from the probes' traction slopes too); --probe runs the probes.
 """
 import argparse
 import json
@@ -36,32 +37,37 @@ SPEEDS_RPM = (1500, 6000)
 AXIAL_N = (300, 3000)
 MUS = (0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)
 SETTLE, WINDOW = 4, 8  # cage revolutions (at the kinematic cage speed, 0.4 of the inner ring's)
+# The probes of the races' traction slope as the run shows it (cage_friction.measured_traction_damping):
+# its regression wants the balls' rattling resolved, 5000 samples per cage revolution (20 us at
+# 1500 r/min); coarser sampling moves it by up to 25 % (0.5 ms: 850-1575 N s/m against 1500-1530).
+PROBE_MU, PROBE_REVOLUTIONS = 0.1, (2, 2, 5000)
 CAGE_RATIO = 0.398  # the 6205's kinematic cage speed / inner-ring speed (docs/atlas.md)
 
 
-def run_one(binary, work, speed, axial, mu):
-    name = f"n{speed}_fa{axial}_mu{mu:g}"
+def run_one(binary, work, speed, axial, mu, settle=SETTLE, window=WINDOW, samples=200):
+    name = f"n{speed}_fa{axial}_mu{mu:g}_{samples}"
     out = os.path.join(work, name + ".h5")
     period = 60.0 / (speed * CAGE_RATIO)
-    end = (SETTLE + WINDOW) * period
+    end = (settle + window) * period
     sets = {"inner_ring.speed": f"{speed} rpm", "inner_ring.load.fy": "0 N", "inner_ring.load.fz": f"{axial} N",
             "contact.ball_cage.friction_coefficient": f"{mu:g}", "scene.end_time": f"{end:.6g} s",
-            "scene.output_interval": f"{period / 200:.6g} s"}
+            "scene.output_interval": f"{period / samples:.6g} s"}
     args = [binary, "run", SCENE, "-o", out]
     for k, v in sets.items():
         args += ["--set", f"{k}={v}"]
     done = subprocess.run(args, capture_output=True, text=True, check=False)
-    record = {"speed_rpm": speed, "axial_n": axial, "mu": mu, "end_time_s": end, "exit": done.returncode}
+    record = {"speed_rpm": speed, "axial_n": axial, "mu": mu, "end_time_s": end, "exit": done.returncode,
+              "samples_per_revolution": samples}
     if done.returncode != 0:
         record["error"] = (done.stdout + done.stderr).strip().splitlines()[-1:]
         return record
     from report_data import read_run
     run = read_run(out)
     mass = cm.output_cage_mass(out)
-    m = cm.classify_run(run, SETTLE * period, cage_mass=mass)
+    m = cm.classify_run(run, settle * period, cage_mass=mass)
     record.update({k: m[k] for k in ("motion_class", "reasons", "cage_dynamics_indicator", "orbit_ratio",
                                      "whirl_to_cage_frequency", "impact_rate")})
-    record.update(cf.atlas_evidence(out, SETTLE * period, cage_mass=mass))
+    record.update(cf.atlas_evidence(out, settle * period, cage_mass=mass))
     record["wall_s"] = json.loads(__import__("h5py").File(out)["/"].attrs["summary_json"])["wall_time_s"]
     os.remove(out)
     return record
@@ -84,35 +90,46 @@ def record_model(r):
         guide_stiffness=r.get("guide_stiffness_n_m", 2 * q / 0.159e-3))
 
 
-def table(records):
+def table(records, probes=()):
+    """The runs' table and the cases' summary (markdown); `probes`: the traction slope's probe runs."""
     lines = ["| inner ring, r/min | axial load, N | mu | class | CDI | orbit ratio | pockets in contact | mean pocket "
-             "load, N | k, N/um | c_t, N s/m | mu_c | closed form |", "|" + "---|" * 12]
+             "load, N | k, N/um | c_t law, N s/m | c_t run, N s/m | mu_c (run's c_t) |", "|" + "---|" * 12]
     cases = {}
-    for r in records:
+    for r in sorted(records, key=lambda r: (r["speed_rpm"], r["axial_n"], r["mu"])):
         if r.get("exit"):
             lines.append(f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | failed |" + " |" * 8)
             continue
         m = record_model(r)
-        mu_c, closed = cf.critical_friction(m), cf.closed_form(m)
+        law = r.get("traction_damping_law_n_s_m", r["traction_damping_n_s_m"])
+        run = r.get("traction_damping_run_n_s_m") or math.nan
         lines.append(
             f"| {r['speed_rpm']} | {r['axial_n']} | {r['mu']:g} | {r['motion_class']} | "
             f"{r['cage_dynamics_indicator']:.3f} | {r['orbit_ratio']:.3f} | {r['pocket_contact_share']:.2f} | "
-            f"{r['mean_pocket_load_n']:.3g} | {m.pocket_stiffness / 1e6:.2f} | {m.traction_damping:.0f} | "
-            f"{mu_c:.3g} | {closed:.3g} |")
-        c = cases.setdefault((r["speed_rpm"], r["axial_n"]), {"stable": [], "moving": [], "mu_c": [], "closed": []})
+            f"{r['mean_pocket_load_n']:.3g} | {m.pocket_stiffness / 1e6:.2f} | {law:.0f} | {run:.0f} | "
+            f"{cf.critical_friction(m):.3g} |")
+        c = cases.setdefault((r["speed_rpm"], r["axial_n"]), {"stable": [], "moving": [], "models": []})
         if r["motion_class"] == "stable":
             c["stable"].append(r["mu"])
-            c["mu_c"].append(mu_c)
-            c["closed"].append(closed)
+            c["models"].append((m, law))
         else:
             c["moving"].append(r["mu"])
-    lines += ["", "| inner ring, r/min | axial load, N | mu_c (stable runs) | closed form | simulated onset |",
-              "|---|---|---|---|---|"]
+    lines += ["", "| inner ring, r/min | axial load, N | c_t law / run / probe, N s/m | mu_c, law's c_t | "
+              "mu_c, run's c_t | mu_c, probe's c_t (closed form) | simulated onset |", "|---|---|---|---|---|---|---|"]
+
+    def span(values):
+        return f"{min(values):.3g}-{max(values):.3g}" if values else "-"
+
+    probe = {(p["speed_rpm"], p["axial_n"]): p for p in probes if not p.get("exit")}
     for (speed, axial), c in sorted(cases.items()):
-        low = max(c["stable"], default=math.nan)
-        high = min(c["moving"], default=math.inf)
-        lines.append(f"| {speed} | {axial} | {min(c['mu_c']):.3g}-{max(c['mu_c']):.3g} | "
-                     f"{min(c['closed']):.3g}-{max(c['closed']):.3g} | {low:g} < mu_on <= {high:g} |")
+        ms = c["models"]
+        by_law = [cf.critical_friction(cf.CageBallModel(**{**m.__dict__, "traction_damping": law})) for m, law in ms]
+        p = probe.get((speed, axial))
+        pm = record_model(p) if p else None
+        at_probe = f"{cf.critical_friction(pm):.3g} ({cf.closed_form(pm):.3g})" if pm else "-"
+        lines.append(f"| {speed} | {axial} | {span([law for _, law in ms])} / {span([m.traction_damping for m, _ in ms])}"
+                     f" / {f'{pm.traction_damping:.0f}' if pm else '-'} | {span(by_law)} | "
+                     f"{span([cf.critical_friction(m) for m, _ in ms])} | {at_probe} | "
+                     f"{max(c['stable'], default=math.nan):g} < mu_on <= {min(c['moving'], default=math.inf):g} |")
     return "\n".join(lines)
 
 
@@ -123,13 +140,27 @@ def main():
     ap.add_argument("--work", default="/tmp/critical_friction")
     ap.add_argument("--out", default=os.path.join(HERE, "results", "critical_friction.json"))
     ap.add_argument("--table", action="store_true", help="print the table of --out and exit")
+    ap.add_argument("--probes", help="with --table: the probes' file (--probe)")
+    ap.add_argument("--probe", action="store_true",
+                    help="the traction slope's probes: mu = PROBE_MU, PROBE_REVOLUTIONS, finely sampled, into --out")
     ap.add_argument("--mus", type=float, nargs="+", default=MUS, help="the friction values to run (ascending)")
     a = ap.parse_args()
     if a.table:
+        probes = []
+        if a.probes:
+            with open(a.probes, encoding="utf-8") as f:
+                probes = json.load(f)
         with open(a.out, encoding="utf-8") as f:
-            print(table(json.load(f)))
+            print(table(json.load(f), probes))
         return
     os.makedirs(a.work, exist_ok=True)
+    if a.probe:
+        todo = [(s, f) for s in SPEEDS_RPM for f in AXIAL_N]
+        with ThreadPoolExecutor(max_workers=a.jobs) as pool:
+            probes = list(pool.map(lambda c: run_one(a.binary, a.work, *c, PROBE_MU, *PROBE_REVOLUTIONS), todo))
+        with open(a.out, "w", encoding="utf-8") as f:
+            json.dump([{k: finite(v) for k, v in x.items()} for x in probes], f, indent=1)
+        return
     records, lock = [], threading.Lock()
     if os.path.exists(a.out):
         with open(a.out, encoding="utf-8") as f:
