@@ -42,6 +42,7 @@ SETTLE, WINDOW = 4, 8  # cage revolutions (at the kinematic cage speed, 0.4 of t
 # 1500 r/min); coarser sampling moves it by up to 25 % (0.5 ms: 850-1575 N s/m against 1500-1530).
 PROBE_MU, PROBE_REVOLUTIONS = 0.1, (2, 2, 5000)
 CAGE_RATIO = 0.398  # the 6205's kinematic cage speed / inner-ring speed (docs/atlas.md)
+WHIRL_LOAD = 1.0  # N: the mean pocket load of a whirling cage (12-260 N here; at rest 0.04 N, the weight's share)
 
 
 def run_one(binary, work, speed, axial, mu, settle=SETTLE, window=WINDOW, samples=200):
@@ -107,14 +108,18 @@ def table(records, probes=()):
             f"{r['cage_dynamics_indicator']:.3f} | {r['orbit_ratio']:.3f} | {r['pocket_contact_share']:.2f} | "
             f"{r['mean_pocket_load_n']:.3g} | {m.pocket_stiffness / 1e6:.2f} | {law:.0f} | {run:.0f} | "
             f"{cf.critical_friction(m):.3g} |")
-        c = cases.setdefault((r["speed_rpm"], r["axial_n"]), {"stable": [], "moving": [], "models": []})
+        c = cases.setdefault((r["speed_rpm"], r["axial_n"]), {"stable": [], "moving": [], "models": [], "calm": [],
+                                                            "whirl": []})
         if r["motion_class"] == "stable":
             c["stable"].append(r["mu"])
             c["models"].append((m, law))
         else:
             c["moving"].append(r["mu"])
+        # The friction's whirl loads the pockets itself: a mean pocket load above WHIRL_LOAD.
+        c["whirl" if r["mean_pocket_load_n"] > WHIRL_LOAD else "calm"].append(r["mu"])
     lines += ["", "| inner ring, r/min | axial load, N | c_t law / run / probe, N s/m | mu_c, law's c_t | "
-              "mu_c, run's c_t | mu_c, probe's c_t (closed form) | simulated onset |", "|---|---|---|---|---|---|---|"]
+              "mu_c, run's c_t | mu_c, probe's c_t (closed form) | first run not stable | whirl onset |",
+              "|---|---|---|---|---|---|---|---|"]
 
     def span(values):
         return f"{min(values):.3g}-{max(values):.3g}" if values else "-"
@@ -126,10 +131,11 @@ def table(records, probes=()):
         p = probe.get((speed, axial))
         pm = record_model(p) if p else None
         at_probe = f"{cf.critical_friction(pm):.3g} ({cf.closed_form(pm):.3g})" if pm else "-"
-        lines.append(f"| {speed} | {axial} | {span([law for _, law in ms])} / {span([m.traction_damping for m, _ in ms])}"
-                     f" / {f'{pm.traction_damping:.0f}' if pm else '-'} | {span(by_law)} | "
+        slopes = f"{span([law for _, law in ms])} / {span([m.traction_damping for m, _ in ms])}"
+        lines.append(f"| {speed} | {axial} | {slopes} / {f'{pm.traction_damping:.0f}' if pm else '-'} | {span(by_law)} | "
                      f"{span([cf.critical_friction(m) for m, _ in ms])} | {at_probe} | "
-                     f"{max(c['stable'], default=math.nan):g} < mu_on <= {min(c['moving'], default=math.inf):g} |")
+                     f"{min(c['moving'], default=math.inf):g} | "
+                     f"{max(c['calm'], default=math.nan):g} < mu <= {min(c['whirl'], default=math.inf):g} |")
     return "\n".join(lines)
 
 
