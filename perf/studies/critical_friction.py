@@ -132,7 +132,8 @@ def table(records, probes=()):
         pm = record_model(p) if p else None
         at_probe = f"{cf.critical_friction(pm):.3g} ({cf.closed_form(pm):.3g})" if pm else "-"
         slopes = f"{span([law for _, law in ms])} / {span([m.traction_damping for m, _ in ms])}"
-        lines.append(f"| {speed} | {axial} | {slopes} / {f'{pm.traction_damping:.0f}' if pm else '-'} | {span(by_law)} | "
+        probe_slope = f"{pm.traction_damping:.0f}" if pm else "-"
+        lines.append(f"| {speed} | {axial} | {slopes} / {probe_slope} | {span(by_law)} | "
                      f"{span([cf.critical_friction(m) for m, _ in ms])} | {at_probe} | "
                      f"{min(c['moving'], default=math.inf):g} | "
                      f"{max(c['calm'], default=math.nan):g} < mu <= {min(c['whirl'], default=math.inf):g} |")
