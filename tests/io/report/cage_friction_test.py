@@ -122,7 +122,7 @@ def case_scaling():
     r0 = cf.critical_friction(model(cage_speed=0.0), cf.full_model_eigenvalues)
     r4 = cf.critical_friction(model(cage_speed=0.0, cage_mass=4 * BASE["cage_mass"]), cf.full_model_eigenvalues)
     check(near(r4 / r0, 2.0, 1e-6), f"four times the cage mass at rest: mu_c x {r4 / r0:.6g}, not 2")
-    # The cage speed lowers mu_c: k / (c_t (w_n - w)).
+    # The cage speed raises mu_c: k / (c_t (w_n - w)).
     slow = cf.critical_friction(model(cage_speed=0.0, guide_stiffness=3e5))
     fast = cf.critical_friction(model(cage_speed=5000.0, guide_stiffness=3e5))
     wn = model(guide_stiffness=3e5).natural_frequency
