@@ -11,7 +11,8 @@ mass, rising then falling with it), scaling (Z and m_c enter as m_c / Z only; mu
 at rest; the speed's factor), atlas_columns (the atlas's table carries the columns; a point beyond
 the criterion gets a reason, not another class), run_inputs (a short real run of the 6205: the
 pocket's Hertz constant from the output against the Hertz formula for a ball in its spherical
-pocket, the masses, the run's traction slope against the law's).
+pocket, the masses, the run's traction slope against the law's), traction_slope (the run's
+slope recovered from synthetic balls with a known one).
 """
 import math
 import os
@@ -167,6 +168,32 @@ def case_atlas_columns():
             header = f.readline().strip().split(",")
         check("critical_pocket_friction" in header and "pocket_friction_margin" in header,
               f"atlas.csv header lacks the columns: {header}")
+
+
+def case_traction_slope():
+    # Synthetic balls: each orbits at 60 rad/s with a random circumferential speed wobble v; the races
+    # push back with -c v plus the weight's circumferential share (once a revolution) and a constant;
+    # the pocket pushes with a force of its own, partly in step with the wobble (the regression takes
+    # the races' share: the ball's mass times its acceleration less the pocket's force).
+    rng = np.random.default_rng(3)
+    t = np.linspace(0.0, 0.5, 5001)
+    c, mass, balls = 750.0, 0.002, 9
+    pos, vel, acc = np.zeros((t.size, balls, 3)), np.zeros((t.size, balls, 3)), np.zeros((t.size, balls, 6))
+    pocket = rng.normal(0.0, 0.05, (t.size, balls))
+    for j in range(balls):
+        angle = 60.0 * t + 2 * math.pi * j / balls
+        e_t = np.column_stack([-np.sin(angle), np.cos(angle)])
+        wobble = 1e-4 * rng.standard_normal(t.size)
+        pocket[:, j] += 300.0 * wobble  # the pocket's force follows the wobble too: it must not count
+        race = -c * wobble + mass * 9.81 * np.cos(angle) + 0.3
+        pos[:, j, :2] = 0.02 * np.column_stack([np.cos(angle), np.sin(angle)])
+        vel[:, j, :2] = (1.2 + wobble)[:, None] * e_t
+        acc[:, j, :2] = ((race + pocket[:, j]) / mass)[:, None] * e_t
+    out = {"balls/position": pos, "balls/velocity": vel, "balls/acceleration": acc,
+           "segments/ball_pocket/circumferential_force": pocket}
+    got = cf.measured_traction_damping(out, slice(None), mass)
+    check(near(got, c, 0.01), f"traction slope from synthetic balls {got:.6g}, not {c}")
+    check(math.isnan(cf.measured_traction_damping({}, slice(None), mass)), "no series: NaN expected")
 
 
 def case_run_inputs():
