@@ -266,51 +266,71 @@ def pocket_law(out, window):
     return float(np.mean(q)), float(np.mean(on)), hertz
 
 
+def _read_window(out, start, end):
+    """What the criterion reads from an open output over start <= t <= end (a dict), or the reason it
+    does not apply (a str)."""
+    params = out.summary.get("scene_parameters", {})
+    bearing = out.bearing
+    why = not_applicable(params, bearing)
+    if why is None and "segments/ball_pocket/normal_force" not in out:
+        why = "no pocket diagnostics in the output"
+    if why is not None:
+        return why
+    t = np.asarray(out.time, dtype=float)
+    window = (t >= start) & (t <= (t[-1] if end is None else end))
+    balls = int(bearing["element_count"])
+    ball_mass = _ball_mass(out.attrs.get("model", ""))
+    load, share, hertz = pocket_law(out, window)
+    return {"params": params, "clearance": bearing["pocket_clearance"], "balls": balls, "ball_mass": ball_mass,
+            "load": load, "share": share, "hertz": hertz,
+            "speed": float(np.mean(np.asarray(out["cage/angular_velocity"], dtype=float)[window, 2])),
+            "law_c_t": traction_damping(out, params, window, balls),
+            "run_c_t": measured_traction_damping(out, window, ball_mass)}
+
+
+def _model(w, cage_mass, c_t):
+    """CageBallModel of what _read_window read."""
+    params, load = w["params"], w["load"]
+    hunt_crossley = _param(params, "contact.ball_cage.damping", "hunt_crossley") == "hunt_crossley"
+    spherical = _param(params, "cage.pocket_shape", "cylindrical") == "spherical"
+    return CageBallModel(
+        cage_mass=float(cage_mass) if cage_mass else math.nan, balls=w["balls"],
+        pocket_stiffness=1.5 * w["hertz"] ** (2.0 / 3.0) * load ** (1.0 / 3.0),  # dQ/d delta at the mean load
+        traction_damping=c_t, cage_speed=w["speed"], ball_mass=w["ball_mass"],
+        pocket_damping=_param(params, "contact.ball_cage.damping_factor", 0.0) * load if hunt_crossley else 0.0,
+        guide_stiffness=2.0 * load / w["clearance"] if spherical else 0.0)
+
+
 def run_inputs(path, start, end=None, cage_mass=None):
-    """The model's inputs from a run's output over start <= t <= end: CageBallModel or None, the
-    pocket friction coefficient, and the evidence (mean pocket load, contact share, why not applied)."""
+    """The model's inputs from a run's output over start <= t <= end: CageBallModel or None, and the
+    evidence (the pocket friction coefficient, the mean pocket load, the contact share, the traction
+    slopes, why the criterion does not apply)."""
     from raceway import RacewayOutput
 
     with RacewayOutput(path) as out:
         params = out.summary.get("scene_parameters", {})
-        bearing, attrs = out.bearing, out.attrs
-        t = np.asarray(out.time, dtype=float)
-        window = (t >= start) & (t <= (t[-1] if end is None else end))
-        why = not_applicable(params, bearing)
-        mu = 0.0 if _param(params, "contact.ball_cage.traction", "tanh") == "none" else \
-            _param(params, "contact.ball_cage.friction_coefficient", 0.1)
-        evidence = {"pocket_friction": mu}
-        if why is not None or "segments/ball_pocket/normal_force" not in out:
-            evidence["critical_pocket_friction_note"] = why or "no pocket diagnostics in the output"
-            return None, evidence
-        balls = int(bearing["element_count"])
-        load, share, hertz = pocket_law(out, window)
-        speed = float(np.mean(np.asarray(out["cage/angular_velocity"], dtype=float)[window, 2]))
-        law_c_t = traction_damping(out, params, window, balls)
-        ball_mass = _ball_mass(attrs.get("model", ""))
-        run_c_t = measured_traction_damping(out, window, ball_mass)
+        w = _read_window(out, start, end)
+    mu = 0.0 if _param(params, "contact.ball_cage.traction", "tanh") == "none" else \
+        _param(params, "contact.ball_cage.friction_coefficient", 0.1)
+    evidence = {"pocket_friction": mu}
+    if isinstance(w, str):
+        evidence["critical_pocket_friction_note"] = w
+        return None, evidence
     # The run's slope where it has one (positive), else the law's at the contacts' sliding.
-    c_t = run_c_t if run_c_t > 0 else law_c_t
-    evidence.update({"mean_pocket_load_n": load, "pocket_contact_share": share, "cage_speed_rad_s": speed,
-                     "traction_damping_n_s_m": c_t, "traction_damping_law_n_s_m": law_c_t,
-                     "traction_damping_run_n_s_m": run_c_t})
-    if not (load > 0 and math.isfinite(hertz)):
+    c_t = w["run_c_t"] if w["run_c_t"] > 0 else w["law_c_t"]
+    evidence.update({"mean_pocket_load_n": w["load"], "pocket_contact_share": w["share"],
+                     "cage_speed_rad_s": w["speed"], "traction_damping_n_s_m": c_t,
+                     "traction_damping_law_n_s_m": w["law_c_t"], "traction_damping_run_n_s_m": w["run_c_t"]})
+    if not (w["load"] > 0 and math.isfinite(w["hertz"])):
         evidence["critical_pocket_friction_note"] = "no pocket touched in the window"
         return None, evidence
-    k = 1.5 * hertz ** (2.0 / 3.0) * load ** (1.0 / 3.0)  # dQ/d delta at the mean load
-    spherical = _param(params, "cage.pocket_shape", "cylindrical") == "spherical"
-    model = CageBallModel(
-        cage_mass=float(cage_mass) if cage_mass else math.nan, balls=balls, pocket_stiffness=k,
-        traction_damping=c_t, cage_speed=speed, ball_mass=ball_mass,
-        pocket_damping=_param(params, "contact.ball_cage.damping_factor", 0.0) * load
-        if _param(params, "contact.ball_cage.damping", "hunt_crossley") == "hunt_crossley" else 0.0,
-        guide_stiffness=2.0 * load / bearing["pocket_clearance"] if spherical else 0.0)
-    evidence.update({"pocket_stiffness_n_m": k, "ball_mass_kg": model.ball_mass, "cage_mass_kg": model.cage_mass,
-                     "guide_stiffness_n_m": model.guide_stiffness, "pocket_damping_n_s_m": model.pocket_damping,
-                     "centred": bool(model.centred)})
-    if share < PRELOADED_SHARE:
+    model = _model(w, cage_mass, c_t)
+    evidence.update({"pocket_stiffness_n_m": model.pocket_stiffness, "ball_mass_kg": model.ball_mass,
+                     "cage_mass_kg": model.cage_mass, "guide_stiffness_n_m": model.guide_stiffness,
+                     "pocket_damping_n_s_m": model.pocket_damping, "centred": bool(model.centred)})
+    if w["share"] < PRELOADED_SHARE:
         evidence["critical_pocket_friction_note"] = (
-            f"the pockets touch {share:.2g} of the time (< {PRELOADED_SHARE:g}): not preloaded, the linear "
+            f"the pockets touch {w['share']:.2g} of the time (< {PRELOADED_SHARE:g}): not preloaded, the linear "
             "criterion is a rough guide")
     return model, evidence
 
