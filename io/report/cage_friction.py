@@ -133,39 +133,44 @@ def critical_friction(model, eigenvalues=reduced_eigenvalues, mu_max=MU_MAX):
     return math.inf
 
 
-def full_model_eigenvalues(model, mu):
-    """The exponents of the model with each ball its own coordinate, in the cage's rotating frame
-    (real coordinates: the cage's a, b along the frame's axes, each ball's w_j; pockets at 2 pi j / Z),
-    shifted to the bearing's frame is unnecessary for the real parts (the frame turns uniformly).
-    Massless balls take c_t w_j' = -(k d_j + c_p d_j') (first order in w_j)."""
+def full_model_matrices(model, mu):
+    """Stiffness and damping matrices of the model ball by ball in the cage's rotating frame (real
+    coordinates: the cage's a, b along the frame's axes, then each ball's w_j; pockets at 2 pi j / Z),
+    and the pockets' circumferential directions e_t (Z x 2). The pocket compressions are
+    d = w - e_t u; the cage's equation is m_c (u'' + 2 w J u' - w^2 u) = sum of the pocket loads."""
     z, w = model.balls, abs(model.cage_speed)
     phi = 2.0 * math.pi * np.arange(z) / z
     e_t = np.column_stack([-np.sin(phi), np.cos(phi)])
     e_r = np.column_stack([np.cos(phi), np.sin(phi)])
     push = e_t + mu * e_r  # the pocket load's direction on the cage, friction included
-    k, cp, ct, mb, mc = (model.pocket_stiffness, model.pocket_damping, model.traction_damping, model.ball_mass,
-                         model.cage_mass)
-    # d = w - E u with E = e_t (Z x 2): the pocket compressions.
-    gyro = np.array([[0.0, -2.0 * w], [2.0 * w, 0.0]])  # m_c (u'' + 2 w J u' - w^2 u) = F
+    k, cp, mc = model.pocket_stiffness, model.pocket_damping, model.cage_mass
+    gyro = np.array([[0.0, -2.0 * w], [2.0 * w, 0.0]])
     n = 2 + z
-    stiff = np.zeros((n, n))
-    damp = np.zeros((n, n))
+    stiff, damp = np.zeros((n, n)), np.zeros((n, n))
     stiff[:2, :2] = k * push.T @ e_t + model.guide_stiffness * e_r.T @ e_r - mc * w * w * np.eye(2)
     stiff[:2, 2:] = -k * push.T
     damp[:2, :2] = cp * push.T @ e_t + mc * gyro
     damp[:2, 2:] = -cp * push.T
     stiff[2:, 2:] = k * np.eye(z)
     stiff[2:, :2] = -k * e_t
-    damp[2:, 2:] = (ct + cp) * np.eye(z)
+    damp[2:, 2:] = (model.traction_damping + cp) * np.eye(z)
     damp[2:, :2] = -cp * e_t
-    mass = np.diag([mc, mc] + [mb] * z)
+    return stiff, damp, e_t
+
+
+def full_model_eigenvalues(model, mu):
+    """The exponents of the model with each ball its own coordinate (full_model_matrices), in the
+    cage's rotating frame (its real parts are the bearing frame's: the frame turns uniformly).
+    Massless balls take c_t w_j' = -k d_j (first order in w_j; no pocket damping then)."""
+    stiff, damp, e_t = full_model_matrices(model, mu)
+    n, mc, mb = len(stiff), model.cage_mass, model.ball_mass
     if mb > 0:
-        inv = np.linalg.inv(mass)
-        a = np.block([[np.zeros((n, n)), np.eye(n)], [-inv @ stiff, -inv @ damp]])
-        return np.linalg.eigvals(a)
-    if cp != 0:
+        inv = np.diag(1.0 / np.array([mc, mc] + [mb] * (n - 2)))
+        return np.linalg.eigvals(np.block([[np.zeros((n, n)), np.eye(n)], [-inv @ stiff, -inv @ damp]]))
+    if model.pocket_damping != 0:
         raise ValueError("massless balls with pocket damping: not a first-order system here")
-    # states [u (2), u' (2), w (Z)]: m_c u'' = -(stiff u + damp u' + coupling w); c_t w' = -k w + k E u
+    # states [u (2), u' (2), w (Z)]: m_c u'' = -(stiff u + damp u' + coupling w); c_t w' = -k w + k e_t u
+    k, ct, z = model.pocket_stiffness, model.traction_damping, n - 2
     a = np.zeros((4 + z, 4 + z))
     a[0:2, 2:4] = np.eye(2)
     a[2:4, 0:2] = -stiff[:2, :2] / mc
