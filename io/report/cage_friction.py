@@ -9,24 +9,27 @@ circumferential displacement from its rolling position, u the cage's displacemen
 circumferential direction at the ball); the pocket's friction mu times that load, along the ball's
 sliding on the pocket, which is radial (the ball spins about the bearing's axis relative to the
 cage) and points the same way round for a ball pushing its front bar and one pushed by its rear bar;
-the ball held circumferentially by its mass m_b and the slope c_t of its race contacts' traction
-against sliding (inner + outer). The first circumferential harmonic of the balls, v, and the cage
-obey (s = lambda - i w, lambda the cage's exponent in the bearing's frame, m~ = 2 m_c / Z):
+a spherical pocket's radial guidance k_g = 2 Q_0 / c (its normal turning); the ball held
+circumferentially by its mass m_b and the slope c_t of its race contacts' traction against sliding
+(inner + outer). The first circumferential harmonic of the balls, v, and the cage obey
+(s = lambda - i w, lambda the cage's exponent in the bearing's frame, m~ = 2 m_c / Z):
 
-    m~ lambda^2 z + (1 - i mu) p(s) (z - v) = 0,   b(s) v = p(s) (z - v),
-    p(s) = k + c_p s,   b(s) = m_b s^2 + c_t s,
+    (m~ lambda^2 + k_g) z + (1 - i mu) p(s) (z - v) = 0,   b(s) v = p(s) (z - v),
+    p(s) = k + c_p s,   b(s) = m_b s^2 + c_t s.
 
-so the characteristic polynomial is m~ lambda^2 (b + p) + (1 - i mu) p b = 0. The friction's
-(1 - i mu) makes the pockets' stiffness circulatory (a force of mu Z k / 2 at right angles to the
-displacement, pushing a forward whirl), the balls' traction is a damping fixed in the cage's
-rotating frame (s, not lambda). With m_b = c_p = 0 the crossing lambda = i Omega gives
-Omega = w_n = sqrt(Z k / (2 m_c)) and the closed form
+The friction's (1 - i mu) makes the pockets' stiffness circulatory (a force of mu Z k / 2 at right
+angles to the displacement, pushing a forward whirl), the balls' traction is a damping fixed in the
+cage's rotating frame (s, not lambda). With m_b = c_p = 0 a root crosses lambda = i Omega either at
+Omega = w with k_g = m~ w^2 (the drift: cage and balls off-centre together, no friction in it) or at
+Omega = w_n = sqrt(Z (k + k_g) / (2 m_c)), the friction's whirl, with the closed form
 
-    mu_c = k / (c_t (w_n - |w|))   for w_n > |w|;   0 (unstable without friction) for w_n <= |w|.
+    mu_c = k / (c_t (w_n - |w|))   for w_n > |w|;   0 (the whirl grows without friction) otherwise.
 
 critical_friction finds mu_c of the whole model (ball mass, pocket damping) by bisection on the
-largest real part of the roots; full_model_eigenvalues is the same physics with every ball its own
-coordinate (real, in the cage's frame), the tests' independent check of the reduction.
+largest real part of the whirl's roots (the drift's left out: the pockets' clearance bounds it);
+full_model_eigenvalues is the same physics with every ball its own coordinate (real, in the cage's
+frame), the tests' independent check of the reduction. run_inputs and atlas_evidence take the
+inputs from a run's output for the atlas.
 """
 import math
 import re
