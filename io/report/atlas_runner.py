@@ -190,7 +190,7 @@ def next_batch(atlas, state):
     if atlas["stop_band_share"] > 0 and record and record["trusted"]:
         band = search.band_share(model, search.candidate_pool(d))
         if band < atlas["stop_band_share"]:
-            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.3g} of the "
+            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.4g} of the "
                              f"map, less than stop_band_share {atlas['stop_band_share']:g}")
             return [], None
     taken = [p["unit"] for p in points]  # failed points too: not proposed again

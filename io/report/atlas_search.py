@@ -212,7 +212,8 @@ def propose_batch(points, labels, count, pool=None, taken=None, model=None, reco
     picks = _spread_pick(u, pool, taken, count - explore, point_spacing(len(points)))
     far = farthest_points(pool, list(taken) + picks, explore)
     rule = "uncertainty" if record["trusted"] else "refit's uncertainty and space filling (classifier untrusted)"
-    return picks + far, {**record, "rule": rule, "by_uncertainty": len(picks), "explored": len(far)}
+    return picks + far, {**record, "rule": rule, "band_share": float(np.mean(u > BAND_UNCERTAINTY)),
+                         "by_uncertainty": len(picks), "explored": len(far)}
 
 
 def propose(points, labels, count, pool=None, taken=None):
