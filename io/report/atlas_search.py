@@ -8,8 +8,11 @@ boundary between two classes: 1/2). A batch is the candidates of largest u, chos
 weighed by its distance to the points run and already chosen (a candidate closer than the spacing
 d0 = 1 / (2 sqrt(n + 1)) of the n points run counts u x distance / d0), so a batch spreads along the
 boundary instead of piling up at one place. Before two classes are seen the batch fills space
-(the Halton points in order). Everything is deterministic: the same points run give the same batch,
-which makes a resumed atlas the uninterrupted one.
+(the Halton points in order). A fit that collapsed (its amplitude at the lower bound, or its length
+scale below d0: p near 1/2 everywhere) is not trusted: it is refit with its length scale floored at
+d0 and its amplitude at 1, and part of the batch is placed by space filling, farthest from every
+point (search_classifier, propose_batch). Everything is deterministic: the same points run give the
+same batch, which makes a resumed atlas the uninterrupted one.
 """
 import importlib.util
 import math
