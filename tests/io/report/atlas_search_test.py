@@ -38,8 +38,8 @@ def check(ok, what):
         print(f"FAIL: {what}", file=sys.stderr)
 
 
-def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 401)):
-    """Largest error over the speeds of the load at which the classifier's class turns stable."""
+def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 201)):
+    """Largest error over the speeds of the load at which the classifier's class turns stable (to 0.005)."""
     grid = np.array([[a, b] for a in speeds for b in loads])
     stable = (model.predict(grid) == "stable").reshape(len(speeds), len(loads))
     est = np.array([loads[np.argmax(row)] if row.any() else 1.0 for row in stable])
@@ -85,7 +85,7 @@ def noisy_search(rule, seed, total=60, batch=4):
     history = []
     while len(points) < total:
         picks, model, reasons = rule(points, labels, min(batch, total - len(points)))
-        history.append((len(points), boundary_error(model), reasons))
+        history.append((len(points), boundary_error(model) if len(points) >= 21 else np.nan, reasons))
         points += picks
         labels += noisy_classes(picks, rng)
     model = search.search_classifier(points, labels)[0] if rule is search_rule else search.fit_classifier(points,
