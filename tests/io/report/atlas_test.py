@@ -383,7 +383,7 @@ def case_search_ends():
     """The search's other ends: the uncertainty band small enough; a failed point."""
     with tempfile.TemporaryDirectory() as tmp:
         # stop_band_share: the search ends when the uncertainty band covers less of the map, before the
-        # budget (measured by hand: the band covers 0.053 of it at 45 points, 0.044 at 53).
+        # budget (measured by hand: the band covers 0.052 of it at 41 points, 0.0499 at 45).
         sure = write_atlas(tmp, STANDIN_ATLAS.replace("budget_points = 21",
                                                       "budget_points = 200\nstop_band_share = 0.05"), "sure.toml")
         atlas_script([sure, "-o", os.path.join(tmp, "sure"), "--standin", "0"]).communicate()
