@@ -47,6 +47,8 @@ RTOL_FACTORS = [0.5, 1.0, 2.0]
 # Candidate -> [solver] keys added to the scene as shipped (TOML values).
 CANDIDATES = {
     "shipped": {},
+    "rtol2": {"rtol_factor": 2},
+    "rtol3": {"rtol_factor": 3},
     "bdf_order2": {"method": '"bdf"', "max_order": "2"},
     "velocity_atol_1e-4": {"atol": '{ velocity = "1e-4 m/s" }'},
     "pocket10": {"pocket_tolerance_factor": "10"},
@@ -55,6 +57,8 @@ CANDIDATES = {
     "bdf_sld": {"method": '"bdf"', "max_order": "5", "stability_limit_detection": "true"},
     "bdf_auto": {"method": '"bdf"'},
     "adams2": {"method": '"adams"', "max_order": "2"},
+    "adams2_rtol0.5": {"method": '"adams"', "max_order": "2", "rtol_factor": 0.5},
+    "adams2_rtol0.3": {"method": '"adams"', "max_order": "2", "rtol_factor": 0.3},
     "adams2_rtol2": {"method": '"adams"', "max_order": "2", "rtol_factor": 2},
     "adams2_rtol4": {"method": '"adams"', "max_order": "2", "rtol_factor": 4},
     "adams3": {"method": '"adams"', "max_order": "3"},
