@@ -38,8 +38,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import work_precision as wp  # noqa: E402
 
 ROOT = wp.ROOT
-# Scene -> the rtol it shipped when the study began (the candidates' factors multiply it), the revolution window (seconds) of the counts, and the end times of
-# the work-precision runs (the first is work_precision.py's; the second a later window).
+# Scene -> the rtol it shipped when the study began (the candidates' factors multiply it), the
+# revolution window (seconds) of the counts, and the end times of the work-precision runs (the
+# first is work_precision.py's; the second a later window).
 SCENES = {"6309_R3": {"rtol": 1e-6, "window": (0.02, 0.04), "ends": ["20 ms", "40 ms"]},
           "qj215_validation": {"rtol": 1e-6, "window": (0.06, 0.12), "ends": ["0.3 s"]},
           "seed002_40hz": {"rtol": 1e-5, "window": (0.025, 0.05), "ends": ["20 ms", "40 ms"]}}
