@@ -68,6 +68,7 @@ CANDIDATES = {
     "adams2_rtol0.3": {"method": '"adams"', "max_order": "2", "rtol_factor": 0.3},
     "adams2_rtol0.5": {"method": '"adams"', "max_order": "2", "rtol_factor": 0.5},
     "adams2_rtol2": {"method": '"adams"', "max_order": "2", "rtol_factor": 2},
+    "adams2_rtol3": {"method": '"adams"', "max_order": "2", "rtol_factor": 3},
     "adams2_rtol4": {"method": '"adams"', "max_order": "2", "rtol_factor": 4},
     "adams3": {"method": '"adams"', "max_order": "3"},
 }
