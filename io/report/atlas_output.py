@@ -84,7 +84,8 @@ def write_table(atlas, state, folder):
     _replace(os.path.join(folder, "atlas.csv"), write_csv)
     doc = {"name": atlas["name"], "scene": shown_path(atlas["scene"]), "metric": atlas["metric"], "classes": atlas["classes"],
            "parameters": atlas["parameters"], "certify": atlas["certify"], "thresholds": atlas["thresholds"],
-           "stop": state.get("stop"), "core_hours": state.get("core_hours"), "points": state["points"]}
+           "stop": state.get("stop"), "core_hours": state.get("core_hours"), "batches": state.get("batches", []),
+           "points": state["points"]}
     _replace(os.path.join(folder, "atlas.json"), lambda f: json.dump(_finite(doc), f, indent=1))
 
 
@@ -138,7 +139,7 @@ def write_map(atlas, state, folder):
     gx, xlabel = _axis(atlas, 0, g)
     gy, ylabel = _axis(atlas, 1, g)
     if len(set(labels)) > 1 and search.have_sklearn():
-        model = search.fit_classifier(units, labels)
+        model = search.search_classifier(units, labels)[0]  # the refit where the free fit is untrusted
         u, predicted = search.uncertainty(model, cube)
         index = {c: i for i, c in enumerate(model.classes_)}
         z = np.array([index[c] for c in predicted], dtype=float).reshape(len(g), len(g))
