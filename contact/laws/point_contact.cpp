@@ -432,8 +432,11 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
   const EhlFactors& f = ehl_factors(g, rx, ry);
-  film.central = 2.69 * std::pow(u, 0.67) * f.g_central * std::pow(w, -0.067) * f.central_shape * rx;
-  film.minimum = 3.63 * std::pow(u, 0.68) * f.g_minimum * std::pow(w, -0.073) * f.minimum_shape * rx;
+  // u^a w^b as exp(a ln u + b ln w): two logarithms and two exponentials for the four powers
+  // (about 1e-15 relative: the exponents' rounding times |ln u| ~ 25).
+  const double log_u = std::log(u), log_w = std::log(w);
+  film.central = 2.69 * std::exp(0.67 * log_u - 0.067 * log_w) * f.g_central * f.central_shape * rx;
+  film.minimum = 3.63 * std::exp(0.68 * log_u - 0.073 * log_w) * f.g_minimum * f.minimum_shape * rx;
   return film;
 }
 
@@ -465,7 +468,7 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
   EhlFactors& f = ehl_factors(g, rx, ry);
   if (!f.has_g_rolling) f.g_rolling = std::pow(g, 0.022), f.has_g_rolling = true;
   if (!f.has_k_rolling) f.k_rolling = std::pow(f.k, 0.348), f.has_k_rolling = true;
-  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::pow(u, 0.66) * std::pow(w, 0.47);
+  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::exp(0.66 * std::log(u) + 0.47 * std::log(w));
 }
 
 // ---- traction ------------------------------------------------------------------------------------
