@@ -193,11 +193,9 @@ struct GridCell {
   double shape;  // sqrt(1 - x^2 - y^2)
   int shape_index;  // of `shape` in the grid's distinct shapes
 };
-// The grid is built exactly symmetric about both axes: a cell's moments are those of its mirror
-// image in the quadrant x >= 0, y >= 0 (the same bits), with the signs of the centroid's
-// coordinates flipped, and a cell that straddles an axis has its centroid on it exactly. Mirrored
-// cells so share their shape bit for bit, and the pressure-dependent viscosity, an exponential, is
-// evaluated once per distinct shape (the 5 x 5 grid: 6 shapes for 25 cells).
+// The grid is exactly symmetric about both axes: a cell takes the moments of its mirror image in
+// x >= 0, y >= 0, the centroid's signs flipped (on an axis: exactly on it), so mirrored cells share
+// their shape's bits and the viscosity is evaluated once per distinct shape (5 x 5: 6 for 25 cells).
 inline constexpr std::size_t max_distinct_shapes = 64;
 struct TractionGrid {
   int gx = 0, gy = 0;
@@ -206,9 +204,8 @@ struct TractionGrid {
   std::vector<double> shapes;  // the distinct shapes, in order of first appearance
 };
 
-// Column (or row) i of n over [-1, 1] as its mirror image with the larger centre: the bounds of
-// that cell ((2 i - n) / n exactly, so i and n - 1 - i give the same bits) and the sign (+1, -1, or
-// 0 on the axis) its centroid's coordinate takes.
+// Column (or row) i of n over [-1, 1] as its mirror image with the larger centre: its bounds ((2 i -
+// n) / n: the same bits for i and n - 1 - i) and the sign (+1, -1, 0 on the axis) of its centroid.
 struct MirroredSpan {
   double lo, hi, sign;
 };
@@ -432,8 +429,7 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
   const EhlFactors& f = ehl_factors(g, rx, ry);
-  // u^a w^b as exp(a ln u + b ln w): two logarithms and two exponentials for the four powers
-  // (about 1e-15 relative: the exponents' rounding times |ln u| ~ 25).
+  // u^a w^b as exp(a ln u + b ln w) (about 1e-15 relative: the rounding of a ln u, |ln u| ~ 25).
   const double log_u = std::log(u), log_w = std::log(w);
   film.central = 2.69 * std::exp(0.67 * log_u - 0.067 * log_w) * f.g_central * f.central_shape * rx;
   film.minimum = 3.63 * std::exp(0.68 * log_u - 0.073 * log_w) * f.g_minimum * f.minimum_shape * rx;
