@@ -14,6 +14,7 @@ import zlib
 import numpy as np
 
 import atlas_certify as ac
+import cage_friction as cf
 import cage_motion as cm
 from atlas_search import standin_boundary
 
@@ -61,6 +62,19 @@ def revolution_times(cage_speed, settling_revolutions, window_revolutions):
         raise PointFailed(f"kinematic cage speed {cage_speed!r} rad/s: no window in cage revolutions")
     period = 2.0 * math.pi / speed
     return settling_revolutions * period, (settling_revolutions + window_revolutions) * period
+
+
+def add_friction_evidence(m, path, settling, mass):
+    """The critical pocket friction's columns and, beyond it, a reason (evidence: the class stands)."""
+    try:
+        ev = cf.atlas_evidence(path, settling, cage_mass=mass)
+    except (KeyError, ValueError, OSError) as err:  # an output without what the criterion reads
+        ev = {"critical_pocket_friction": math.nan, "pocket_friction_margin": math.nan,
+              "critical_pocket_friction_note": f"not evaluated: {type(err).__name__}: {err}"}
+    m.update(ev)
+    reason = cf.criterion_reason(ev)
+    if reason:
+        m["reasons"] = list(m.get("reasons", [])) + [reason]
 
 
 class SimulatorModel:
@@ -146,6 +160,7 @@ class SimulatorModel:
         a = self.atlas
         m = cm.classify_run(run, settling, cage_mass=mass, overrides=a["thresholds"])
         m["settling_time_s"], m["end_time_s"] = settling, end
+        add_friction_evidence(m, out + ".h5", settling, mass)
         window = np.nonzero(run.time >= settling)[0]
         blocks = []
         for s in ac.block_slices(len(window), a["certify"]["blocks"]):

@@ -15,7 +15,9 @@ import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
                   "spectral_peak_share", "cage_dynamics_indicator", "impact_rate", "impact_energy_j",
-                  "impact_energy_ratio", "subsync_growth_per_rev", "subsync_amplitude_ratio", "subsync_frequency_ratio")
+                  "impact_energy_ratio", "subsync_growth_per_rev", "subsync_amplitude_ratio", "subsync_frequency_ratio",
+                  "pocket_friction", "critical_pocket_friction", "pocket_friction_margin",
+                  "critical_pocket_friction_applies")
 WINDOW_COLUMNS = ("settling_time_s", "end_time_s")  # with a window in cage revolutions: each point's own
 CLASS_COLOURS = {"stable": "tab:green", "circling": "tab:blue", "unstable": "tab:red"}
 BAND_UNCERTAINTY = search.BAND_UNCERTAINTY  # the band drawn round the boundary
@@ -82,7 +84,8 @@ def write_table(atlas, state, folder):
     _replace(os.path.join(folder, "atlas.csv"), write_csv)
     doc = {"name": atlas["name"], "scene": shown_path(atlas["scene"]), "metric": atlas["metric"], "classes": atlas["classes"],
            "parameters": atlas["parameters"], "certify": atlas["certify"], "thresholds": atlas["thresholds"],
-           "stop": state.get("stop"), "core_hours": state.get("core_hours"), "points": state["points"]}
+           "stop": state.get("stop"), "core_hours": state.get("core_hours"), "batches": state.get("batches", []),
+           "points": state["points"]}
     _replace(os.path.join(folder, "atlas.json"), lambda f: json.dump(_finite(doc), f, indent=1))
 
 
@@ -136,7 +139,7 @@ def write_map(atlas, state, folder):
     gx, xlabel = _axis(atlas, 0, g)
     gy, ylabel = _axis(atlas, 1, g)
     if len(set(labels)) > 1 and search.have_sklearn():
-        model = search.fit_classifier(units, labels)
+        model = search.search_classifier(units, labels)[0]  # the refit where the free fit is untrusted
         u, predicted = search.uncertainty(model, cube)
         index = {c: i for i, c in enumerate(model.classes_)}
         z = np.array([index[c] for c in predicted], dtype=float).reshape(len(g), len(g))

@@ -168,36 +168,51 @@ def run_pending(model, atlas, state, folder, workers, log):
 
 
 def next_batch(atlas, state):
-    """The next points (unit cube), or [] with state['stop'] saying why the search ends."""
+    """The next points (unit cube) and the search's record of them, or [] with state['stop'] saying why
+    the search ends."""
     points, d = state["points"], len(atlas["parameters"])
     left = atlas["budget_points"] - len(points)
     if left <= 0:
         state["stop"] = f"the budget of {atlas['budget_points']} points is spent"
-        return []
+        return [], None
     if state["core_hours"] >= atlas["budget_core_hours"]:
         state["stop"] = f"the budget of {atlas['budget_core_hours']:g} core-hours is spent"
-        return []
+        return [], None
     if not points:
-        return list(search.initial_design(d))[:left]
+        return list(search.initial_design(d))[:left], {"rule": "initial design: the corners and the centre"}
     done = [p for p in points if p["status"] == "done" and p.get("label")]
     labels = [p["label"] for p in done]
     units = [p["unit"] for p in done]
-    if atlas["stop_band_share"] > 0 and len(set(labels)) > 1:
-        band = search.band_share(search.fit_classifier(units, labels), search.candidate_pool(d))
+    model = record = None
+    if len(set(labels)) > 1:
+        model, record = search.search_classifier(units, labels)
+    # An untrusted classifier's band is no measure of the map: the search goes on.
+    if atlas["stop_band_share"] > 0 and record and record["trusted"]:
+        band = search.band_share(model, search.candidate_pool(d))
         if band < atlas["stop_band_share"]:
-            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.3g} of the "
+            state["stop"] = (f"the uncertainty band (u > {search.BAND_UNCERTAINTY:g}) covers {band:.4g} of the "
                              f"map, less than stop_band_share {atlas['stop_band_share']:g}")
-            return []
+            return [], None
     taken = [p["unit"] for p in points]  # failed points too: not proposed again
-    return search.propose(units, labels, min(left, state["batch_size"]), taken=taken)
+    return search.propose_batch(units, labels, min(left, state["batch_size"]), taken=taken, model=model,
+                                record=record)
 
 
-def add_batch(state, batch):
+def add_batch(state, batch, record):
+    """The batch's points, planned, and the search's record of it (state['batches'])."""
     number = 1 + max((p["batch"] for p in state["points"]), default=-1)
     for unit in batch:
         index = len(state["points"])
         state["points"].append({"id": f"p{index:04d}", "index": index, "batch": number,
                                 "unit": [float(u) for u in unit], "status": "planned"})
+    state.setdefault("batches", []).append({"batch": number, "points": len(batch), **record})
+
+
+def batch_note(record):
+    """The log's word on a batch: how many points the search placed by exploring, and why."""
+    if not record.get("explored"):
+        return ""
+    return f" ({record['explored']} by space filling: the classifier is untrusted, {'; '.join(record['reasons'])})"
 
 
 def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
@@ -212,14 +227,14 @@ def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
         if STOP.is_set():
             state["stop"] = "stopped by a signal: continue with --resume"
             break
-        batch = next_batch(atlas, state)
+        batch, record = next_batch(atlas, state)
         if not batch:
             break
-        add_batch(state, batch)
+        add_batch(state, batch, record)
         for p in state["points"][-len(batch):]:
             p["values"] = point_sets(atlas, p["unit"])[1]
         save_state(folder, state)
-        log(f"batch {state['points'][-1]['batch']}: {len(batch)} points")
+        log(f"batch {state['points'][-1]['batch']}: {len(batch)} points{batch_note(record)}")
     save_state(folder, state)
     log(f"search ended: {state['stop']}")
     return state

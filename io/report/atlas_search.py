@@ -8,8 +8,11 @@ boundary between two classes: 1/2). A batch is the candidates of largest u, chos
 weighed by its distance to the points run and already chosen (a candidate closer than the spacing
 d0 = 1 / (2 sqrt(n + 1)) of the n points run counts u x distance / d0), so a batch spreads along the
 boundary instead of piling up at one place. Before two classes are seen the batch fills space
-(the Halton points in order). Everything is deterministic: the same points run give the same batch,
-which makes a resumed atlas the uninterrupted one.
+(the Halton points in order). A fit that collapsed (its amplitude at the lower bound, or its length
+scale below d0: p near 1/2 everywhere) is not trusted: it is refit with its length scale floored at
+d0 and its amplitude at 1, and part of the batch is placed by space filling, farthest from every
+point (search_classifier, propose_batch). Everything is deterministic: the same points run give the
+same batch, which makes a resumed atlas the uninterrupted one.
 """
 import importlib.util
 import math
@@ -53,18 +56,82 @@ def candidate_pool(d, size=2500):
     return halton(size, d, skip=20)
 
 
-def fit_classifier(points, labels):
-    """The Gaussian-process classifier of `labels` at `points` (at least two classes)."""
+#: The free fit's hyperparameter bounds: the kernel's amplitude (the latent function's variance) and
+#: its RBF length scale, in the unit cube.
+AMPLITUDE_BOUNDS = (1e-2, 1e3)
+LENGTH_BOUNDS = (0.02, 2.0)
+#: The refit of an untrusted classifier keeps its amplitude at or above this (a latent standard
+#: deviation of 1: it cannot answer "either" everywhere) and its length scale at or above the points'
+#: spacing (it cannot fit a label's scatter between neighbouring points).
+TRUSTED_AMPLITUDE = 1.0
+#: The share of a batch placed by space filling (farthest from every point) while the classifier is
+#: untrusted (at least one point).
+EXPLORE_SHARE = 0.5
+
+
+def fit_classifier(points, labels, length_floor=None, amplitude_floor=None):
+    """The Gaussian-process classifier of `labels` at `points` (at least two classes); the floors raise
+    the lower bounds of the length scale and the amplitude (the refit of an untrusted classifier)."""
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessClassifier
     from sklearn.gaussian_process.kernels import RBF, ConstantKernel
 
-    kernel = ConstantKernel(1.0, (1e-2, 1e3)) * RBF(length_scale=0.2, length_scale_bounds=(0.02, 2.0))
+    amplitude = (max(AMPLITUDE_BOUNDS[0], amplitude_floor or 0.0), AMPLITUDE_BOUNDS[1])
+    length = (max(LENGTH_BOUNDS[0], length_floor or 0.0), LENGTH_BOUNDS[1])
+    kernel = ConstantKernel(max(1.0, amplitude[0]), amplitude) * RBF(length_scale=max(0.2, length[0]),
+                                                                     length_scale_bounds=length)
     model = GaussianProcessClassifier(kernel=kernel, random_state=0, n_restarts_optimizer=0)
     with warnings.catch_warnings():  # hyperparameters at their bounds: the fit is still usable
         warnings.filterwarnings("ignore", category=ConvergenceWarning)
         model.fit(np.asarray(points, dtype=float), np.asarray(labels))
     return model
+
+
+def point_spacing(n):
+    """The spacing d0 = 1 / (2 sqrt(n + 1)) of n points: the batch's damping distance and the floor of
+    a trusted classifier's length scale (the search's resolution at n points)."""
+    return 0.5 / math.sqrt(n + 1)
+
+
+def hyperparameters(model):
+    """(amplitude, length scale, log marginal likelihood) of a fitted classifier: with more than two
+    classes (one binary classifier per class against the rest), the smallest amplitude and length scale."""
+    base = model.base_estimator_
+    fits = getattr(base, "estimators_", [base])
+    params = [f.kernel_.get_params() for f in fits]
+    return (min(float(p["k1__constant_value"]) for p in params),
+            min(float(np.min(p["k2__length_scale"])) for p in params), float(model.log_marginal_likelihood_value_))
+
+
+def _fit_record(model):
+    amplitude, length, lml = hyperparameters(model)
+    return {"amplitude": amplitude, "length_scale": length, "log_marginal_likelihood": lml}
+
+
+def collapse_reasons(model, n):
+    """Why the fitted classifier of n points is not to be trusted ([]: trusted): its amplitude at the
+    lower bound (p near 1/2 everywhere: "either" everywhere) or its length scale below the points'
+    spacing (it fits the labels' scatter point by point, and far from the points falls back to 1/2)."""
+    amplitude, length, _ = hyperparameters(model)
+    reasons = []
+    if amplitude <= 1.01 * AMPLITUDE_BOUNDS[0]:
+        reasons.append(f"amplitude {amplitude:.3g} at its lower bound {AMPLITUDE_BOUNDS[0]:g}")
+    if length < point_spacing(n):
+        reasons.append(f"length scale {length:.3g} below the points' spacing {point_spacing(n):.3g}")
+    return reasons
+
+
+def search_classifier(points, labels):
+    """The classifier the search uses, and its record: the free fit if trusted, else the refit with its
+    length scale floored at the points' spacing and its amplitude at TRUSTED_AMPLITUDE."""
+    model = fit_classifier(points, labels)
+    reasons = collapse_reasons(model, len(points))
+    record = {"trained_on": len(points), "fit": _fit_record(model), "trusted": not reasons, "reasons": reasons}
+    if reasons:
+        model = fit_classifier(points, labels, length_floor=point_spacing(len(points)),
+                               amplitude_floor=TRUSTED_AMPLITUDE)
+        record["refit"] = _fit_record(model)
+    return model, record
 
 
 def uncertainty(model, points):
@@ -113,18 +180,48 @@ def space_filling(taken, count, d):
     return picks
 
 
-def propose(points, labels, count, pool=None, taken=None):
-    """The next `count` points (unit cube) given the points run and their classes; `taken`: every
-    point already placed (default: `points`; the atlas adds its failed ones, never proposed again)."""
+def farthest_points(pool, taken, count):
+    """Space filling on the pool: greedily the candidate farthest from `taken` and the picks so far."""
+    near = np.full(len(pool), np.inf)
+    for t in taken:
+        near = np.minimum(near, np.linalg.norm(pool - np.asarray(t, dtype=float), axis=1))
+    picks = []
+    for _ in range(count):
+        k = int(np.argmax(near))
+        if not near[k] > 0:
+            break
+        picks.append(pool[k].copy())
+        near = np.minimum(near, np.linalg.norm(pool - pool[k], axis=1))
+    return picks
+
+
+def propose_batch(points, labels, count, pool=None, taken=None, model=None, record=None):
+    """The next `count` points (unit cube) given the points run and their classes, and the decision's
+    record (which rule placed them, and why). `taken`: every point already placed (default: `points`;
+    the atlas adds its failed ones, never proposed again); `model`, `record`: search_classifier's, if
+    already fitted. A trusted classifier places the batch by its uncertainty; an untrusted one (refit)
+    places ceil(EXPLORE_SHARE x count) points by space filling, farthest from every point, the rest by
+    the refit's uncertainty."""
     points = np.asarray(points, dtype=float)
     d = points.shape[1]
     taken = points if taken is None else np.asarray(taken, dtype=float)
     if len(set(labels)) < 2:
-        return space_filling(taken, count, d)
+        return space_filling(taken, count, d), {"rule": "space filling: one class seen", "trained_on": len(points)}
     pool = candidate_pool(d) if pool is None else pool
-    u, _ = uncertainty(fit_classifier(points, labels), pool)
-    spacing = 0.5 / math.sqrt(len(points) + 1)
-    return _spread_pick(u, pool, taken, count, spacing)
+    if model is None:
+        model, record = search_classifier(points, labels)
+    explore = 0 if record["trusted"] else min(count, max(1, math.ceil(EXPLORE_SHARE * count)))
+    u, _ = uncertainty(model, pool)
+    picks = _spread_pick(u, pool, taken, count - explore, point_spacing(len(points)))
+    far = farthest_points(pool, list(taken) + picks, explore)
+    rule = "uncertainty" if record["trusted"] else "refit's uncertainty and space filling (classifier untrusted)"
+    return picks + far, {**record, "rule": rule, "band_share": float(np.mean(u > BAND_UNCERTAINTY)),
+                         "by_uncertainty": len(picks), "explored": len(far)}
+
+
+def propose(points, labels, count, pool=None, taken=None):
+    """The next `count` points of propose_batch (without its record)."""
+    return propose_batch(points, labels, count, pool, taken)[0]
 
 
 def misclassified_share(model_or_points, labels_or_none, truth, grid):

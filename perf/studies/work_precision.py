@@ -57,12 +57,20 @@ SCENES = {
 # bdf2: BDF of order at most 2 (A-stable), what seed 002 ships; not in the default sweep.
 VARIANTS = {"bdf": ("bdf", {}), "bdf_sld": ("bdf", {"stability_limit_detection": "true"}),
             "adams": ("adams", {}), "erk": ("erk", {}), "ark": ("ark", {}), "bdf2": ("bdf", {"max_order": "2"}),
-            "bdf_auto": ("bdf", {"automatic_order": "true"})}
+            "bdf_auto": ("bdf", {"automatic_order": "true"}),
+            "adams2": ("adams", {"max_order": "2"})}
 # bdf_auto: BDF whose largest order switches between 5 and 2 by probes ([solver] automatic_order, the
 # default for bdf scenes that do not give max_order); not in the default sweep.
+# adams2: Adams-Moulton of order at most 2 (the trapezoidal rule: A-stable and without numerical
+# damping), what 6309 R3 and QJ215 ship since perf/studies/step_classes.py; not in the default sweep.
 # Each method at its default max_order and the absolute tolerances following rtol, whatever the
 # scene ships (seed 002 ships BDF order 2 and fixed atols for its rtol 1e-5).
 DEFAULT_ORDER = {"bdf": "5", "adams": "12", "erk": "5", "ark": "4"}
+# Variants on the scene as shipped: its own method, orders and absolute tolerances, with these
+# [solver] keys added (rtol is the sweep's). "shipped" is the scene's own point; the others are the
+# candidates of perf/studies/step_classes.py (fewer steps per revolution on the ball scenes).
+SHIPPED_VARIANTS = {"shipped": {}}
+
 MEASURES = ["trajectory", "cage_speed", "max_load", "pocket_impulse"]
 MEASURE_TITLES = {"trajectory": "body trajectories (RMS, physical scales)", "cage_speed": "mean cage speed",
                   "max_load": "mean of the largest rolling-element load", "pocket_impulse": "pocket-force impulse"}
@@ -98,15 +106,19 @@ def run(binary, name, method, rtol, workdir, timeout, shorten=True):
     shorten=False: the scene's own end time and output interval (perf/studies/default_tolerances.py)."""
     tag = f"{name}_{method}_{rtol:.0e}"
     scene = os.path.join(workdir, tag + ".toml")
-    cli_method, solver_keys = VARIANTS[method]
-    # The method in the scene too: max_order's bounds are checked against the scene's method.
-    solver_keys = {"method": f'"{cli_method}"', "max_order": DEFAULT_ORDER[cli_method], "atol": "{}", **solver_keys}
+    if method in SHIPPED_VARIANTS:
+        solver_keys, method_args = SHIPPED_VARIANTS[method], []
+    else:
+        cli_method, solver_keys = VARIANTS[method]
+        # The method in the scene too: max_order's bounds are checked against the scene's method.
+        solver_keys = {"method": f'"{cli_method}"', "max_order": DEFAULT_ORDER[cli_method], "atol": "{}", **solver_keys}
+        method_args = ["--method", cli_method]
     with open(scene, "w") as f:
         f.write(scene_text(name, rtol, solver_keys, shorten))
     out, summary = os.path.join(workdir, tag + ".h5"), os.path.join(workdir, tag + ".json")
     start = time.monotonic()
     try:
-        p = subprocess.run([binary, "run", scene, "--output-thread", "off", "--method", cli_method, "-o", out, "--summary-json", summary],
+        p = subprocess.run([binary, "run", scene, "--output-thread", "off", *method_args, "-o", out, "--summary-json", summary],
                            capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return {"failed": f"longer than {timeout:.0f} s"}
@@ -194,7 +206,7 @@ def plot(name, rows, floor, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(2, len(MEASURES), figsize=(5 * len(MEASURES), 8.5))
-    methods = sorted({r["method"] for r in rows}, key=list(VARIANTS).index)
+    methods = sorted({r["method"] for r in rows}, key=(list(VARIANTS) + list(SHIPPED_VARIANTS)).index)
     for col, m in enumerate(MEASURES):
         for row, (cost, label) in enumerate([("wall_time_s", "wall time [s]"), ("rhs_evaluations", "right-hand sides")]):
             ax = axes[row][col]
@@ -310,8 +322,8 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
     p.add_argument("--scenes", nargs="+", default=[n for n in SCENES if n != "default"])
-    p.add_argument("--methods", nargs="+", default=[v for v in VARIANTS if v not in ("bdf2", "bdf_auto")],
-                   choices=list(VARIANTS),
+    p.add_argument("--methods", nargs="+", default=[v for v in VARIANTS if v not in ("bdf2", "bdf_auto", "adams2")],
+                   choices=list(VARIANTS) + list(SHIPPED_VARIANTS),
                    help="bdf_sld: bdf with CVODE's stability-limit detection; bdf2: bdf of order at most 2")
     p.add_argument("--rtols", nargs="+", type=float, default=[10.0 ** -k for k in range(3, 11)])
     p.add_argument("--reference", default="erk", help="method of the reference run (at the tightest rtol)")

@@ -49,7 +49,8 @@ TEST(JobScenes, EveryJobSceneParsesAndSaysHowToRunIt) {
       if (name.rfind("6309_", 0) == 0 || name.rfind("qj215_", 0) == 0) {
         EXPECT_EQ(s.scene.model, ModelKind::spatial);
         EXPECT_TRUE(s.bearing.is_ball_bearing());
-        EXPECT_DOUBLE_EQ(s.solver.rtol, 1e-6);
+        // 6309 R3 ships Adams of order at most 2 at 2e-6 (perf/studies/results/step_classes.md).
+        EXPECT_DOUBLE_EQ(s.solver.rtol, name == "6309_R3" ? 2e-6 : 1e-6);
         const std::string run = "# Run: raceway run jobs/scenes/" + name + ".toml -o " + name + ".h5 --summary-json " +
                                 name + ".json";
         EXPECT_NE(s.text.find(run), std::string::npos) << run;

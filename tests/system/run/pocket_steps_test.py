@@ -7,7 +7,8 @@ contacts at step resolution") on short runs, one case per ctest:
   sampling: 6309 R3 for 20 ms (6 pocket contacts) with a fixed first step at output intervals of
     20 us and 200 us: the same steps, so the summary's pocket_step_totals are the same bits, and
     the rows' totals (onsets summed, peaks' max) are equal and their impulses agree to 1e-12.
-  accuracy: the same run sampled every 5 us, where the samples resolve the contacts: per side,
+  accuracy: the same run sampled every 2 us, where the samples resolve the contacts (at 5 us they
+    missed the top of an impact by 1.0 % with the steps of the scene's trapezoidal rule): per side,
     the step statistics against the ones of the samples (normal forces of /segments/ball_pocket
     split by the sign of circumferential_force, trapezoid rule, events = runs above 0 N): events
     within 1, peak within 1 % (the steps' peak may be below a sample interpolated between two
@@ -166,7 +167,7 @@ def main():
                     a, b = fine[q].sum(axis=0), coarse[q].sum(axis=0)
                     check(np.allclose(a, b, rtol=1e-12, atol=0), f"{q}: rows' sums agree to 1e-12")
             elif case == "accuracy":
-                compare_with_samples(run(raceway, scene, os.path.join(work, "a.h5"), "5 us"), "6309 R3 5 us")
+                compare_with_samples(run(raceway, scene, os.path.join(work, "a.h5"), "2 us"), "6309 R3 2 us")
             elif case == "ranks":
                 # np 2 with rank 0 writing and with --parallel-output, against np 1.
                 for extra in ((), ("--parallel-output",)):
