@@ -148,8 +148,11 @@ struct ContactSliding {
 /// (opposing its sliding), moment on body 2 about the normal through the contact centre, and the
 /// power dissipated (>= 0). Midpoint rule on grid_x x grid_y cells of the bounding rectangle: each
 /// cell weighted by the (exact) area of its overlap with the ellipse, evaluated at the overlap's
-/// centroid, and the pressures scaled so that the sum of p times area is exactly Q. The cell tables
-/// are built once per (grid_x, grid_y) and thread; a call allocates nothing. Zero for model none,
+/// centroid, and the pressures scaled so that the sum of p times area is exactly Q. The grid is
+/// exactly symmetric about both axes (mirrored cells have the same area and pressure bits), so the
+/// pressure-dependent viscosity is evaluated once per distinct cell pressure (6 on the 5 x 5 grid),
+/// and tanh(x)/x is a rational approximant (|x| <= 1) or one exponential, to about an ulp. The cell
+/// tables are built once per (grid_x, grid_y) and thread; a call allocates nothing. Zero for model none,
 /// Q <= 0 or a degenerate ellipse; throws std::invalid_argument if grid_x or grid_y < 1.
 struct TractionResult {
   double force_x = 0, force_y = 0;  ///< N, on body 2

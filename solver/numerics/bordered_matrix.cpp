@@ -1,5 +1,6 @@
 #include "solver/numerics/bordered_matrix.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -84,7 +85,8 @@ Eigen::MatrixXd BorderedMatrix::to_dense() const {
 }
 
 namespace {
-bool usable(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
+template <class Lu>
+bool usable(const Lu& lu) {
   const auto& u = lu.matrixLU();
   if (u.rows() == 0) return true;
   const double scale = u.cwiseAbs().maxCoeff();
@@ -92,26 +94,141 @@ bool usable(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu) {
     if (!(std::abs(u(i, i)) > 1e-14 * scale)) return false;
   return true;
 }
+
+// The indices of the rows (columns = false) or columns of `a` that hold a nonzero (a NaN counts:
+// it is != 0), in one pass over its storage; `used` is scratch.
+void nonzero_lines(const Eigen::MatrixXd& a, bool columns, std::vector<char>& used, std::vector<int>& out) {
+  out.clear();
+  const Eigen::Index rows = a.rows(), cols = a.cols();
+  const double* v = a.data();
+  if (columns) {
+    for (Eigen::Index c = 0; c < cols; ++c, v += rows)
+      if (std::any_of(v, v + rows, [](double x) { return x != 0.0; })) out.push_back(static_cast<int>(c));
+    return;
+  }
+  used.assign(static_cast<std::size_t>(rows), 0);
+  for (Eigen::Index c = 0; c < cols; ++c, v += rows)
+    for (Eigen::Index r = 0; r < rows; ++r) used[static_cast<std::size_t>(r)] |= static_cast<char>(v[r] != 0.0);
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (used[i] != 0) out.push_back(static_cast<int>(i));
+}
+
+// x = A^-1 b from A's partial-pivoting LU (P A = L U, L unit lower): x = U^-1 L^-1 P b by
+// substitution, in loops of the compile-time size N; `scratch` holds P b.
+template <int N, class Lu, class In, class Out, class Scratch>
+void lu_substitute(const Lu& lu, const In& b, Out&& x, Scratch& scratch) {
+  const auto& f = lu.matrixLU();
+  const auto& p = lu.permutationP().indices();
+  for (int i = 0; i < N; ++i) scratch(p(i)) = b(i);
+  for (int i = 1; i < N; ++i) {
+    double s = scratch(i);
+    for (int j = 0; j < i; ++j) s -= f(i, j) * scratch(j);
+    scratch(i) = s;
+  }
+  for (int i = N - 1; i >= 0; --i) {
+    double s = scratch(i);
+    for (int j = i + 1; j < N; ++j) s -= f(i, j) * scratch(j);
+    scratch(i) = s / f(i, i);
+  }
+  x = scratch;
+}
 }  // namespace
 
-bool BorderedFactorization::factor(const BorderedMatrix& m) {
-  m_ = &m;
-  const int n = m.block_count();
-  block_lu_.resize(n);
-  block_inv_border_.resize(n);
-  Eigen::MatrixXd schur = m.border;
-  for (int k = 0; k < n; ++k) {
-    block_lu_[k].compute(m.block[k]);
-    if (!usable(block_lu_[k])) return false;
+bool DenseBlocks::factor(const BorderedMatrix& m, Eigen::MatrixXd& schur) {
+  const auto n = static_cast<std::size_t>(m.block_count());
+  lu.resize(n);
+  inv_border.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int kb = static_cast<int>(k);
+    lu[k].compute(m.block[kb]);
+    if (!usable(lu[k])) return false;
     // Without a border there is nothing to solve for; Eigen's triangular solve of a 0-column
     // right-hand side would still bind a reference to its element (0, 0) (undefined behaviour).
     if (m.border_size() == 0) {
-      block_inv_border_[k].resize(m.block[k].rows(), 0);
+      inv_border[k].resize(m.block[kb].rows(), 0);
       continue;
     }
-    block_inv_border_[k] = block_lu_[k].solve(m.block_to_border[k]);
-    schur.noalias() -= m.border_to_block[k] * block_inv_border_[k];
+    inv_border[k] = lu[k].solve(m.block_to_border[kb]);
+    schur.noalias() -= m.border_to_block[kb] * inv_border[k];
   }
+  return true;
+}
+
+void DenseBlocks::forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border) {
+  const int nb = m.border_size(), bs = m.block_size(), n = m.block_count();
+  // Each product is evaluated into its own vector as Eigen evaluates it into a temporary.
+  y.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    Eigen::VectorXd& yk = y[static_cast<std::size_t>(k)];
+    yk = lu[static_cast<std::size_t>(k)].solve(Eigen::Map<const Eigen::VectorXd>(b + nb + k * bs, bs));
+    border.noalias() -= m.border_to_block[k] * yk;
+  }
+}
+
+void DenseBlocks::back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x) {
+  const int nb = m.border_size(), bs = m.block_size(), n = m.block_count();
+  for (int k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    product.noalias() = inv_border[i] * border_x;
+    Eigen::Map<Eigen::VectorXd>(x + nb + k * bs, bs) = y[i] - product;
+  }
+}
+
+template <int Bs>
+bool SparseFixedBlocks<Bs>::factor(const BorderedMatrix& m, Eigen::MatrixXd& schur) {
+  elements.resize(static_cast<std::size_t>(m.block_count()));
+  for (int k = 0; k < m.block_count(); ++k) {
+    Element& e = elements[static_cast<std::size_t>(k)];
+    lu.compute(Eigen::Map<const Block>(m.block[k].data()));
+    if (!usable(lu)) return false;
+    for (int j = 0; j < Bs; ++j) lu_substitute<Bs>(lu, Block::Identity().col(j), e.inverse.col(j), permuted);
+    nonzero_lines(m.border_to_block[k], false, used, e.rows);
+    nonzero_lines(m.block_to_border[k], true, used, e.cols);
+    const auto r = static_cast<Eigen::Index>(e.rows.size()), c = static_cast<Eigen::Index>(e.cols.size());
+    e.border_rows.resize(r, Bs);
+    for (Eigen::Index i = 0; i < r; ++i) e.border_rows.row(i) = m.border_to_block[k].row(e.rows[static_cast<std::size_t>(i)]);
+    e.inv_border.resize(Bs, c);
+    for (Eigen::Index j = 0; j < c; ++j) {
+      gathered = m.block_to_border[k].col(e.cols[static_cast<std::size_t>(j)]);
+      e.inv_border.col(j).noalias() = e.inverse.lazyProduct(gathered);
+      for (Eigen::Index i = 0; i < r; ++i)
+        schur(e.rows[static_cast<std::size_t>(i)], e.cols[static_cast<std::size_t>(j)]) -=
+            e.border_rows.row(i).dot(e.inv_border.col(j));
+    }
+  }
+  return true;
+}
+
+template <int Bs>
+void SparseFixedBlocks<Bs>::forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border) {
+  const int nb = m.border_size();
+  for (int k = 0; k < m.block_count(); ++k) {
+    Element& e = elements[static_cast<std::size_t>(k)];
+    e.y.noalias() = e.inverse.lazyProduct(Eigen::Map<const BlockVector>(b + nb + k * Bs));
+    for (std::size_t i = 0; i < e.rows.size(); ++i)
+      border(e.rows[i]) -= e.border_rows.row(static_cast<Eigen::Index>(i)).dot(e.y);
+  }
+}
+
+template <int Bs>
+void SparseFixedBlocks<Bs>::back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x) {
+  const int nb = m.border_size();
+  for (int k = 0; k < m.block_count(); ++k) {
+    const Element& e = elements[static_cast<std::size_t>(k)];
+    BlockVector product = BlockVector::Zero();
+    for (std::size_t j = 0; j < e.cols.size(); ++j)
+      product += e.inv_border.col(static_cast<Eigen::Index>(j)) * border_x(e.cols[j]);
+    Eigen::Map<BlockVector>(x + nb + k * Bs) = e.y - product;
+  }
+}
+
+template struct SparseFixedBlocks<9>;
+
+bool BorderedFactorization::factor(const BorderedMatrix& m) {
+  m_ = &m;
+  Eigen::MatrixXd schur = m.border;
+  const bool blocks_usable = fixed() ? fixed_blocks_.factor(m, schur) : dense_blocks_.factor(m, schur);
+  if (!blocks_usable) return false;
   schur_lu_.compute(schur);
   work_b_.resize(m.border_size());
   return usable(schur_lu_);
@@ -119,23 +236,22 @@ bool BorderedFactorization::factor(const BorderedMatrix& m) {
 
 void BorderedFactorization::solve(const double* b, double* x) const {
   const BorderedMatrix& m = *m_;
-  const int nb = m.border_size(), bs = m.block_size(), n = m.block_count();
-  // Forward: y_k = D_k^-1 b_k; border right-hand side b_b - sum A_bk y_k.
-  // The work vectors keep their sizes between calls (no allocation per solve); each product is
-  // evaluated into its own vector as Eigen evaluates it into a temporary: the same bits.
+  const int nb = m.border_size();
+  // Forward: y_k = D_k^-1 b_k; border right-hand side b_b - sum A_bk y_k. The work vectors keep
+  // their sizes between calls (no allocation per solve).
   work_b_ = Eigen::Map<const Eigen::VectorXd>(b, nb);
-  work_y_.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    Eigen::VectorXd& y = work_y_[static_cast<std::size_t>(k)];
-    y = block_lu_[k].solve(Eigen::Map<const Eigen::VectorXd>(b + nb + k * bs, bs));
-    work_b_.noalias() -= m.border_to_block[k] * y;
+  if (fixed()) {
+    fixed_blocks_.forward(m, b, work_b_);
+  } else {
+    dense_blocks_.forward(m, b, work_b_);
   }
   work_x_ = schur_lu_.solve(work_b_);
   Eigen::Map<Eigen::VectorXd>(x, nb) = work_x_;
   // Back: x_k = y_k - D_k^-1 A_kb x_b.
-  for (int k = 0; k < n; ++k) {
-    work_product_.noalias() = block_inv_border_[k] * work_x_;
-    Eigen::Map<Eigen::VectorXd>(x + nb + k * bs, bs) = work_y_[static_cast<std::size_t>(k)] - work_product_;
+  if (fixed()) {
+    fixed_blocks_.back(m, work_x_, x);
+  } else {
+    dense_blocks_.back(m, work_x_, x);
   }
 }
 

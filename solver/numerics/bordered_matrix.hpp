@@ -56,6 +56,50 @@ class BorderedMatrix {
   int border_size_ = 0, block_count_ = 0, block_size_ = 0;
 };
 
+/// The rolling elements' part of a block elimination, any block size: dense products with A_bk
+/// and A_kb, the blocks' LU solves.
+struct DenseBlocks {
+  /// Factors every D_k and subtracts A_bk D_k^-1 A_kb from `schur`; false if a block is singular.
+  bool factor(const BorderedMatrix& m, Eigen::MatrixXd& schur);
+  /// y_k = D_k^-1 b_k and border -= A_bk y_k (b: the whole right-hand side).
+  void forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border);
+  /// x_k = y_k - D_k^-1 A_kb x_b.
+  void back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x);
+
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+  std::vector<Eigen::MatrixXd> inv_border;  ///< D_k^-1 A_kb
+  std::vector<Eigen::VectorXd> y;           ///< D_k^-1 b_k of a solve
+  Eigen::VectorXd product;                  ///< D_k^-1 A_kb x_b of a solve
+};
+
+/// The same for blocks of Bs x Bs known at compile time (the ball bearings' 9 x 9), with fewer
+/// operations. A rolling element couples to a few border states only (a ball: 5-8 of the 28
+/// border rates depend on it, it depends on 10-16 border states): the exactly zero rows of A_bk
+/// and columns of A_kb, found at each factorisation, are left out of the Schur complement's
+/// update and of the solves. D_k^-1 is kept (from its LU, by substitution), so that a block's
+/// solve is one fixed-size product, which the compiler unrolls. Round-off differs from
+/// DenseBlocks' (other sums in another order).
+template <int Bs>
+struct SparseFixedBlocks {
+  using Block = Eigen::Matrix<double, Bs, Bs>;
+  using BlockVector = Eigen::Matrix<double, Bs, 1>;
+  struct Element {
+    Block inverse;                ///< D_k^-1
+    std::vector<int> rows, cols;  ///< the border rows of A_bk, columns of A_kb that are not zero
+    Eigen::Matrix<double, Eigen::Dynamic, Bs> border_rows;  ///< A_bk(rows, :)
+    Eigen::Matrix<double, Bs, Eigen::Dynamic> inv_border;   ///< D_k^-1 A_kb(:, cols)
+    BlockVector y;                                          ///< D_k^-1 b_k of a solve
+  };
+  bool factor(const BorderedMatrix& m, Eigen::MatrixXd& schur);
+  void forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border);
+  void back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x);
+
+  std::vector<Element> elements;
+  Eigen::PartialPivLU<Block> lu;       ///< of the block being factored
+  std::vector<char> used;              ///< a border row's mark while finding them
+  BlockVector gathered, permuted;      ///< scratch
+};
+
 /// Block-elimination LU of a BorderedMatrix.
 class BorderedFactorization {
  public:
@@ -65,12 +109,13 @@ class BorderedFactorization {
   void solve(const double* b, double* x) const;
 
  private:
+  static constexpr int fixed_block_size = 9;
+  bool fixed() const { return m_->block_size() == fixed_block_size; }
   const BorderedMatrix* m_ = nullptr;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> block_lu_;
-  std::vector<Eigen::MatrixXd> block_inv_border_;  ///< D_k^-1 A_kb
+  mutable DenseBlocks dense_blocks_;
+  mutable SparseFixedBlocks<fixed_block_size> fixed_blocks_;
   Eigen::PartialPivLU<Eigen::MatrixXd> schur_lu_;
-  mutable Eigen::VectorXd work_b_, work_x_, work_product_;
-  mutable std::vector<Eigen::VectorXd> work_y_;  ///< D_k^-1 b_k of a solve
+  mutable Eigen::VectorXd work_b_, work_x_;
 };
 
 }  // namespace raceway::numerics

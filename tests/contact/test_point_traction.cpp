@@ -50,15 +50,42 @@ TEST(PointTraction, PureSlideGivesCurveTimesLoad) {
   }
 }
 
-// Small slips, on both sides of where tanh(x)/x switches to its series (x = 2e-3): the slope
-// mu Q tanh(s / s_scale) / s to round-off.
-TEST(PointTraction, SmallSlipSlopeIsExact) {
+// Slips on both sides of where tanh(x)/x changes its evaluation (its rational approximant up to
+// x = 1, one exponential above, 1/x where tanh rounds to 1 beyond x = 19.5): the curve's
+// mu Q tanh(s / s_scale), to round-off, against the library's tanh.
+TEST(PointTraction, CurveIsTanhToRoundOff) {
   const PointTraction t = curve_traction(5);
-  for (const double slide : {0.0, 1e-9, 1e-6, 1.9999e-5, 2.0001e-5, 1e-4}) {
+  for (const double slide : {0.0, 1e-9, 1e-6, 2e-5, 1e-4, 3e-3, 0.009999, 0.010001, 0.05, 0.19, 0.2, 0.3}) {
     const double f = -integrate_traction(t, oil(), load, ax, ay, 0, {slide, 0, 0}).force_x;
     const double x = slide / 0.01;
     const double expected = x == 0 ? 0.0 : 0.1 * load * std::tanh(x);
     EXPECT_NEAR(f, expected, 1e-14 * expected) << slide;
+  }
+}
+
+// The grid is symmetric about both axes (its mirrored cells are the same bits, only the order of
+// the cells' sum differs): mirrored sliding gives the mirrored traction to round-off (forces and
+// moment change sign, the power stays), for the curve and the film's shear.
+TEST(PointTraction, MirroredSlidingGivesMirroredTraction) {
+  for (const TractionModel model : {TractionModel::curve, TractionModel::limiting_shear}) {
+    for (const int grid : {4, 5, 7}) {
+      PointTraction t = curve_traction(grid);
+      t.model = model;
+      const TractionResult r = integrate_traction(t, oil(), load, ax, ay, 2e-7, {0.003, -0.002, 7});
+      const double f = std::hypot(r.force_x, r.force_y), tol = 1e-14 * f, tol_m = tol * ay;
+      // Mirrored across both axes (x -> -x, y -> -y): the sliding changes sign, the spin stays.
+      const TractionResult m = integrate_traction(t, oil(), load, ax, ay, 2e-7, {-0.003, 0.002, 7});
+      EXPECT_NEAR(m.force_x, -r.force_x, tol) << grid;
+      EXPECT_NEAR(m.force_y, -r.force_y, tol) << grid;
+      EXPECT_NEAR(m.spin_moment, r.spin_moment, tol_m) << grid;
+      EXPECT_NEAR(m.power_loss, r.power_loss, 1e-14 * r.power_loss) << grid;
+      // Mirrored across the rolling axis (y -> -y): slide_y and the spin change sign.
+      const TractionResult y = integrate_traction(t, oil(), load, ax, ay, 2e-7, {0.003, 0.002, -7});
+      EXPECT_NEAR(y.force_x, r.force_x, tol) << grid;
+      EXPECT_NEAR(y.force_y, -r.force_y, tol) << grid;
+      EXPECT_NEAR(y.spin_moment, -r.spin_moment, tol_m) << grid;
+      EXPECT_NEAR(y.power_loss, r.power_loss, 1e-14 * r.power_loss) << grid;
+    }
   }
 }
 

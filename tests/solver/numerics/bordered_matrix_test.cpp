@@ -1,5 +1,7 @@
 // BorderedMatrix and BorderedFactorization against Eigen's dense LU of the same matrix: the
-// block-elimination (Schur complement) solve, the product, M = c M + I, and the structure check.
+// block-elimination (Schur complement) solve, the product, M = c M + I, and the structure check;
+// blocks of 5 (the dense elimination) and 9 (the fixed-size one that skips zero couplings), each
+// block coupled to its own subset of the border.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -17,30 +19,35 @@ constexpr int block_size = 5;
 
 /// A random bordered matrix: entries in [-1, 1], diagonally dominant blocks and border so that the
 /// blocks and the Schur complement are well conditioned (the Newton matrices I - gamma J are), filled
-/// through add() one entry at a time.
-BorderedMatrix random_bordered(int border, int blocks, std::mt19937& rng) {
+/// through add() one entry at a time. Block k's border rows r with (r + k) % 3 == 1 and border
+/// columns c with (c + k) % 2 == 1 (but column 0) are left zero, as a rolling element touches only
+/// some of the border's states.
+BorderedMatrix random_bordered(int border, int blocks, int bs, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  BorderedMatrix m(border, blocks, block_size);
+  BorderedMatrix m(border, blocks, bs);
   const int n = m.size();
   for (int r = 0; r < n; ++r) {
     for (int c = 0; c < n; ++c) {
       const bool r_border = r < border, c_border = c < border;
-      const bool same_block = !r_border && !c_border && (r - border) / block_size == (c - border) / block_size;
-      if (r_border || c_border || same_block) m.add(r, c, u(rng));
+      const int k = r_border ? (c - border) / bs : (r - border) / bs;
+      const bool same_block = !r_border && !c_border && (r - border) / bs == (c - border) / bs;
+      const bool coupled = r_border != c_border &&
+                           (r_border ? (r + k) % 3 != 1 : (c == 0 || (c + k) % 2 != 1));
+      if ((r_border && c_border) || coupled || same_block) m.add(r, c, u(rng));
     }
   }
-  // Diagonal shift: enough to dominate a block row (block_size + border entries of size <= 1) but
+  // Diagonal shift: enough to dominate a block row (bs + border entries of size <= 1) but
   // leaving the border coupling strong, so that a wrong Schur complement changes the solution.
-  for (int r = 0; r < n; ++r) m.add(r, r, 2.0 + block_size + 0.5 * border);
+  for (int r = 0; r < n; ++r) m.add(r, r, 2.0 + bs + 0.5 * border);
   return m;
 }
 
-class BorderedSolve : public ::testing::TestWithParam<std::tuple<int, int>> {};
+class BorderedSolve : public ::testing::TestWithParam<std::tuple<int, int, int>> {};
 
 TEST_P(BorderedSolve, MatchesDenseLU) {
-  const auto [border, blocks] = GetParam();
+  const auto [border, blocks, bs] = GetParam();
   std::mt19937 rng(1234u + static_cast<unsigned>(border * 100 + blocks));
-  const BorderedMatrix m = random_bordered(border, blocks, rng);
+  const BorderedMatrix m = random_bordered(border, blocks, bs, rng);
   const Eigen::MatrixXd dense = m.to_dense();
   const int n = m.size();
   ASSERT_EQ(dense.rows(), n);
@@ -49,7 +56,7 @@ TEST_P(BorderedSolve, MatchesDenseLU) {
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
       ASSERT_EQ(dense(r, c), m.get(r, c)) << r << "," << c;
-      if (r >= border && c >= border && (r - border) / block_size != (c - border) / block_size) {
+      if (r >= border && c >= border && (r - border) / bs != (c - border) / bs) {
         ASSERT_EQ(dense(r, c), 0.0);
       }
     }
@@ -97,10 +104,11 @@ TEST_P(BorderedSolve, MatchesDenseLU) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BordersAndBlocks, BorderedSolve,
-                         ::testing::Combine(::testing::Values(0, 1, 6, 10), ::testing::Values(1, 5, 13, 64)),
-                         [](const ::testing::TestParamInfo<std::tuple<int, int>>& p) {
+                         ::testing::Combine(::testing::Values(0, 1, 6, 10), ::testing::Values(1, 5, 13, 64),
+                                            ::testing::Values(5, 9)),
+                         [](const ::testing::TestParamInfo<std::tuple<int, int, int>>& p) {
                            return "border" + std::to_string(std::get<0>(p.param)) + "_blocks" +
-                                  std::to_string(std::get<1>(p.param));
+                                  std::to_string(std::get<1>(p.param)) + "_size" + std::to_string(std::get<2>(p.param));
                          });
 
 TEST(BorderedMatrix, AddRejectsEntryCouplingTwoBlocks) {
@@ -123,12 +131,14 @@ TEST(BorderedMatrix, AddRejectsEntryCouplingTwoBlocks) {
 }
 
 TEST(BorderedMatrix, FactorReportsSingularBlock) {
-  // A zero roller block (singular) must be reported, not solved into NaNs.
-  BorderedMatrix m(2, 3, block_size);
-  for (int r = 0; r < m.size(); ++r)
-    if (r < 2 || r >= 2 + block_size) m.add(r, r, 1.0);
-  BorderedFactorization f;
-  EXPECT_FALSE(f.factor(m));
+  // A zero roller block (singular) must be reported, not solved into NaNs (both eliminations).
+  for (const int size : {block_size, 9}) {
+    BorderedMatrix m(2, 3, size);
+    for (int r = 0; r < m.size(); ++r)
+      if (r < 2 || r >= 2 + size) m.add(r, r, 1.0);
+    BorderedFactorization f;
+    EXPECT_FALSE(f.factor(m)) << size;
+  }
 }
 
 }  // namespace
