@@ -11,8 +11,8 @@ contacts at step resolution") on short runs, one case per ctest:
     missed the top of an impact by 1.0 % with the steps of the scene's trapezoidal rule): per side,
     the step statistics against the ones of the samples (normal forces of /segments/ball_pocket
     split by the sign of circumferential_force, trapezoid rule, events = runs above 0 N): events
-    within 1, peak within 1 % (the steps' peak may be below a sample interpolated between two
-    steps), impulse within 3 %, contact time within 1 % plus one sample interval per event (the
+    within 1, peak within 1.5 % (the steps' peak may be below a sample interpolated between two
+    steps: a ~100 us impact's top between steps ~10 us apart, up to 1.2 %), impulse within 3 %, contact time within 1 % plus one sample interval per event (the
     samples place each start and end to half an interval); and the rows add up to the summary's
     totals. Both are compared up to the last sample with no contact on the side: a contact still on
     at the run's end has its last steps past the end time, unwritten.
@@ -167,7 +167,10 @@ def main():
                     a, b = fine[q].sum(axis=0), coarse[q].sum(axis=0)
                     check(np.allclose(a, b, rtol=1e-12, atol=0), f"{q}: rows' sums agree to 1e-12")
             elif case == "accuracy":
-                compare_with_samples(run(raceway, scene, os.path.join(work, "a.h5"), "2 us"), "6309 R3 2 us")
+                # The steps' peak is the largest force at an accepted step: below a ~100 us impact's
+                # top by up to 1 - cos(pi h / 2T), 1.2 % for the trapezoidal rule's steps of h ~ 10 us.
+                compare_with_samples(run(raceway, scene, os.path.join(work, "a.h5"), "2 us"), "6309 R3 2 us",
+                                     {"events": 1, "peak": 0.015, "impulse": 0.03, "contact": 0.01})
             elif case == "ranks":
                 # np 2 with rank 0 writing and with --parallel-output, against np 1.
                 for extra in ((), ("--parallel-output",)):
