@@ -156,7 +156,7 @@ void H5SeriesWriter::set_time_scale(const std::string& scale_path, const std::st
   const htri_t is_scale = H5DSis_scale(ds);
   if (is_scale < 0 || (is_scale == 0 && H5DSset_scale(ds, scale_name.c_str()) < 0)) fail("H5DSset_scale", scale->first);
   for (const auto& [path, s] : series_) {
-    if (s.dataset == ds) continue;
+    if (s.dataset == ds || s.stride != scale->second.stride) continue;
     const htri_t attached = H5DSis_attached(s.dataset, ds, 0);
     if (attached < 0 || (attached == 0 && H5DSattach_scale(s.dataset, ds, 0) < 0)) fail("H5DSattach_scale", path);
   }

@@ -273,10 +273,11 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
   std::vector<double> tail;
   if (const auto u = resume_unwritten_.find(key); u != resume_unwritten_.end()) tail = u->second;
   const std::size_t tail_rows = tail.size() / s.row_size;
-  if (tail.size() % s.row_size != 0 || tail_rows > resume_rows_)
+  const std::size_t rows = (resume_rows_ + s.stride - 1) / s.stride;  // the outputs 0, stride, ... before resume_rows_
+  if (tail.size() % s.row_size != 0 || tail_rows > rows)
     throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': the checkpoint's unwritten rows of '{}' "
                                          "do not fit its rows", partial_path_, key));
-  const std::size_t file_rows = resume_rows_ - tail_rows;
+  const std::size_t file_rows = rows - tail_rows;
   if (dims[0] < file_rows)
     throw std::runtime_error(fmt::format("H5SeriesWriter: cannot continue '{}': series '{}' has {} rows, the "
                                          "checkpoint needs {}", partial_path_, key, dims[0], file_rows));
@@ -292,7 +293,7 @@ H5SeriesWriter::Hid H5SeriesWriter::open_series_dataset(const std::string& key, 
 
 void H5SeriesWriter::define_series(const std::string& path, std::vector<std::size_t> row_shape,
                                    const std::string& units, const std::string& description, bool shared,
-                                   bool compressed) {
+                                   bool compressed, std::size_t stride) {
   require_open("define_series");
   ErrorSilencer quiet;
   const std::string key = h5::normalize(path);
@@ -310,6 +311,7 @@ void H5SeriesWriter::define_series(const std::string& path, std::vector<std::siz
   Series s;
   s.shared = shared;
   s.compressed = compressed;
+  s.stride = std::max<std::size_t>(stride, 1);
   s.row_shape.assign(row_shape.begin(), row_shape.end());
   s.row_size = product(row_shape);
   s.chunk_rows = chunk_shape(s.row_shape, options_.chunk_bytes)[0];

@@ -136,9 +136,12 @@ class H5SeriesWriter {
   /// "description" are written as variable-length UTF-8 strings. Throws std::invalid_argument if
   /// the series is already defined or a row dimension is 0. `compressed` false: stored without
   /// the shuffle and deflate filters (a series that does not compress), whichever path writes it.
+  /// `stride` > 1: the caller appends a row at every stride-th output only (outputs 0, stride,
+  /// 2 stride, ...), so that a reopen() after `rows` outputs keeps ceil(rows / stride) of its rows;
+  /// set_time_scale() attaches to it only a scale of the same stride.
   void define_series(const std::string& path, std::vector<std::size_t> row_shape,
                      const std::string& units, const std::string& description, bool shared = false,
-                     bool compressed = true);
+                     bool compressed = true, std::size_t stride = 1);
 
   /// The collective write of the shared series' rows (h5::write_shared_rows on every rank): it
   /// must write them or throw std::runtime_error. Set before the first shared series is defined.
@@ -160,7 +163,8 @@ class H5SeriesWriter {
   void append(SeriesId id, std::span<const double> row, std::span<const unsigned char> mine);
 
   /// Makes the series at `scale_path` (a [T] series, e.g. /time) the HDF5 dimension scale of the
-  /// first dimension of every series defined so far (H5DS: h5py's ds.dims[0][0] is then it).
+  /// first dimension of every series defined so far with the scale's stride (H5DS: h5py's
+  /// ds.dims[0][0] is then it).
   void set_time_scale(const std::string& scale_path, const std::string& scale_name);
 
   /// Number of rows appended to a series so far (written or still buffered).
@@ -241,6 +245,7 @@ class H5SeriesWriter {
     std::map<std::size_t, std::future<FilteredChunk>> filtered;  // by chunk index, until written
     bool shared = false;                   // written by all ranks together (share_series_with)
     bool compressed = true;                // shuffled and deflated (options); false: stored as they are
+    std::size_t stride = 1;                // a row at every stride-th output (define_series)
     std::vector<unsigned char> mine;       // shared: per buffered value, whether this process writes it
     unsigned long crc = 0;                 // CRC-32 of the bytes of every row appended (row_checksums)
   };

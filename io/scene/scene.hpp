@@ -405,6 +405,7 @@ struct CarrierSpec {
 
 struct OutputSpec {
   bool segments = true;   ///< per-segment diagnostics
+  int segment_every = 1;  ///< the segment diagnostics at every this-th output sample (0, N, 2N, ...)
   double max_size = 4e9;  ///< bytes: a run whose series would be larger is refused before it starts
   double checkpoint_interval = 0;         ///< s simulated, between periodic checkpoints (0: none)
   double checkpoint_wall_interval = 300;  ///< s wall clock, after which a checkpoint is written (0: none)

@@ -1,4 +1,8 @@
 // The scene schema table, second half: [carrier] to [output] (scene_schema.cpp holds the first).
+#include <cmath>
+
+#include <fmt/format.h>
+
 #include "io/scene/scene_rules.hpp"
 #include "io/scene/scene_schema_rows.hpp"
 
@@ -9,6 +13,16 @@ namespace {
 using contact::LawRole;
 using enum ValueKind;
 using namespace rules;
+
+/// A stride no longer than the run's output intervals: a longer one would store t = 0 alone.
+void segment_every_within_run(const Row&, const Section& s, Bind& b) {
+  const long every = b.scene.output.segment_every;
+  const double intervals = std::floor(b.scene.scene.end_time / b.scene.scene.output_interval + 1e-9);
+  s.check(static_cast<double>(every) <= intervals, "segment_every", [&] {
+    return fmt::format("segment_every = {} is more than the run's {:.0f} output intervals (end_time / "
+                       "output_interval): only t = 0 would be stored", every, intervals);
+  });
+}
 
 constexpr Row kRows[] = {
     // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
@@ -300,6 +314,10 @@ constexpr Row kRows[] = {
     // ---- [output] -------------------------------------------------------------------------------
     {.section = "output", .key = "segments", .kind = boolean, .field = FIELD(scene.output.segments), .def = value(1),
      .meaning = "per-segment (per-contact) diagnostics"},
+    {.section = "output", .key = "segment_every", .kind = integer, .field = FIELD(scene.output.segment_every),
+     .bounds = {.lo = 1}, .def = value(1), .then = segment_every_within_run, .example = "5",
+     .meaning = "the segment diagnostics at every N-th output sample only (samples 0, N, 2N, ... from the run's "
+                "start; /segments' attribute sample_stride); 1: at every sample"},
     {.section = "output", .key = "max_size", .kind = number, .field = FIELD(scene.output.max_size),
      .dim = dim::information, .bounds = positive, .def = value(4e9), .example = "4 GB",
      .meaning = "largest output file (its series uncompressed, samples x values x 8 bytes, plus a bound of names, "

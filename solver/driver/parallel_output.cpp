@@ -45,8 +45,12 @@ void WorkerOutput::operator()(std::span<const double> payload, std::span<const i
   }
   // The samples every shared series has in the file are not needed any more.
   std::size_t done = static_cast<std::size_t>(-1);
-  for (const h5::SharedRows& r : rows) done = std::min(done, written_[r.path] = r.first_row + r.rows);
-  samples_.erase(samples_.begin(), samples_.lower_bound(static_cast<long>(done)));
+  long stride = 1;  // the segment series' rows are every stride-th output sample ([output] segment_every)
+  for (const h5::SharedRows& r : rows) {
+    done = std::min(done, written_[r.path] = r.first_row + r.rows);
+    if (const auto s = series_.find(r.path); s != series_.end()) stride = s->second.stride;
+  }
+  samples_.erase(samples_.begin(), samples_.lower_bound(static_cast<long>(done) * stride));
 }
 
 void WorkerOutput::fill(h5::SharedRows& r) const {
@@ -57,7 +61,7 @@ void WorkerOutput::fill(h5::SharedRows& r) const {
   if (segments.size() != r.row_size) throw std::runtime_error("the shared series " + r.path + " has another row size here");
   for (std::size_t row = 0; row < r.rows; ++row) {
     // A sample this rank did not see (the rows a resumed run took from its checkpoint): rank 0's.
-    const auto sample = samples_.find(static_cast<long>(r.first_row + row));
+    const auto sample = samples_.find(static_cast<long>(r.first_row + row) * series->second.stride);
     if (sample == samples_.end()) continue;
     for (std::size_t c = 0; c < segments.size(); ++c)
       if (const auto mine = sample->second.find(segments[c]); mine != sample->second.end()) {

@@ -1,5 +1,6 @@
 #include "solver/run/output_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -127,8 +128,8 @@ double component(const BodySample& s, Quantity q, int c) {
 
 template <class Table>
 void define_diagnostics(h5::H5SeriesWriter& file, const std::string& group, const Table& fields, std::size_t columns,
-                        bool shared) {
-  for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning, shared);
+                        bool shared, std::size_t stride) {
+  for (const auto& f : fields) file.define_series(group + "/" + f.name, {columns}, f.unit, f.meaning, shared, true, stride);
 }
 
 template <class Table>
@@ -228,11 +229,13 @@ OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scen
   values += PocketSteps::quantities * PocketSteps::sides * PocketSteps(m).pockets();
   values += PowerBalanceSeries::values(m) + ThermalSeries::values(m);
   if (const bearing::Housing* housing = bearing::housing_of(m)) values += HousingSensor::quantities * housing->sensor_samples();
+  long segment_values = 0;  // at every segment_every-th sample: ceil(samples / segment_every) rows
   if (scene.output.segments)
     for (const bearing::Segment& s : m.segments)
-      values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
-  e.values_per_sample = values;
-  e.bytes = samples * static_cast<double>(values) * sizeof(double);
+      segment_values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
+  const double segment_rows = std::ceil(samples / scene.output.segment_every);
+  e.values_per_sample = values + segment_values;
+  e.bytes = (samples * static_cast<double>(values) + segment_rows * static_cast<double>(segment_values)) * sizeof(double);
   e.samples = samples < 9e18 ? static_cast<long>(samples) : -1;
   e.fixed_bytes = fixed_output_bytes(m, scene, e.bytes);
   return e;
@@ -247,10 +250,10 @@ void check_output_size(const OutputEstimate& e, const scene::Scene& scene) {
       fmt::format("the output would be {} ({:.4g} samples, one every {:g} s over end_time = {:g} s, x {} values x 8 "
                   "bytes, + {} of names, attributes and indexes), more than [output] max_size = {}: raise "
                   "output_interval, shorten end_time{}, or raise max_size",
-                  bytes_text(e.total()), e.bytes / (8.0 * static_cast<double>(e.values_per_sample)),
+                  bytes_text(e.total()), std::floor(scene.scene.end_time / scene.scene.output_interval + 1e-9) + 1,
                   scene.scene.output_interval, scene.scene.end_time, e.values_per_sample, bytes_text(e.fixed_bytes),
                   bytes_text(limit),
-                  scene.output.segments ? ", set [output] segments = false" : ""));
+                  scene.output.segments ? ", set [output] segments = false or raise segment_every" : ""));
 }
 
 namespace {
@@ -355,8 +358,9 @@ std::map<std::string, SegmentSeries> segment_series(const bearing::Model& m) {
   return all;
 }
 
-OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments)
-    : file_(file), m_(m), segments_(segments), shared_(shared_segments) {
+OutputWriter::OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments,
+                           int segment_every)
+    : file_(file), m_(m), segments_(segments), shared_(shared_segments), segment_every_(std::max(1, segment_every)) {
   file_.define_series("/time", {}, "s", "output times (interpolated, not solver steps)");
   file_.define_series("/energy", {}, "J", "kinetic + elastic + support + load potential energy");
   for (int b = 0; b < m.first_element; ++b)
@@ -453,6 +457,10 @@ void OutputWriter::define_housing_sensor() {
 }
 
 void OutputWriter::define_segment_groups() {
+  const auto stride = static_cast<std::size_t>(segment_every_);
+  if (stride > 1)
+    file_.define_series("/segments/time", {}, "s", "output times of the rows of /segments: every sample_stride-th of /time",
+                        false, true, stride);
   for (int k = 0; k < bearing::segment_kind_count; ++k) {
     std::vector<std::string> names;
     std::vector<double> elements;
@@ -469,13 +477,17 @@ void OutputWriter::define_segment_groups() {
     file_.write_array(g + "/element", {elements.size()}, elements, "-",
                       "rolling element (0-based) of each column; -1 for cage-land");
     if (line_family_[k]) {
-      define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size(), shared_);
+      define_diagnostics(file_, g, contact::line_diagnostic_fields, names.size(), shared_, stride);
       diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::line_diagnostic_fields);
     } else {
-      define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size(), shared_);
+      define_diagnostics(file_, g, contact::point_diagnostic_fields, names.size(), shared_, stride);
       diagnostic_ids_[k] = diagnostic_ids(file_, g, contact::point_diagnostic_fields);
     }
   }
+  file_.set_attribute("/segments", "sample_stride", static_cast<long long>(stride));
+  if (stride == 1) return;
+  segment_time_ = file_.series_id("/segments/time");
+  file_.set_time_scale("/segments/time", "segment time");
 }
 
 double OutputWriter::loaded_contact_angle(const bearing::Model& m, const bearing::Equations& eq) {
@@ -528,7 +540,7 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
 }
 
 void OutputWriter::append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
-                          double energy, const std::vector<double>& pocket_steps,
+                          double energy, const std::vector<double>& pocket_steps, long sample,
                           const std::vector<int>* segment_rank) {
   file_.append(time_, std::span<const double>(&t, 1));
   file_.append(energy_, std::span<const double>(&energy, 1));
@@ -543,7 +555,8 @@ void OutputWriter::append(double t, const std::vector<double>& z, const std::vec
   }
   append_power_balance(file_, power_, pocket_steps.data() + used, eq, t, z.data(), energy);
   thermal_->append(file_, z, eq);
-  if (!segments_) return;
+  if (!stores_segments(sample)) return;
+  if (segment_every_ > 1) file_.append(segment_time_, std::span<const double>(&t, 1));
   for (int k = 0; k < bearing::segment_kind_count; ++k) {
     const std::vector<int>& index = index_[k];
     row_.resize(index.size());

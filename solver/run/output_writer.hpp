@@ -56,28 +56,36 @@ BodySample sample_body(const bearing::Model& m, int b, double t, const std::vect
                        const bearing::Wrench& net);
 
 /// The segment diagnostic series of the layout (the series the parallel output shares between
-/// ranks), by path: the diagnostic's position in its family's field table and the segment of each
-/// column.
+/// ranks), by path: the diagnostic's position in its family's field table, the segment of each
+/// column and the output samples of its rows (row r: sample r x stride, [output] segment_every).
 struct SegmentSeries {
   int field = 0;
   std::vector<int> segments;
+  long stride = 1;
 };
 std::map<std::string, SegmentSeries> segment_series(const bearing::Model& m);
 
 class OutputWriter {
  public:
-  /// Defines the layout for the model (segment diagnostics only if `segments`; written by all
-  /// ranks together if `shared_segments`: the file has a shared writer, see H5SeriesWriter).
-  OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments = false);
+  /// Defines the layout for the model (segment diagnostics only if `segments`, at every
+  /// `segment_every`-th sample; written by all ranks together if `shared_segments`: the file has a
+  /// shared writer, see H5SeriesWriter).
+  OutputWriter(h5::H5SeriesWriter& file, const bearing::Model& m, bool segments, bool shared_segments = false,
+               int segment_every = 1);
+  /// Whether output sample `sample` (0 at t = 0, counted from the run's start) stores the segment
+  /// diagnostics: [output] segments, at every segment_every-th sample.
+  bool stores_segments(long sample) const { return segments_ && sample % segment_every_ == 0; }
   /// Appends output time t: rhs at (t, z) has just filled zdot and the equations' records.
   /// `pocket_steps`: the step-resolved pocket statistics of the interval ending at t
   /// (solver/run/pocket_steps.hpp: quantities x pockets x sides; empty for a model without pockets),
   /// then the housing sensor's samples of that interval (solver/run/housing_sensor.hpp), then the
   /// power balance's work up to t (solver/run/power_balance.hpp).
+  /// `sample`: the output sample's index from the run's start (stores_segments).
   /// `segment_rank`: with shared segments, the rank that evaluated each segment in that rhs (this
   /// process writes the diagnostics of rank 0's).
   void append(double t, const std::vector<double>& z, const std::vector<double>& zdot, const bearing::Equations& eq,
-              double energy, const std::vector<double>& pocket_steps, const std::vector<int>* segment_rank = nullptr);
+              double energy, const std::vector<double>& pocket_steps, long sample,
+              const std::vector<int>* segment_rank = nullptr);
 
   /// Load-weighted mean |contact angle| of the inner-groove contacts in the last rhs (the angle the
   /// balls roll at); the nominal angle when none is loaded.
@@ -96,9 +104,10 @@ class OutputWriter {
   h5::H5SeriesWriter& file_;
   const bearing::Model& m_;
   bool segments_, shared_;
+  int segment_every_ = 1;  ///< [output] segment_every
   std::vector<unsigned char> mine_;  ///< reused: which cells of a shared row this process writes
   // The series' handles in the order append() writes them (looked up once, not per sample).
-  h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0;
+  h5::H5SeriesWriter::SeriesId time_ = 0, energy_ = 0, epicyclic_ = 0, rolling_ = 0, segment_time_ = 0;
   std::vector<h5::H5SeriesWriter::SeriesId> border_ids_, element_ids_, pocket_step_ids_, sensor_ids_;
   PowerBalanceSeries power_;
   std::optional<ThermalSeries> thermal_;

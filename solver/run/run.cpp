@@ -283,8 +283,10 @@ double RunLoop::write_sample(bearing::Equations& eq, double t, long sample, cons
   eq.rhs(t, z.data(), zdot.data());
   const double rhs_seconds = wall() - before;
   const double e = eq.energy(t, z.data());
-  const std::vector<int>* segment_rank = options_.shared_output ? &options_.shared_output->sample(sample) : nullptr;
-  out_->append(t, z, zdot, eq, e, pocket_row, segment_rank);
+  // The parallel output's workers keep their diagnostics only of the samples that store them.
+  const std::vector<int>* segment_rank =
+      options_.shared_output && out_->stores_segments(sample) ? &options_.shared_output->sample(sample) : nullptr;
+  out_->append(t, z, zdot, eq, e, pocket_row, sample, segment_rank);
   totals_.record(t, z, eq, e);
   return rhs_seconds;
 }
@@ -440,7 +442,7 @@ RunSummary RunLoop::run(const std::optional<Checkpoint>& resumed) {
   double t_last = resumed ? resumed->time : t0;
   try {
     file_.emplace(open_run_output(scene_, options_, eq_, resumed ? &*resumed : nullptr));
-    out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr);
+    out_.emplace(*file_, model_, scene_.output.segments, options_.shared_output != nullptr, scene_.output.segment_every);
   } catch (const std::runtime_error& e) {
     if (!resumed || dynamic_cast<const scene::SceneError*>(&e) || dynamic_cast<const numerics::OptionsError*>(&e)) throw;
     // The .partial file does not continue (missing rows, a damaged chunk, rows whose checksum is
@@ -542,7 +544,9 @@ void serve_scene(const scene::Scene& scene,
   scheduler::SerialExecutor unused;
   const bearing::Model model = bearing::build_model(scene);
   const bearing::Equations eq(model, unused);
-  serve(eq.task_catalogue(), segment_series(model));
+  auto series = segment_series(model);
+  for (auto& [path, one] : series) one.stride = scene.output.segment_every;
+  serve(eq.task_catalogue(), series);
 }
 
 }  // namespace raceway::run
