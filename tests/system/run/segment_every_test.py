@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""[output] segment_every (docs/output_layout.md, "Segment diagnostics at a coarser sampling") on short
+runs of 6309 R3 (jobs/scenes/6309_R3.toml, output every 20 us), one case per ctest:
+
+    segment_every_test.py CASE RACEWAY MPIEXEC SOURCE_DIR
+
+  rows: 5 ms at segment_every = 1 and 5 (251 samples): /segments/* hold ceil(251 / 5) = 51 rows,
+    /segments/time is /time at samples 0, 5, 10, ..., each stored row is bitwise the N = 1 run's
+    row at the same sample (the output does not influence the steps), every other dataset outside
+    /scheduler is bitwise the N = 1 run's, the attribute sample_stride says 5 (1 in the N = 1 file),
+    the segment series' dimension scale is /segments/time, and the file is smaller.
+  ranks: the N = 5 run at np = 2, and at np = 2 with --parallel-output (the workers write their
+    segments' cells at rows of every 5th sample): the np = 1 file's bits (tests/system/parallel/
+    compare_outputs.py: every dataset and stored chunk).
+  resume: N = 5 with periodic checkpoints every 81 samples (not a multiple of 5), killed (SIGKILL)
+    after its first checkpoint and resumed: the uninterrupted run's bits.
+"""
+import math
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+import numpy as np
+
+failures = []
+
+
+def check(cond, what):
+    print(f"{'ok' if cond else 'FAIL'}: {what}", file=sys.stderr)
+    if not cond:
+        failures.append(what)
+
+
+def command(raceway, scene, out, every, extra=(), np_ranks=1, mpiexec=None):
+    cmd = [raceway, "run", scene, "-o", out, "--set", "scene.end_time=5 ms", "--set",
+           f"output.segment_every={every}", *extra]
+    if np_ranks > 1:
+        cmd = [mpiexec, "--oversubscribe", "-np", str(np_ranks)] + cmd
+    return cmd
+
+
+def run(cmd):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env)
+    if r.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)}: exit {r.returncode}: {r.stderr[-800:]}")
+    return cmd[cmd.index("-o") + 1]
+
+
+def datasets(f):
+    names = []
+    f.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+    return names
+
+
+def case_rows(raceway, scene, work):
+    one = run(command(raceway, scene, os.path.join(work, "n1.h5"), 1))
+    five = run(command(raceway, scene, os.path.join(work, "n5.h5"), 5))
+    with h5py.File(one, "r") as a, h5py.File(five, "r") as b:
+        samples = len(a["time"])
+        rows = math.ceil(samples / 5)
+        check(samples == 251, f"the N = 1 run has 251 samples ({samples})")
+        check(int(a["segments"].attrs["sample_stride"]) == 1 and int(b["segments"].attrs["sample_stride"]) == 5,
+              "sample_stride is 1 and 5")
+        check("time" not in a["segments"], "N = 1 writes no /segments/time (the file as before)")
+        check(b["segments/time"][()].tobytes() == a["time"][::5].tobytes(), "/segments/time is /time at 0, 5, 10, ...")
+        series = [n for n in datasets(b) if n.startswith("segments/") and b[n].ndim == 2]
+        check(len(series) > 20, f"{len(series)} segment series")
+        wrong_rows = [n for n in series if b[n].shape[0] != rows]
+        check(not wrong_rows, f"every segment series has ceil({samples} / 5) = {rows} rows ({wrong_rows[:3]})")
+        differ = [n for n in series if b[n][()].tobytes() != a[n][::5].tobytes()]
+        check(not differ, f"each stored row is the N = 1 run's row at its sample, bitwise ({differ[:3]})")
+        loaded = b["segments/ball_inner_groove/normal_force"][()]
+        check(loaded.max() > 100, f"the rows hold the contacts (largest ball load {loaded.max():.1f} N)")
+        others = [n for n in datasets(a) if not n.startswith(("segments/", "scheduler/"))]
+        differ = [n for n in others if a[n][()].tobytes() != b[n][()].tobytes()]
+        check(len(others) > 30 and not differ, f"the {len(others)} other datasets are bitwise the N = 1 run's "
+              f"({differ[:3]})")
+        scale = b["segments/ball_pocket/normal_force"].dims[0]
+        check(len(scale) == 1 and scale[0].name == "/segments/time", "the segment series' scale is /segments/time")
+        check(b["cage/position"].dims[0][0].name == "/time", "the bodies' scale stays /time")
+    size_one, size_five = os.path.getsize(one), os.path.getsize(five)
+    print(f"file: {size_one} bytes at N = 1, {size_five} at N = 5", file=sys.stderr)
+    check(size_five < 0.85 * size_one, "the N = 5 file is smaller")
+
+
+def compare(source, reference, others):
+    tool = os.path.join(source, "tests", "system", "parallel", "compare_outputs.py")
+    r = subprocess.run(["/usr/bin/python3", tool, reference, *others], capture_output=True, text=True, timeout=300)
+    return r.returncode == 0, (r.stdout + r.stderr)[-600:]
+
+
+def case_ranks(raceway, mpiexec, scene, source, work):
+    one = run(command(raceway, scene, os.path.join(work, "np1.h5"), 5))
+    two = run(command(raceway, scene, os.path.join(work, "np2.h5"), 5, (), 2, mpiexec))
+    shared = run(command(raceway, scene, os.path.join(work, "np2p.h5"), 5, ("--parallel-output",), 2, mpiexec))
+    with h5py.File(shared, "r") as f:
+        check(f["segments/ball_pocket/normal_force"].shape[0] == 51, "the parallel output wrote 51 rows")
+    ok, text = compare(source, one, [two, shared])
+    check(ok, f"np = 2 and np = 2 --parallel-output write the np = 1 file's bits: {'' if ok else text}")
+
+
+def case_resume(raceway, scene, source, work):
+    every = ("--set", "output.checkpoint_interval=1.62 ms")  # 81 samples of 20 us
+    whole = run(command(raceway, scene, os.path.join(work, "whole.h5"), 5, every))
+    out = os.path.join(work, "killed.h5")
+    proc = subprocess.Popen(command(raceway, scene, out, 5, every), stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while not os.path.exists(out + ".checkpoint") and proc.poll() is None and time.time() < deadline:
+        time.sleep(0.001)
+    proc.send_signal(signal.SIGKILL)
+    code = proc.wait(timeout=120)
+    check(code != 0 and os.path.exists(out + ".checkpoint") and not os.path.exists(out),
+          "the run was killed after a checkpoint, before its end")
+    run(command(raceway, scene, out, 5, every + ("--resume",)))
+    ok, text = compare(source, whole, [out])
+    check(ok, f"killed after a checkpoint and resumed: the uninterrupted run's bits: {'' if ok else text}")
+
+
+def main():
+    if len(sys.argv) != 5:
+        print(__doc__, file=sys.stderr)
+        return 2
+    case, raceway, mpiexec, source = sys.argv[1:]
+    scene = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    with tempfile.TemporaryDirectory() as work:
+        if case == "rows":
+            case_rows(raceway, scene, work)
+        elif case == "ranks":
+            case_ranks(raceway, mpiexec, scene, source, work)
+        else:
+            case_resume(raceway, scene, source, work)
+    if failures:
+        print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
+        return 1
+    print(f"{case}: passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
