@@ -199,7 +199,7 @@ TEST(SceneParser, MoreRules) {
             "contact.roller_race.friction_coefficient");
   EXPECT_EQ(error_of(edited("gravity = false", "gravity = \"no\"")).key(), "scene.gravity");
   EXPECT_EQ(error_of(edited("\n[output]\n", "\n[output]\nframes = 3\n")).reason(),
-            "unknown key 'frames' in [output]; allowed keys: segments, max_size, checkpoint_interval, checkpoint_wall_interval");
+            "unknown key 'frames' in [output]; allowed keys: segments, segment_every, max_size, checkpoint_interval, checkpoint_wall_interval");
 }
 
 TEST(SceneParser, UnreadableFile) {
