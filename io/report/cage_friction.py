@@ -315,7 +315,7 @@ def run_inputs(path, start, end=None, cage_mass=None):
     slopes, why the criterion does not apply)."""
     from raceway import RacewayOutput
 
-    with RacewayOutput(path) as out:
+    with RacewayOutput(path, at_segment_rows=True) as out:  # the segment rows' samples
         params = out.summary.get("scene_parameters", {})
         w = _read_window(out, start, end)
     mu = 0.0 if _param(params, "contact.ball_cage.traction", "tanh") == "none" else \

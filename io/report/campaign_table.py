@@ -137,7 +137,7 @@ def scene_metrics(path, settling_time):
     run = read_run(path)
     report, _ = summarize(run, settling_time)
     w = rm.select_window(run.time, settling_time)
-    with RacewayOutput(path) as out:
+    with RacewayOutput(path, at_segment_rows=True) as out:  # the segment rows' samples
         summary = out.summary
         keep = np.zeros(len(run.time), dtype=bool)
         keep[w.slice] = True

@@ -195,10 +195,13 @@ def read_bodies(h5_path, max_steps):
         series = [f"{elements}/position", "time", f"segments/{inner_kind}/normal_force"]
         series += [f"{body}/{name}" for body in ("cage", "inner_ring", "outer_ring")
                    for name in ("position", "angles", "angle", "angular_velocity")]
-        total = min(f[p].shape[0] for p in series if p in f)
+        # The segment diagnostics may be stored once every `every` samples ([output] segment_every):
+        # the frames are at those samples.
+        every = int(f["segments"].attrs.get("sample_stride", 1)) if "segments" in f else 1
+        total = min(f[p].shape[0] * (every if p.startswith("segments/") else 1) for p in series if p in f)
         if total < 1:
             raise ExportInputError(f"{h5_path}: no samples")
-        stride = max(1, -(-total // max_steps))
+        stride = every * max(1, -(-(-(-total // every)) // max_steps))
         rows = np.arange(0, total, stride)
         spatial = _text(f.attrs.get("model_kind", "planar")) == "spatial"
         centres = np.asarray(f[f"{elements}/position"][rows], dtype=float)
@@ -209,7 +212,7 @@ def read_bodies(h5_path, max_steps):
         element_body = Body(elements, points, [[k] for k in range(count)],
                             {"body": np.broadcast_to(np.arange(count, dtype=float), shape).copy(),
                              "element_radius_m": np.full(shape, element_radius),
-                             "inner_race_normal_force_N": _element_loads(f, elements, count, rows)})
+                             "inner_race_normal_force_N": _element_loads(f, elements, count, rows // every)})
         bar = 0.8 * element_radius
         bars = [(2 * math.pi * (k + 0.5) / count, pitch - bar, pitch + bar) for k in range(count)]
         cage = _shape(*_pose(f, "cage", rows), *_circle_with_marks(pitch, bars), "cage", count)

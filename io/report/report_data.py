@@ -203,7 +203,7 @@ def read_bearing(out):
 def read_run(path):
     """The run in `path` (an output file or an interrupted run's .partial)."""
     try:
-        out = RacewayOutput(path)
+        out = RacewayOutput(path, at_segment_rows=True)  # every series at the segment diagnostics' samples
     except FileNotFoundError:
         raise ReportInputError(f"{path}: no such file") from None
     except OSError as err:
@@ -212,6 +212,10 @@ def read_run(path):
         run = read_bearing(out)
         if out.rows < out.file["time"].shape[0]:
             run.notes.append(f"series cut to their shortest length, {out.rows} samples (an interrupted run)")
+        if out.at_segment_rows:
+            run.notes.append(f"the segment diagnostics are stored once every {out.segment_stride} samples ([output] "
+                             f"segment_every): the report reads every series there, {out.segment_rows} of "
+                             f"{out.rows} samples")
         run.build = out.build
         run.scene_text = out.scene_text
     return run

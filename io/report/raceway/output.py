@@ -14,6 +14,12 @@
         out.series()                                # every time series' path
         out.table(["cage/angular_velocity"])        # columns by name (raceway.table; pandas: .to_pandas())
 
+Segment diagnostics at a coarser sampling ([output] segment_every = N > 1): /segments/* hold a row
+at every N-th output sample only (samples 0, N, 2N, ...; `segment_stride`, their times
+`segment_time`). `RacewayOutput(path, at_segment_rows=True)` reads every other series at those
+samples too, so that every series has the same rows (what the report reads); by default the other
+series keep every sample.
+
 A Quantity is a numpy array with two attributes, `units` and `description`, as the file states
 them. In an interrupted run's .partial file the series may stop at different samples (each at its
 last whole chunk): the reader cuts every series to the shortest (`rows`), so rows still match.
@@ -107,7 +113,7 @@ def _new_name(path):
 class RacewayOutput:
     """One output file, open for reading (use it in a with statement, or call close())."""
 
-    def __init__(self, path):
+    def __init__(self, path, at_segment_rows=False):
         self.path = path
         self.file = h5py.File(path, "r")
         self.layout_version = int(self.file.attrs.get("layout_version", 1))
@@ -115,9 +121,17 @@ class RacewayOutput:
             self.file.close()
             raise ValueError(f"{path}: layout version {self.layout_version} is newer than this reader "
                              f"({LAYOUT_VERSION}); use the raceway package of the raceway that wrote it")
-        lengths = [self.file[p].shape[0] for p in self._file_paths() if self._is_series_ds(self.file[p])]
+        segments = self.file.get("segments")
+        #: The segment diagnostics' rows are every segment_stride-th output sample ([output] segment_every).
+        self.segment_stride = int(segments.attrs.get("sample_stride", 1)) if segments is not None else 1
+        series = [p for p in self._file_paths() if self._is_series_ds(self.file[p])]
+        lengths = [self.file[p].shape[0] for p in series if not self._strided(p)]
         #: Output times every series holds (the file's /time length unless a .partial cut them).
         self.rows = min(lengths) if lengths else 0
+        strided = [self.file[p].shape[0] for p in series if self._strided(p)]
+        #: Rows every segment series holds (rows when segment_stride is 1).
+        self.segment_rows = min(strided + [-(-self.rows // self.segment_stride)])
+        self._coarse = at_segment_rows and self.segment_stride > 1
         self._derived = self._derived_series() if self.layout_version < 3 else {}
 
     def __enter__(self):
@@ -151,6 +165,20 @@ class RacewayOutput:
         p = path.strip("/")
         return self._in_file(p) is not None or p in self._derived
 
+    def _strided(self, path):
+        """Whether the file's series at `path` has a row at every segment_stride-th sample only."""
+        return self.segment_stride > 1 and path.strip("/").startswith("segments/")
+
+    def is_strided(self, path):
+        """Whether the series at `path` holds a row at every segment_stride-th sample only (a segment
+        diagnostic with [output] segment_every > 1, and /segments/time)."""
+        return self._strided(path)
+
+    @property
+    def at_segment_rows(self):
+        """Whether every series is read at the segment rows' samples (at_segment_rows=True, stride > 1)."""
+        return self._coarse
+
     @staticmethod
     def _is_series_ds(ds):
         return isinstance(ds, h5py.Dataset) and ds.maxshape is not None and len(ds.maxshape) > 0 \
@@ -178,7 +206,12 @@ class RacewayOutput:
             return [_text(v) for v in ds[()]]
         values = ds[()]
         if self._is_series_ds(ds):
-            values = values[:self.rows]
+            if self._strided(found):
+                values = values[:self.segment_rows]
+            elif self._coarse:  # at the segment rows' samples
+                values = values[:self.rows:self.segment_stride][:self.segment_rows]
+            else:
+                values = values[:self.rows]
             if self.layout_version < 2 and values.ndim == 2 and values.shape[1] == 1:
                 values = values[:, 0]
         return Quantity(values, _text(ds.attrs.get("units", "")), _text(ds.attrs.get("description", "")))
@@ -239,6 +272,11 @@ class RacewayOutput:
         return self["time"]
 
     @property
+    def segment_time(self):
+        """The output times of the /segments rows: /segments/time (segment_stride > 1), else /time."""
+        return self["segments/time"] if self.segment_stride > 1 else self.time
+
+    @property
     def attrs(self):
         """The root attributes (str, int, float or numpy arrays); in older files also the bearing
         attributes derived from the run summary (see `bearing`) and ball_count as element_count."""
@@ -293,7 +331,9 @@ class RacewayOutput:
         return name or _text(self.file.attrs.get("scene_source", self.path))
 
     def segment_kinds(self):
-        return sorted(self.file["segments"].keys()) if "segments" in self.file else []
+        if "segments" not in self.file:
+            return []
+        return sorted(k for k, v in self.file["segments"].items() if isinstance(v, h5py.Group))
 
     def segments(self, kind):
         """Every dataset of /segments/<kind>: names (list of str), per-segment columns and diagnostics."""

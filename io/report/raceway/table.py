@@ -74,9 +74,19 @@ def _labels(out, path, shape):
 
 
 def series_table(out, paths=None):
-    """A Table of the series `paths` (default: every series but /time) of an open RacewayOutput."""
-    table = Table(out["time"])
-    for path in (paths if paths is not None else [p for p in out.series() if p != "/time"]):
+    """A Table of the series `paths` (default: every series but /time) of an open RacewayOutput.
+    Segment series stored at every N-th sample only ([output] segment_every) share a table with the
+    others when the file is read at the segment rows (RacewayOutput(path, at_segment_rows=True));
+    alone, their table is indexed by /segments/time."""
+    if paths is None:
+        paths = [p for p in out.series() if p not in ("/time", "/segments/time")]
+    strided = [p for p in paths if out.is_strided(p)]
+    if strided and not out.at_segment_rows and len(strided) < len(paths):
+        raise ValueError(f"{out.path}: the segment diagnostics are stored once every {out.segment_stride} samples "
+                         f"([output] segment_every) and the other series at every sample: table them apart, or open "
+                         f"the file with RacewayOutput(path, at_segment_rows=True) to read every series there")
+    table = Table(out.segment_time if strided and not out.at_segment_rows else out["time"])
+    for path in paths:
         q = out[path]
         if q.ndim == 0 or q.shape[0] != len(table):
             raise ValueError(f"{out.path}: /{path.strip('/')} is not a time series")
