@@ -153,7 +153,10 @@ def quantities(summary, output):
             found["last." + name] = (row.tolist(), cls)
         segments = f.get("segments")
         for kind in sorted(segments.keys()) if segments is not None else []:
-            if "normal_force" in segments[kind]:
+            # Groups only (/segments/time is a dataset); the last row is the last sample's only when
+            # every sample stores the segments ([output] segment_every = 1, every shipped scene).
+            if isinstance(segments[kind], h5py.Group) and "normal_force" in segments[kind] \
+                    and int(segments.attrs.get("sample_stride", 1)) == 1:
                 forces = np.abs(np.asarray(segments[kind]["normal_force"][-1], dtype=float))
                 found[f"last.{kind}.max_normal_force"] = (float(forces.max()), "force")
     return found

@@ -61,6 +61,9 @@ def analyse(path, window_start):
     w = rm.select_window(time, window_start)
     xy = f["rollers/position"][:] - f["outer_ring/position"][:][:, None, :]
     az = rm.azimuth(xy[..., 0], xy[..., 1])
+    if int(f["segments"].attrs.get("sample_stride", 1)) != 1:
+        raise SystemExit(f"{path}: the segment diagnostics are stored once every few samples ([output] "
+                         "segment_every); this comparison needs them at every sample")
     inner = f["segments/roller_inner_race/normal_force"][:]
     outer = f["segments/roller_outer_race/normal_force"][:]
     bins = rm.bin_by_azimuth(az[w.slice], inner[w.slice], 5.0 / DEG)

@@ -94,7 +94,7 @@ def from_samples(path):
     with h5py.File(path, "r") as f:
         t = f["time"][()].ravel()
         force = wp.pocket_forces(f)
-        seg = f["segments"]
+        seg = wp.segments_at_every_sample(f)
         peak = (seg["ball_pocket/normal_force"][()] if "ball_pocket" in seg else
                 np.concatenate([seg["cage_bar_front/normal_force"][()], seg["cage_bar_rear/normal_force"][()]], axis=1))
     return float(np.trapz(force, t)), float(peak.max()), float("nan")

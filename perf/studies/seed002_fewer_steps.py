@@ -34,7 +34,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from work_precision import ROOT, element_loads, set_key  # noqa: E402
+from work_precision import ROOT, element_loads, segments_at_every_sample, set_key  # noqa: E402
 
 END_S, REVOLUTIONS = 0.05, 2.0
 SWEEP = [1e-6, 1e-7, 1e-8, 1e-9]
@@ -100,7 +100,7 @@ def run(binary, settings, workdir, tag):
         cage = f["cage/angular_velocity"][()][w]
         cage = cage[:, 2] if cage.ndim == 2 and cage.shape[1] == 3 else cage.ravel()
         loads = element_loads(f, "rollers")[w]
-        outer = f["segments/roller_outer_race/normal_force"][()][w]
+        outer = segments_at_every_sample(f)["roller_outer_race/normal_force"][()][w]
     os.remove(out)
     return {"steps": s["steps"], "etf": s["error_test_failures"], "rhs": s["rhs_evaluations"], "wall": wall,
             "cage_rpm": cage.mean() * 60 / (2 * np.pi), "max_load": loads.max(axis=1).mean(),

@@ -130,9 +130,20 @@ def run(binary, name, method, rtol, workdir, timeout, shorten=True):
     return s
 
 
+def segments_at_every_sample(f):
+    """/segments of an open file, refused (SystemExit) when the run stored them once every N samples
+    ([output] segment_every > 1): this study puts them beside /time."""
+    seg = f["segments"]
+    every = int(seg.attrs.get("sample_stride", 1))
+    if every != 1:
+        raise SystemExit(f"{f.filename}: the segment diagnostics are stored once every {every} samples ([output] "
+                         "segment_every); this study needs them at every sample (segment_every = 1)")
+    return seg
+
+
 def element_loads(f, kind_prefix):
     """[T x elements] normal force of each rolling element on the inner race (segments summed per element)."""
-    seg = f["segments"]
+    seg = segments_at_every_sample(f)
     if "roller_inner_race" in seg:
         return seg["roller_inner_race/normal_force"][()]
     groove = seg["ball_inner_groove"]
@@ -145,7 +156,7 @@ def element_loads(f, kind_prefix):
 
 
 def pocket_forces(f):
-    seg = f["segments"]
+    seg = segments_at_every_sample(f)
     if "ball_pocket" in seg:
         return seg["ball_pocket/normal_force"][()].sum(axis=1)
     return seg["cage_bar_front/normal_force"][()].sum(axis=1) + seg["cage_bar_rear/normal_force"][()].sum(axis=1)
