@@ -104,8 +104,8 @@ std::string output_share_note(const RunSummary& sum) {
   return fmt::format("the output took {:.1f} % of the run ({:.3f} s of {:.3f} s wall for {} samples: at each a "
                      "right-hand side for the diagnostics, the rows, their compression); sample less often "
                      "([scene] output_interval: the pocket contacts' events, peaks and impulses are observed at "
-                     "every step whatever the sampling) or leave out the segment diagnostics ([output] segments = "
-                     "false) to make it smaller",
+                     "every step whatever the sampling), store the segment diagnostics less often ([output] "
+                     "segment_every) or leave them out ([output] segments = false) to make it smaller",
                      100 * sum.output_seconds / sum.wall_time_s, sum.output_seconds, sum.wall_time_s,
                      sum.output_samples);
 }
