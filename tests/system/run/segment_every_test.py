@@ -8,7 +8,9 @@ runs of 6309 R3 (jobs/scenes/6309_R3.toml, output every 20 us), one case per cte
     /segments/time is /time at samples 0, 5, 10, ..., each stored row is bitwise the N = 1 run's
     row at the same sample (the output does not influence the steps), every other dataset outside
     /scheduler is bitwise the N = 1 run's, the attribute sample_stride says 5 (1 in the N = 1 file),
-    the segment series' dimension scale is /segments/time, and the file is smaller.
+    the segment series' dimension scale is /segments/time, and the file is smaller; the raceway
+    package reads it (at the segment rows: the N = 1 values there; a table of both samplings
+    refused) and the ParaView export's frames are at segment rows with the N = 1 ball loads.
   ranks: the N = 5 run at np = 2, and at np = 2 with --parallel-output (the workers write their
     segments' cells at rows of every 5th sample): the np = 1 file's bits (tests/system/parallel/
     compare_outputs.py: every dataset and stored chunk).
@@ -83,9 +85,36 @@ def case_rows(raceway, scene, work):
         scale = b["segments/ball_pocket/normal_force"].dims[0]
         check(len(scale) == 1 and scale[0].name == "/segments/time", "the segment series' scale is /segments/time")
         check(b["cage/position"].dims[0][0].name == "/time", "the bodies' scale stays /time")
+    readers(one, five)
     size_one, size_five = os.path.getsize(one), os.path.getsize(five)
     print(f"file: {size_one} bytes at N = 1, {size_five} at N = 5", file=sys.stderr)
     check(size_five < 0.85 * size_one, "the N = 5 file is smaller")
+
+
+def readers(one, five):
+    """The raceway package and the ParaView export's bodies on the N = 5 file: the segment rows'
+    samples, the N = 1 file's values there."""
+    from raceway import RacewayOutput
+    from report_bodies import read_bodies
+    with RacewayOutput(five) as out:
+        check(out.segment_stride == 5 and out.segment_rows == 51 and len(out.segment_time) == 51
+              and len(out.time) == 251, "the reader: stride 5, 51 segment rows, 251 samples")
+        check("time" not in out.segment_kinds(), "/segments/time is no segment kind")
+        try:
+            out.table()
+            check(False, "a table of every series is refused at two samplings")
+        except ValueError as e:
+            check("segment_every" in str(e), f"a table of every series is refused: {e}")
+    with RacewayOutput(five, at_segment_rows=True) as out, RacewayOutput(one) as full:
+        pos = np.asarray(out["cage/position"])
+        check(pos.shape[0] == 51 and pos.tobytes() == np.asarray(full["cage/position"])[::5].tobytes()
+              and len(out.table().columns) > 100, "read at the segment rows: every series at samples 0, 5, ...")
+    bodies, every = read_bodies(five, 20), read_bodies(one, 251)  # the N = 1 file at every sample
+    rows = bodies.samples
+    check(len(rows) > 5 and all(r % 5 == 0 for r in rows), f"the ParaView frames are at segment rows ({rows[:4]})")
+    load = bodies.bodies[0].point_data["inner_race_normal_force_N"]
+    ref = every.bodies[0].point_data["inner_race_normal_force_N"][rows]
+    check(load.tobytes() == ref.tobytes() and load.max() > 100, "their ball loads are the N = 1 file's")
 
 
 def compare(source, reference, others):
@@ -128,6 +157,7 @@ def main():
         return 2
     case, raceway, mpiexec, source = sys.argv[1:]
     scene = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    sys.path.insert(0, os.path.join(source, "io", "report"))
     with tempfile.TemporaryDirectory() as work:
         if case == "rows":
             case_rows(raceway, scene, work)
