@@ -159,6 +159,62 @@ TEST_F(H5Writer, TimeIsTheDimensionScaleOfEverySeries) {
   H5Fclose(f);
 }
 
+// A series with a row at every 3rd output only (the segment diagnostics at [output] segment_every = 3):
+// a reopen after 3001 outputs keeps ceil(3001 / 3) = 1001 of its rows (outputs 0, 3, ..., 3000), and
+// the time scales attach by stride.
+TEST_F(H5Writer, AStridedSeriesIsCutToItsRowsAndHasItsOwnScale) {
+  auto define_all = [](H5SeriesWriter& w) {
+    define(w);
+    w.define_series("/coarse_time", {}, "s", "every 3rd output time", false, true, 3);
+    w.define_series("/coarse", {2}, "N", "every 3rd output", false, true, 3);
+  };
+  auto append_all = [](H5SeriesWriter& w, int first, int last, double offset) {
+    for (int r = first; r < last; ++r) {
+      append_rows(w, r, r + 1, offset);
+      if (r % 3 != 0) continue;
+      const double t = 0.5 * r + offset, row[2] = {t, 2 * t};
+      w.append("/coarse_time", std::span<const double>(&t, 1));
+      w.append("/coarse", row);
+    }
+  };
+  std::map<std::string, std::vector<double>> unwritten;
+  {
+    auto w = H5SeriesWriter::create(path("c.h5"));
+    define_all(w);
+    append_all(w, 0, 3001, 0);
+    w.flush();  // the checkpoint after output 3000
+    unwritten = w.unwritten_rows();
+    append_all(w, 3001, 4000, 100);  // after the checkpoint: must go
+    w.flush();
+  }
+  {
+    auto w = H5SeriesWriter::reopen(path("c.h5"), 3001, unwritten);
+    define_all(w);
+    w.set_time_scale("/coarse_time", "coarse time");
+    w.set_time_scale("/time", "time");
+    EXPECT_EQ(w.rows("/time"), 3001u);
+    EXPECT_EQ(w.rows("/coarse"), 1001u);
+    append_all(w, 3001, 3010, 0);
+    w.commit();
+  }
+  const H5Reader r(path("c.h5"));
+  std::vector<std::size_t> shape;
+  const auto coarse = r.doubles("/coarse", &shape);
+  ASSERT_EQ(shape, (std::vector<std::size_t>{1004, 2}));  // outputs 0, 3, ..., 3009
+  for (std::size_t i = 0; i < 1004; ++i) ASSERT_EQ(coarse[2 * i + 1], 3.0 * static_cast<double>(i)) << i;
+  EXPECT_EQ(r.doubles("/time").size(), 3010u);
+  const hid_t f = H5Fopen(path("c.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t time = H5Dopen2(f, "/time", H5P_DEFAULT), coarse_time = H5Dopen2(f, "/coarse_time", H5P_DEFAULT);
+  const hid_t xy = H5Dopen2(f, "/xy", H5P_DEFAULT), strided = H5Dopen2(f, "/coarse", H5P_DEFAULT);
+  EXPECT_GT(H5DSis_attached(xy, time, 0), 0);
+  EXPECT_EQ(H5DSis_attached(xy, coarse_time, 0), 0);
+  EXPECT_GT(H5DSis_attached(strided, coarse_time, 0), 0);
+  EXPECT_EQ(H5DSis_attached(strided, time, 0), 0);
+  for (const hid_t d : {time, coarse_time, xy, strided}) H5Dclose(d);
+  H5Fclose(f);
+}
+
 TEST_F(H5Writer, WriteArrayReplacesAFixedArrayButNotASeries) {
   auto w = H5SeriesWriter::create(path("w.h5"));
   define(w);
