@@ -213,9 +213,12 @@ double fixed_output_bytes(const bearing::Model& m, const scene::Scene& scene, do
 }  // namespace
 
 std::string OutputEstimate::describe(double limit) const {
-  return fmt::format("output: {} samples x {} values = {} + {} of names, attributes and indexes (limit {}, [output] "
+  const std::string coarse = segment_every > 1 && segment_values > 0
+                                 ? fmt::format(" ({} of them once every {} samples)", segment_values, segment_every)
+                                 : "";
+  return fmt::format("output: {} samples x {} values{} = {} + {} of names, attributes and indexes (limit {}, [output] "
                      "max_size)",
-                     samples, values_per_sample, bytes_text(bytes), bytes_text(fixed_bytes), bytes_text(limit));
+                     samples, values_per_sample, coarse, bytes_text(bytes), bytes_text(fixed_bytes), bytes_text(limit));
 }
 
 OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scene) {
@@ -235,6 +238,7 @@ OutputEstimate estimate_output(const bearing::Model& m, const scene::Scene& scen
       segment_values += static_cast<long>(diagnostic_count(m.laws[static_cast<std::size_t>(s.law)]));
   const double segment_rows = std::ceil(samples / scene.output.segment_every);
   e.values_per_sample = values + segment_values;
+  e.segment_values = segment_values, e.segment_every = scene.output.segment_every;
   e.bytes = (samples * static_cast<double>(values) + segment_rows * static_cast<double>(segment_values)) * sizeof(double);
   e.samples = samples < 9e18 ? static_cast<long>(samples) : -1;
   e.fixed_bytes = fixed_output_bytes(m, scene, e.bytes);

@@ -33,7 +33,9 @@ struct BodySample {
 /// to fit: write_schedule_log).
 struct OutputEstimate {
   long samples = 0;            ///< output times, t = 0 included
-  long values_per_sample = 0;  ///< doubles appended per output time
+  long values_per_sample = 0;  ///< doubles appended per output time (segment diagnostics included)
+  long segment_values = 0;     ///< of them the segment diagnostics, at every segment_every-th sample only
+  int segment_every = 1;       ///< [output] segment_every
   double bytes = 0;            ///< the series: samples x values x 8
   double fixed_bytes = 0;      ///< everything else but the /scheduler log's arrays
   double total() const { return bytes + fixed_bytes; }
