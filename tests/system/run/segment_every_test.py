@@ -10,13 +10,15 @@ runs of 6309 R3 (jobs/scenes/6309_R3.toml, output every 20 us), one case per cte
     /scheduler is bitwise the N = 1 run's, the attribute sample_stride says 5 (1 in the N = 1 file),
     the segment series' dimension scale is /segments/time, and the file is smaller; the raceway
     package reads it (at the segment rows: the N = 1 values there; a table of both samplings
-    refused) and the ParaView export's frames are at segment rows with the N = 1 ball loads.
+    refused), `raceway report` reads it at the segment rows and says so, and the ParaView export's
+    frames are at segment rows with the N = 1 ball loads.
   ranks: the N = 5 run at np = 2, and at np = 2 with --parallel-output (the workers write their
     segments' cells at rows of every 5th sample): the np = 1 file's bits (tests/system/parallel/
     compare_outputs.py: every dataset and stored chunk).
   resume: N = 5 with periodic checkpoints every 81 samples (not a multiple of 5), killed (SIGKILL)
     after its first checkpoint and resumed: the uninterrupted run's bits.
 """
+import json
 import math
 import os
 import signal
@@ -86,6 +88,11 @@ def case_rows(raceway, scene, work):
         check(len(scale) == 1 and scale[0].name == "/segments/time", "the segment series' scale is /segments/time")
         check(b["cage/position"].dims[0][0].name == "/time", "the bodies' scale stays /time")
     readers(one, five)
+    report = os.path.join(work, "report5")
+    run([raceway, "report", five, "--no-plots", "-o", report])
+    with open(os.path.join(report, "summary.json"), encoding="utf-8") as f:
+        notes = " ".join(json.load(f).get("notes", []))
+    check("51 of 251 samples" in notes, f"raceway report reads the file at the segment rows and says so: {notes}")
     size_one, size_five = os.path.getsize(one), os.path.getsize(five)
     print(f"file: {size_one} bytes at N = 1, {size_five} at N = 5", file=sys.stderr)
     check(size_five < 0.85 * size_one, "the N = 5 file is smaller")
