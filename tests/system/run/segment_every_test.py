@@ -91,7 +91,8 @@ def case_rows(raceway, scene, work):
     report = os.path.join(work, "report5")
     run([raceway, "report", five, "--no-plots", "-o", report])
     with open(os.path.join(report, "summary.json"), encoding="utf-8") as f:
-        notes = " ".join(json.load(f).get("notes", []))
+        notes = json.load(f).get("notes", "")
+    notes = notes if isinstance(notes, str) else " ".join(notes)
     check("51 of 251 samples" in notes, f"raceway report reads the file at the segment rows and says so: {notes}")
     size_one, size_five = os.path.getsize(one), os.path.getsize(five)
     print(f"file: {size_one} bytes at N = 1, {size_five} at N = 5", file=sys.stderr)
