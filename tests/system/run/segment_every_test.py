@@ -16,7 +16,8 @@ runs of 6309 R3 (jobs/scenes/6309_R3.toml, output every 20 us), one case per cte
     segments' cells at rows of every 5th sample): the np = 1 file's bits (tests/system/parallel/
     compare_outputs.py: every dataset and stored chunk).
   resume: N = 5 with periodic checkpoints every 81 samples (not a multiple of 5), killed (SIGKILL)
-    after its first checkpoint and resumed: the uninterrupted run's bits.
+    after its first checkpoint and resumed, at np = 1 and at np = 2 with --parallel-output (the
+    workers see none of the rows before the checkpoint): the uninterrupted run's bits.
 """
 import json
 import math
@@ -141,22 +142,39 @@ def case_ranks(raceway, mpiexec, scene, source, work):
     check(ok, f"np = 2 and np = 2 --parallel-output write the np = 1 file's bits: {'' if ok else text}")
 
 
-def case_resume(raceway, scene, source, work):
-    every = ("--set", "output.checkpoint_interval=1.62 ms")  # 81 samples of 20 us
-    whole = run(command(raceway, scene, os.path.join(work, "whole.h5"), 5, every))
-    out = os.path.join(work, "killed.h5")
-    proc = subprocess.Popen(command(raceway, scene, out, 5, every), stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
+def kill_after_checkpoint(cmd, out):
+    """Starts cmd in a session of its own and kills (SIGKILL) every process of it as soon as the
+    first checkpoint exists; whether it was killed before its end."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
+                            start_new_session=True)
     deadline = time.time() + 120
     while not os.path.exists(out + ".checkpoint") and proc.poll() is None and time.time() < deadline:
         time.sleep(0.001)
-    proc.send_signal(signal.SIGKILL)
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
     code = proc.wait(timeout=120)
-    check(code != 0 and os.path.exists(out + ".checkpoint") and not os.path.exists(out),
+    time.sleep(0.2)  # the ranks of a killed mpirun end with it
+    return code != 0 and os.path.exists(out + ".checkpoint") and not os.path.exists(out)
+
+
+def case_resume(raceway, mpiexec, scene, source, work):
+    every = ("--set", "output.checkpoint_interval=1.62 ms")  # 81 samples of 20 us
+    whole = run(command(raceway, scene, os.path.join(work, "whole.h5"), 5, every))
+    out = os.path.join(work, "killed.h5")
+    check(kill_after_checkpoint(command(raceway, scene, out, 5, every), out),
           "the run was killed after a checkpoint, before its end")
     run(command(raceway, scene, out, 5, every + ("--resume",)))
-    ok, text = compare(source, whole, [out])
-    check(ok, f"killed after a checkpoint and resumed: the uninterrupted run's bits: {'' if ok else text}")
+    shared = os.path.join(work, "shared.h5")
+    parallel = every + ("--parallel-output",)
+    check(kill_after_checkpoint(command(raceway, scene, shared, 5, parallel, 2, mpiexec), shared),
+          "the np = 2 --parallel-output run was killed after a checkpoint, before its end")
+    run(command(raceway, scene, shared, 5, parallel + ("--resume",), 2, mpiexec))
+    ok, text = compare(source, whole, [out, shared])
+    check(ok, f"killed after a checkpoint and resumed (np = 1, and np = 2 with --parallel-output): the "
+              f"uninterrupted run's bits: {'' if ok else text}")
 
 
 def main():
@@ -172,7 +190,7 @@ def main():
         elif case == "ranks":
             case_ranks(raceway, mpiexec, scene, source, work)
         else:
-            case_resume(raceway, scene, source, work)
+            case_resume(raceway, mpiexec, scene, source, work)
     if failures:
         print(f"{case}: FAILED ({len(failures)})", file=sys.stderr)
         return 1
