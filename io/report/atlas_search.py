@@ -151,21 +151,30 @@ def band_share(model, pool):
     return float(np.mean(u > BAND_UNCERTAINTY))
 
 
-def _spread_pick(scores, pool, taken, count, spacing):
-    """Greedy: the pool's best score damped by closeness to `taken` and to the picks so far."""
-    taken = [np.asarray(t, dtype=float) for t in taken]
-    picks = []
+def _distances_to(pool, points):
+    """Each pool candidate's distance to the nearest of `points` (inf with none)."""
     near = np.full(len(pool), np.inf)
-    for t in taken:
-        near = np.minimum(near, np.linalg.norm(pool - t, axis=1))
+    for t in points:
+        near = np.minimum(near, np.linalg.norm(pool - np.asarray(t, dtype=float), axis=1))
+    return near
+
+
+def _greedy(pool, near, count, weight_of):
+    """`count` picks, each the pool's largest weight_of(distances to everything placed so far)."""
+    picks = []
     for _ in range(count):
-        weight = scores * np.minimum(1.0, near / spacing)
+        weight = weight_of(near)
         k = int(np.argmax(weight))
         if not weight[k] > 0:
             break
         picks.append(pool[k].copy())
         near = np.minimum(near, np.linalg.norm(pool - pool[k], axis=1))
     return picks
+
+
+def _spread_pick(scores, pool, taken, count, spacing):
+    """Greedy: the pool's best score damped by closeness to `taken` and to the picks so far."""
+    return _greedy(pool, _distances_to(pool, taken), count, lambda near: scores * np.minimum(1.0, near / spacing))
 
 
 def space_filling(taken, count, d):
@@ -182,17 +191,7 @@ def space_filling(taken, count, d):
 
 def farthest_points(pool, taken, count):
     """Space filling on the pool: greedily the candidate farthest from `taken` and the picks so far."""
-    near = np.full(len(pool), np.inf)
-    for t in taken:
-        near = np.minimum(near, np.linalg.norm(pool - np.asarray(t, dtype=float), axis=1))
-    picks = []
-    for _ in range(count):
-        k = int(np.argmax(near))
-        if not near[k] > 0:
-            break
-        picks.append(pool[k].copy())
-        near = np.minimum(near, np.linalg.norm(pool - pool[k], axis=1))
-    return picks
+    return _greedy(pool, _distances_to(pool, taken), count, lambda near: near)
 
 
 def propose_batch(points, labels, count, pool=None, taken=None, model=None, record=None):
