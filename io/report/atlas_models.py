@@ -175,7 +175,8 @@ class SimulatorModel:
 
 class StandinModel:
     """The tests' stand-in: the parameters mapped to the unit square, the class of
-    atlas_search.standin_classes (unstable below the load 0.15 + 0.7 speed^2), the metric a logistic
+    atlas_search.standin_classes (unstable below the load 0.15 + 0.7 speed^2; with a third parameter
+    w, below 0.15 + 0.7 speed^2 + 0.3 (w - 0.5); any further ones do nothing), the metric a logistic
     of the distance to that boundary; blocks, a tighter rtol and realisations perturb it by small
     amounts drawn from the point (deterministic). RACEWAY_ATLAS_STANDIN_DELAY (s) slows each evaluation
     (the resume test kills a slow atlas), RACEWAY_ATLAS_STANDIN_LOG names a file that gets each
@@ -187,7 +188,7 @@ class StandinModel:
 
     def unit(self, sets):
         out = []
-        for p in self.atlas["parameters"][:2]:
+        for p in self.atlas["parameters"][:3]:
             low, high = p["range"]
             out.append((float(sets[p["key"]].split()[0]) - low) / (high - low))
         return np.array(out)
@@ -201,11 +202,12 @@ class StandinModel:
             with open(os.environ["RACEWAY_ATLAS_STANDIN_LOG"], "a", encoding="utf-8") as f:
                 f.write(f"{point_id}\n")
         u = self.unit(sets)
-        margin = u[1] - float(standin_boundary(u[0]))
+        margin = u[1] - float(standin_boundary(u[0], *u[2:]))
         if self.noise > 0:
             margin += self.noise * math.sin(37.0 * u[0] + 53.0 * u[1])
         cls = "unstable" if margin < 0 else "stable"
-        seed = zlib.crc32(f"{u[0]:.9f},{u[1]:.9f},{tag}".encode())
+        third = "".join(f",{v:.9f}" for v in u[2:])  # none with two parameters: their draws as before
+        seed = zlib.crc32(f"{u[0]:.9f},{u[1]:.9f}{third},{tag}".encode())
         jitter = np.random.default_rng(seed).normal(0.0, 0.005, size=self.atlas["certify"]["blocks"] + 1)
         metric = 1.0 / (1.0 + math.exp(margin / 0.05))
         m = {self.atlas["metric"]: metric + float(jitter[0]), "motion_class": cls,

@@ -1,8 +1,9 @@
 """The atlas's outputs (docs/atlas.md, "Outputs"): DIR/atlas.csv and DIR/atlas.json (every point with
 its parameters, class, indicator, metrics and certification evidence) and DIR/atlas.png (the map of
 class and indicator over the first two parameters: the points, the classifier's boundary and its
-uncertainty band; the metric at the points over a Gaussian-process regression of them). Files are
-written beside and renamed."""
+uncertainty band; the metric at the points over a Gaussian-process regression of them); with more than two parameters
+also DIR/atlas_<a>_<b>.png, every pair's map on slices through the others (atlas_pairs.py). Files
+are written beside and renamed."""
 import csv
 import json
 import math
@@ -11,6 +12,7 @@ import warnings
 
 import numpy as np
 
+import atlas_pairs as pairs
 import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
@@ -71,7 +73,7 @@ def shown_path(path):
     return path if relative.startswith("..") else relative
 
 
-def write_table(atlas, state, folder):
+def write_table(atlas, state, folder, maps=()):
     rows = table_rows(atlas, state)
     columns = list(rows[0]) if rows else ["id"]
 
@@ -86,6 +88,8 @@ def write_table(atlas, state, folder):
            "parameters": atlas["parameters"], "certify": atlas["certify"], "thresholds": atlas["thresholds"],
            "stop": state.get("stop"), "core_hours": state.get("core_hours"), "batches": state.get("batches", []),
            "points": state["points"]}
+    if maps:  # more than two parameters: the map of every pair (atlas_pairs.py)
+        doc["maps"] = list(maps)
     _replace(os.path.join(folder, "atlas.json"), lambda f: json.dump(_finite(doc), f, indent=1))
 
 
@@ -187,5 +191,11 @@ def write_map(atlas, state, folder):
 
 
 def write_outputs(atlas, state, folder):
-    write_table(atlas, state, folder)
+    """The table, atlas.json, atlas.png and, with more than two parameters, every pair's map (listed in
+    atlas.json's `maps`); returns a note when a map could not be drawn."""
+    try:
+        maps = pairs.write_pair_maps(atlas, state, folder, BAND_UNCERTAINTY)
+    except ImportError:
+        maps = []
+    write_table(atlas, state, folder, maps)
     return write_map(atlas, state, folder)

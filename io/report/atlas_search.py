@@ -245,6 +245,12 @@ def standin_classes(points):
     return np.where(points[:, 1] < standin_boundary(points[:, 0]), "unstable", "stable")
 
 
-def standin_boundary(speed):
-    """The stand-in's boundary: the load at which the class changes, per speed (unit square)."""
-    return 0.15 + 0.7 * np.asarray(speed, dtype=float) ** 2
+#: The stand-in's boundary moves by this much load per unit of a third parameter (its tilt).
+STANDIN_TILT = 0.3
+
+
+def standin_boundary(speed, third=None):
+    """The stand-in's boundary: the load at which the class changes, per speed (unit square); with a
+    third parameter (the three-parameter stand-in), shifted by STANDIN_TILT (third - 0.5)."""
+    load = 0.15 + 0.7 * np.asarray(speed, dtype=float) ** 2
+    return load if third is None else load + STANDIN_TILT * (np.asarray(third, dtype=float) - 0.5)
