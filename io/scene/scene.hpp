@@ -183,7 +183,8 @@ struct CageSpec {
   double outer_diameter = 0;    ///< m, cage outside diameter (spatial; 0 = d_m + 0.6 D)
   double width = 0;             ///< m, axial width of the cage (spatial; 0 = 0.8 ring width)
   double initial_offset = 0;    ///< m, the cage centre's start along +x from the seated place (spatial)
-  double mass_eccentricity = 0; ///< m, centre of mass off the cage axis, along the cage frame's x (spatial)
+  double mass_eccentricity = 0; ///< m, centre of mass off the cage axis, at mass_eccentricity_angle (spatial)
+  double mass_eccentricity_angle = 0; ///< rad, the centre of mass's direction from the cage frame's x towards its y
   CageSupport support;          ///< spatial: spindle-mounted cage
   CageBridges bridges = CageBridges::rigid;  ///< roller cages: rigid or flexible bars (bridges)
   double bridge_stiffness = 0;  ///< N/m, tangential, under the pocket force; 0 = from the beam section

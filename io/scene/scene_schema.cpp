@@ -268,7 +268,12 @@ constexpr Row kRows[] = {
      .dim = dim::length, .bounds = kMassEccentricity, .def = value(0), .bearings = ball_bearings,
      .elsewhere = kSpatialCage, .example = "10 um",
      .meaning = "distance of the cage's centre of mass from its axis (static unbalance = mass x this), along the cage "
-                "frame's x: its centrifugal force turns with the cage"},
+                "frame's x turned by cage.mass_eccentricity_angle: its centrifugal force turns with the cage"},
+    {.section = "cage", .key = "mass_eccentricity_angle", .kind = number,
+     .field = FIELD(scene.cage.mass_eccentricity_angle), .dim = dim::angle, .bounds = kUnbalanceAngle, .def = value(0),
+     .bearings = ball_bearings, .elsewhere = kSpatialCage, .example = "90 deg",
+     .meaning = "the unbalance's phase: the angle from the cage frame's x towards its y at which the centre of mass "
+                "lies (cage.mass_eccentricity); one unbalance at several phases: its realisations"},
     {.section = "cage", .key = "support", .kind = table, .field = nullptr, .def = absent, .bearings = ball_bearings,
      .elsewhere = kSpatialCage, .then = cage_support_has_spring, .sub = "cage.support",
      .meaning = "a cage on a spindle: a spring and a damper per direction"},

@@ -99,6 +99,9 @@ inline constexpr Bounds kScatterDeviation{.lo = -20e-6, .hi = 20e-6, .unit = "um
 inline constexpr Bounds kMassEccentricity{.lo = 0, .hi = 1e-3, .unit = "um",
                                    .note = " (machined cages are balanced to some micrometres; 1 mm is a sanity limit)"};
 
+// The unbalance's direction in the cage frame: one turn either way is every direction.
+inline constexpr Bounds kUnbalanceAngle{.lo = -2 * std::numbers::pi, .hi = 2 * std::numbers::pi, .unit = "deg",
+                                  .note = " (one turn either way holds every direction)"};
 inline constexpr Bounds kSpallAngle{.lo = -2 * std::numbers::pi, .hi = 2 * std::numbers::pi, .unit = "deg"};
 inline constexpr Bounds kSpallSize{.lo = 0, .hi = 0.01, .lo_open = true, .unit = "mm",
                             .note = " (a spall is a fraction of a millimetre to some millimetres)"};

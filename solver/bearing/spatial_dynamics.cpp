@@ -215,16 +215,20 @@ class SpatialDynamics final : public BodyDynamics {
     return w;
   }
 
-  /// The cage's static unbalance: its centre of mass sits at rho = R (e, 0, 0) from its axis (the
-  /// state's centre), so Newton for the centre of mass, m (a + alpha x rho + w x (w x rho)) = F, puts
-  /// -m w x (w x rho) on the centre's equation: the centrifugal force of the offset, turning with
-  /// the cage (m e w_z^2 outwards when it turns about its axis). The Euler term -m alpha x rho and
+  /// The cage's static unbalance: its centre of mass sits at rho = R e (cos phi, sin phi, 0) from its
+  /// axis (the state's centre; phi = cage.mass_eccentricity_angle, 0: along the cage frame's x), so
+  /// Newton for the centre of mass, m (a + alpha x rho + w x (w x rho)) = F, puts -m w x (w x rho)
+  /// on the centre's equation: the centrifugal force of the offset, turning with the cage (m e w_z^2
+  /// outwards when it turns about its axis). The Euler term -m alpha x rho and
   /// the offset's change of the inertia tensor are left out (the cage's speed is nearly steady and
   /// e is micrometres against its radius): not a potential, so the energy sum does not hold it.
   Vec3 unbalance_force(const Body& body, const double* z) const {
     const auto& sl = body.slot;
     const Mat3 r = cardan_rotation(z[sl[sax]], z[sl[say]], z[sl[saz]]);
-    const Vec3 rho = r.col(0) * m_.params().cage.mass_eccentricity;
+    const auto& cage = m_.params().cage;
+    const double phase = cage.mass_eccentricity_angle;
+    const Vec3 rho = phase == 0 ? Vec3(r.col(0) * cage.mass_eccentricity)
+                                : Vec3((std::cos(phase) * r.col(0) + std::sin(phase) * r.col(1)) * cage.mass_eccentricity);
     const Vec3 w = r * Vec3(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
     return -body.mass * w.cross(w.cross(rho));
   }
