@@ -8,7 +8,9 @@ CASE: pairs_standin3 (a three-parameter stand-in atlas, unstable below the load
 every slice the classifier's boundary lies where the stand-in's is; the slices where the unstable
 class is likeliest are where the stand-in puts them; the points' projections are their parameters
 in atlas.csv; the shares of unstable points count every point once), pairs_two_parameters (a
-two-parameter atlas keeps its outputs: atlas.png only, no `maps` in atlas.json).
+two-parameter atlas keeps its outputs: atlas.png only, no `maps` in atlas.json), realisations_unbalance_phase (the
+unbalance's phase, cage.mass_eccentricity_angle, as the atlas's realisation key: checked at every
+realisation through the executable, a bare number or a phase beyond a turn refused).
 """
 import csv
 import json
@@ -29,7 +31,7 @@ sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_pairs as ap  # noqa: E402
 import atlas_search as search  # noqa: E402
 
-if not search.have_sklearn():
+if CASE != "realisations_unbalance_phase" and not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
     sys.exit(77)
 
@@ -178,7 +180,55 @@ def case_pairs_two_parameters():
         check("maps" not in doc, "two parameters: atlas.json lists maps")
 
 
-CASES = {"pairs_standin3": case_pairs_standin3, "pairs_two_parameters": case_pairs_two_parameters}
+PHASE_ATLAS = """[atlas]
+scene = "{scene}"
+end_time = "20 ms"
+settling_time = "10 ms"
+budget_points = 9
+set = {{ "cage.mass_eccentricity" = "50 um" }}
+
+[certify]
+realisation_key = "cage.mass_eccentricity_angle"
+realisations = {realisations}
+
+[[parameter]]
+key = "inner_ring.speed"
+name = "speed"
+range = [3000, 8000]
+unit = "rpm"
+
+[[parameter]]
+key = "cage.mass_eccentricity"
+name = "unbalance"
+range = [10, 100]
+unit = "um"
+"""
+
+
+def case_realisations_unbalance_phase():
+    """The unbalance's phase as the atlas's realisation key: `raceway atlas --check` runs `raceway check`
+    at every realisation: 90, 180 and 270 deg pass; a bare number and a phase beyond a turn are refused
+    naming the atlas file's line of the realisations and the scene's reason."""
+    scene = os.path.join(SOURCE, "jobs", "scenes", "6205_first_scene.toml")
+    cases = [('["90 deg", "180 deg", "270 deg"]', 0, None),
+             ('["90 deg", "180"]', 2, "180 has no unit: an angle needs one"),
+             ('["90 deg", "400 deg"]', 2, "must be between -360 and 360 deg")]
+    with tempfile.TemporaryDirectory() as tmp:
+        for realisations, code, words in cases:
+            path = os.path.join(tmp, "phase.toml")
+            with open(path, "w") as f:
+                f.write(PHASE_ATLAS.format(scene=scene, realisations=realisations))
+            p = subprocess.run([RACEWAY, "atlas", path, "--check"], capture_output=True, text=True, check=False)
+            text = p.stdout + p.stderr
+            print(f"realisations {realisations}: exit {p.returncode}: {text.strip().splitlines()[-1]}")
+            check(p.returncode == code, f"realisations {realisations}: exit {p.returncode}, expected {code}: {text[-300:]}")
+            if words:
+                check(f"{path}:10: key 'certify.realisations'" in text and words in text
+                      and "cage.mass_eccentricity_angle" in text, f"realisations {realisations}: {text[-300:]}")
+
+
+CASES = {"pairs_standin3": case_pairs_standin3, "pairs_two_parameters": case_pairs_two_parameters,
+         "realisations_unbalance_phase": case_realisations_unbalance_phase}
 start = time.monotonic()
 CASES[CASE]()
 print(f"{CASE}: {time.monotonic() - start:.1f} s")
