@@ -9,7 +9,8 @@ runs), checks the base scene at the corners of the parameters' ranges, the reali
 convergence rtol with `raceway check`, then runs the adaptive search: batches of `batch_size`
 points (default: --ranks), each point a `raceway run` of the base scene with --set overrides,
 `--ranks` runs at a time. DIR gets atlas_state.json (resumable), points/, atlas.csv, atlas.json and
-atlas.png. `--standin NOISE` evaluates the tests' closed-form stand-in instead of the simulator.
+atlas.png (and atlas_<a>_<b>.png per pair of parameters when there are more than two). `--standin
+NOISE` evaluates the tests' closed-form stand-in instead of the simulator.
 
 A stop signal (SIGINT, SIGTERM, SIGUSR1) starts no new run and is passed on to the running ones,
 whose points stay planned; the table and map are written of what is done (exit 4; --resume goes on).
@@ -105,6 +106,14 @@ def check_scenes(atlas, raceway, workers):
                              f"rejected: {message}")
 
 
+def pair_maps(atlas):
+    """The log's list of the pair maps (more than two parameters: atlas_pairs.py), else nothing."""
+    ps = atlas["parameters"]
+    if len(ps) <= 2:
+        return ""
+    return ", " + ", ".join(f"atlas_{a['name']}_{b['name']}.png" for a, b in itertools.combinations(ps, 2))
+
+
 def parse_args(argv):
     ap = argparse.ArgumentParser(prog="raceway atlas", description="the cage-stability atlas (docs/atlas.md)")
     ap.add_argument("atlas_file")
@@ -156,7 +165,7 @@ def main(argv):
         log(note)
     failed = sum(p["status"] == "failed" for p in state["points"])
     log(f"{len(state['points'])} points ({failed} failed), {state['core_hours']:.3g} core-hours, "
-        f"{time.monotonic() - start:.1f} s; {args.output_dir}/atlas.csv, atlas.json, atlas.png")
+        f"{time.monotonic() - start:.1f} s; {args.output_dir}/atlas.csv, atlas.json, atlas.png{pair_maps(atlas)}")
     if STOP.is_set():
         log("stopped by a signal: the finished points are kept; continue with --resume")
         return 4
