@@ -10,7 +10,8 @@ class is likeliest are where the stand-in puts them; the points' projections are
 in atlas.csv; the shares of unstable points count every point once), pairs_two_parameters (a
 two-parameter atlas keeps its outputs: atlas.png only, no `maps` in atlas.json), realisations_unbalance_phase (the
 unbalance's phase, cage.mass_eccentricity_angle, as the atlas's realisation key: checked at every
-realisation through the executable, a bare number refused).
+realisation through the executable, a bare number refused), unbalance_phase_run (3 ms runs of the
+6205: the cage centre's offset a 50 um unbalance adds turns by the phase, 90 and 180 deg).
 """
 import csv
 import json
@@ -31,7 +32,7 @@ sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_pairs as ap  # noqa: E402
 import atlas_search as search  # noqa: E402
 
-if CASE != "realisations_unbalance_phase" and not search.have_sklearn():
+if CASE not in ("realisations_unbalance_phase", "unbalance_phase_run") and not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
     sys.exit(77)
 
@@ -225,7 +226,45 @@ def case_realisations_unbalance_phase():
                       and "cage.mass_eccentricity_angle" in text, f"realisations {realisations}: {text[-300:]}")
 
 
-CASES = {"pairs_standin3": case_pairs_standin3, "pairs_two_parameters": case_pairs_two_parameters,
+def cage_offsets(tmp, sets):
+    """The cage centre's (x, y) [m] at each output of a 3 ms run of the 6205 with `sets`."""
+    import h5py
+
+    out = os.path.join(tmp, f"run{len(os.listdir(tmp))}.h5")
+    args = [RACEWAY, "run", os.path.join(SOURCE, "jobs", "scenes", "6205_first_scene.toml"), "-o", out,
+            "--set", "scene.end_time=3 ms"]
+    for key, value in sets.items():
+        args += ["--set", f"{key}={value}"]
+    done = subprocess.run(args, capture_output=True, text=True, check=False)
+    check(done.returncode == 0, f"run {sets}: exit {done.returncode}: {(done.stdout + done.stderr)[-300:]}")
+    with h5py.File(out, "r") as f:
+        return np.asarray(f["cage/position"], dtype=float)[:, :2]
+
+
+def case_unbalance_phase_run():
+    """A short run of the 6205 (3 ms): what a 50 um unbalance adds to the cage centre's path (against
+    the run without it) turns by the phase cage.mass_eccentricity_angle (90 and 180 deg, through
+    --set), its length the same; phase 0 is the key left out, bitwise."""
+    with tempfile.TemporaryDirectory() as tmp:
+        base = cage_offsets(tmp, {})
+        at = {name: cage_offsets(tmp, {"cage.mass_eccentricity": "50 um", **sets}) - base
+              for name, sets in (("none", {}), ("0", {"cage.mass_eccentricity_angle": "0 deg"}),
+                                 ("90", {"cage.mass_eccentricity_angle": "90 deg"}),
+                                 ("180", {"cage.mass_eccentricity_angle": "3.14159265358979 rad"}))}
+        check(np.array_equal(at["0"], at["none"]), "the phase 0 deg changes the run")
+        ref = at["none"][-1]
+        check(np.hypot(*ref) > 1e-6, f"the unbalance moves the cage by {np.hypot(*ref) * 1e6:.3g} um only")
+        for name, phase in (("90", 90.0), ("180", 180.0)):
+            d = at[name][-1]
+            turn = (np.degrees(np.arctan2(d[1], d[0]) - np.arctan2(ref[1], ref[0])) + 360.0) % 360.0
+            ratio = np.hypot(*d) / np.hypot(*ref)
+            print(f"phase {phase:g} deg: the added offset {np.hypot(*d) * 1e6:.4f} um (x {ratio:.6f}), turned "
+                  f"{turn:.4f} deg")
+            check(abs(turn - phase) < 0.01 and abs(ratio - 1.0) < 1e-3,
+                  f"phase {phase:g} deg: turned {turn:.4f} deg, length x {ratio:.6f}")
+
+
+CASES = {"unbalance_phase_run": case_unbalance_phase_run, "pairs_standin3": case_pairs_standin3, "pairs_two_parameters": case_pairs_two_parameters,
          "realisations_unbalance_phase": case_realisations_unbalance_phase}
 start = time.monotonic()
 CASES[CASE]()
