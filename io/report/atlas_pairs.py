@@ -292,15 +292,16 @@ def _finish(fig, axes, atlas, i, j, band, no_model, labels):
         ax.set_ylim(atlas["parameters"][j]["range"][0] - pad[1], atlas["parameters"][j]["range"][1] + pad[1])
     handles = [Line2D([], [], marker="o", ls="", color=CLASS_COLOURS.get(c, "tab:gray"), label=c)
                for c in atlas["classes"] if c in labels]
-    handles += [Line2D([], [], marker="o", ls="", markerfacecolor="w", markeredgecolor="k", label="open: not certified"),
+    handles += [Line2D([], [], marker="o", ls="", markerfacecolor="w", markeredgecolor="k",
+                       label="open: not certified"),
                 Line2D([], [], marker="o", ls="", color="k", alpha=0.3, markersize=4,
                        label=f"faint: > {NEAR_SLICE:g} of a range from the slice")]
     axes[0, 0].legend(handles=handles, loc="best", fontsize=7,
                       title=f"line: boundary; hatched: uncertainty > {band:g}", title_fontsize=7)
     if no_model:
         only = labels[0] if labels else "no point"
-        axes[0, 0].text(0.5, 0.02, f"every point {only}: no boundary found inside the ranges",
-                        transform=axes[0, 0].transAxes, ha="center", va="bottom", fontsize=8)
+        axes[0, 0].text(0.5, 0.5, f"every point {only}:\nno boundary found inside the ranges",
+                        transform=axes[0, 0].transAxes, ha="center", va="center", fontsize=8)
     fig.suptitle(f"{atlas['name']}: {atlas['parameters'][i]['name']} x {atlas['parameters'][j]['name']}, "
                  "slices through the other parameters (columns)", fontsize=11)
 

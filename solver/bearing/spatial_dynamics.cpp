@@ -226,9 +226,8 @@ class SpatialDynamics final : public BodyDynamics {
     const auto& sl = body.slot;
     const Mat3 r = cardan_rotation(z[sl[sax]], z[sl[say]], z[sl[saz]]);
     const auto& cage = m_.params().cage;
-    const double phase = cage.mass_eccentricity_angle;
-    const Vec3 rho = phase == 0 ? Vec3(r.col(0) * cage.mass_eccentricity)
-                                : Vec3((std::cos(phase) * r.col(0) + std::sin(phase) * r.col(1)) * cage.mass_eccentricity);
+    const double phase = cage.mass_eccentricity_angle, e = cage.mass_eccentricity;
+    const Vec3 rho = phase == 0 ? Vec3(r.col(0) * e) : Vec3((std::cos(phase) * r.col(0) + std::sin(phase) * r.col(1)) * e);
     const Vec3 w = r * Vec3(z[sl[swx]], z[sl[swy]], z[sl[swz]]);
     return -body.mass * w.cross(w.cross(rho));
   }

@@ -145,7 +145,8 @@ def case_pairs_standin3():
             check(np.allclose(got[:3], [low, 0.5 * (low + high), high]), f"{record['file']}: slices at {got}")
             marked = [s["what"] for s in cuts if "likeliest" in s["what"]]
             check(len(cuts) == 3 and len(marked) == 1 and marked[0].startswith(f"range's {likeliest[(i, j)]}"),
-                  f"{record['file']}: the unstable class likeliest at {marked} (expected the range's {likeliest[(i, j)]})")
+                  f"{record['file']}: the unstable class likeliest at {marked} "
+                  f"(expected the range's {likeliest[(i, j)]})")
             for s in cuts:
                 others = [(s["values"][names[k]] - low) / (high - low)]
                 error, wrong = boundary_error(model, i, j, others)
@@ -220,7 +221,8 @@ def case_realisations_unbalance_phase():
             p = subprocess.run([RACEWAY, "atlas", path, "--check"], capture_output=True, text=True, check=False)
             text = p.stdout + p.stderr
             print(f"realisations {realisations}: exit {p.returncode}: {text.strip().splitlines()[-1]}")
-            check(p.returncode == code, f"realisations {realisations}: exit {p.returncode}, expected {code}: {text[-300:]}")
+            check(p.returncode == code,
+                  f"realisations {realisations}: exit {p.returncode}, expected {code}: {text[-300:]}")
             if words:
                 check(f"{path}:9: key 'certify.realisations'" in text and words in text
                       and "cage.mass_eccentricity_angle" in text, f"realisations {realisations}: {text[-300:]}")
@@ -264,7 +266,8 @@ def case_unbalance_phase_run():
                   f"phase {phase:g} deg: turned {turn:.4f} deg, length x {ratio:.6f}")
 
 
-CASES = {"unbalance_phase_run": case_unbalance_phase_run, "pairs_standin3": case_pairs_standin3, "pairs_two_parameters": case_pairs_two_parameters,
+CASES = {"unbalance_phase_run": case_unbalance_phase_run, "pairs_standin3": case_pairs_standin3,
+         "pairs_two_parameters": case_pairs_two_parameters,
          "realisations_unbalance_phase": case_realisations_unbalance_phase}
 start = time.monotonic()
 CASES[CASE]()
