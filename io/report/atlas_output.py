@@ -8,7 +8,6 @@ import csv
 import json
 import math
 import os
-import warnings
 
 import numpy as np
 
@@ -110,21 +109,10 @@ def _axis(atlas, k, unit):
 
 def metric_field(units, values, cube):
     """The metric over the grid `cube`: a Gaussian-process regression of the points' values (constant x
-    RBF plus white noise, normalised, fixed random state); None with fewer than 3 finite points."""
-    from sklearn.exceptions import ConvergenceWarning
-    from sklearn.gaussian_process import GaussianProcessRegressor
-    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
-
-    values = np.asarray(values, dtype=float)
-    keep = np.isfinite(values)
-    if keep.sum() < 3:
-        return None
-    kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(0.3, (0.05, 3.0)) + WhiteKernel(1e-2, (1e-6, 1.0))
-    model = GaussianProcessRegressor(kernel=kernel, normalize_y=True, random_state=0)
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", category=ConvergenceWarning)
-        model.fit(np.asarray(units, dtype=float)[keep], values[keep])
-    return model.predict(cube)
+    RBF plus white noise, normalised, fixed random state: atlas_pairs.metric_model); None with fewer
+    than 3 finite points."""
+    model = pairs.metric_model(units, values)
+    return None if model is None else model.predict(cube)
 
 
 def write_map(atlas, state, folder):

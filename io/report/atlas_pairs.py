@@ -154,7 +154,9 @@ def unstable_shares(atlas, points, i, j, cls, cells=SHARE_CELLS):
 
 
 def metric_model(units, values):
-    """A Gaussian-process regression of the points' metric (as atlas_output.metric_field) or None."""
+    """A Gaussian-process regression of the points' metric at their unit-cube places (constant x RBF plus
+    white noise, normalised, fixed random state: a guide between the points, not a measurement), or
+    None with fewer than 3 finite values."""
     from sklearn.exceptions import ConvergenceWarning
     from sklearn.gaussian_process import GaussianProcessRegressor
     from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
