@@ -2,8 +2,11 @@
 
 #include "io/h5/thread_core.hpp"
 
-#include <zlib.h>
+#include <libdeflate.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
@@ -11,41 +14,38 @@ namespace raceway::h5 {
 
 namespace {
 
-/// compress2's work with the deflate state kept per thread: compress2 allocates and sets up about
-/// 270 KB of state per call (deflateInit), deflateReset only resets it (measured: 1-3 % of the
-/// compressor thread's CPU in 6309 R3 and QJ215 runs; deflate itself is the rest). zlib documents deflateReset as equivalent to deflateEnd
-/// followed by deflateInit, and compress2 is deflateInit, one deflate(Z_FINISH) (for inputs below
-/// 4 GiB) and deflateEnd: the same bytes (the unit test compares them with HDF5's own).
+/// The deflate filter's stream (H5Z_FILTER_DEFLATE: a zlib stream, RFC 1950) written by libdeflate
+/// at the dataset's level, its compressor kept per thread and level. libdeflate compresses whole
+/// buffers: at level 1 it takes about half the instructions of zlib's deflate at level 1 on the
+/// output's shuffled chunks and stores them 0.7 % smaller (perf/studies/results/
+/// revolution_instructions.md). Any inflate reads the stream (HDF5's filter inflates with zlib);
+/// the bytes differ from zlib's, the values they hold do not.
 class Deflater {
  public:
   Deflater() = default;
   Deflater(const Deflater&) = delete;
   Deflater& operator=(const Deflater&) = delete;
   ~Deflater() {
-    if (level_ >= 0) deflateEnd(&stream_);
+    if (compressor_ != nullptr) libdeflate_free_compressor(compressor_);
   }
-  /// Deflates `in` into `out` (at least compressBound(in) bytes); returns the compressed size.
+  /// Deflates `in` into `out` (sized here); returns the compressed size.
   std::size_t deflate_all(const std::vector<unsigned char>& in, std::vector<unsigned char>& out, int level) {
     if (level_ != level) {
-      if (level_ >= 0) deflateEnd(&stream_);
+      if (compressor_ != nullptr) libdeflate_free_compressor(compressor_);
       level_ = -1;
-      stream_ = z_stream{};
-      if (deflateInit(&stream_, level) != Z_OK) throw std::runtime_error("zlib deflateInit failed on an output chunk");
+      compressor_ = libdeflate_alloc_compressor(std::min(level, 12));
+      if (compressor_ == nullptr) throw std::runtime_error("libdeflate could not set up a compressor for an output chunk");
       level_ = level;
-    } else if (deflateReset(&stream_) != Z_OK) {
-      throw std::runtime_error("zlib deflateReset failed on an output chunk");
     }
-    stream_.next_in = const_cast<Bytef*>(in.data());  // zlib's API is not const-correct; it only reads
-    stream_.avail_in = static_cast<uInt>(in.size());
-    stream_.next_out = out.data();
-    stream_.avail_out = static_cast<uInt>(out.size());
-    if (deflate(&stream_, Z_FINISH) != Z_STREAM_END) throw std::runtime_error("zlib deflate failed on an output chunk");
-    return out.size() - stream_.avail_out;
+    out.resize(libdeflate_zlib_compress_bound(compressor_, in.size()));
+    const std::size_t n = libdeflate_zlib_compress(compressor_, in.data(), in.size(), out.data(), out.size());
+    if (n == 0) throw std::runtime_error("libdeflate failed on an output chunk");
+    return n;
   }
 
  private:
-  z_stream stream_{};
-  int level_ = -1;  // the level stream_ was initialised with; -1: none
+  libdeflate_compressor* compressor_ = nullptr;
+  int level_ = -1;  // the level compressor_ was made for; -1: none
 };
 
 }  // namespace
@@ -57,17 +57,23 @@ FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzi
     // HDF5's shuffle filter (H5Z_FILTER_SHUFFLE) for 8-byte elements: byte j of element i goes to
     // j * n + i. Written here because no library exposes it apart from HDF5's pipeline, which is
     // what this file keeps off the run's thread.
+    // An element's bytes are taken in one load: on a little-endian machine byte j in memory is
+    // bits 8j..8j+7 of the load.
+    static_assert(std::endian::native == std::endian::little, "the shuffle below reads bytes little-endian");
     const auto* in = reinterpret_cast<const unsigned char*>(values.data());
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < sizeof(double); ++j) raw[j * n + i] = in[i * sizeof(double) + j];
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint64_t v;
+      std::memcpy(&v, in + i * sizeof(double), sizeof v);
+      for (std::size_t j = 0; j < sizeof(double); ++j, v >>= 8) raw[j * n + i] = static_cast<unsigned char>(v);
+    }
   } else {
     std::memcpy(raw.data(), values.data(), bytes);
   }
   if (gzip_level <= 0) return {std::move(raw), 0};
-  // HDF5's deflate filter (H5Z_FILTER_DEFLATE): compress2 into a compressBound() buffer.
+  // HDF5's deflate filter (H5Z_FILTER_DEFLATE): one zlib stream of the whole chunk.
   if (bytes >= (std::size_t{1} << 31)) throw std::runtime_error("an output chunk of 2 GiB or more");
   thread_local Deflater deflater;
-  std::vector<unsigned char> out(compressBound(static_cast<uLong>(bytes)));
+  std::vector<unsigned char> out;
   out.resize(deflater.deflate_all(raw, out, gzip_level));
   return {std::move(out), 0};
 }
