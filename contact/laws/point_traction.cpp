@@ -100,7 +100,8 @@ struct TractionGrid {
   std::vector<double> shape;   // sqrt(1 - x^2 - y^2)
   std::vector<int> shape_index;  // of the cell's shape in `shapes`
   std::vector<double> shapes;  // the distinct shapes, in order of first appearance
-  [[nodiscard]] std::size_t cells() const { return x.size(); }
+  std::size_t count = 0;       // cells; x and y hold one more (0): a pair of cells read past the last
+  [[nodiscard]] std::size_t cells() const { return count; }
 };
 
 // Column (or row) i of n over [-1, 1] as its mirror image with the larger centre: its bounds ((2 i -
@@ -135,6 +136,9 @@ std::unique_ptr<TractionGrid> build_grid(int gx, int gy) {
       grid->shape_integral += mo.area * shape;
     }
   }
+  grid->count = grid->x.size();
+  grid->x.push_back(0.0);
+  grid->y.push_back(0.0);
   for (std::size_t i = 0; i < grid->cells(); ++i) {
     const double shape = grid->shape[i];
     grid->load.push_back(grid->area[i] * shape / grid->shape_integral);
@@ -182,43 +186,56 @@ inline double tanh_over_x(double x) {
 // A chunk of a block's cells: each cell's shear is -g (sx, sy) with g = a tanh_over_x(b s) (the
 // film's shear: a = area eta / h, b = eta / (h tau_L); the curve: a = mu Q load / s_scale,
 // b = 1 / s_scale), s the local sliding speed; the cell's terms of the four sums.
-inline constexpr std::size_t chunk_cells = 64;
+inline constexpr std::size_t chunk_cells = 64;  // even
 struct CellChunk {
-  std::array<double, chunk_cells> a, b;              // in: the coefficients
-  std::array<double, chunk_cells> x, y, sx, sy, s;   // the cell's point and sliding
-  std::array<double, chunk_cells> arg, arg2;         // b s and its square
+  std::array<double, chunk_cells> a, b;                // in: the coefficients
+  std::array<double, chunk_cells> arg2;                // (b s)^2
   std::array<double, chunk_cells> fx, fy, mz, power;  // the cell's terms of the sums
+};
+// Where the chunk's cells are: their centroids (unit disk) and load fractions, from the chunk's
+// first cell on; the ellipse's semi-axes and the contact's sliding.
+struct ChunkCells {
+  const double* x;
+  const double* y;
+  const double* load;
+  double ax, ay;
+  ContactSliding sliding;
 };
 
 // Every cell of the chunk by the approximant, without branches: the loop the compiler vectorises.
-void chunk_forces(CellChunk& __restrict c, std::size_t n, const double* __restrict gx, const double* __restrict gy,
-                  double ax, double ay, const ContactSliding& sliding) {
+// `pairs` cells, an even number (a chunk with an odd number of cells takes one more, whose results
+// are not summed), so that no scalar remainder is left.
+void chunk_forces(CellChunk& __restrict c, std::size_t pairs, const double* __restrict gx,
+                  const double* __restrict gy, double ax, double ay, const ContactSliding& sliding) {
   const double slide_x = sliding.slide_x, slide_y = sliding.slide_y, spin = sliding.spin;
-  for (std::size_t k = 0; k < n; ++k) {
+  if (pairs % 2 != 0 || pairs > chunk_cells) __builtin_unreachable();
+  for (std::size_t k = 0; k < pairs; ++k) {
     const double x = ax * gx[k], y = ay * gy[k];
     const double sx = slide_x - spin * y, sy = slide_y + spin * x;
     const double s2 = sx * sx + sy * sy, s = std::sqrt(s2);
     const double arg = c.b[k] * s, y2 = arg * arg;
     const double g = c.a[k] * pade_tanh_over_x(y2);
     const double cx = -g * sx, cy = -g * sy;
-    c.x[k] = x, c.y[k] = y, c.sx[k] = sx, c.sy[k] = sy, c.s[k] = s, c.arg[k] = arg, c.arg2[k] = y2;
+    c.arg2[k] = y2;
     c.fx[k] = cx, c.fy[k] = cy, c.mz[k] = x * cy - y * cx, c.power[k] = g * s2;
   }
 }
 
 // A cell beyond the approximant (b s > 1, or not a number), or one that blends in the friction
-// curve (g = w g_film + curve_scale load tanh_over_x(s / s_scale)), again in scalar code.
+// curve (g = w g_film + curve_scale load tanh_over_x(s / s_scale)), again in scalar code: the
+// cell's sliding as chunk_forces forms it, the same operations.
 struct CurveBlend {
   bool on = false;
   double film_share = 1, curve_scale = 0, inverse_scale = 0;
-  const double* load = nullptr;  // the chunk's cells' load fractions
 };
-void finish_cell(CellChunk& c, std::size_t k, const CurveBlend& curve) {
-  double g = c.a[k] * tanh_over_x(c.arg[k]);
-  if (curve.on) g = curve.film_share * g + curve.curve_scale * curve.load[k] * tanh_over_x(c.s[k] * curve.inverse_scale);
-  const double sx = c.sx[k], sy = c.sy[k], s2 = sx * sx + sy * sy;
+void finish_cell(CellChunk& c, std::size_t k, const ChunkCells& in, const CurveBlend& curve) {
+  const double x = in.ax * in.x[k], y = in.ay * in.y[k];
+  const double sx = in.sliding.slide_x - in.sliding.spin * y, sy = in.sliding.slide_y + in.sliding.spin * x;
+  const double s2 = sx * sx + sy * sy, s = std::sqrt(s2);
+  double g = c.a[k] * tanh_over_x(c.b[k] * s);
+  if (curve.on) g = curve.film_share * g + curve.curve_scale * in.load[k] * tanh_over_x(s * curve.inverse_scale);
   const double cx = -g * sx, cy = -g * sy;
-  c.fx[k] = cx, c.fy[k] = cy, c.mz[k] = c.x[k] * cy - c.y[k] * cx, c.power[k] = g * s2;
+  c.fx[k] = cx, c.fy[k] = cy, c.mz[k] = x * cy - y * cx, c.power[k] = g * s2;
 }
 
 }  // namespace
@@ -289,30 +306,42 @@ TractionResult integrate_traction_block(const PointTraction& traction, const Poi
     const double rate = viscosity_at(p) * inverse_h;
     return ShapeShear{rate, rate / tau_limit};
   };
-  std::array<ShapeShear, max_distinct_shapes> shear;  // NOLINT: the first `shapes` are set below
+  std::array<double, max_distinct_shapes> rate, slope;  // NOLINT: the first `shapes` are set below
   const std::size_t shapes = limiting ? std::min(grid.shapes.size(), max_distinct_shapes) : 0;
-  for (std::size_t k = 0; k < shapes; ++k) shear[k] = shape_shear(grid.shapes[k]);
-  const double curve_scale = mu_over_scale * normal_force * (1 - film_share);
+  for (std::size_t k = 0; k < shapes; ++k) {
+    const ShapeShear sh = shape_shear(grid.shapes[k]);
+    rate[k] = sh.rate, slope[k] = sh.slope;
+  }
+  const bool tabulated = shapes == grid.shapes.size();
   const double curve_factor = mu_over_scale * normal_force;
-  CurveBlend curve{blended, film_share, curve_scale, inverse_scale, nullptr};
-  CellChunk c;  // NOLINT: filled for the first n cells of each chunk
+  const CurveBlend curve{blended, film_share, mu_over_scale * normal_force * (1 - film_share), inverse_scale};
+  CellChunk c;  // NOLINT: filled for the first cells of each chunk
   double fx = 0, fy = 0, mz = 0, power = 0;
   for (std::size_t begin = first; begin < last; begin += chunk_cells) {
-    const std::size_t n = std::min(chunk_cells, last - begin);
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = begin + k;
-      if (limiting) {
-        const auto si = static_cast<std::size_t>(grid.shape_index[i]);
-        const ShapeShear sh = si < shapes ? shear[si] : shape_shear(grid.shape[i]);
-        c.a[k] = sh.rate * (grid.area[i] * area_scale), c.b[k] = sh.slope;
-      } else {
-        c.a[k] = curve_factor * grid.load[i], c.b[k] = inverse_scale;
+    const std::size_t n = std::min(chunk_cells, last - begin), pairs = n + n % 2;
+    const double* area = grid.area.data() + begin;
+    const int* index = grid.shape_index.data() + begin;
+    if (!limiting) {
+      for (std::size_t k = 0; k < n; ++k) c.a[k] = curve_factor * grid.load[begin + k], c.b[k] = inverse_scale;
+    } else if (tabulated) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto si = static_cast<std::size_t>(index[k]);
+        c.a[k] = rate[si] * (area[k] * area_scale), c.b[k] = slope[si];
+      }
+    } else {
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto si = static_cast<std::size_t>(index[k]);
+        const ShapeShear sh = si < shapes ? ShapeShear{rate[si], slope[si]} : shape_shear(grid.shape[begin + k]);
+        c.a[k] = sh.rate * (area[k] * area_scale), c.b[k] = sh.slope;
       }
     }
-    curve.load = grid.load.data() + begin;
-    chunk_forces(c, n, grid.x.data() + begin, grid.y.data() + begin, ax, ay, sliding);
+    if (pairs > n) c.a[n] = c.b[n] = 0;
+    const ChunkCells in{grid.x.data() + begin, grid.y.data() + begin, grid.load.data() + begin, ax, ay, sliding};
+    chunk_forces(c, pairs, in.x, in.y, ax, ay, sliding);
+    if (blended)
+      for (std::size_t k = 0; k < n; ++k) finish_cell(c, k, in, curve);
     for (std::size_t k = 0; k < n; ++k) {  // cell by cell in grid order: the sums' bits
-      if (!(c.arg2[k] <= 1) || blended) finish_cell(c, k, curve);
+      if (!(c.arg2[k] <= 1) && !blended) finish_cell(c, k, in, curve);
       fx += c.fx[k];
       fy += c.fy[k];
       mz += c.mz[k];
