@@ -271,6 +271,18 @@ EhlFactors& ehl_factors(double g, double rx, double ry) {
   return f;
 }
 
+/// ln u and ln w of the EHL fits' dimensionless speed and load, kept for the last (u, w) seen on
+/// this thread: a contact's film and its rolling resistance are evaluated from the same arguments
+/// (the same u and w, bit for bit), so the second takes the first's logarithms.
+struct EhlLogs {
+  double u = std::numeric_limits<double>::quiet_NaN(), w = u, log_u = 0, log_w = 0;
+};
+const EhlLogs& ehl_logs(double u, double w) {
+  thread_local EhlLogs l;
+  if (!same_bits(u, l.u) || !same_bits(w, l.w)) l.u = u, l.w = w, l.log_u = std::log(u), l.log_w = std::log(w);
+  return l;
+}
+
 }  // namespace
 
 FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
@@ -283,7 +295,8 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   const double w = load / (e_prime * rx * rx);
   const EhlFactors& f = ehl_factors(g, rx, ry);
   // u^a w^b as exp(a ln u + b ln w) (about 1e-15 relative: the rounding of a ln u, |ln u| ~ 25).
-  const double log_u = std::log(u), log_w = std::log(w);
+  const EhlLogs& logs = ehl_logs(u, w);
+  const double log_u = logs.log_u, log_w = logs.log_w;
   film.central = 2.69 * std::exp(0.67 * log_u - 0.067 * log_w) * f.g_central * f.central_shape * rx;
   film.minimum = 3.63 * std::exp(0.68 * log_u - 0.073 * log_w) * f.g_minimum * f.minimum_shape * rx;
   return film;
@@ -317,7 +330,8 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
   EhlFactors& f = ehl_factors(g, rx, ry);
   if (!f.has_g_rolling) f.g_rolling = std::pow(g, 0.022), f.has_g_rolling = true;
   if (!f.has_k_rolling) f.k_rolling = std::pow(f.k, 0.348), f.has_k_rolling = true;
-  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::exp(0.66 * std::log(u) + 0.47 * std::log(w));
+  const EhlLogs& logs = ehl_logs(u, w);
+  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::exp(0.66 * logs.log_u + 0.47 * logs.log_w);
 }
 
 }  // namespace raceway::contact
