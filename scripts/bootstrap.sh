@@ -20,6 +20,7 @@ runtime_packages=(
   build-essential cmake pkg-config
   openmpi-bin libopenmpi-dev libhwloc-dev libpetsc-real-dev libsundials-dev libeigen3-dev
   libhdf5-openmpi-dev libmetis-dev libtomlplusplus-dev libcli11-dev libspdlog-dev libfmt-dev
+  libdeflate-dev
   hdf5-tools
   python3-numpy python3-h5py python3-matplotlib python3-munkres
 )

@@ -21,15 +21,12 @@
 // used only inside the EHL fits (and as the tests' comparison).
 #include "contact/laws/point_contact.hpp"
 
-#include "contact/laws/viscosity.hpp"
-
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <numbers>
 #include <stdexcept>
 
@@ -126,150 +123,6 @@ double solve_eccentricity_squared(double target, double curvature_ratio) {
     m = next;
   }
   return m;
-}
-
-// ---- traction grid -------------------------------------------------------------------------------
-
-// Area and first moments of the part of the unit disk inside [x0, x1] x [y0, y1], exactly:
-// the vertical chord at x is [max(y0, -s), min(y1, s)], s = sqrt(1 - x^2); between the abscissae
-// where s crosses |y0| and |y1| the chord ends are either constant or +-s, and the integrals of
-// 1, x, s, x s, s^2 have closed forms.
-struct Moments {
-  double area = 0, mx = 0, my = 0;
-};
-
-Moments disk_rectangle_moments(double x0, double x1, double y0, double y1) {
-  x0 = std::max(x0, -1.0);
-  x1 = std::min(x1, 1.0);
-  Moments out;
-  if (!(x1 > x0)) return out;
-  std::array<double, 6> cuts{};
-  int n = 0;
-  cuts[static_cast<std::size_t>(n++)] = x0;
-  cuts[static_cast<std::size_t>(n++)] = x1;
-  for (const double y : {y0, y1}) {
-    if (std::abs(y) >= 1) continue;
-    const double c = std::sqrt(1 - y * y);
-    for (const double x : {-c, c})
-      if (x > x0 && x < x1) cuts[static_cast<std::size_t>(n++)] = x;
-  }
-  for (int i = 1; i < n; ++i)  // insertion sort of at most six abscissae
-    for (int j = i; j > 0 && cuts[static_cast<std::size_t>(j)] < cuts[static_cast<std::size_t>(j - 1)]; --j)
-      std::swap(cuts[static_cast<std::size_t>(j)], cuts[static_cast<std::size_t>(j - 1)]);
-  auto root = [](double x) { return std::sqrt(std::max(0.0, 1 - x * x)); };
-  auto int_s = [&](double x) { return 0.5 * (x * root(x) + std::asin(std::clamp(x, -1.0, 1.0))); };
-  auto int_xs = [&](double x) {
-    const double r = root(x);
-    return -r * r * r / 3;
-  };
-  auto int_s2 = [](double x) { return x - x * x * x / 3; };
-  for (int i = 0; i + 1 < n; ++i) {
-    const double u = cuts[static_cast<std::size_t>(i)], v = cuts[static_cast<std::size_t>(i + 1)];
-    if (!(v > u)) continue;
-    const double s_mid = root(0.5 * (u + v));
-    const bool upper_curve = y1 >= s_mid, lower_curve = y0 <= -s_mid;
-    const double hi_mid = upper_curve ? s_mid : y1, lo_mid = lower_curve ? -s_mid : y0;
-    if (!(hi_mid > lo_mid)) continue;
-    const double d1 = v - u, dx = 0.5 * (v * v - u * u);
-    const double ds = int_s(v) - int_s(u), dxs = int_xs(v) - int_xs(u), ds2 = int_s2(v) - int_s2(u);
-    // Integrals of the upper end h(x) and lower end l(x): of h, x h, h^2 (same for l).
-    const double h = upper_curve ? ds : y1 * d1, xh = upper_curve ? dxs : y1 * dx;
-    const double h2 = upper_curve ? ds2 : y1 * y1 * d1;
-    const double l = lower_curve ? -ds : y0 * d1, xl = lower_curve ? -dxs : y0 * dx;
-    const double l2 = lower_curve ? ds2 : y0 * y0 * d1;
-    out.area += h - l;
-    out.mx += xh - xl;
-    out.my += 0.5 * (h2 - l2);
-  }
-  return out;
-}
-
-// The grid in the unit disk (coordinates x/ax, y/ay): cells that overlap it, with their exact
-// overlap area, the centroid of the overlap and the Hertz pressure shape sqrt(1 - r^2) there.
-struct GridCell {
-  double x, y;   // centroid, unit disk
-  double area;   // unit disk
-  double load;   // fraction of the normal load: area * shape / sum(area * shape)
-  double shape;  // sqrt(1 - x^2 - y^2)
-  int shape_index;  // of `shape` in the grid's distinct shapes
-};
-// The grid is exactly symmetric about both axes: a cell takes the moments of its mirror image in
-// x >= 0, y >= 0, the centroid's signs flipped (on an axis: exactly on it), so mirrored cells share
-// their shape's bits and the viscosity is evaluated once per distinct shape (5 x 5: 6 for 25 cells).
-inline constexpr std::size_t max_distinct_shapes = 64;
-struct TractionGrid {
-  int gx = 0, gy = 0;
-  double shape_integral = 0;  // sum area * shape (-> 2 pi / 3 as the grid refines)
-  std::vector<GridCell> cells;
-  std::vector<double> shapes;  // the distinct shapes, in order of first appearance
-};
-
-// Column (or row) i of n over [-1, 1] as its mirror image with the larger centre: its bounds ((2 i -
-// n) / n: the same bits for i and n - 1 - i) and the sign (+1, -1, 0 on the axis) of its centroid.
-struct MirroredSpan {
-  double lo, hi, sign;
-};
-MirroredSpan mirrored_span(int i, int n) {
-  const int k = std::max(i, n - 1 - i);
-  const double sign = 2 * i + 1 == n ? 0.0 : (k == i ? 1.0 : -1.0);
-  return {static_cast<double>(2 * k - n) / n, static_cast<double>(2 * k + 2 - n) / n, sign};
-}
-
-std::unique_ptr<TractionGrid> build_grid(int gx, int gy) {
-  auto grid = std::make_unique<TractionGrid>();
-  grid->gx = gx;
-  grid->gy = gy;
-  const double cell_area = 4.0 / (static_cast<double>(gx) * gy);
-  for (int i = 0; i < gx; ++i) {
-    const MirroredSpan sx = mirrored_span(i, gx);
-    for (int j = 0; j < gy; ++j) {
-      const MirroredSpan sy = mirrored_span(j, gy);
-      const Moments mo = disk_rectangle_moments(sx.lo, sx.hi, sy.lo, sy.hi);
-      if (!(mo.area > 1e-14 * cell_area)) continue;
-      GridCell c{};
-      c.area = mo.area;
-      c.x = sx.sign == 0 ? 0.0 : sx.sign * (mo.mx / mo.area);
-      c.y = sy.sign == 0 ? 0.0 : sy.sign * (mo.my / mo.area);
-      c.shape = std::sqrt(std::max(0.0, 1 - c.x * c.x - c.y * c.y));
-      grid->shape_integral += c.area * c.shape;
-      grid->cells.push_back(c);
-    }
-  }
-  for (GridCell& c : grid->cells) {
-    c.load = c.area * c.shape / grid->shape_integral;
-    const auto same = std::find_if(grid->shapes.begin(), grid->shapes.end(), [&](double v) { return same_bits(v, c.shape); });
-    c.shape_index = static_cast<int>(same - grid->shapes.begin());
-    if (same == grid->shapes.end()) grid->shapes.push_back(c.shape);
-  }
-  return grid;
-}
-
-// Grids are built once per (grid_x, grid_y) and thread; a call allocates nothing after that.
-const TractionGrid& traction_grid(int gx, int gy) {
-  thread_local std::vector<std::unique_ptr<TractionGrid>> cache;
-  thread_local const TractionGrid* last = nullptr;
-  if (last != nullptr && last->gx == gx && last->gy == gy) return *last;
-  for (const auto& g : cache)
-    if (g->gx == gx && g->gy == gy) return *(last = g.get());
-  cache.push_back(build_grid(gx, gy));
-  return *(last = cache.back().get());
-}
-
-// tanh(x) / x, finite and smooth through x = 0 (even in x), to about an ulp (as std::tanh(x) / x)
-// at a third of its cost: for |x| <= 1 the (8, 8) Pade approximant, the 8th convergent of Lambert's
-// continued fraction tanh x = x / (1 + x^2 / (3 + x^2 / (5 + ...))) (truncation < 3e-17 at |x| = 1,
-// positive coefficients: no cancellation), above it one exponential, tanh = 1 - 2 / (e^(2|x|) + 1)
-// (no cancellation where tanh > 0.76), and 1 / |x| where tanh rounds to 1 (|x| > 19.06).
-inline double tanh_over_x(double x) {
-  const double y = x * x;
-  if (y <= 1) {
-    const double p = (((y + 990) * y + 135135) * y + 4729725) * y + 34459425;
-    const double q = (((45 * y + 13860) * y + 945945) * y + 16216200) * y + 34459425;
-    return p / q;
-  }
-  const double a = std::abs(x);
-  if (a > 19.5) return 1 / a;
-  return (1 - 2 / (std::exp(2 * a) + 1)) / a;
 }
 
 // Hamrock & Brewe (1983) closed form for the ellipticity, k = a/b with a transverse to rolling
@@ -418,6 +271,18 @@ EhlFactors& ehl_factors(double g, double rx, double ry) {
   return f;
 }
 
+/// ln u and ln w of the EHL fits' dimensionless speed and load, kept for the last (u, w) seen on
+/// this thread: a contact's film and its rolling resistance are evaluated from the same arguments
+/// (the same u and w, bit for bit), so the second takes the first's logarithms.
+struct EhlLogs {
+  double u = std::numeric_limits<double>::quiet_NaN(), w = u, log_u = 0, log_w = 0;
+};
+const EhlLogs& ehl_logs(double u, double w) {
+  thread_local EhlLogs l;
+  if (!same_bits(u, l.u) || !same_bits(w, l.w)) l.u = u, l.w = w, l.log_u = std::log(u), l.log_w = std::log(w);
+  return l;
+}
+
 }  // namespace
 
 FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
@@ -430,7 +295,8 @@ FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double 
   const double w = load / (e_prime * rx * rx);
   const EhlFactors& f = ehl_factors(g, rx, ry);
   // u^a w^b as exp(a ln u + b ln w) (about 1e-15 relative: the rounding of a ln u, |ln u| ~ 25).
-  const double log_u = std::log(u), log_w = std::log(w);
+  const EhlLogs& logs = ehl_logs(u, w);
+  const double log_u = logs.log_u, log_w = logs.log_w;
   film.central = 2.69 * std::exp(0.67 * log_u - 0.067 * log_w) * f.g_central * f.central_shape * rx;
   film.minimum = 3.63 * std::exp(0.68 * log_u - 0.073 * log_w) * f.g_minimum * f.minimum_shape * rx;
   return film;
@@ -464,132 +330,8 @@ double ehl_rolling_resistance(double entrainment_speed, double load, double rx, 
   EhlFactors& f = ehl_factors(g, rx, ry);
   if (!f.has_g_rolling) f.g_rolling = std::pow(g, 0.022), f.has_g_rolling = true;
   if (!f.has_k_rolling) f.k_rolling = std::pow(f.k, 0.348), f.has_k_rolling = true;
-  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::exp(0.66 * std::log(u) + 0.47 * std::log(w));
-}
-
-// ---- traction ------------------------------------------------------------------------------------
-
-double film_weight(double film_thickness, const PointLubricant& lubricant) {
-  if (!(film_thickness > 0)) return 0.0;
-  if (!(film_thickness < lubricant.boundary_film)) return 1.0;
-  const double x = film_thickness / lubricant.boundary_film;
-  return x * x * (3 - 2 * x);
-}
-
-int traction_block_count(const PointTraction& traction) {
-  if (traction.grid_x < 1 || traction.grid_y < 1) return 1;
-  const auto cells = traction_grid(traction.grid_x, traction.grid_y).cells.size();
-  return static_cast<int>(std::clamp<std::size_t>(cells / traction_block_cells, 1, max_traction_blocks));
-}
-
-TractionResult integrate_traction_block(const PointTraction& traction, const PointLubricant& lubricant,
-                                        double normal_force, double ax, double ay, double film_thickness,
-                                        const ContactSliding& sliding, int block) {
-  TractionResult out;
-  if (traction.model == TractionModel::none || !(normal_force > 0) || !(ax > 0) || !(ay > 0)) return out;
-  if (traction.grid_x < 1 || traction.grid_y < 1)
-    throw std::invalid_argument("integrate_traction: grid_x and grid_y must be >= 1");
-  const bool limiting =
-      traction.model == TractionModel::limiting_shear && film_thickness > 0 && lubricant.viscosity > 0;
-  // Below the boundary film the film's shear (weight w) and the curve (1 - w) share the traction.
-  const double film_share = limiting ? film_weight(film_thickness, lubricant) : 0.0;
-  const bool blended = limiting && film_share < 1;
-  if (!limiting && traction.friction_coefficient == 0) return out;
-
-  const TractionGrid& grid = traction_grid(traction.grid_x, traction.grid_y);
-  const auto blocks = static_cast<std::size_t>(traction_block_count(traction));
-  const auto b = static_cast<std::size_t>(block);
-  if (block < 0 || b >= blocks) throw std::invalid_argument("integrate_traction_block: no such block");
-  // Block b: cells [n b / blocks, n (b + 1) / blocks) in grid order (rows along x).
-  const std::size_t first = grid.cells.size() * b / blocks, last = grid.cells.size() * (b + 1) / blocks;
-  const double area_scale = ax * ay;                                                // unit disk -> ellipse
-  const double pressure_scale = normal_force / (area_scale * grid.shape_integral);  // ~ p_max
-  const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
-  const double inverse_scale = 1 / traction.slip_velocity_scale;
-  const double inverse_h = limiting ? 1 / film_thickness : 0;
-  // Where the exponent reaches the cap (most of a loaded contact) the viscosity is one number,
-  // evaluated once per block: std::min(exponent, cap) is the cap exactly when cap < exponent.
-  const double cap = lubricant.viscosity_exponent_cap;
-  double capped_viscosity = std::numeric_limits<double>::quiet_NaN();
-  bool has_capped = false;
-  auto viscosity_at = [&](double p) {
-    const double exponent = lubricant.roelands_index > 0
-                                ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
-                                : lubricant.pressure_viscosity * p;
-    if (!(cap < exponent)) return lubricant.viscosity * std::exp(std::min(exponent, cap));
-    if (!has_capped) capped_viscosity = lubricant.viscosity * std::exp(cap), has_capped = true;
-    return capped_viscosity;
-  };
-  // Per distinct shape (the first max_distinct_shapes, evaluated up front; a cell beyond them
-  // evaluates its own): the film's shear rate factor eta / h and the tanh's argument per unit
-  // sliding speed eta / (h tau_L), so that a cell takes g = area eta / h tanh_over_x(s eta / (h tau_L)).
-  struct ShapeShear {
-    double rate, slope;
-  };
-  auto shape_shear = [&](double shape) {
-    const double p = pressure_scale * shape;
-    const double tau_limit = lubricant.limiting_shear_coefficient * p;
-    if (!(tau_limit > 0)) return ShapeShear{0, 0};
-    const double rate = viscosity_at(p) * inverse_h;
-    return ShapeShear{rate, rate / tau_limit};
-  };
-  std::array<ShapeShear, max_distinct_shapes> shear;  // NOLINT: the first `shapes` are set below
-  const std::size_t shapes = limiting ? std::min(grid.shapes.size(), max_distinct_shapes) : 0;
-  for (std::size_t k = 0; k < shapes; ++k) shear[k] = shape_shear(grid.shapes[k]);
-  const double curve_scale = mu_over_scale * normal_force * (1 - film_share);
-  double fx = 0, fy = 0, mz = 0, power = 0;
-  for (std::size_t i = first; i < last; ++i) {
-    const GridCell& c = grid.cells[i];
-    const double x = ax * c.x, y = ay * c.y;
-    const double sx = sliding.slide_x - sliding.spin * y, sy = sliding.slide_y + sliding.spin * x;
-    const double s2 = sx * sx + sy * sy, s = std::sqrt(s2);
-    // g = |tau| area / s: the shear force of the cell is -g (sx, sy), finite at s = 0.
-    double g;
-    if (limiting) {
-      const auto k = static_cast<std::size_t>(c.shape_index);
-      const ShapeShear sh = k < shapes ? shear[k] : shape_shear(c.shape);
-      g = sh.rate * (c.area * area_scale) * tanh_over_x(sh.slope * s);
-      if (blended) g = film_share * g + curve_scale * c.load * tanh_over_x(s * inverse_scale);
-    } else {
-      g = mu_over_scale * normal_force * c.load * tanh_over_x(s * inverse_scale);
-    }
-    const double cx = -g * sx, cy = -g * sy;
-    fx += cx;
-    fy += cy;
-    mz += x * cy - y * cx;
-    power += g * s2;
-  }
-  out.force_x = fx;
-  out.force_y = fy;
-  out.spin_moment = mz;
-  out.power_loss = power;
-  return out;
-}
-
-TractionResult sum_traction_blocks(std::span<const TractionResult> blocks) {
-  if (blocks.empty()) return {};
-  TractionResult sum = blocks[0];
-  for (std::size_t b = 1; b < blocks.size(); ++b) {
-    sum.force_x += blocks[b].force_x;
-    sum.force_y += blocks[b].force_y;
-    sum.spin_moment += blocks[b].spin_moment;
-    sum.power_loss += blocks[b].power_loss;
-  }
-  return sum;
-}
-
-TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
-                                  double normal_force, double ax, double ay, double film_thickness,
-                                  const ContactSliding& sliding) {
-  const int blocks = traction_block_count(traction);
-  if (blocks == 1)
-    return integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, 0);
-  std::array<TractionResult, max_traction_blocks> partial{};
-  const int n = std::min(blocks, max_traction_blocks);
-  for (int b = 0; b < n; ++b)
-    partial[static_cast<std::size_t>(b)] =
-        integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, b);
-  return sum_traction_blocks(std::span<const TractionResult>(partial.data(), static_cast<std::size_t>(n)));
+  const EhlLogs& logs = ehl_logs(u, w);
+  return 2.86 * e_prime * rx * rx * f.k_rolling * f.g_rolling * std::exp(0.66 * logs.log_u + 0.47 * logs.log_w);
 }
 
 }  // namespace raceway::contact

@@ -152,7 +152,9 @@ struct ContactSliding {
 /// exactly symmetric about both axes (mirrored cells have the same area and pressure bits), so the
 /// pressure-dependent viscosity is evaluated once per distinct cell pressure (6 on the 5 x 5 grid),
 /// and tanh(x)/x is a rational approximant (|x| <= 1) or one exponential, to about an ulp. The cell
-/// tables are built once per (grid_x, grid_y) and thread; a call allocates nothing. Zero for model none,
+/// tables are built once per (grid_x, grid_y) and thread; a call allocates nothing. The cells are
+/// evaluated in a loop the compiler vectorises, each with the bits of the scalar formula, and
+/// summed in grid order (contact/laws/point_traction.cpp). Zero for model none,
 /// Q <= 0 or a degenerate ellipse; throws std::invalid_argument if grid_x or grid_y < 1.
 struct TractionResult {
   double force_x = 0, force_y = 0;  ///< N, on body 2

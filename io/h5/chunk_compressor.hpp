@@ -3,10 +3,10 @@
 // H5SeriesWriter stores its series chunked, byte-shuffled and deflated. Through HDF5's filter
 // pipeline that work happens inside H5Dwrite/H5Dclose on the calling thread: measured, 30 ms of a
 // 0.13 s 6309 R3 run (perf/studies/results/output_overhead.md). The writer therefore compresses each
-// chunk as soon as its rows are complete, on a background thread, with the same two filters HDF5
-// applies (shuffle, then zlib's compress2 at the dataset's level), and hands the result to
-// H5Dwrite_chunk at the next flush: the chunk stored is the one HDF5's pipeline would have
-// stored, so readers (h5py, h5ls, HDF5 itself) see the same dataset values.
+// chunk as soon as its rows are complete, on a background thread, with the two filters HDF5's
+// pipeline applies (shuffle, then a zlib stream at the dataset's level, written by libdeflate),
+// and hands the result to H5Dwrite_chunk at the next flush: readers (h5py, h5ls, HDF5 itself)
+// inflate it through the dataset's own filters and see the same values.
 #pragma once
 
 #include <condition_variable>
@@ -27,8 +27,10 @@ struct FilteredChunk {
   std::uint32_t filter_mask = 0;
 };
 
-/// The bytes HDF5's filter pipeline stores for `values` (a whole chunk, row-major): byte shuffle
-/// of 8-byte elements if `shuffle`, then zlib compress2 at `gzip_level` if > 0.
+/// The bytes stored for `values` (a whole chunk, row-major) under HDF5's filters: byte shuffle of
+/// 8-byte elements if `shuffle` (H5Z_FILTER_SHUFFLE), then, if `gzip_level` > 0, one zlib stream
+/// (H5Z_FILTER_DEFLATE) at that level from libdeflate: it inflates to what HDF5's pipeline would
+/// have deflated.
 FilteredChunk filter_chunk(std::span<const double> values, bool shuffle, int gzip_level);
 
 /// A single background thread that runs filter_chunk() on submitted chunks, first in first out.

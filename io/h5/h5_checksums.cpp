@@ -1,5 +1,5 @@
-// Checksums of the files raceway continues from (h5_series.hpp). zlib's crc32 throughout: the
-// checksum gzip uses, in the library the deflate filter already links.
+// Checksums of the files raceway continues from (h5_series.hpp). The CRC-32 gzip uses throughout:
+// zlib's crc32, or libdeflate's (the same function) for the rows appended.
 //
 // The rows of a .partial file (row_checksums, reopen): a checkpoint keeps, per series, the CRC-32
 // of every row appended; a resume reads the rows back from the file (through HDF5, so a chunk that
@@ -13,6 +13,7 @@
 // random byte flipped in an object header: only a check before HDF5 parses the file refuses every
 // damaged one.
 #include <hdf5.h>
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include <fmt/format.h>
@@ -29,14 +30,8 @@ namespace raceway::h5 {
 using h5::Handle;
 
 unsigned long H5SeriesWriter::row_crc(unsigned long crc, std::span<const double> values) {
-  const auto* bytes = reinterpret_cast<const Bytef*>(values.data());
-  std::size_t n = values.size_bytes();
-  while (n > 0) {  // crc32 takes a uInt length
-    const auto part = static_cast<uInt>(std::min<std::size_t>(n, std::size_t{1} << 30));
-    crc = crc32(crc, bytes, part);
-    bytes += part, n -= part;
-  }
-  return crc;
+  // libdeflate's CRC-32 is zlib's (the same polynomial and chaining), in fewer instructions per row.
+  return libdeflate_crc32(static_cast<std::uint32_t>(crc), values.data(), values.size_bytes());
 }
 
 std::map<std::string, double> H5SeriesWriter::row_checksums() const {

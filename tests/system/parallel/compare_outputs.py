@@ -2,7 +2,8 @@
 """Bitwise comparison of raceway output files (the reference first, then the others).
 
 Every dataset outside /scheduler must have the same shape, dtype and bytes (the values, and each
-stored chunk: offset, filter mask, compressed bytes); every attribute
+stored chunk: offset, filter mask, its bytes with the deflate filter undone: the serial writer's
+libdeflate and the parallel writer's zlib encode the same bytes differently); every attribute
 must be equal, except the ones that legitimately differ between runs: the root's summary_json
 is compared without its timing fields (wall_time_s, time_per_rhs_s, time_per_jacobian_s, time_split_s, output_time_s,
 output_write_time_s, output_thread_time_s), and
