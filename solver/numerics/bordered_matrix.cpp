@@ -174,14 +174,18 @@ void DenseBlocks::back(const BorderedMatrix& m, const Eigen::VectorXd& border_x,
   }
 }
 
-template <int Bs>
-bool SparseFixedBlocks<Bs>::factor(const BorderedMatrix& m, Eigen::MatrixXd& schur) {
+template <int Bs, bool KeepInverse>
+bool SparseFixedBlocks<Bs, KeepInverse>::factor(const BorderedMatrix& m, Eigen::MatrixXd& schur) {
   elements.resize(static_cast<std::size_t>(m.block_count()));
   for (int k = 0; k < m.block_count(); ++k) {
     Element& e = elements[static_cast<std::size_t>(k)];
     lu.compute(Eigen::Map<const Block>(m.block[k].data()));
     if (!usable(lu)) return false;
-    for (int j = 0; j < Bs; ++j) lu_substitute<Bs>(lu, Block::Identity().col(j), e.inverse.col(j), permuted);
+    if constexpr (KeepInverse) {
+      for (int j = 0; j < Bs; ++j) lu_substitute<Bs>(lu, Block::Identity().col(j), e.inverse.col(j), permuted);
+    } else {
+      e.factors = lu;
+    }
     nonzero_lines(m.border_to_block[k], false, used, e.rows);
     nonzero_lines(m.block_to_border[k], true, used, e.cols);
     const auto r = static_cast<Eigen::Index>(e.rows.size()), c = static_cast<Eigen::Index>(e.cols.size());
@@ -190,7 +194,11 @@ bool SparseFixedBlocks<Bs>::factor(const BorderedMatrix& m, Eigen::MatrixXd& sch
     e.inv_border.resize(Bs, c);
     for (Eigen::Index j = 0; j < c; ++j) {
       gathered = m.block_to_border[k].col(e.cols[static_cast<std::size_t>(j)]);
-      e.inv_border.col(j).noalias() = e.inverse.lazyProduct(gathered);
+      if constexpr (KeepInverse) {
+        e.inv_border.col(j).noalias() = e.inverse.lazyProduct(gathered);
+      } else {
+        lu_substitute<Bs>(e.factors, gathered, e.inv_border.col(j), permuted);
+      }
       for (Eigen::Index i = 0; i < r; ++i)
         schur(e.rows[static_cast<std::size_t>(i)], e.cols[static_cast<std::size_t>(j)]) -=
             e.border_rows.row(i).dot(e.inv_border.col(j));
@@ -199,19 +207,24 @@ bool SparseFixedBlocks<Bs>::factor(const BorderedMatrix& m, Eigen::MatrixXd& sch
   return true;
 }
 
-template <int Bs>
-void SparseFixedBlocks<Bs>::forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border) {
+template <int Bs, bool KeepInverse>
+void SparseFixedBlocks<Bs, KeepInverse>::forward(const BorderedMatrix& m, const double* b, Eigen::VectorXd& border) {
   const int nb = m.border_size();
   for (int k = 0; k < m.block_count(); ++k) {
     Element& e = elements[static_cast<std::size_t>(k)];
-    e.y.noalias() = e.inverse.lazyProduct(Eigen::Map<const BlockVector>(b + nb + k * Bs));
+    const Eigen::Map<const BlockVector> b_k(b + nb + k * Bs);
+    if constexpr (KeepInverse) {
+      e.y.noalias() = e.inverse.lazyProduct(b_k);
+    } else {
+      lu_substitute<Bs>(e.factors, b_k, e.y, permuted);
+    }
     for (std::size_t i = 0; i < e.rows.size(); ++i)
       border(e.rows[i]) -= e.border_rows.row(static_cast<Eigen::Index>(i)).dot(e.y);
   }
 }
 
-template <int Bs>
-void SparseFixedBlocks<Bs>::back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x) {
+template <int Bs, bool KeepInverse>
+void SparseFixedBlocks<Bs, KeepInverse>::back(const BorderedMatrix& m, const Eigen::VectorXd& border_x, double* x) {
   const int nb = m.border_size();
   for (int k = 0; k < m.block_count(); ++k) {
     const Element& e = elements[static_cast<std::size_t>(k)];
@@ -222,12 +235,13 @@ void SparseFixedBlocks<Bs>::back(const BorderedMatrix& m, const Eigen::VectorXd&
   }
 }
 
-template struct SparseFixedBlocks<9>;
+template struct SparseFixedBlocks<5, false>;
+template struct SparseFixedBlocks<9, true>;
 
 bool BorderedFactorization::factor(const BorderedMatrix& m) {
   m_ = &m;
   Eigen::MatrixXd schur = m.border;
-  const bool blocks_usable = fixed() ? fixed_blocks_.factor(m, schur) : dense_blocks_.factor(m, schur);
+  const bool blocks_usable = with_blocks([&](auto& blocks) { return blocks.factor(m, schur); });
   if (!blocks_usable) return false;
   schur_lu_.compute(schur);
   work_b_.resize(m.border_size());
@@ -240,19 +254,11 @@ void BorderedFactorization::solve(const double* b, double* x) const {
   // Forward: y_k = D_k^-1 b_k; border right-hand side b_b - sum A_bk y_k. The work vectors keep
   // their sizes between calls (no allocation per solve).
   work_b_ = Eigen::Map<const Eigen::VectorXd>(b, nb);
-  if (fixed()) {
-    fixed_blocks_.forward(m, b, work_b_);
-  } else {
-    dense_blocks_.forward(m, b, work_b_);
-  }
+  with_blocks([&](auto& blocks) { blocks.forward(m, b, work_b_); });
   work_x_ = schur_lu_.solve(work_b_);
   Eigen::Map<Eigen::VectorXd>(x, nb) = work_x_;
   // Back: x_k = y_k - D_k^-1 A_kb x_b.
-  if (fixed()) {
-    fixed_blocks_.back(m, work_x_, x);
-  } else {
-    dense_blocks_.back(m, work_x_, x);
-  }
+  with_blocks([&](auto& blocks) { blocks.back(m, work_x_, x); });
 }
 
 }  // namespace raceway::numerics
