@@ -57,7 +57,10 @@ TEST(Symmetry, LoadAlongXEqualsLoadAlongMinusY) {
   const double rx = -down.mean_ring[1], ry = down.mean_ring[0];
   const double disp = std::hypot(down.mean_ring[0], down.mean_ring[1]);
   EXPECT_LT(std::hypot(right.mean_ring[0] - rx, right.mean_ring[1] - ry), 0.005 * disp);
-  EXPECT_LT(std::abs(right.summary.cage_speed_rpm - down.summary.cage_speed_rpm), 1e-3 * down.summary.cage_speed_rpm);
+  // The cage's mean speed over 50 ms of rattling rollers is a draw: the -y run alone gives 958.29 to
+  // 959.67 rpm (0.14 %) with the Jacobian's increment at 0.5, 0.8, 1, 1.2 and 1.5e-7, whatever the
+  // frame; the bound is twice that spread (a wrong frame moves the loads and the ring, above).
+  EXPECT_LT(std::abs(right.summary.cage_speed_rpm - down.summary.cage_speed_rpm), 3e-3 * down.summary.cage_speed_rpm);
 }
 
 }  // namespace

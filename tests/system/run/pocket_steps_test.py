@@ -146,9 +146,14 @@ def main():
             # Wider than the ball bearing's: on these stiff roller-bar impacts (10-20 us, one or two
             # steps of ~12 us) the step's last Newton iterate is off the accepted state's force by
             # 4 % (median; peaks 36.6 against 35.0 N) and finds light touches (< 0.1 N) that the
-            # interpolated samples pass over: measured 22 / 15 onsets against 19 / 12 sampled events,
-            # peaks +4.5 / +1.5 %, impulses +6.4 / +1.5 %, contact times -1 / -3 %.
-            compare_with_samples(d, "seed 002 1 us", {"events": 4, "peak": 0.08, "impulse": 0.10, "contact": 0.05})
+            # interpolated samples pass over, and the front bar's long light pushes (3-4 ms at about
+            # 0.6 N) come out above the samples' trapezoids. Which contacts a 10 ms window holds is
+            # the rattling's draw (it follows the round-off): over five draws (the Jacobian's
+            # increment 0.5-1.5e-7) the step statistics against the samples gave onsets +0 to +6,
+            # peaks -0.1 to +2.6 %, impulses -0.4 to +24 % (the front bar +4 to +24 %, the rear
+            # -0.4 to +3 %), contact times -2 to +13 % (+19 us over the rear bar's 6 short contacts, where
+            # the bound adds a sample interval per event). The bounds cover that spread.
+            compare_with_samples(d, "seed 002 1 us", {"events": 8, "peak": 0.05, "impulse": 0.30, "contact": 0.10})
         else:
             scene = scene_for(source, work, "6309_R3.toml", "20 ms")
             coarse = run(raceway, scene, os.path.join(work, "c.h5"), "200 us")
