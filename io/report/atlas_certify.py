@@ -84,10 +84,22 @@ def confidence(values, target):
 
 def summary(cert):
     """One line of how a point was certified (the table's `certified_by`)."""
+    p, t = cert.get("probe", {}), cert.get("threshold", {})
     parts = ["settled" if cert["settled"]["ok"] else "NOT settled"]
+    if p.get("checked"):
+        parts[0] = "settled" if cert["settled"]["ok"] else "window NOT settled (its orbit grows)"
+        word = f"{p['class']}" if p["ok"] else "NOT decided"
+        later = " (longer: " + ", ".join(f"{v} +{n} windows" for v, n in zip(p["values"], p.get("probe_later_windows", []))
+                                         if n) + ")" if any(p.get("probe_later_windows", [])) else ""
+        parts.append(f"stability probe ({', '.join(p['values'])} off-centre{later}: {', '.join(p['probe_class'])}) {word}")
     c = cert.get("converged", {})
     if c.get("checked"):
         parts.append(f"rtol {c['rtol']:g} {'agrees' if c['ok'] else 'DISAGREES'}")
+    if t.get("checked"):
+        each = ", ".join(f"{x['metric']} {x['mean']:.3g} +-{x['half_width_95']:.2g} "
+                         f"{('>' if x['mean'] > x['threshold'] else '<=') if x['clear'] else 'spans'} {x['threshold']:g}"
+                         for x in t["thresholds"])
+        parts.append(f"threshold over {t['runs']} runs: {each}" + (f" -> {t['class']}" if t["ok"] else " NOT decided"))
     r = cert.get("realisations", {})
     if r.get("checked"):
         parts.append(f"{len(r['values'])} realisations, CI +-{r['half_width_95']:.3g} "
@@ -96,6 +108,111 @@ def summary(cert):
 
 
 def certified(cert):
-    """A point is certified when every check it had passed."""
-    return bool(cert["settled"]["ok"] and cert.get("converged", {}).get("ok", True)
-                and cert.get("realisations", {}).get("ok", True))
+    """A point is certified when every check it had passed; a window that did not settle is certified
+    by its stability probe, an rtol rerun of another class by the threshold's runs."""
+    settled_ok = cert["settled"]["ok"] or cert.get("probe", {}).get("ok", False)
+    converged_ok = cert.get("converged", {}).get("ok", True) or cert.get("threshold", {}).get("ok", False)
+    return bool(settled_ok and converged_ok and cert.get("realisations", {}).get("ok", True))
+
+
+# --- A point that has not settled, or sits on a class threshold (docs/atlas.md, "Certification of a
+# point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
+# an atlas resumed re-certifies its uncertified points made before (their files read again, the
+# missing runs made).
+RULE = 2
+
+
+def needs_probe(settled_record, base_class):
+    """Whether a point's orbit grows over its window while its class is stable or circling: its
+    sub-synchronous whirl has not reached the class's floor in the window (it grows from round-off),
+    so the window alone cannot say where the motion ends."""
+    return (base_class in ("stable", "circling") and not settled_record["ok"]
+            and settled_record["orbit_growth"] > 1 + settled_record["growth_tolerance"]
+            and settled_record["largest_step"] <= settled_record["tolerance"])
+
+
+def probe_verdict(probe, probe_settled, thresholds):
+    """One probe's word (the point rerun with the cage started off-centre, above the growth floor):
+    'unstable' when the window of the probe is unstable (the whirl persists or grows from there),
+    'stable' when it is stable or circling, settled, and its sub-synchronous whirl ends below the
+    sustained-whirl amplitude (it decays towards the centred cage or a small limit cycle: the
+    attractor lies below where it ended), else 'undecided'."""
+    cls = probe["motion_class"]
+    if cls == "unstable":
+        return "unstable"
+    amplitude = probe.get("subsync_amplitude_ratio", math.nan)
+    below = not (amplitude >= thresholds["whirl_sustained_amplitude"])  # NaN: no whirl line measured
+    if cls in ("stable", "circling") and probe_settled["ok"] and below:
+        return "stable"
+    return "undecided"
+
+
+def probes(base, runs, settled_records, thresholds):
+    """The stability probe's evidence from its runs [(value, metrics)] and their settled records; 'ok'
+    when every probe is settled and they agree, 'class' the class they give."""
+    words = [probe_verdict(m, s, thresholds) for (_, m), s in zip(runs, settled_records)]
+    agree = len(set(words)) == 1 and words[0] != "undecided"
+    cls = None
+    if agree:
+        cls = "unstable" if words[0] == "unstable" else base["motion_class"]
+    return {"checked": True, "ok": bool(agree and all(s["ok"] for s in settled_records)), "class": cls,
+            "verdicts": words, "values": [v for v, _ in runs], "probe_class": [m["motion_class"] for _, m in runs],
+            "probe_growth_per_rev": [m.get("subsync_growth_per_rev", math.nan) for _, m in runs],
+            "probe_amplitude_ratio": [m.get("subsync_amplitude_ratio", math.nan) for _, m in runs],
+            "probe_settled": [bool(s["ok"]) for s in settled_records],
+            "probe_later_windows": [m.get("later_windows", 0) for _, m in runs],
+            "base_growth_per_rev": base.get("subsync_growth_per_rev", math.nan),
+            "base_amplitude_ratio": base.get("subsync_amplitude_ratio", math.nan)}
+
+
+def probe_reason(record, key, floor):
+    """The point's reason from its probe: the centred cage's own growth and what the probes did."""
+    starts = ", ".join(f"{key} = {v}" for v in record["values"])
+    base = (f"the centred cage's sub-synchronous whirl grows {record['base_growth_per_rev']:.3g} per cage "
+            f"revolution at {record['base_amplitude_ratio']:.3g} of the clearance (below the floor {floor:g}): the "
+            "centred cage is linearly unstable")
+    growth = ", ".join(f"{g:.3g}" for g in record["probe_growth_per_rev"])
+    if record["class"] == "unstable":
+        return f"{base}; started at {starts} the whirl persists (probes unstable, growth per revolution {growth})"
+    if record["class"]:
+        ends = ", ".join(f"{a:.3g}" for a in record["probe_amplitude_ratio"])
+        return (f"{base}, but started at {starts} the whirl decays (growth per revolution {growth}) to {ends} of the "
+                "clearance, below the sustained-whirl amplitude: its attractor is bounded below it (stable)")
+    return f"{base}; the probes at {starts} do not decide ({', '.join(record['verdicts'])})"
+
+
+# The thresholds that separate the classes of a point's runs: (metric, threshold key, comparison of
+# the class the metric passes: True when the metric must be at most the threshold).
+CLASS_THRESHOLDS = (("orbit_ratio", "stable_orbit_ratio"), ("vortex_radius_ratio", "circling_vortex_ratio"),
+                    ("sigma_v", "circling_sigma_v"))
+
+
+def straddled(runs, thresholds):
+    """The class thresholds that the runs' metrics lie on both sides of: [(metric, threshold key)]."""
+    out = []
+    for metric, key in CLASS_THRESHOLDS:
+        sides = {float(m[metric]) <= thresholds[key] for m in runs if math.isfinite(float(m.get(metric, math.nan)))}
+        if len(sides) > 1:
+            out.append((metric, key))
+    return out
+
+
+def threshold_decision(runs, thresholds, classify):
+    """A point whose runs (base, tighter rtol, start offsets) disagree in class: each threshold they
+    straddle is decided by the 95 % confidence interval of its metric's mean over the runs (the
+    interval clear of the threshold: that side); the class is then `classify` of the base's metrics
+    with those means. 'ok' when every straddled threshold is decided."""
+    decided, record = True, {"checked": True, "runs": len(runs), "classes": [m["motion_class"] for m in runs],
+                             "thresholds": []}
+    means = dict(runs[0])
+    for metric, key in straddled(runs, thresholds):
+        ci = confidence([m[metric] for m in runs], math.inf)
+        lo, hi = ci["mean"] - ci["half_width_95"], ci["mean"] + ci["half_width_95"]
+        clear = not lo <= thresholds[key] <= hi
+        decided = decided and clear
+        means[metric] = ci["mean"]
+        record["thresholds"].append({"metric": metric, "threshold": thresholds[key], "mean": ci["mean"],
+                                     "half_width_95": ci["half_width_95"], "values": ci["values"], "clear": clear})
+    record["ok"] = bool(decided and record["thresholds"])
+    record["class"] = classify(means)[0] if record["ok"] else None
+    return record

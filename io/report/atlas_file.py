@@ -17,7 +17,7 @@ ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "window_cage_revolut
               "metric", "classes", "budget_points", "budget_core_hours", "batch_size", "set", "stop_band_share"}
 REVOLUTION_KEYS = ("settling_cage_revolutions", "window_cage_revolutions")
 CERTIFY_KEYS = {"blocks", "block_tolerance", "growth_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
-                "realisation_key", "realisations", "ci_target"}
+                "realisation_key", "realisations", "threshold_realisations", "ci_target"}
 PARAMETER_KEYS = {"key", "name", "range", "unit"}
 METRICS = ("cage_dynamics_indicator", "orbit_ratio", "vortex_radius_ratio", "sigma_v", "impact_rate",
            "whirl_to_cage_frequency")
@@ -146,6 +146,14 @@ def _certify(c, raw):
     if len(set(map(str, values))) != len(values):
         c.fail("certify.realisations", "a value is given twice")
     out["realisation_key"], out["realisations"] = key, [str(v) for v in values]
+    more = raw.get("threshold_realisations", [])
+    if not isinstance(more, list) or any(not isinstance(v, (str, int, float)) for v in more):
+        c.fail("certify.threshold_realisations", "must be a list of the realisation key's values, e.g. [\"50 um\"]")
+    if more and not values:
+        c.fail("certify.threshold_realisations", "needs the realisations (realisation_key, realisations) they add to")
+    if len(set(map(str, values + more))) != len(values) + len(more):
+        c.fail("certify.threshold_realisations", "a value is given twice (here or in certify.realisations)")
+    out["threshold_realisations"] = [str(v) for v in more]
     return out
 
 

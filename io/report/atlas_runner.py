@@ -18,6 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import atlas_certify as ac
 import atlas_search as search
+import cage_motion as cm
 from atlas_models import STOP, PointFailed, PointStopped, unit_value
 
 STATE = "atlas_state.json"
@@ -30,6 +31,9 @@ class AtlasStateError(Exception):
 # What an atlas's points do not depend on: its budgets (how far the search goes; raised on --resume
 # they extend a finished atlas), where its files lie, and its file's text as such (comments).
 NOT_IDENTITY = ("budget_points", "budget_core_hours", "stop_band_share", "text", "lines", "path", "scene")
+# Nor the certification's later keys: they decide how a point is certified, not its runs (a resumed
+# atlas re-certifies its uncertified points with them).
+NOT_IDENTITY_CERTIFY = ("threshold_realisations",)
 
 
 def identity(atlas):
@@ -37,6 +41,7 @@ def identity(atlas):
     with open(atlas["scene"], "rb") as f:
         scene = f.read()
     settings = {k: v for k, v in atlas.items() if k not in NOT_IDENTITY}
+    settings["certify"] = {k: v for k, v in atlas["certify"].items() if k not in NOT_IDENTITY_CERTIFY}
     text = json.dumps(settings, sort_keys=True, default=str, allow_nan=True)
     return hashlib.sha256(text.encode() + b"\0" + scene).hexdigest()
 
@@ -99,38 +104,106 @@ def mapped_class(cls, classes):
     return "circling"
 
 
-def certify(model, atlas, point, sets, base):
-    """The point's certification (atlas_certify) and the wall time of its extra runs."""
+def run_settled(atlas, run, window_class=None):
+    """The settled record of one run's window (its blocks), for `window_class` (default: its own)."""
+    c, blocks = atlas["certify"], run["blocks"]
+    return ac.settled([b["metric"] for b in blocks], [b["class"] for b in blocks], window_class or run["motion_class"],
+                      c["block_tolerance"], [b.get("orbit_radius_m", math.nan) for b in blocks], c["growth_tolerance"])
+
+
+# A probe that neither persists nor has decayed below the sustained amplitude in its window is run
+# once more, PROBE_LATER windows longer (its window as long, that much later): the cap of its extension.
+PROBE_LATER = 2
+
+
+def probe(atlas, base, cert, rerun):
+    """The stability probe of a point whose orbit grows below its class's floor: the realisations'
+    start offsets, run once (shared with the realisations), an undecided one once more PROBE_LATER
+    windows longer; the class they agree on, or None."""
+    c = atlas["certify"]
+    if not (ac.needs_probe(cert["settled"], base["motion_class"]) and c["realisations"]
+            and c["realisation_key"] == "cage.initial_offset"):
+        return None
+    t = cm.thresholds(atlas["thresholds"])
+    runs, records = [], []
+    for i, v in enumerate(c["realisations"]):
+        m = rerun(f"r{i}", {c["realisation_key"]: v})
+        if ac.probe_verdict(m, run_settled(atlas, m), t) == "undecided":
+            m = rerun(f"r{i}_later", {c["realisation_key"]: v}, PROBE_LATER)
+            m["later_windows"] = PROBE_LATER
+        runs.append((v, m))
+        records.append(run_settled(atlas, m))
+    cert["probe"] = ac.probes(base, runs, records, t)
+    if not cert["probe"]["ok"]:
+        return None
+    cert["settled"] = run_settled(atlas, base, cert["probe"]["class"])
+    return cert["probe"]["class"]
+
+
+def threshold(atlas, base, tight, rerun):
+    """A point whose tighter-rtol rerun changes its class: the threshold's record over the base, the
+    rerun, the realisations and the threshold realisations (start offsets)."""
+    c = atlas["certify"]
+    values = c["realisations"] + c["threshold_realisations"]
+    runs = [base, tight] + [rerun(f"r{i}" if i < len(c["realisations"]) else f"t{i - len(c['realisations'])}",
+                                  {c["realisation_key"]: v}) for i, v in enumerate(values)]
+    record = ac.threshold_decision(runs, cm.thresholds(atlas["thresholds"]),
+                                   lambda m: cm.classify_metrics(m, atlas["thresholds"]))
+    record["key"], record["values"] = c["realisation_key"], values
+    return record
+
+
+def certify(model, atlas, point, sets, base, reuse=False):
+    """The point's certification (atlas_certify), its class and the wall time of its extra runs; with
+    `reuse`, runs whose output is in the folder are read, not made again (re-certification)."""
     c, metric = atlas["certify"], atlas["metric"]
-    blocks = base["blocks"]
-    cert = {"settled": ac.settled([b["metric"] for b in blocks], [b["class"] for b in blocks], base["motion_class"],
-                                  c["block_tolerance"], [b.get("orbit_radius_m", math.nan) for b in blocks],
-                                  c["growth_tolerance"])}
-    wall = 0.0
-    cert["converged"] = {"checked": False}
+    done = {}
+
+    def rerun(tag, more, later=0):
+        if tag not in done:
+            done[tag] = model.evaluate(point["id"], {**sets, **more}, tag, reuse=reuse, later=later)
+        return done[tag]
+
+    cert = {"rule": ac.RULE, "settled": run_settled(atlas, base), "probe": {"checked": False}}
+    cls = probe(atlas, base, cert, rerun) or base["motion_class"]
+    cert["converged"], cert["threshold"] = {"checked": False}, {"checked": False}
     if ac.in_convergence_sample(point["index"], c["convergence_sample"]):
-        tight = model.evaluate(point["id"], {**sets, "solver.rtol": f"{c['convergence_rtol']:g}"}, "rtol")
-        wall += tight["wall_s"]
+        tight = rerun("rtol", {"solver.rtol": f"{c['convergence_rtol']:g}"})
+        # Against the base run (both start centred: a probe speaks for both).
         cert["converged"] = ac.converged(base["motion_class"], base[metric], tight["motion_class"], tight[metric],
                                          c["convergence_rtol"], c["convergence_tolerance"])
+        if tight["motion_class"] != base["motion_class"] and c["realisations"]:
+            cert["threshold"] = threshold(atlas, base, tight, rerun)
+            cls = cert["threshold"]["class"] or cls
     cert["realisations"] = {"checked": False}
-    if base["motion_class"] == "unstable" and c["realisations"]:
-        values = [base[metric]]
-        for i, v in enumerate(c["realisations"]):
-            r = model.evaluate(point["id"], {**sets, c["realisation_key"]: v}, f"r{i}")
-            wall += r["wall_s"]
-            values.append(r[metric])
+    if cls == "unstable" and c["realisations"]:
+        values = [base[metric]] + [rerun(f"r{i}", {c["realisation_key"]: v})[metric]
+                                   for i, v in enumerate(c["realisations"])]
         cert["realisations"] = ac.confidence(values, c["ci_target"])
         cert["realisations"]["key"] = c["realisation_key"]
-    return cert, wall
+    cert["class"] = cls
+    return cert, sum(r["wall_s"] for r in done.values())
 
 
-def evaluate_point(model, atlas, point):
-    """Runs and certifies one point; its record's results (status done or failed)."""
+def certify_reasons(atlas, base, cert):
+    """The base's reasons and what the probe or the threshold's runs added."""
+    reasons = list(base.get("reasons", []))
+    if cert["probe"].get("checked"):
+        reasons.append(ac.probe_reason(cert["probe"], atlas["certify"]["realisation_key"],
+                                       cm.thresholds(atlas["thresholds"])["whirl_growth_min_amplitude"]))
+    if cert["threshold"].get("checked"):
+        reasons.append("on a class threshold (the rtol rerun's class differs): " + ac.summary(
+            {"settled": {"ok": True}, "threshold": cert["threshold"]}).split("; ", 1)[1])
+    return reasons
+
+
+def evaluate_point(model, atlas, point, reuse=False):
+    """Runs and certifies one point; its record's results (status done or failed). With `reuse`, the
+    runs whose output is in the folder are read again, not made (re-certification)."""
     sets, _ = point_sets(atlas, point["unit"])
     try:
-        base = model.evaluate(point["id"], sets)
-        cert, extra = certify(model, atlas, point, sets, base)
+        base = model.evaluate(point["id"], sets, reuse=reuse)
+        cert, extra = certify(model, atlas, point, sets, base, reuse)
     except PointStopped:
         return {"status": "planned"}
     except PointFailed as err:
@@ -138,11 +211,39 @@ def evaluate_point(model, atlas, point):
     except Exception as err:  # an unreadable output, a window without samples: the point, not the atlas
         return {"status": "failed", "error": f"{type(err).__name__}: {err}", "wall_s": 0.0}
     metrics = {k: v for k, v in base.items() if k not in ("blocks", "wall_s", "output", "reasons")}
-    return {"status": "done", "class": base["motion_class"], "label": mapped_class(base["motion_class"],
-            atlas["classes"]), "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
-            "reasons": base.get("reasons", []), "metrics": metrics, "certification": cert,
+    return {"status": "done", "class": cert["class"], "label": mapped_class(cert["class"], atlas["classes"]),
+            "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
+            "reasons": certify_reasons(atlas, base, cert), "metrics": metrics, "certification": cert,
             "certified": ac.certified(cert), "certified_by": ac.summary(cert), "output": base.get("output", ""),
             "wall_s": base["wall_s"] + extra}
+
+
+def recertify(model, atlas, state, folder, workers, log):
+    """A resumed atlas's points certified before the current rule and not certified then: their
+    outputs read again and certified with the rule (the probe, the threshold's runs), only the runs
+    missing made. Their wall time adds to the core-hours."""
+    todo = [p for p in state["points"] if p["status"] == "done" and not p.get("certified")
+            and p.get("certification", {}).get("rule") != ac.RULE]
+    lock = threading.Lock()
+
+    def one(point):
+        if STOP.is_set():
+            return
+        if hasattr(model, "remember_window"):
+            model.remember_window(point["id"], point["metrics"])
+        result = evaluate_point(model, atlas, point, reuse=True)
+        if result["status"] != "done":
+            return  # stopped or unreadable: the point keeps its record
+        with lock:
+            was = point["class"]
+            result["wall_s"] += point.get("wall_s", 0.0)
+            state["core_hours"] += (result["wall_s"] - point.get("wall_s", 0.0)) / 3600.0
+            point.update(result)
+            save_state(folder, state)
+            log(f"{point['id']} re-certified: {was} -> {point['class']}, {point['certified_by']}")
+
+    with ThreadPoolExecutor(max_workers=max(1, workers)) as pool:
+        list(pool.map(one, todo))
 
 
 def run_pending(model, atlas, state, folder, workers, log):
@@ -222,6 +323,7 @@ def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
         log(f"batch size {state['batch_size']} from the folder's state (asked: {batch_size}): a resumed atlas keeps "
             "its batches")
     state["stop"] = None
+    recertify(model, atlas, state, folder, workers, log)
     while True:
         run_pending(model, atlas, state, folder, workers, log)
         if STOP.is_set():

@@ -356,6 +356,13 @@ def case_bad_files():
     bad_in_file(good.split("[[parameter]]\nkey = \"inner_ring.load.fz\"")[0], 14, "parameter[0]", ["at least two"])
     bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um"]'), 12,
                 "certify.realisations", ["at least two"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um", "20 um"]\n'
+                             'threshold_realisations = ["15 um", "20 um"]'), 13, "certify.threshold_realisations",
+                ["given twice"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'threshold_realisations = "15 um"'), 12,
+                "certify.threshold_realisations", ["must be a list"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'threshold_realisations = ["15 um"]'), 12,
+                "certify.threshold_realisations", ["needs the realisations"])
     bad_in_file(good.replace('end_time = "20 ms"', 'end_time = "20 ms'), 4, "(syntax)", ["not TOML"])
     bad_in_file(good + "\n[thresholds]\nwobble = 1\n", 26, "thresholds.wobble", ["unknown key", "stable_orbit_ratio"])
     bad_in_file(good + "\n[thresholds]\ncircling_sigma_v = -1\n", 26, "thresholds.circling_sigma_v", ["at least 0"])
@@ -373,6 +380,9 @@ def case_bad_files():
     # `raceway check` before any point, name the line that set them.
     bad_by_executable(good.replace('end_time = "20 ms"', 'end_time = "20"'), 4, "atlas.end_time", ["positive time"])
     bad_by_executable(good.replace('"20 um"]', '"-5 um"]'), 12, "certify.realisations",
+                      ["rejected", "cage.initial_offset"])
+    bad_by_executable(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um", "20 um"]\n'
+                                   'threshold_realisations = ["-15 um"]'), 13, "certify.threshold_realisations",
                       ["rejected", "cage.initial_offset"])
     bad_by_executable(good.replace('unit = "N"', 'unit = "furlongs"'), 22, "parameter[1].range", ["rejected", "corner"])
 
