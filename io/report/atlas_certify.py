@@ -119,7 +119,7 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 2
+RULE = 3
 
 
 def needs_probe(settled_record, base_class):
@@ -147,10 +147,28 @@ def probe_verdict(probe, probe_settled, thresholds):
     return "undecided"
 
 
+def probe_words(runs, settled_records, thresholds):
+    """Each probe's word (probe_verdict) and the bracket of the whirl's attractor: probes that start
+    either side of a limit cycle approach it from below (growing) and from above (decaying), so the
+    cycle lies between the largest amplitude a growing probe reached and the smallest a decaying one
+    came down to. A decaying probe still above the sustained amplitude is undecided on its own; when a
+    growing probe has already reached that amplitude, the cycle is above it: unstable."""
+    words = [probe_verdict(m, s, thresholds) for (_, m), s in zip(runs, settled_records)]
+    rate, sustained = thresholds["whirl_growth_rate"], thresholds["whirl_sustained_amplitude"]
+
+    def amplitudes(sign):
+        return [m["subsync_amplitude_ratio"] for _, m in runs if m.get("subsync_coherent")
+                and sign * m.get("subsync_growth_per_rev", math.nan) > rate]
+    low, high = max(amplitudes(+1), default=math.nan), min(amplitudes(-1), default=math.nan)
+    if low >= sustained:
+        words = ["unstable" if w == "undecided" else w for w in words]
+    return words, [low, high]
+
+
 def probes(base, runs, settled_records, thresholds):
     """The stability probe's evidence from its runs [(value, metrics)] and their settled records; 'ok'
     when every probe is settled and they agree, 'class' the class they give."""
-    words = [probe_verdict(m, s, thresholds) for (_, m), s in zip(runs, settled_records)]
+    words, bracket = probe_words(runs, settled_records, thresholds)
     agree = len(set(words)) == 1 and words[0] != "undecided"
     cls = None
     if agree:
@@ -160,7 +178,7 @@ def probes(base, runs, settled_records, thresholds):
             "probe_growth_per_rev": [m.get("subsync_growth_per_rev", math.nan) for _, m in runs],
             "probe_amplitude_ratio": [m.get("subsync_amplitude_ratio", math.nan) for _, m in runs],
             "probe_settled": [bool(s["ok"]) for s in settled_records],
-            "probe_later_windows": [m.get("later_windows", 0) for _, m in runs],
+            "probe_later_windows": [m.get("later_windows", 0) for _, m in runs], "cycle_bracket": bracket,
             "base_growth_per_rev": base.get("subsync_growth_per_rev", math.nan),
             "base_amplitude_ratio": base.get("subsync_amplitude_ratio", math.nan)}
 
@@ -173,7 +191,10 @@ def probe_reason(record, key, floor):
             "centred cage is linearly unstable")
     growth = ", ".join(f"{g:.3g}" for g in record["probe_growth_per_rev"])
     if record["class"] == "unstable":
-        return f"{base}; started at {starts} the whirl persists (probes unstable, growth per revolution {growth})"
+        low = record.get("cycle_bracket", [math.nan])[0]
+        cycle = f"; its limit cycle above {low:.3g} of the clearance" if low >= 0 else ""
+        return (f"{base}; started at {starts} the whirl persists (probes unstable, growth per revolution "
+                f"{growth}{cycle})")
     if record["class"]:
         ends = ", ".join(f"{a:.3g}" for a in record["probe_amplitude_ratio"])
         return (f"{base}, but started at {starts} the whirl decays (growth per revolution {growth}) to {ends} of the "

@@ -125,14 +125,13 @@ def probe(atlas, base, cert, rerun):
             and c["realisation_key"] == "cage.initial_offset"):
         return None
     t = cm.thresholds(atlas["thresholds"])
-    runs, records = [], []
-    for i, v in enumerate(c["realisations"]):
-        m = rerun(f"r{i}", {c["realisation_key"]: v})
-        if ac.probe_verdict(m, run_settled(atlas, m), t) == "undecided":
-            m = rerun(f"r{i}_later", {c["realisation_key"]: v}, PROBE_LATER)
-            m["later_windows"] = PROBE_LATER
-        runs.append((v, m))
-        records.append(run_settled(atlas, m))
+    runs = [(v, rerun(f"r{i}", {c["realisation_key"]: v})) for i, v in enumerate(c["realisations"])]
+    words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
+    for i, (v, m) in enumerate(runs):
+        if words[i] == "undecided":
+            runs[i] = (v, rerun(f"r{i}_later", {c["realisation_key"]: v}, PROBE_LATER))
+            runs[i][1]["later_windows"] = PROBE_LATER
+    records = [run_settled(atlas, m) for _, m in runs]
     cert["probe"] = ac.probes(base, runs, records, t)
     if not cert["probe"]["ok"]:
         return None

@@ -136,6 +136,16 @@ def case_certify_probe():
     print(f"slow decay: {r['class']}, {r['certified_by']}")
     check(r["certification"]["probe"]["verdicts"] == ["undecided"] * 2 and not r["certified"]
           and r["class"] == "stable" and len(m.runs) == 5, f"a probe still decaying above 0.05 c decides: {m.runs}")
+    # Probes either side of a large limit cycle (0.35 c, growing 0.02 per revolution): from 25 um
+    # the whirl grows (unstable), from 75 um it decays, still at 0.4 c: undecided alone, but the
+    # cycle lies between the two, above the sustained amplitude: unstable, no longer run needed.
+    m = OrbitModel(1e-8 * C, 0.1, 0.1 * C, probe=(0.02, 0.35 * C))
+    r = ar.evaluate_point(m, ATLAS, point())
+    p = r["certification"]["probe"]
+    print(f"bracketed cycle 0.35 c: {r['class']}, {r['certified_by']}, bracket {p['cycle_bracket']}")
+    check(r["class"] == "unstable" and r["certified"] and [t for t, _ in m.runs] == ["", "r0", "r1"]
+          and p["probe_class"][1] != "unstable" and 0.25 < p["cycle_bracket"][0] < 0.35 < p["cycle_bracket"][1],
+          f"bracketed cycle: {m.runs}, {p}")
     # A point that settles is not probed; one whose window grows with an unstable class neither.
     m = OrbitModel(0.3 * C, -0.05, math.inf)
     r = ar.evaluate_point(m, ATLAS, point())
