@@ -18,7 +18,7 @@ ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "window_cage_revolut
 REVOLUTION_KEYS = ("settling_cage_revolutions", "window_cage_revolutions")
 CERTIFY_KEYS = {"blocks", "block_tolerance", "growth_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
                 "realisation_key", "realisations", "threshold_realisations", "ci_target"}
-PARAMETER_KEYS = {"key", "name", "range", "unit"}
+PARAMETER_KEYS = {"key", "name", "range", "unit", "scale"}
 METRICS = ("cage_dynamics_indicator", "orbit_ratio", "vortex_radius_ratio", "sigma_v", "impact_rate",
            "whirl_to_cage_frequency")
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -118,7 +118,32 @@ def _parameters(c, raw):
             c.fail(f"{t}.unit", "must name the range's unit (the scene's units: rpm, N, um, ...)")
         names.add(name)
         params.append({"key": key, "name": name, "range": [float(low), float(high)], "unit": unit.strip()})
+        scale = p.get("scale", "linear")
+        if scale not in ("linear", "log"):
+            c.fail(f"{t}.scale", f"must be \"linear\" or \"log\", not {scale!r}")
+        if scale == "log":  # only then in the parameter (a linear one's identity is as it was)
+            if not low > 0:
+                c.fail(f"{t}.scale", f"a log scale needs a range above 0, not {r!r}")
+            params[-1]["scale"] = "log"
     return params
+
+
+def parameter_value(p, u):
+    """The value of parameter `p` at `u` in [0, 1] of its axis: linear in its range, or with
+    scale = "log" linear in the logarithm (equal ratios per step: where a parameter acts at its
+    small values, a log axis gives them as much of the search as its large ones)."""
+    low, high = p["range"]
+    if p.get("scale") == "log":
+        return low * (high / low) ** float(u)
+    return low + float(u) * (high - low)
+
+
+def parameter_unit(p, value):
+    """The inverse of parameter_value: the axis coordinate in [0, 1] of `value`."""
+    low, high = p["range"]
+    if p.get("scale") == "log":
+        return math.log(float(value) / low) / math.log(high / low)
+    return (float(value) - low) / (high - low)
 
 
 def _certify(c, raw):

@@ -16,6 +16,7 @@ import numpy as np
 import atlas_certify as ac
 import cage_friction as cf
 import cage_motion as cm
+from atlas_file import parameter_unit
 from atlas_search import standin_boundary
 
 
@@ -201,8 +202,7 @@ class StandinModel:
     def unit(self, sets):
         out = []
         for p in self.atlas["parameters"][:2]:
-            low, high = p["range"]
-            out.append((float(sets[p["key"]].split()[0]) - low) / (high - low))
+            out.append(parameter_unit(p, sets[p["key"]].split()[0]))
         return np.array(out)
 
     def evaluate(self, point_id, sets, tag="", reuse=False, later=0):

@@ -18,6 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import atlas_certify as ac
 import atlas_search as search
+from atlas_file import parameter_value
 import cage_motion as cm
 from atlas_models import STOP, PointFailed, PointStopped, unit_value
 
@@ -86,8 +87,7 @@ def point_sets(atlas, unit):
     """The --set overrides of the unit-cube point `unit` and the parameters' values."""
     sets, values = {}, {}
     for p, u in zip(atlas["parameters"], unit):
-        low, high = p["range"]
-        values[p["name"]] = low + float(u) * (high - low)
+        values[p["name"]] = parameter_value(p, u)
         sets[p["key"]] = unit_value(values[p["name"]], p["unit"])
     return sets, values
 
