@@ -119,16 +119,21 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 3
+RULE = 4
 
 
-def needs_probe(settled_record, base_class):
-    """Whether a point's orbit grows over its window while its class is stable or circling: its
-    sub-synchronous whirl has not reached the class's floor in the window (it grows from round-off),
-    so the window alone cannot say where the motion ends."""
-    return (base_class in ("stable", "circling") and not settled_record["ok"]
-            and settled_record["orbit_growth"] > 1 + settled_record["growth_tolerance"]
-            and settled_record["largest_step"] <= settled_record["tolerance"])
+def needs_probe(settled_record, base, thresholds):
+    """Whether a stable or circling point's window cannot say where its motion ends: its orbit grows
+    from block to block (settled_record), or its sub-synchronous whirl (one line through the window)
+    grows faster than whirl_growth_rate while still below the unstable class's floor (the orbit may
+    not grow with it: the unbalance's synchronous circle is larger). Either grows from round-off or a
+    small seed: the centred cage is linearly unstable, the window too short to see the end."""
+    if base.get("motion_class") not in ("stable", "circling") or settled_record["largest_step"] > settled_record["tolerance"]:
+        return False
+    grows = not settled_record["ok"] and settled_record["orbit_growth"] > 1 + settled_record["growth_tolerance"]
+    whirl = bool(base.get("subsync_coherent")) and base.get("subsync_growth_per_rev", math.nan) > \
+        thresholds["whirl_growth_rate"]
+    return grows or whirl
 
 
 def probe_verdict(probe, probe_settled, thresholds):

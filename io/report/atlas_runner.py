@@ -121,10 +121,10 @@ def probe(atlas, base, cert, rerun):
     start offsets, run once (shared with the realisations), an undecided one once more PROBE_LATER
     windows longer; the class they agree on, or None."""
     c = atlas["certify"]
-    if not (ac.needs_probe(cert["settled"], base["motion_class"]) and c["realisations"]
+    t = cm.thresholds(atlas["thresholds"])
+    if not (ac.needs_probe(cert["settled"], base, t) and c["realisations"]
             and c["realisation_key"] == "cage.initial_offset"):
         return None
-    t = cm.thresholds(atlas["thresholds"])
     runs = [(v, rerun(f"r{i}", {c["realisation_key"]: v})) for i, v in enumerate(c["realisations"])]
     words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
     for i, (v, m) in enumerate(runs):
@@ -218,11 +218,18 @@ def evaluate_point(model, atlas, point, reuse=False):
 
 
 def recertify(model, atlas, state, folder, workers, log):
-    """A resumed atlas's points certified before the current rule and not certified then: their
-    outputs read again and certified with the rule (the probe, the threshold's runs), only the runs
-    missing made. Their wall time adds to the core-hours."""
-    todo = [p for p in state["points"] if p["status"] == "done" and not p.get("certified")
-            and p.get("certification", {}).get("rule") != ac.RULE]
+    """A resumed atlas's points certified before the current rule and not certified then, or that
+    the rule would probe: their outputs read again and certified with the rule (the probe, the
+    threshold's runs), only the runs missing made. Their wall time adds to the core-hours."""
+    t = cm.thresholds(atlas["thresholds"])
+
+    def stale(p):
+        cert = p.get("certification", {})
+        if p["status"] != "done" or cert.get("rule") == ac.RULE:
+            return False
+        return not p.get("certified") or (not cert.get("probe", {}).get("checked")
+                                          and ac.needs_probe(cert["settled"], p.get("metrics", {}), t))
+    todo = [p for p in state["points"] if stale(p)]
     lock = threading.Lock()
 
     def one(point):

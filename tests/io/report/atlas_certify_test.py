@@ -57,8 +57,8 @@ class OrbitModel:
     start offset (cage.initial_offset) is its start amplitude, the centred start `a0`. `runs`
     counts (tag, reused) of every evaluation; `have` lists the tags whose output is already there."""
 
-    def __init__(self, a0, growth, limit, metric="cage_dynamics_indicator", have=(), probe=None):
-        self.a0, self.growth, self.limit, self.metric = a0, growth, limit, metric
+    def __init__(self, a0, growth, limit, metric="cage_dynamics_indicator", have=(), probe=None, circle=0.0):
+        self.a0, self.growth, self.limit, self.metric, self.circle = a0, growth, limit, metric, circle
         self.probe = probe or (growth, limit)  # the probes' (growth, limit), if not the same whirl
         self.runs, self.have = [], set(have)
 
@@ -68,7 +68,8 @@ class OrbitModel:
         start = float(sets["cage.initial_offset"].split()[0]) * 1e-6 if "cage.initial_offset" in sets else self.a0
         t = np.arange(round(len(T) + later * (len(T) - SETTLING / 5e-4))) * 5e-4
         a = landau(start, *(self.probe if "cage.initial_offset" in sets else (self.growth, self.limit)), t)
-        x, y = a * np.cos(0.55 * OMEGA * t), a * np.sin(0.55 * OMEGA * t)
+        x = a * np.cos(0.55 * OMEGA * t) + self.circle * np.cos(OMEGA * t)
+        y = a * np.sin(0.55 * OMEGA * t) + self.circle * np.sin(OMEGA * t)
         w = np.nonzero(t >= SETTLING + later * (T[-1] + 5e-4 - SETTLING))[0]
         m = cm.classify(t[w], x[w], y[w], C, OMEGA, pockets=9)
         blocks = []
@@ -146,6 +147,17 @@ def case_certify_probe():
     check(r["class"] == "unstable" and r["certified"] and [t for t, _ in m.runs] == ["", "r0", "r1"]
           and p["probe_class"][1] != "unstable" and 0.25 < p["cycle_bracket"][0] < 0.35 < p["cycle_bracket"][1],
           f"bracketed cycle: {m.runs}, {p}")
+    # A whirl growing 0.02 per revolution from 0.002 of the clearance under a synchronous circle of
+    # 0.01 (a small unbalance's): the orbit hardly grows (settled), but the one whirl line grows
+    # faster than the growth rate below the floor: probed (the cycle at 0.1 c: unstable).
+    m = OrbitModel(0.002 * C, 0.02, 0.1 * C, probe=(0.1, 0.1 * C), circle=0.01 * C)
+    r = ar.evaluate_point(m, ATLAS, point())
+    cert = r["certification"]
+    print(f"whirl under a circle: window {r['metrics']['motion_class']}, orbit growth "
+          f"{cert['settled']['orbit_growth']:.3g}, whirl growth {r['metrics']['subsync_growth_per_rev']:.3g}: "
+          f"{r['class']}, {r['certified_by']}")
+    check(r["metrics"]["motion_class"] == "stable" and cert["probe"]["checked"] and r["class"] == "unstable"
+          and r["certified"], f"whirl under a circle: {r['certified_by']}")
     # A point that settles is not probed; one whose window grows with an unstable class neither.
     m = OrbitModel(0.3 * C, -0.05, math.inf)
     r = ar.evaluate_point(m, ATLAS, point())
