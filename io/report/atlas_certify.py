@@ -119,7 +119,7 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 4
+RULE = 5
 
 
 def needs_probe(settled_record, base, thresholds):
@@ -184,6 +184,7 @@ def probes(base, runs, settled_records, thresholds):
             "probe_amplitude_ratio": [m.get("subsync_amplitude_ratio", math.nan) for _, m in runs],
             "probe_settled": [bool(s["ok"]) for s in settled_records],
             "probe_later_windows": [m.get("later_windows", 0) for _, m in runs], "cycle_bracket": bracket,
+            "probe_window_read": [m.get("window_read", "last window") for _, m in runs],
             "base_growth_per_rev": base.get("subsync_growth_per_rev", math.nan),
             "base_amplitude_ratio": base.get("subsync_amplitude_ratio", math.nan)}
 

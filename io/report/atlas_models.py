@@ -155,15 +155,15 @@ class SimulatorModel:
         if self.atlas["window_cage_revolutions"] is not None and "settling_time_s" in metrics:
             self._windows[point_id] = (metrics["settling_time_s"], metrics["end_time_s"])
 
-    def evaluate(self, point_id, sets, tag="", reuse=False, later=0):
+    def evaluate(self, point_id, sets, tag="", reuse=False, later=0, longer=1):
         """The run's metrics; with `reuse`, an output of the same name already in the folder (a finished
         run: the writer renames it from .partial at the end) is read instead of run again; `later`
-        windows more before the window (a longer run, its window as long: a probe's extension)."""
+        windows more before the window and the window `longer` times as long (a probe's extension)."""
         from report_data import read_run
 
         name = point_id + (f"_{tag}" if tag else "")
         settling, end = self.times(point_id, sets)
-        settling, end = settling + later * (end - settling), end + later * (end - settling)
+        settling, end = settling + later * (end - settling), settling + (later + longer) * (end - settling)
         out = os.path.join(self.folder, name)
         if reuse and os.path.isfile(out + ".h5") and not os.path.exists(out + ".h5.partial"):
             wall = 0.0
@@ -205,7 +205,7 @@ class StandinModel:
             out.append(parameter_unit(p, sets[p["key"]].split()[0]))
         return np.array(out)
 
-    def evaluate(self, point_id, sets, tag="", reuse=False, later=0):
+    def evaluate(self, point_id, sets, tag="", reuse=False, later=0, longer=1):
         if self.delay:
             time.sleep(self.delay)
         if point_id in os.environ.get("RACEWAY_ATLAS_STANDIN_FAIL", "").split(","):

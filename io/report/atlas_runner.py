@@ -112,11 +112,26 @@ def run_settled(atlas, run, window_class=None):
 
 
 # A probe that neither persists nor has decayed below the sustained amplitude in its window is run
-# once more, PROBE_LATER windows longer (its window as long, that much later): the cap of its extension.
+# once more, PROBE_LATER windows longer (its window as long, that much later): the cap of its
+# extension. Its run's last PROBE_LATER windows are read too, as one window twice as long (segments
+# of twice the revolutions: a whirl between two spectral bins of the short segments, whose line hops
+# between them, is one line at their finer resolution); it persists if either reading says so.
 PROBE_LATER = 2
 
 
-def probe(atlas, base, cert, rerun):
+def later_probe(model, point, sets, rerun, tag, more):
+    """An undecided probe run longer: its last window's metrics, or where they do not call it unstable
+    and its last two windows' do, theirs (the same run's output, read again)."""
+    m = rerun(tag, more, PROBE_LATER)
+    if m["motion_class"] != "unstable":
+        wide = model.evaluate(point["id"], {**sets, **more}, tag, reuse=True, later=PROBE_LATER - 1, longer=2)
+        if wide["motion_class"] == "unstable":
+            wide["wall_s"], wide["window_read"] = m["wall_s"], "last two windows"
+            return wide
+    return m
+
+
+def probe(model, atlas, point, sets, base, cert, rerun):
     """The stability probe of a point whose orbit grows below its class's floor: the realisations'
     start offsets, run once (shared with the realisations), an undecided one once more PROBE_LATER
     windows longer; the class they agree on, or None."""
@@ -129,7 +144,7 @@ def probe(atlas, base, cert, rerun):
     words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
     for i, (v, m) in enumerate(runs):
         if words[i] == "undecided":
-            runs[i] = (v, rerun(f"r{i}_later", {c["realisation_key"]: v}, PROBE_LATER))
+            runs[i] = (v, later_probe(model, point, sets, rerun, f"r{i}_later", {c["realisation_key"]: v}))
             runs[i][1]["later_windows"] = PROBE_LATER
     records = [run_settled(atlas, m) for _, m in runs]
     cert["probe"] = ac.probes(base, runs, records, t)
@@ -164,7 +179,7 @@ def certify(model, atlas, point, sets, base, reuse=False):
         return done[tag]
 
     cert = {"rule": ac.RULE, "settled": run_settled(atlas, base), "probe": {"checked": False}}
-    cls = probe(atlas, base, cert, rerun) or base["motion_class"]
+    cls = probe(model, atlas, point, sets, base, cert, rerun) or base["motion_class"]
     cert["converged"], cert["threshold"] = {"checked": False}, {"checked": False}
     if ac.in_convergence_sample(point["index"], c["convergence_sample"]):
         tight = rerun("rtol", {"solver.rtol": f"{c['convergence_rtol']:g}"})
