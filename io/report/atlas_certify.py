@@ -108,9 +108,11 @@ def summary(cert):
 
 
 def certified(cert):
-    """A point is certified when every check it had passed; a window that did not settle is certified
-    by its stability probe, an rtol rerun of another class by the threshold's runs."""
-    settled_ok = cert["settled"]["ok"] or cert.get("probe", {}).get("ok", False)
+    """A point is certified when every check it had passed; a probed point (its window cannot say where
+    its motion ends) by its stability probe alone, an rtol rerun of another class by the threshold's
+    runs."""
+    probe = cert.get("probe", {})
+    settled_ok = probe["ok"] if probe.get("checked") else cert["settled"]["ok"]
     converged_ok = cert.get("converged", {}).get("ok", True) or cert.get("threshold", {}).get("ok", False)
     return bool(settled_ok and converged_ok and cert.get("realisations", {}).get("ok", True))
 

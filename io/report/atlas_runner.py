@@ -242,8 +242,8 @@ def recertify(model, atlas, state, folder, workers, log):
         cert = p.get("certification", {})
         if p["status"] != "done" or cert.get("rule") == ac.RULE:
             return False
-        return not p.get("certified") or (not cert.get("probe", {}).get("checked")
-                                          and ac.needs_probe(cert["settled"], p.get("metrics", {}), t))
+        return not p.get("certified") or not ac.certified(cert) or (
+            not cert.get("probe", {}).get("checked") and ac.needs_probe(cert["settled"], p.get("metrics", {}), t))
     todo = [p for p in state["points"] if stale(p)]
     lock = threading.Lock()
 

@@ -162,6 +162,11 @@ def case_certify_probe():
           f"{r['class']}, {r['certified_by']}")
     check(r["metrics"]["motion_class"] == "stable" and cert["probe"]["checked"] and r["class"] == "unstable"
           and r["certified"], f"whirl under a circle: {r['certified_by']}")
+    # The same under probes that decay slowly without a cycle: the window settled, but its probe
+    # does not decide: not certified (the probe, not the window, speaks for a probed point).
+    r = ar.evaluate_point(OrbitModel(0.002 * C, 0.02, 0.1 * C, probe=(-0.01, math.inf), circle=0.01 * C), ATLAS,
+                          point())
+    check(r["certification"]["settled"]["ok"] and not r["certified"], f"undecided under a circle: {r['certified_by']}")
     # A point that settles is not probed; one whose window grows with an unstable class neither.
     m = OrbitModel(0.3 * C, -0.05, math.inf)
     r = ar.evaluate_point(m, ATLAS, point())
