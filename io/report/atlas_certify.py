@@ -121,7 +121,7 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 5
+RULE = 6
 
 
 def needs_probe(settled_record, base, thresholds):
@@ -133,9 +133,20 @@ def needs_probe(settled_record, base, thresholds):
     if base.get("motion_class") not in ("stable", "circling") or settled_record["largest_step"] > settled_record["tolerance"]:
         return False
     grows = not settled_record["ok"] and settled_record["orbit_growth"] > 1 + settled_record["growth_tolerance"]
-    whirl = bool(base.get("subsync_coherent")) and base.get("subsync_growth_per_rev", math.nan) > \
-        thresholds["whirl_growth_rate"]
+    whirl = (bool(base.get("subsync_coherent")) or adjacent_bins(base)) and \
+        base.get("subsync_growth_per_rev", math.nan) > thresholds["whirl_growth_rate"]
     return grows or whirl
+
+
+def adjacent_bins(metrics):
+    """Whether the segments' sub-synchronous lines are one whirl between two spectral bins: the same
+    direction in every segment, within one bin and a half of each other (a whirl between two bins
+    shows in either from segment to segment, which the class's coherence, half a bin, does not
+    take for one whirl; a wandering centre's line also turns round)."""
+    f, width = metrics.get("subsync_frequencies") or [], metrics.get("subsync_bin", math.nan)
+    if len(f) < 3 or not math.isfinite(width):
+        return False
+    return (all(v > 0 for v in f) or all(v < 0 for v in f)) and max(f) - min(f) <= 1.5 * width
 
 
 def probe_verdict(probe, probe_settled, thresholds):

@@ -242,8 +242,13 @@ def recertify(model, atlas, state, folder, workers, log):
         cert = p.get("certification", {})
         if p["status"] != "done" or cert.get("rule") == ac.RULE:
             return False
+        m = p.get("metrics", {})
+        unprobed = not cert.get("probe", {}).get("checked")
+        # A record without the segments' lines, whose whirl grows but was not one line: read again.
+        unread = "subsync_frequencies" not in m and m.get("motion_class") in ("stable", "circling") and \
+            not m.get("subsync_coherent") and m.get("subsync_growth_per_rev", math.nan) > t["whirl_growth_rate"]
         return not p.get("certified") or not ac.certified(cert) or (
-            not cert.get("probe", {}).get("checked") and ac.needs_probe(cert["settled"], p.get("metrics", {}), t))
+            unprobed and (unread or ac.needs_probe(cert["settled"], m, t)))
     todo = [p for p in state["points"] if stale(p)]
     lock = threading.Lock()
 

@@ -167,6 +167,19 @@ def case_certify_probe():
     r = ar.evaluate_point(OrbitModel(0.002 * C, 0.02, 0.1 * C, probe=(-0.01, math.inf), circle=0.01 * C), ATLAS,
                           point())
     check(r["certification"]["settled"]["ok"] and not r["certified"], f"undecided under a circle: {r['certified_by']}")
+    # One whirl between two bins, its line hopping between them (0.483, 0.483, 0.483, 0.723 of the
+    # cage speed: the QJ215 envelope's 7853 r/min point): probed; turning round (+0.75, -0.5,
+    # +0.25, -0.75: a wandering centre) or two bins apart, not.
+    t = cm.thresholds()
+    still = {"ok": True, "orbit_growth": 1.0, "growth_tolerance": 0.25, "largest_step": 0.0, "tolerance": 0.1}
+    hop = {"motion_class": "stable", "subsync_coherent": False, "subsync_growth_per_rev": 0.028,
+           "subsync_frequencies": [0.483, 0.483, 0.483, 0.723], "subsync_bin": 0.24}
+    check(ac.needs_probe(still, hop, t), "a whirl hopping between two bins is not probed")
+    check(not ac.needs_probe(still, {**hop, "subsync_frequencies": [0.75, -0.5, 0.25, -0.75]}, t),
+          "a wandering centre is probed")
+    check(not ac.needs_probe(still, {**hop, "subsync_frequencies": [0.25, 0.75, 0.25, 0.75]}, t),
+          "lines two bins apart are probed")
+    check(not ac.needs_probe(still, {**hop, "subsync_growth_per_rev": 0.004}, t), "a whirl growing slower is probed")
     # A point that settles is not probed; one whose window grows with an unstable class neither.
     m = OrbitModel(0.3 * C, -0.05, math.inf)
     r = ar.evaluate_point(m, ATLAS, point())
