@@ -121,7 +121,7 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 6
+RULE = 7
 
 
 def needs_probe(settled_record, base, thresholds):
@@ -153,14 +153,17 @@ def probe_verdict(probe, probe_settled, thresholds):
     """One probe's word (the point rerun with the cage started off-centre, above the growth floor):
     'unstable' when the window of the probe is unstable (the whirl persists or grows from there),
     'stable' when it is stable or circling, settled, and its sub-synchronous whirl ends below the
-    sustained-whirl amplitude (it decays towards the centred cage or a small limit cycle: the
-    attractor lies below where it ended), else 'undecided'."""
+    sustained-whirl amplitude, not growing (it decays towards the centred cage or a small limit
+    cycle: the attractor lies below where it ended), else 'undecided'."""
     cls = probe["motion_class"]
     if cls == "unstable":
         return "unstable"
     amplitude = probe.get("subsync_amplitude_ratio", math.nan)
     below = not (amplitude >= thresholds["whirl_sustained_amplitude"])  # NaN: no whirl line measured
-    if cls in ("stable", "circling") and probe_settled["ok"] and below:
+    # A probe whose own whirl still grows (below the floor) bounds nothing: it needs a probe itself.
+    growing = (bool(probe.get("subsync_coherent")) or adjacent_bins(probe)) and \
+        probe.get("subsync_growth_per_rev", math.nan) > thresholds["whirl_growth_rate"]
+    if cls in ("stable", "circling") and probe_settled["ok"] and below and not growing:
         return "stable"
     return "undecided"
 

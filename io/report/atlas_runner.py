@@ -247,7 +247,8 @@ def recertify(model, atlas, state, folder, workers, log):
         # A record without the segments' lines, whose whirl grows but was not one line: read again.
         unread = "subsync_frequencies" not in m and m.get("motion_class") in ("stable", "circling") and \
             not m.get("subsync_coherent") and m.get("subsync_growth_per_rev", math.nan) > t["whirl_growth_rate"]
-        return not p.get("certified") or not ac.certified(cert) or (
+        probed_stable = cert.get("probe", {}).get("class") in ("stable", "circling")  # its probes read again
+        return not p.get("certified") or not ac.certified(cert) or probed_stable or (
             unprobed and (unread or ac.needs_probe(cert["settled"], m, t)))
     todo = [p for p in state["points"] if stale(p)]
     lock = threading.Lock()

@@ -180,6 +180,13 @@ def case_certify_probe():
     check(not ac.needs_probe(still, {**hop, "subsync_frequencies": [0.25, 0.75, 0.25, 0.75]}, t),
           "lines two bins apart are probed")
     check(not ac.needs_probe(still, {**hop, "subsync_growth_per_rev": 0.004}, t), "a whirl growing slower is probed")
+    # Probes whose whirl falls from the start offset to 1e-4 of the clearance and then grows again
+    # there (0.03 per revolution: the envelope's 7337 r/min, 583 N point) bound nothing: undecided.
+    grow = {"motion_class": "stable", "subsync_coherent": True, "subsync_growth_per_rev": 0.028,
+            "subsync_amplitude_ratio": 1.3e-4}
+    check(ac.probe_verdict(grow, still, t) == "undecided" and
+          ac.probe_verdict({**grow, "subsync_growth_per_rev": -0.2}, still, t) == "stable",
+          "a probe growing below the floor decides")
     # A point that settles is not probed; one whose window grows with an unstable class neither.
     m = OrbitModel(0.3 * C, -0.05, math.inf)
     r = ar.evaluate_point(m, ATLAS, point())
