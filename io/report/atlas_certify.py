@@ -121,7 +121,7 @@ def certified(cert):
 # point": the stability probe and the threshold's runs). RULE stamps a certification made with them:
 # an atlas resumed re-certifies its uncertified points made before (their files read again, the
 # missing runs made).
-RULE = 7
+RULE = 8
 
 
 def needs_probe(settled_record, base, thresholds):

@@ -112,40 +112,44 @@ def run_settled(atlas, run, window_class=None):
 
 
 # A probe that neither persists nor has decayed below the sustained amplitude in its window is run
-# once more, PROBE_LATER windows longer (its window as long, that much later): the cap of its
-# extension. Its run's last PROBE_LATER windows are read too, as one window twice as long (segments
-# of twice the revolutions: a whirl between two spectral bins of the short segments, whose line hops
-# between them, is one line at their finer resolution); it persists if either reading says so.
-PROBE_LATER = 2
+# longer, PROBE_LATER windows more before its window (its window as long, that much later), the
+# first and, still undecided, the second: the cap of its extension. Each longer run's last two
+# windows are read too, as one window twice as long (segments of twice the revolutions: a whirl
+# between two spectral bins of the short segments, whose line hops between them, is one line at
+# their finer resolution); it persists if either reading says so.
+PROBE_LATER = (2, 6)
 
 
-def later_probe(model, point, sets, rerun, tag, more):
+def later_probe(model, point, sets, rerun, tag, more, later):
     """An undecided probe run longer: its last window's metrics, or where they do not call it unstable
     and its last two windows' do, theirs (the same run's output, read again)."""
-    m = rerun(tag, more, PROBE_LATER)
+    m = rerun(tag, more, later)
     if m["motion_class"] != "unstable":
-        wide = model.evaluate(point["id"], {**sets, **more}, tag, reuse=True, later=PROBE_LATER - 1, longer=2)
+        wide = model.evaluate(point["id"], {**sets, **more}, tag, reuse=True, later=later - 1, longer=2)
         if wide["motion_class"] == "unstable":
             wide["wall_s"], wide["window_read"] = m["wall_s"], "last two windows"
-            return wide
+            m = wide
+    m["later_windows"] = later
     return m
 
 
 def probe(model, atlas, point, sets, base, cert, rerun):
-    """The stability probe of a point whose orbit grows below its class's floor: the realisations'
-    start offsets, run once (shared with the realisations), an undecided one once more PROBE_LATER
-    windows longer; the class they agree on, or None."""
+    """The stability probe of a point whose window cannot say where its whirl ends: the realisations'
+    start offsets, run once (shared with the realisations), an undecided one longer (PROBE_LATER);
+    the class they agree on, or None."""
     c = atlas["certify"]
     t = cm.thresholds(atlas["thresholds"])
     if not (ac.needs_probe(cert["settled"], base, t) and c["realisations"]
             and c["realisation_key"] == "cage.initial_offset"):
         return None
-    runs = [(v, rerun(f"r{i}", {c["realisation_key"]: v})) for i, v in enumerate(c["realisations"])]
-    words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
-    for i, (v, m) in enumerate(runs):
-        if words[i] == "undecided":
-            runs[i] = (v, later_probe(model, point, sets, rerun, f"r{i}_later", {c["realisation_key"]: v}))
-            runs[i][1]["later_windows"] = PROBE_LATER
+    key = c["realisation_key"]
+    runs = [(v, rerun(f"r{i}", {key: v})) for i, v in enumerate(c["realisations"])]
+    for step, later in enumerate(PROBE_LATER):
+        words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
+        for i, (v, m) in enumerate(runs):
+            if words[i] == "undecided":
+                runs[i] = (v, later_probe(model, point, sets, rerun, f"r{i}_later" + (f"{later}" if step else ""),
+                                          {key: v}, later))
     records = [run_settled(atlas, m) for _, m in runs]
     cert["probe"] = ac.probes(base, runs, records, t)
     if not cert["probe"]["ok"]:

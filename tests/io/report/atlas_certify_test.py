@@ -132,14 +132,15 @@ def case_certify_probe():
     check(r["class"] == "unstable" and r["certified"] and r["certification"]["probe"]["probe_later_windows"] == [2, 2],
           f"slower onto 0.1 c: {r['class']}, {r['certified_by']}")
     # Probes that decay slowly (0.01 per revolution, no cycle) from 25 and 75 um: still above the
-    # sustained amplitude 2 windows later (0.12 and 0.36 c), read over the last window and over the
-    # last two (the same run's output read again, not run): not decided, not certified.
+    # sustained amplitude 2 and 6 windows later (0.075 and 0.23 c at the end), each read over the last
+    # window and over the last two (the same run's output read again, not run): not decided.
     m = OrbitModel(1e-8 * C, 0.1, 0.1 * C, probe=(-0.01, math.inf))
     r = ar.evaluate_point(m, ATLAS, point())
     print(f"slow decay: {r['class']}, {r['certified_by']}")
     check(r["certification"]["probe"]["verdicts"] == ["undecided"] * 2 and not r["certified"]
           and r["class"] == "stable" and m.runs[3:] == [("r0_later", False), ("r0_later", True), ("r1_later", False),
-                                                         ("r1_later", True)],
+                                                         ("r1_later", True), ("r0_later6", False), ("r0_later6", True),
+                                                         ("r1_later6", False), ("r1_later6", True)],
           f"a probe still decaying above 0.05 c decides: {m.runs}")
     # Probes either side of a large limit cycle (0.35 c, growing 0.02 per revolution): from 25 um
     # the whirl grows (unstable), from 75 um it decays, still at 0.4 c: undecided alone, but the
