@@ -89,16 +89,17 @@ def summary(cert):
     if p.get("checked"):
         parts[0] = "settled" if cert["settled"]["ok"] else "window NOT settled (its orbit grows)"
         word = f"{p['class']}" if p["ok"] else "NOT decided"
-        later = " (longer: " + ", ".join(f"{v} +{n} windows" for v, n in zip(p["values"], p.get("probe_later_windows", []))
-                                         if n) + ")" if any(p.get("probe_later_windows", [])) else ""
-        parts.append(f"stability probe ({', '.join(p['values'])} off-centre{later}: {', '.join(p['probe_class'])}) {word}")
+        longer = [f"{v} +{n} windows" for v, n in zip(p["values"], p.get("probe_later_windows", [])) if n]
+        later = f" (longer: {', '.join(longer)})" if longer else ""
+        parts.append(f"stability probe ({', '.join(p['values'])} off-centre{later}: "
+                     f"{', '.join(p['probe_class'])}) {word}")
     c = cert.get("converged", {})
     if c.get("checked"):
         parts.append(f"rtol {c['rtol']:g} {'agrees' if c['ok'] else 'DISAGREES'}")
     if t.get("checked"):
-        each = ", ".join(f"{x['metric']} {x['mean']:.3g} +-{x['half_width_95']:.2g} "
-                         f"{('>' if x['mean'] > x['threshold'] else '<=') if x['clear'] else 'spans'} {x['threshold']:g}"
-                         for x in t["thresholds"])
+        side = [('>' if x["mean"] > x["threshold"] else '<=') if x["clear"] else "spans" for x in t["thresholds"]]
+        each = ", ".join(f"{x['metric']} {x['mean']:.3g} +-{x['half_width_95']:.2g} {w} {x['threshold']:g}"
+                         for x, w in zip(t["thresholds"], side))
         parts.append(f"threshold over {t['runs']} runs: {each}" + (f" -> {t['class']}" if t["ok"] else " NOT decided"))
     r = cert.get("realisations", {})
     if r.get("checked"):
@@ -130,7 +131,8 @@ def needs_probe(settled_record, base, thresholds):
     grows faster than whirl_growth_rate while still below the unstable class's floor (the orbit may
     not grow with it: the unbalance's synchronous circle is larger). Either grows from round-off or a
     small seed: the centred cage is linearly unstable, the window too short to see the end."""
-    if base.get("motion_class") not in ("stable", "circling") or settled_record["largest_step"] > settled_record["tolerance"]:
+    if base.get("motion_class") not in ("stable", "circling") or \
+            settled_record["largest_step"] > settled_record["tolerance"]:
         return False
     grows = not settled_record["ok"] and settled_record["orbit_growth"] > 1 + settled_record["growth_tolerance"]
     whirl = (bool(base.get("subsync_coherent")) or adjacent_bins(base)) and \

@@ -128,7 +128,8 @@ def case_certify_probe():
     # Growing at 0.05 onto the cycle at 0.1 c: both probes still decay (-0.011, -0.014 per revolution)
     # at 0.105 c in their windows; 2 windows later both sit on the cycle: unstable.
     r = ar.evaluate_point(OrbitModel(1e-8 * C, 0.05, 0.1 * C), ATLAS, point())
-    print(f"slower onto 0.1 c: {r['class']}, {r['certified_by']}, {r['certification']['probe']['probe_growth_per_rev']}")
+    print(f"slower onto 0.1 c: {r['class']}, {r['certified_by']}, "
+          f"{r['certification']['probe']['probe_growth_per_rev']}")
     check(r["class"] == "unstable" and r["certified"] and r["certification"]["probe"]["probe_later_windows"] == [2, 2],
           f"slower onto 0.1 c: {r['class']}, {r['certified_by']}")
     # Probes that decay slowly (0.01 per revolution, no cycle) from 25 and 75 um: still above the
@@ -219,7 +220,8 @@ def case_certify_threshold():
     x = rec["thresholds"][0]
     print(f"four runs: {x['metric']} {x['mean']:.3f} +- {x['half_width_95']:.3f}, decided {rec['ok']}")
     check(rec["classes"] == ["unstable", "circling", "unstable", "unstable"], f"classes {rec['classes']}")
-    check(x["metric"] == "vortex_radius_ratio" and abs(x["mean"] - 0.62) < 1e-3 and abs(x["half_width_95"] - 0.256) < 2e-3
+    check(x["metric"] == "vortex_radius_ratio" and abs(x["mean"] - 0.62) < 1e-3
+          and abs(x["half_width_95"] - 0.256) < 2e-3
           and not rec["ok"] and rec["class"] is None, f"four runs: {rec}")
     # Ten runs about 0.62 (the same spread, 0.16): the interval clears 0.5, unstable.
     values = [0.737, 0.435, 0.537, 0.771, 0.62, 0.45, 0.80, 0.58, 0.66, 0.61]
