@@ -11,14 +11,16 @@ import os
 import re
 import tomllib
 
+import numpy as np
+
 from cage_motion import CLASSES, THRESHOLDS
 
 ATLAS_KEYS = {"name", "scene", "end_time", "settling_time", "window_cage_revolutions", "settling_cage_revolutions",
               "metric", "classes", "budget_points", "budget_core_hours", "batch_size", "set", "stop_band_share"}
 REVOLUTION_KEYS = ("settling_cage_revolutions", "window_cage_revolutions")
 CERTIFY_KEYS = {"blocks", "block_tolerance", "growth_tolerance", "convergence_sample", "convergence_rtol", "convergence_tolerance",
-                "realisation_key", "realisations", "ci_target"}
-PARAMETER_KEYS = {"key", "name", "range", "unit"}
+                "realisation_key", "realisations", "threshold_realisations", "ci_target"}
+PARAMETER_KEYS = {"key", "name", "range", "unit", "scale"}
 METRICS = ("cage_dynamics_indicator", "orbit_ratio", "vortex_radius_ratio", "sigma_v", "impact_rate",
            "whirl_to_cage_frequency")
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
@@ -118,7 +120,52 @@ def _parameters(c, raw):
             c.fail(f"{t}.unit", "must name the range's unit (the scene's units: rpm, N, um, ...)")
         names.add(name)
         params.append({"key": key, "name": name, "range": [float(low), float(high)], "unit": unit.strip()})
+        scale = p.get("scale", "linear")
+        if scale not in ("linear", "log"):
+            c.fail(f"{t}.scale", f"must be \"linear\" or \"log\", not {scale!r}")
+        if scale == "log":  # only then in the parameter (a linear one's identity is as it was)
+            if not low > 0:
+                c.fail(f"{t}.scale", f"a log scale needs a range above 0, not {r!r}")
+            params[-1]["scale"] = "log"
     return params
+
+
+def parameter_value(p, u):
+    """The value of parameter `p` at `u` in [0, 1] of its axis: linear in its range, or with
+    scale = "log" linear in the logarithm (equal ratios per step: where a parameter acts at its
+    small values, a log axis gives them as much of the search as its large ones)."""
+    low, high = p["range"]
+    if p.get("scale") == "log":
+        return low * (high / low) ** float(u)
+    return low + float(u) * (high - low)
+
+
+def parameter_values(p, units):
+    """parameter_value over an array of axis coordinates."""
+    low, high = p["range"]
+    u = np.asarray(units, dtype=float)
+    return low * (high / low) ** u if p.get("scale") == "log" else low + u * (high - low)
+
+
+def style_axis(ax, p, which):
+    """A map's x or y axis (`which`) for parameter `p`: logarithmic where its scale is, its range
+    with a margin of 3 % of the axis."""
+    low, high = p["range"]
+    if p.get("scale") == "log":
+        getattr(ax, f"set_{which}scale")("log")
+        f = (high / low) ** 0.03
+        getattr(ax, f"set_{which}lim")(low / f, high * f)
+    else:
+        pad = 0.03 * (high - low)
+        getattr(ax, f"set_{which}lim")(low - pad, high + pad)
+
+
+def parameter_unit(p, value):
+    """The inverse of parameter_value: the axis coordinate in [0, 1] of `value`."""
+    low, high = p["range"]
+    if p.get("scale") == "log":
+        return math.log(float(value) / low) / math.log(high / low)
+    return (float(value) - low) / (high - low)
 
 
 def _certify(c, raw):
@@ -146,6 +193,14 @@ def _certify(c, raw):
     if len(set(map(str, values))) != len(values):
         c.fail("certify.realisations", "a value is given twice")
     out["realisation_key"], out["realisations"] = key, [str(v) for v in values]
+    more = raw.get("threshold_realisations", [])
+    if not isinstance(more, list) or any(not isinstance(v, (str, int, float)) for v in more):
+        c.fail("certify.threshold_realisations", "must be a list of the realisation key's values, e.g. [\"50 um\"]")
+    if more and not values:
+        c.fail("certify.threshold_realisations", "needs the realisations (realisation_key, realisations) they add to")
+    if len(set(map(str, values + more))) != len(values) + len(more):
+        c.fail("certify.threshold_realisations", "a value is given twice (here or in certify.realisations)")
+    out["threshold_realisations"] = [str(v) for v in more]
     return out
 
 

@@ -16,6 +16,7 @@ import numpy as np
 import atlas_certify as ac
 import cage_friction as cf
 import cage_motion as cm
+from atlas_file import parameter_unit
 from atlas_search import standin_boundary
 
 
@@ -149,12 +150,25 @@ class SimulatorModel:
             raise PointFailed(f"raceway run exited with {status}: {tail} (log: {out}.log)")
         return out, wall
 
-    def evaluate(self, point_id, sets, tag=""):
+    def remember_window(self, point_id, metrics):
+        """A finished point's times (its record's metrics): its re-certification needs no short run."""
+        if self.atlas["window_cage_revolutions"] is not None and "settling_time_s" in metrics:
+            self._windows[point_id] = (metrics["settling_time_s"], metrics["end_time_s"])
+
+    def evaluate(self, point_id, sets, tag="", reuse=False, later=0, longer=1):
+        """The run's metrics; with `reuse`, an output of the same name already in the folder (a finished
+        run: the writer renames it from .partial at the end) is read instead of run again; `later`
+        windows more before the window and the window `longer` times as long (a probe's extension)."""
         from report_data import read_run
 
         name = point_id + (f"_{tag}" if tag else "")
         settling, end = self.times(point_id, sets)
-        out, wall = self._run(name, sets, end)
+        settling, end = settling + later * (end - settling), settling + (later + longer) * (end - settling)
+        out = os.path.join(self.folder, name)
+        if reuse and os.path.isfile(out + ".h5") and not os.path.exists(out + ".h5.partial"):
+            wall = 0.0
+        else:
+            out, wall = self._run(name, sets, end)
         run = read_run(out + ".h5")
         mass = cm.output_cage_mass(out + ".h5")
         a = self.atlas
@@ -189,11 +203,10 @@ class StandinModel:
     def unit(self, sets):
         out = []
         for p in self.atlas["parameters"][:3]:
-            low, high = p["range"]
-            out.append((float(sets[p["key"]].split()[0]) - low) / (high - low))
+            out.append(parameter_unit(p, sets[p["key"]].split()[0]))
         return np.array(out)
 
-    def evaluate(self, point_id, sets, tag=""):
+    def evaluate(self, point_id, sets, tag="", reuse=False, later=0, longer=1):
         if self.delay:
             time.sleep(self.delay)
         if point_id in os.environ.get("RACEWAY_ATLAS_STANDIN_FAIL", "").split(","):

@@ -12,6 +12,7 @@ import os
 import numpy as np
 
 import atlas_pairs as pairs
+from atlas_file import parameter_values, style_axis
 import atlas_search as search
 
 METRIC_COLUMNS = ("orbit_ratio", "whirl_turns", "whirl_to_cage_frequency", "vortex_radius_ratio", "sigma_v",
@@ -103,8 +104,7 @@ def _grid(atlas, n=81):
 
 def _axis(atlas, k, unit):
     p = atlas["parameters"][k]
-    low, high = p["range"]
-    return low + np.asarray(unit) * (high - low), f"{p['name']} ({p['key']}) [{p['unit']}]"
+    return parameter_values(p, unit), f"{p['name']} ({p['key']}) [{p['unit']}]"
 
 
 def metric_field(units, values, cube):
@@ -165,12 +165,11 @@ def write_map(atlas, state, folder):
     others = "" if len(atlas["parameters"]) == 2 else "\n(the other parameters at their range's middle)"
     axes[0].set_title(f"{atlas['name']}: class, boundary (line) and its uncertainty band{others}", fontsize=10)
     axes[1].set_title(f"{atlas['metric']}: the points and a Gaussian-process fit of them (shaded)", fontsize=10)
-    pad = [0.03 * (gx[-1] - gx[0]), 0.03 * (gy[-1] - gy[0])]
     for ax in axes:
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
-        ax.set_xlim(gx[0] - pad[0], gx[-1] + pad[0])
-        ax.set_ylim(gy[0] - pad[1], gy[-1] + pad[1])
+        style_axis(ax, atlas["parameters"][0], "x")
+        style_axis(ax, atlas["parameters"][1], "y")
     path = os.path.join(folder, "atlas.png")
     fig.savefig(path + ".tmp.png", dpi=110)
     plt.close(fig)

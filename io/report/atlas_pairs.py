@@ -16,6 +16,7 @@ import warnings
 import numpy as np
 
 import atlas_search as search
+from atlas_file import parameter_value, parameter_values, style_axis
 
 #: The slices through the other parameters: their range's low, middle and high (unit cube).
 SLICE_LEVELS = ((0.0, "low"), (0.5, "middle"), (1.0, "high"))
@@ -104,7 +105,7 @@ def slices(atlas, model, labels, i, j):
 def slice_values(atlas, i, j, others):
     """The other parameters' values in their units: {name: value}."""
     rest = [p for k, p in enumerate(atlas["parameters"]) if k not in (i, j)]
-    return {p["name"]: p["range"][0] + float(v) * (p["range"][1] - p["range"][0]) for p, v in zip(rest, others)}
+    return {p["name"]: parameter_value(p, v) for p, v in zip(rest, others)}
 
 
 def slice_title(atlas, i, j, s):
@@ -132,8 +133,7 @@ def projections(atlas, points, i, j, others=None):
     units = np.array([p["unit"] for p in points], dtype=float).reshape(len(points), len(ps))
 
     def value(k):
-        low, high = ps[k]["range"]
-        return low + units[:, k] * (high - low)
+        return parameter_values(ps[k], units[:, k])
 
     rest = [k for k in range(len(ps)) if k not in (i, j)]
     near = np.ones(len(points), dtype=bool)
@@ -212,8 +212,7 @@ def _boundary(ax, gx, gy, line, u, classes, band):
 
 
 def _units(atlas, k, unit):
-    low, high = atlas["parameters"][k]["range"]
-    return low + np.asarray(unit) * (high - low)
+    return parameter_values(atlas["parameters"][k], unit)
 
 
 def _label(atlas, k):
@@ -286,12 +285,11 @@ def draw_pair(atlas, points, i, j, model, field, band, folder):
 def _finish(fig, axes, atlas, i, j, band, no_model, labels):
     from matplotlib.lines import Line2D
 
-    pad = [0.03 * (p["range"][1] - p["range"][0]) for p in (atlas["parameters"][i], atlas["parameters"][j])]
     for ax in axes.ravel():
         ax.set_xlabel(_label(atlas, i))
         ax.set_ylabel(_label(atlas, j))
-        ax.set_xlim(atlas["parameters"][i]["range"][0] - pad[0], atlas["parameters"][i]["range"][1] + pad[0])
-        ax.set_ylim(atlas["parameters"][j]["range"][0] - pad[1], atlas["parameters"][j]["range"][1] + pad[1])
+        style_axis(ax, atlas["parameters"][i], "x")
+        style_axis(ax, atlas["parameters"][j], "y")
     handles = [Line2D([], [], marker="o", ls="", color=CLASS_COLOURS.get(c, "tab:gray"), label=c)
                for c in atlas["classes"] if c in labels]
     handles += [Line2D([], [], marker="o", ls="", markerfacecolor="w", markeredgecolor="k",

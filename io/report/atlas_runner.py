@@ -18,6 +18,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import atlas_certify as ac
 import atlas_search as search
+from atlas_file import parameter_value
+import cage_motion as cm
 from atlas_models import STOP, PointFailed, PointStopped, unit_value
 
 STATE = "atlas_state.json"
@@ -30,6 +32,9 @@ class AtlasStateError(Exception):
 # What an atlas's points do not depend on: its budgets (how far the search goes; raised on --resume
 # they extend a finished atlas), where its files lie, and its file's text as such (comments).
 NOT_IDENTITY = ("budget_points", "budget_core_hours", "stop_band_share", "text", "lines", "path", "scene")
+# Nor the certification's later keys: they decide how a point is certified, not its runs (a resumed
+# atlas re-certifies its uncertified points with them).
+NOT_IDENTITY_CERTIFY = ("threshold_realisations",)
 
 
 def identity(atlas):
@@ -37,6 +42,7 @@ def identity(atlas):
     with open(atlas["scene"], "rb") as f:
         scene = f.read()
     settings = {k: v for k, v in atlas.items() if k not in NOT_IDENTITY}
+    settings["certify"] = {k: v for k, v in atlas["certify"].items() if k not in NOT_IDENTITY_CERTIFY}
     text = json.dumps(settings, sort_keys=True, default=str, allow_nan=True)
     return hashlib.sha256(text.encode() + b"\0" + scene).hexdigest()
 
@@ -81,8 +87,7 @@ def point_sets(atlas, unit):
     """The --set overrides of the unit-cube point `unit` and the parameters' values."""
     sets, values = {}, {}
     for p, u in zip(atlas["parameters"], unit):
-        low, high = p["range"]
-        values[p["name"]] = low + float(u) * (high - low)
+        values[p["name"]] = parameter_value(p, u)
         sets[p["key"]] = unit_value(values[p["name"]], p["unit"])
     return sets, values
 
@@ -99,38 +104,124 @@ def mapped_class(cls, classes):
     return "circling"
 
 
-def certify(model, atlas, point, sets, base):
-    """The point's certification (atlas_certify) and the wall time of its extra runs."""
+def run_settled(atlas, run, window_class=None):
+    """The settled record of one run's window (its blocks), for `window_class` (default: its own)."""
+    c, blocks = atlas["certify"], run["blocks"]
+    return ac.settled([b["metric"] for b in blocks], [b["class"] for b in blocks], window_class or run["motion_class"],
+                      c["block_tolerance"], [b.get("orbit_radius_m", math.nan) for b in blocks], c["growth_tolerance"])
+
+
+# A probe that neither persists nor has decayed below the sustained amplitude in its window is run
+# longer, PROBE_LATER windows more before its window (its window as long, that much later), the
+# first and, still undecided, the second: the cap of its extension. Each longer run's last two
+# windows are read too, as one window twice as long (segments of twice the revolutions: a whirl
+# between two spectral bins of the short segments, whose line hops between them, is one line at
+# their finer resolution); it persists if either reading says so.
+PROBE_LATER = (2, 6)
+
+
+def later_probe(model, point, sets, rerun, tag, more, later):
+    """An undecided probe run longer: its last window's metrics, or where they do not call it unstable
+    and its last two windows' do, theirs (the same run's output, read again)."""
+    m = rerun(tag, more, later)
+    if m["motion_class"] != "unstable":
+        wide = model.evaluate(point["id"], {**sets, **more}, tag, reuse=True, later=later - 1, longer=2)
+        if wide["motion_class"] == "unstable":
+            wide["wall_s"], wide["window_read"] = m["wall_s"], "last two windows"
+            m = wide
+    m["later_windows"] = later
+    return m
+
+
+def probe(model, atlas, point, sets, base, cert, rerun):
+    """The stability probe of a point whose window cannot say where its whirl ends: the realisations'
+    start offsets, run once (shared with the realisations), an undecided one longer (PROBE_LATER);
+    the class they agree on, or None."""
+    c = atlas["certify"]
+    t = cm.thresholds(atlas["thresholds"])
+    if not (ac.needs_probe(cert["settled"], base, t) and c["realisations"]
+            and c["realisation_key"] == "cage.initial_offset"):
+        return None
+    key = c["realisation_key"]
+    runs = [(v, rerun(f"r{i}", {key: v})) for i, v in enumerate(c["realisations"])]
+    for step, later in enumerate(PROBE_LATER):
+        words, _ = ac.probe_words(runs, [run_settled(atlas, m) for _, m in runs], t)
+        for i, (v, m) in enumerate(runs):
+            if words[i] == "undecided":
+                runs[i] = (v, later_probe(model, point, sets, rerun, f"r{i}_later" + (f"{later}" if step else ""),
+                                          {key: v}, later))
+    records = [run_settled(atlas, m) for _, m in runs]
+    cert["probe"] = ac.probes(base, runs, records, t)
+    if not cert["probe"]["ok"]:
+        return None
+    cert["settled"] = run_settled(atlas, base, cert["probe"]["class"])
+    return cert["probe"]["class"]
+
+
+def threshold(atlas, base, tight, rerun):
+    """A point whose tighter-rtol rerun changes its class: the threshold's record over the base, the
+    rerun, the realisations and the threshold realisations (start offsets)."""
+    c = atlas["certify"]
+    values = c["realisations"] + c["threshold_realisations"]
+    runs = [base, tight] + [rerun(f"r{i}" if i < len(c["realisations"]) else f"t{i - len(c['realisations'])}",
+                                  {c["realisation_key"]: v}) for i, v in enumerate(values)]
+    record = ac.threshold_decision(runs, cm.thresholds(atlas["thresholds"]),
+                                   lambda m: cm.classify_metrics(m, atlas["thresholds"]))
+    record["key"], record["values"] = c["realisation_key"], values
+    return record
+
+
+def certify(model, atlas, point, sets, base, reuse=False):
+    """The point's certification (atlas_certify), its class and the wall time of its extra runs; with
+    `reuse`, runs whose output is in the folder are read, not made again (re-certification)."""
     c, metric = atlas["certify"], atlas["metric"]
-    blocks = base["blocks"]
-    cert = {"settled": ac.settled([b["metric"] for b in blocks], [b["class"] for b in blocks], base["motion_class"],
-                                  c["block_tolerance"], [b.get("orbit_radius_m", math.nan) for b in blocks],
-                                  c["growth_tolerance"])}
-    wall = 0.0
-    cert["converged"] = {"checked": False}
+    done = {}
+
+    def rerun(tag, more, later=0):
+        if tag not in done:
+            done[tag] = model.evaluate(point["id"], {**sets, **more}, tag, reuse=reuse, later=later)
+        return done[tag]
+
+    cert = {"rule": ac.RULE, "settled": run_settled(atlas, base), "probe": {"checked": False}}
+    cls = probe(model, atlas, point, sets, base, cert, rerun) or base["motion_class"]
+    cert["converged"], cert["threshold"] = {"checked": False}, {"checked": False}
     if ac.in_convergence_sample(point["index"], c["convergence_sample"]):
-        tight = model.evaluate(point["id"], {**sets, "solver.rtol": f"{c['convergence_rtol']:g}"}, "rtol")
-        wall += tight["wall_s"]
+        tight = rerun("rtol", {"solver.rtol": f"{c['convergence_rtol']:g}"})
+        # Against the base run (both start centred: a probe speaks for both).
         cert["converged"] = ac.converged(base["motion_class"], base[metric], tight["motion_class"], tight[metric],
                                          c["convergence_rtol"], c["convergence_tolerance"])
+        if tight["motion_class"] != base["motion_class"] and c["realisations"]:
+            cert["threshold"] = threshold(atlas, base, tight, rerun)
+            cls = cert["threshold"]["class"] or cls
     cert["realisations"] = {"checked": False}
-    if base["motion_class"] == "unstable" and c["realisations"]:
-        values = [base[metric]]
-        for i, v in enumerate(c["realisations"]):
-            r = model.evaluate(point["id"], {**sets, c["realisation_key"]: v}, f"r{i}")
-            wall += r["wall_s"]
-            values.append(r[metric])
+    if cls == "unstable" and c["realisations"]:
+        values = [base[metric]] + [rerun(f"r{i}", {c["realisation_key"]: v})[metric]
+                                   for i, v in enumerate(c["realisations"])]
         cert["realisations"] = ac.confidence(values, c["ci_target"])
         cert["realisations"]["key"] = c["realisation_key"]
-    return cert, wall
+    cert["class"] = cls
+    return cert, sum(r["wall_s"] for r in done.values())
 
 
-def evaluate_point(model, atlas, point):
-    """Runs and certifies one point; its record's results (status done or failed)."""
+def certify_reasons(atlas, base, cert):
+    """The base's reasons and what the probe or the threshold's runs added."""
+    reasons = list(base.get("reasons", []))
+    if cert["probe"].get("checked"):
+        reasons.append(ac.probe_reason(cert["probe"], atlas["certify"]["realisation_key"],
+                                       cm.thresholds(atlas["thresholds"])["whirl_growth_min_amplitude"]))
+    if cert["threshold"].get("checked"):
+        reasons.append("on a class threshold (the rtol rerun's class differs): " + ac.summary(
+            {"settled": {"ok": True}, "threshold": cert["threshold"]}).split("; ", 1)[1])
+    return reasons
+
+
+def evaluate_point(model, atlas, point, reuse=False):
+    """Runs and certifies one point; its record's results (status done or failed). With `reuse`, the
+    runs whose output is in the folder are read again, not made (re-certification)."""
     sets, _ = point_sets(atlas, point["unit"])
     try:
-        base = model.evaluate(point["id"], sets)
-        cert, extra = certify(model, atlas, point, sets, base)
+        base = model.evaluate(point["id"], sets, reuse=reuse)
+        cert, extra = certify(model, atlas, point, sets, base, reuse)
     except PointStopped:
         return {"status": "planned"}
     except PointFailed as err:
@@ -138,11 +229,52 @@ def evaluate_point(model, atlas, point):
     except Exception as err:  # an unreadable output, a window without samples: the point, not the atlas
         return {"status": "failed", "error": f"{type(err).__name__}: {err}", "wall_s": 0.0}
     metrics = {k: v for k, v in base.items() if k not in ("blocks", "wall_s", "output", "reasons")}
-    return {"status": "done", "class": base["motion_class"], "label": mapped_class(base["motion_class"],
-            atlas["classes"]), "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
-            "reasons": base.get("reasons", []), "metrics": metrics, "certification": cert,
+    return {"status": "done", "class": cert["class"], "label": mapped_class(cert["class"], atlas["classes"]),
+            "metric": cert.get("realisations", {}).get("mean", base[atlas["metric"]]),
+            "reasons": certify_reasons(atlas, base, cert), "metrics": metrics, "certification": cert,
             "certified": ac.certified(cert), "certified_by": ac.summary(cert), "output": base.get("output", ""),
             "wall_s": base["wall_s"] + extra}
+
+
+def recertify(model, atlas, state, folder, workers, log):
+    """A resumed atlas's points certified before the current rule and not certified then, or that
+    the rule would probe: their outputs read again and certified with the rule (the probe, the
+    threshold's runs), only the runs missing made. Their wall time adds to the core-hours."""
+    t = cm.thresholds(atlas["thresholds"])
+
+    def stale(p):
+        cert = p.get("certification", {})
+        if p["status"] != "done" or cert.get("rule") == ac.RULE:
+            return False
+        m = p.get("metrics", {})
+        unprobed = not cert.get("probe", {}).get("checked")
+        # A record without the segments' lines, whose whirl grows but was not one line: read again.
+        unread = "subsync_frequencies" not in m and m.get("motion_class") in ("stable", "circling") and \
+            not m.get("subsync_coherent") and m.get("subsync_growth_per_rev", math.nan) > t["whirl_growth_rate"]
+        probed_stable = cert.get("probe", {}).get("class") in ("stable", "circling")  # its probes read again
+        return not p.get("certified") or not ac.certified(cert) or probed_stable or (
+            unprobed and (unread or ac.needs_probe(cert["settled"], m, t)))
+    todo = [p for p in state["points"] if stale(p)]
+    lock = threading.Lock()
+
+    def one(point):
+        if STOP.is_set():
+            return
+        if hasattr(model, "remember_window"):
+            model.remember_window(point["id"], point["metrics"])
+        result = evaluate_point(model, atlas, point, reuse=True)
+        if result["status"] != "done":
+            return  # stopped or unreadable: the point keeps its record
+        with lock:
+            was = point["class"]
+            result["wall_s"] += point.get("wall_s", 0.0)
+            state["core_hours"] += (result["wall_s"] - point.get("wall_s", 0.0)) / 3600.0
+            point.update(result)
+            save_state(folder, state)
+            log(f"{point['id']} re-certified: {was} -> {point['class']}, {point['certified_by']}")
+
+    with ThreadPoolExecutor(max_workers=max(1, workers)) as pool:
+        list(pool.map(one, todo))
 
 
 def run_pending(model, atlas, state, folder, workers, log):
@@ -222,6 +354,7 @@ def run_atlas(model, atlas, folder, resume, batch_size, workers, log):
         log(f"batch size {state['batch_size']} from the folder's state (asked: {batch_size}): a resumed atlas keeps "
             "its batches")
     state["stop"] = None
+    recertify(model, atlas, state, folder, workers, log)
     while True:
         run_pending(model, atlas, state, folder, workers, log)
         if STOP.is_set():

@@ -156,6 +156,8 @@ def subsync_growth(time, x, y, clearance, cage_speed_mean):
                      for a, b in zip(edges[:-1], edges[1:])])
     out["subsync_amplitudes_m"] = amplitudes.tolist()
     out["subsync_frequency_ratio"] = lines[-1][1]
+    out["subsync_frequencies"] = [float(f) for _, f in lines]  # each segment's line (evidence)
+    out["subsync_bin"] = segments / revolutions  # a segment's spectral bin / the cage's frequency
     # One whirl through the window: its line at the same frequency in every segment, within half a
     # spectral bin (1 / a segment's cage revolutions). A wandering centre's strongest line jumps
     # from bin to bin and direction to direction between segments; a film whirl's stays put.

@@ -58,6 +58,8 @@ def checks(atlas):
         sets.update({p["key"]: unit_value(v, p["unit"]) for p, v in zip(params, corner)})
         yield "corner " + ", ".join(f"{p['name']} {unit_value(v, p['unit'])}" for p, v in zip(params, corner)), sets
     c = atlas["certify"]
+    for v in c["threshold_realisations"]:
+        yield f"threshold realisation {c['realisation_key']} = {v}", {**base, c["realisation_key"]: v}
     for v in c["realisations"]:
         yield f"realisation {c['realisation_key']} = {v}", {**base, c["realisation_key"]: v}
     yield f"convergence rtol {c['convergence_rtol']:g}", {**base, "solver.rtol": f"{c['convergence_rtol']:g}"}
@@ -102,6 +104,8 @@ def check_scenes(atlas, raceway, workers):
             continue
         m = re.search(r"--set ([A-Za-z0-9_.]+)=", message)
         key = file_key_of(atlas, m[1]) if m else "atlas.scene"
+        if key == "certify.realisations" and what.startswith("threshold"):
+            key = "certify.threshold_realisations"
         raise AtlasFileError(f"{atlas['path']}:{atlas['lines'].of(key)}: key '{key}': the scene at {what} is "
                              f"rejected: {message}")
 

@@ -356,6 +356,24 @@ def case_bad_files():
     bad_in_file(good.split("[[parameter]]\nkey = \"inner_ring.load.fz\"")[0], 14, "parameter[0]", ["at least two"])
     bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um"]'), 12,
                 "certify.realisations", ["at least two"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um", "20 um"]\n'
+                             'threshold_realisations = ["15 um", "20 um"]'), 13, "certify.threshold_realisations",
+                ["given twice"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'threshold_realisations = "15 um"'), 12,
+                "certify.threshold_realisations", ["must be a list"])
+    bad_in_file(good.replace('realisations = ["10 um", "20 um"]', 'threshold_realisations = ["15 um"]'), 12,
+                "certify.threshold_realisations", ["needs the realisations"])
+    bad_in_file(good.replace('unit = "N"', 'unit = "N"\nscale = "cubic"'), 24, "parameter[1].scale", ["\"log\""])
+    bad_in_file(good.replace('unit = "N"', 'unit = "N"\nscale = "log"').replace('[100, 2000]', '[0, 2000]'), 24,
+                "parameter[1].scale", ["above 0"])
+    scaled = good.replace('unit = "N"', 'unit = "N"\nscale = "log"')
+    with tempfile.TemporaryDirectory() as tmp:
+        from atlas_file import parameter_unit, parameter_value, read_atlas_file
+        p = read_atlas_file(write_atlas(tmp, scaled))["parameters"]
+        v = [parameter_value(p[1], u) for u in (0, 0.5, 1)]
+        check(abs(v[0] - 100) < 1e-9 and abs(v[1] - math.sqrt(100 * 2000)) < 1e-9 and abs(v[2] - 2000) < 1e-9
+              and abs(parameter_unit(p[1], v[1]) - 0.5) < 1e-12 and "scale" not in p[0]
+              and parameter_value(p[0], 0.5) == 4500, f"log scale values {v}")
     bad_in_file(good.replace('end_time = "20 ms"', 'end_time = "20 ms'), 4, "(syntax)", ["not TOML"])
     bad_in_file(good + "\n[thresholds]\nwobble = 1\n", 26, "thresholds.wobble", ["unknown key", "stable_orbit_ratio"])
     bad_in_file(good + "\n[thresholds]\ncircling_sigma_v = -1\n", 26, "thresholds.circling_sigma_v", ["at least 0"])
@@ -373,6 +391,9 @@ def case_bad_files():
     # `raceway check` before any point, name the line that set them.
     bad_by_executable(good.replace('end_time = "20 ms"', 'end_time = "20"'), 4, "atlas.end_time", ["positive time"])
     bad_by_executable(good.replace('"20 um"]', '"-5 um"]'), 12, "certify.realisations",
+                      ["rejected", "cage.initial_offset"])
+    bad_by_executable(good.replace('realisations = ["10 um", "20 um"]', 'realisations = ["10 um", "20 um"]\n'
+                                   'threshold_realisations = ["-15 um"]'), 13, "certify.threshold_realisations",
                       ["rejected", "cage.initial_offset"])
     bad_by_executable(good.replace('unit = "N"', 'unit = "furlongs"'), 22, "parameter[1].range", ["rejected", "corner"])
 
