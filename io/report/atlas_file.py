@@ -134,10 +134,7 @@ def parameter_value(p, u):
     """The value of parameter `p` at `u` in [0, 1] of its axis: linear in its range, or with
     scale = "log" linear in the logarithm (equal ratios per step: where a parameter acts at its
     small values, a log axis gives them as much of the search as its large ones)."""
-    low, high = p["range"]
-    if p.get("scale") == "log":
-        return low * (high / low) ** float(u)
-    return low + float(u) * (high - low)
+    return float(parameter_values(p, u))
 
 
 def parameter_values(p, units):

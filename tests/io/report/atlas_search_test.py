@@ -24,6 +24,9 @@ except ImportError as err:
 CASE, RACEWAY, SOURCE = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
 sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_search as search  # noqa: E402
+from atlas_test_support import STANDIN_ATLAS, boundary_error  # noqa: E402
+
+LOADS = np.linspace(0, 1, 201)  # the boundary's load to 0.005
 
 if not search.have_sklearn():
     print("SKIP: scikit-learn (python3-sklearn) is missing", file=sys.stderr)
@@ -36,14 +39,6 @@ def check(ok, what):
     if not ok:
         failures.append(what)
         print(f"FAIL: {what}", file=sys.stderr)
-
-
-def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 201)):
-    """Largest error over the speeds of the load at which the classifier's class turns stable (to 0.005)."""
-    grid = np.array([[a, b] for a in speeds for b in loads])
-    stable = (model.predict(grid) == "stable").reshape(len(speeds), len(loads))
-    est = np.array([loads[np.argmax(row)] if row.any() else 1.0 for row in stable])
-    return float(np.max(np.abs(est - np.minimum(search.standin_boundary(speeds), 1.0))))
 
 
 # The label noise: within NOISE_BAND (in load) of the stand-in's boundary a label is flipped with
@@ -85,12 +80,12 @@ def noisy_search(rule, seed, total=60, batch=4):
     history = []
     while len(points) < total:
         picks, model, reasons = rule(points, labels, min(batch, total - len(points)))
-        history.append((len(points), boundary_error(model) if len(points) >= 21 else np.nan, reasons))
+        history.append((len(points), boundary_error(model, loads=LOADS) if len(points) >= 21 else np.nan, reasons))
         points += picks
         labels += noisy_classes(picks, rng)
     model = search.search_classifier(points, labels)[0] if rule is search_rule else search.fit_classifier(points,
                                                                                                            labels)
-    return history, boundary_error(model)
+    return history, boundary_error(model, loads=LOADS)
 
 
 def case_search_noise():
@@ -141,28 +136,6 @@ def case_search_replay_6205():
     print(f"next batch {[list(np.round(b, 3)) for b in batch]}, nearest point run {np.round(gaps, 3)}; "
           f"refit's band {band:.3f}")
     check(record["explored"] >= 1 and corner, f"no point of the next batch in the empty corner: {batch}")
-
-
-STANDIN_ATLAS = """[atlas]
-name = "standin"
-scene = "{scene}"
-end_time = "20 ms"
-settling_time = "10 ms"
-classes = ["stable", "unstable"]
-budget_points = 21
-batch_size = 4
-
-[[parameter]]
-key = "inner_ring.speed"
-range = [1000, 8000]
-unit = "rpm"
-
-[[parameter]]
-key = "inner_ring.load.fz"
-name = "load"
-range = [100, 2000]
-unit = "N"
-"""
 
 
 def case_search_record():

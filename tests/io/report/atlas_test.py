@@ -34,6 +34,7 @@ sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_certify as ac  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
+from atlas_test_support import STANDIN_ATLAS, boundary_error  # noqa: E402
 
 NEEDS_SKLEARN = {"search_accuracy", "search_resume", "search_stop", "search_ends", "run_6205", "shipped_files"}
 if CASE in NEEDS_SKLEARN and not search.have_sklearn():
@@ -108,14 +109,6 @@ def case_windows():
         check(a["window_cage_revolutions"] is None and abs(a["end_time_s"] - 0.02) < 1e-15, "end_time read")
 
 
-def boundary_error(model, speeds=np.linspace(0, 1, 101), loads=np.linspace(0, 1, 401)):
-    """Largest error over the speeds of the load at which the classifier's class turns stable."""
-    grid = np.array([[a, b] for a in speeds for b in loads])
-    stable = (model.predict(grid) == "stable").reshape(len(speeds), len(loads))
-    est = np.array([loads[np.argmax(row)] if row.any() else 1.0 for row in stable])
-    return float(np.max(np.abs(est - np.minimum(search.standin_boundary(speeds), 1.0))))
-
-
 def case_search_accuracy():
     """Accuracy: the boundary's load within 0.01 of the range at every speed. The adaptive search's
     points until it gets there, against every regular n x n grid with fewer than 3x as many."""
@@ -139,32 +132,6 @@ def case_search_accuracy():
         e = boundary_error(search.fit_classifier(g, search.standin_classes(g)))
         print(f"grid {n} x {n} = {n * n} points: boundary error {e:.4f}")
         check(e > target, f"a {n} x {n} grid ({n * n} points, < 3 x {adaptive}) reaches {e:.4f} <= {target}")
-
-
-STANDIN_ATLAS = """[atlas]
-name = "standin"
-scene = "{scene}"
-end_time = "20 ms"
-settling_time = "10 ms"
-classes = ["stable", "unstable"]
-budget_points = 21
-batch_size = 4
-
-[certify]
-realisation_key = "cage.initial_offset"
-realisations = ["10 um", "20 um"]
-
-[[parameter]]
-key = "inner_ring.speed"
-range = [1000, 8000]
-unit = "rpm"
-
-[[parameter]]
-key = "inner_ring.load.fz"
-name = "load"
-range = [100, 2000]
-unit = "N"
-"""
 
 
 def atlas_script(args, env=None, **kw):
