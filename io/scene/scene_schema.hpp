@@ -43,7 +43,7 @@ struct Bind {
 using Field = std::variant<std::monostate, double*, int*, long*, bool*, std::string*, std::vector<std::string>*,
                            TimeFunction*, ModelKind*,
                            BearingType*, RibArrangement*, RollerEnd*, contact::RollerProfileKind*, CageGuidance*, PocketShape*, CageBridges*, BeamTheory*, RingMotion*, RingTilt*, RingFlexibility*, IntegrationMethod*,
-                           LinearSolverKind*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*,
+                           LinearSolverKind*, ElementVelocityFrame*, NormalLaw*, DampingLaw*, TractionLaw*, ContactSpec*,
                            contact::SpallEdge*, std::vector<double>*, std::vector<int>*>;
 
 enum class ValueKind {
@@ -155,6 +155,8 @@ inline constexpr Option kMethods[] = {{"bdf", int(IntegrationMethod::bdf)},
                                      {"adams", int(IntegrationMethod::adams)},
                                      {"erk", int(IntegrationMethod::erk)},
                                      {"ark", int(IntegrationMethod::ark)}};
+inline constexpr Option kElementVelocityFrames[] = {{"bearing", int(ElementVelocityFrame::bearing)},
+                                                   {"orbital", int(ElementVelocityFrame::orbital)}};
 /// "bordered" and "dense" are older names of block elimination and SUNDIALS dense, still accepted.
 inline constexpr Option kLinearSolvers[] = {{"auto", int(LinearSolverKind::automatic)},
                                             {"petsc-bordered", int(LinearSolverKind::petsc_bordered)},

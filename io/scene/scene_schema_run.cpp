@@ -24,6 +24,13 @@ void segment_every_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
+/// The radial velocity tolerance exists only where the balls' velocities are orbital.
+std::optional<std::string> orbital_velocity_frame(const Section&, const Bind& b) {
+  if (b.scene.solver.element_velocity_frame == ElementVelocityFrame::orbital) return std::nullopt;
+  return "only with element_velocity_frame = \"orbital\": in the bearing frame vx and vy each carry part of the "
+         "radial and of the orbital velocity";
+}
+
 constexpr Row kRows[] = {
     // ---- [carrier]: optional; the bearing on a rotating planet carrier (seed 003 eq. 1-6) ------
     {.section = "carrier", .key = "radius", .kind = number, .field = FIELD(scene.carrier.radius), .dim = dim::length,
@@ -275,6 +282,18 @@ constexpr Row kRows[] = {
      .meaning = "while a rolling element touches its cage pocket (or is within 1e-4 of its radius of it), the "
                 "tolerances of its translational velocities are this many times tighter (a pocket contact's approach "
                 "velocity lies far below rtol times the element's orbital speed); 1: off"},
+    {.section = "solver", .key = "element_velocity_frame", .kind = choice,
+     .field = FIELD(scene.solver.element_velocity_frame), .def = word("bearing"), .bearings = ball_bearings,
+     .elsewhere = kBallVelocityFrame, .options = kElementVelocityFrames,
+     .meaning = "the frame of the balls' in-plane velocity states: bearing (vx, vy) or orbital (v_r, v_theta at the "
+                "ball's own angle about the axis), whose radial and circumferential tolerances can differ "
+                "(docs/integration_methods.md)"},
+    {.section = "solver", .key = "radial_velocity_tolerance_factor", .kind = number,
+     .field = FIELD(scene.solver.radial_velocity_tolerance_factor), .dim = dim::none, .bounds = {.lo = 1e-3, .hi = 1e3},
+     .def = value(1), .bearings = ball_bearings, .elsewhere = kBallVelocityFrame, .when = orbital_velocity_frame,
+     .otherwise = 1,
+     .meaning = "orbital frame: the balls' radial velocity tolerance is this many times the velocity tolerance "
+                "(> 1 looser: the radial contact vibration; the circumferential velocity keeps its tolerance)"},
     {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
      .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
     {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",

@@ -90,16 +90,23 @@ void add_cage(Model& m, const scene::Scene& scene, const CageGeometry& geo) {
   m.bodies.push_back(c);
 }
 
+/// A ball's velocity states: the bearing frame's, or its orbital frame's (orbital_frame.hpp).
+std::array<const char*, 3> velocity_names(const Model& m) {
+  if (m.orbital_velocities) return {"v_r", "v_theta", "vz"};
+  return {"vx", "vy", "vz"};
+}
+
 /// Balls: position, velocity, angular velocity (bearing frame): 9 states, no orientation; with a ball's
 /// own defect in the scene, every ball's orientation too (12 states).
 void add_balls(Model& m, const scene::Scene& scene) {
   const double rb = m.element_radius;
   const double ball_mass = scene.material(scene.bearing.roller_material).density * 4.0 / 3.0 * pi * rb * rb * rb;
   const double inertia = 0.4 * ball_mass * rb * rb;
+  m.orbital_velocities = scene.solver.element_velocity_frame == scene::ElementVelocityFrame::orbital;
   if (!scene.rolling_element.any()) {
     add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
       add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
-      add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+      add_states(model, b, svx, VariableClass::velocity, velocity_names(model));
       add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
     });
   } else {
@@ -108,7 +115,7 @@ void add_balls(Model& m, const scene::Scene& scene) {
     add_rolling_elements(m, "ball", ball_mass, inertia, inertia, [](Model& model, Body& b) {
       add_states(model, b, sx, VariableClass::position, {"x", "y", "z"});
       add_states(model, b, sax, VariableClass::angle, {"angle_x", "angle_y", "angle_z"});
-      add_states(model, b, svx, VariableClass::velocity, {"vx", "vy", "vz"});
+      add_states(model, b, svx, VariableClass::velocity, velocity_names(model));
       add_states(model, b, swx, VariableClass::angular_velocity, {"wx", "wy", "wz"});
       b.ball_orientation = true;
     });

@@ -308,10 +308,8 @@ double set_rolling_velocities(const Model& m, double t0, double epicyclic, std::
     }
     const auto& b = m.bodies[static_cast<std::size_t>(m.first_element) + k];
     const Vec3 v = orbit[k] * Vec3::UnitZ().cross(ball_position(m, z, static_cast<int>(k)));
-    for (int d = 0; d < 3; ++d) {
-      z[static_cast<std::size_t>(b.slot[svx + d])] = v[d];
-      z[static_cast<std::size_t>(b.slot[swx + d])] = spin[k][d];
-    }
+    m.set_velocity(m.first_element + static_cast<int>(k), v, z.data());
+    for (int d = 0; d < 3; ++d) z[static_cast<std::size_t>(b.slot[swx + d])] = spin[k][d];
   }
   return cage_speed;
 }

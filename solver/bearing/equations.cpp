@@ -119,10 +119,15 @@ void Equations::adjust_error_weights(double t, const double* z, double* ewt) con
         pocket_touched_[static_cast<std::size_t>(b)] = 1;
   }
   // Only the element's translational velocities: the relative tolerance on its orbital velocity is
-  // far looser than the approach velocities of a pocket contact (docs/integration_methods.md).
+  // far looser than the approach velocities of a pocket contact (docs/integration_methods.md). In
+  // the orbital frame only v_theta, along which the pocket pushes (not the radial vibration).
   for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
     if (!pocket_touched_[b]) continue;
     const Body& body = model_.bodies[b];
+    if (model_.has_orbital_velocity(body)) {
+      ewt[body.slot[svy]] *= pocket_weight_factor_;
+      continue;
+    }
     for (int i = body.offset; i < body.offset + body.size; ++i)
       if (model_.state_class[static_cast<std::size_t>(i)] == VariableClass::velocity) ewt[i] *= pocket_weight_factor_;
   }

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/bearing/orbital_frame.hpp"
 #include "solver/bearing/thermal_network.hpp"
 
 namespace raceway::bearing {
@@ -251,6 +252,7 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
   if (body.ring && body.slot[sz] < 0) v[sz] = body.ring->axial_position;  // held axially: where it is held
   k.position = Vec3(v[sx], v[sy], v[sz]);
   k.velocity = Vec3(v[svx], v[svy], v[svz]);
+  if (has_orbital_velocity(body)) k.velocity = OrbitalFrame(v[sx], v[sy]).to_bearing(k.velocity);
   switch (body.kind) {
     case BodyKind::rolling_element:
       // A ball that carries a defect, or a spatial roller (its spin angle with a defect): every one
@@ -277,6 +279,24 @@ contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) c
     }
   }
   return k;
+}
+
+void Model::set_velocity(int b, const Vec3& v, double* z) const {
+  const Body& body = bodies[static_cast<std::size_t>(b)];
+  const Vec3 stored = has_orbital_velocity(body) ? OrbitalFrame(z[body.slot[sx]], z[body.slot[sy]]).to_orbital(v) : v;
+  for (int d = 0; d < 3; ++d)
+    if (body.slot[svx + d] >= 0) z[body.slot[svx + d]] = stored[d];
+}
+
+Vec3 Model::acceleration(int b, const double* z, const double* zdot) const {
+  const Body& body = bodies[static_cast<std::size_t>(b)];
+  Vec3 rates, v;
+  for (int d = 0; d < 3; ++d) {
+    const int j = body.slot[svx + d];
+    rates[d] = j >= 0 ? zdot[j] : 0.0, v[d] = j >= 0 ? z[j] : 0.0;
+  }
+  if (!has_orbital_velocity(body)) return rates;
+  return OrbitalFrame(z[body.slot[sx]], z[body.slot[sy]]).acceleration(rates, v);
 }
 
 double Model::epicyclic_cage_speed(double t) const {
@@ -336,6 +356,9 @@ std::vector<double> physical_absolute_tolerance(const ModelParameters& p, const 
 std::vector<double> Model::absolute_tolerance() const {
   std::vector<double> atol = physical_absolute_tolerance(*parameters, state_class, pitch_radius, element_radius);
   for (const auto& node : nodes) node->set_tolerances(atol);
+  const double radial = params().solver.radial_velocity_tolerance_factor;
+  for (const Body& b : bodies)  // orbital frame: the radial velocity's own tolerance
+    if (has_orbital_velocity(b) && radial != 1.0) atol[static_cast<std::size_t>(b.slot[svx])] *= radial;
   return atol;
 }
 

@@ -179,6 +179,15 @@ struct Model {
   /// With a thermal network and a lubricant's data sheet: the viscosity the ball-groove contacts take.
   OilViscosity oil_viscosity;
 
+  /// [solver] element_velocity_frame = "orbital" (ball bearings): a rolling element's svx, svy hold
+  /// (v_r, v_theta) in its orbital frame (orbital_frame.hpp); kinematics() gives the bearing frame's.
+  bool orbital_velocities = false;
+  bool has_orbital_velocity(const Body& b) const { return orbital_velocities && b.kind == BodyKind::rolling_element; }
+  /// Sets body b's centre velocity, given in the bearing frame, in z (in the frame of its states).
+  void set_velocity(int b, const contact::Vec3& v, double* z) const;
+  /// Body b's centre acceleration in the bearing frame from its states' rates zdot at z.
+  contact::Vec3 acceleration(int b, const double* z, const double* zdot) const;
+
   const ModelParameters& params() const { return *parameters; }
   template <class Law>
   const Law& law(const Segment& s) const { return std::get<Law>(laws[static_cast<std::size_t>(s.law)]); }

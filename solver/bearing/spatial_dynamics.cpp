@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "solver/bearing/body_dynamics.hpp"
+#include "solver/bearing/orbital_frame.hpp"
 
 namespace raceway::bearing {
 
@@ -31,8 +32,11 @@ class SpatialDynamics final : public BodyDynamics {
     double r[coordinate_count];
     contact_rate_derivative(b, z, net, r);
     const auto& sl = body.slot;
-    for (int d = 0; d < 3; ++d)
-      if (sl[sx + d] >= 0) zdot[sl[sx + d]] = z[sl[svx + d]], zdot[sl[svx + d]] = r[svx + d];
+    if (m_.has_orbital_velocity(body))
+      orbital_translation_rates(body, z, r, zdot);
+    else
+      for (int d = 0; d < 3; ++d)
+        if (sl[sx + d] >= 0) zdot[sl[sx + d]] = z[sl[svx + d]], zdot[sl[svx + d]] = r[svx + d];
     switch (body.kind) {
       case BodyKind::rolling_element:
         if (body.is_roller_axis()) {
@@ -53,6 +57,10 @@ class SpatialDynamics final : public BodyDynamics {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
     for (int c = 0; c < coordinate_count; ++c) rates[c] = 0;
     for (int d = 0; d < 3; ++d) rates[svx + d] = w.force[d] / body.mass;
+    if (m_.has_orbital_velocity(body)) {  // the force along e_r, e_theta (orbital_frame.hpp)
+      const Vec3 a = OrbitalFrame(z[body.slot[sx]], z[body.slot[sy]]).to_orbital(w.force / body.mass);
+      for (int d = 0; d < 3; ++d) rates[svx + d] = a[d];
+    }
     switch (body.kind) {
       case BodyKind::rolling_element:
         if (body.is_roller_axis()) {
@@ -254,6 +262,18 @@ class SpatialDynamics final : public BodyDynamics {
     const Vec3 along = a.dot(gyro) * a;
     const Vec3 correction = (gyro - along) / body.transverse_inertia + along / body.axial_inertia;
     for (int d = 0; d < 3; ++d) zdot[sl[swx + d]] = r[swx + d] - correction[d];
+  }
+
+  /// A ball whose in-plane velocity states are orbital: its position's rates in the bearing frame,
+  /// its velocity states' rates with the frame's turning terms (r holds the acceleration along e_r,
+  /// e_theta, z).
+  static void orbital_translation_rates(const Body& body, const double* z, const double r[coordinate_count], double* zdot) {
+    const auto& sl = body.slot;
+    const OrbitalFrame frame(z[sl[sx]], z[sl[sy]]);
+    const Vec3 v(z[sl[svx]], z[sl[svy]], z[sl[svz]]);
+    const Vec3 position_rates = frame.to_bearing(v);
+    const Vec3 velocity_rates = frame.velocity_rates(Vec3(r[svx], r[svy], r[svz]), v);
+    for (int d = 0; d < 3; ++d) zdot[sl[sx + d]] = position_rates[d], zdot[sl[svx + d]] = velocity_rates[d];
   }
 
   /// A ball's Cardan x-y-z angles turn with its angular velocity w (bearing frame; a sphere has no

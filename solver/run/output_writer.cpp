@@ -329,6 +329,10 @@ BodySample sample_body(const bearing::Model& m, int b, double t, const std::vect
     s.acceleration[c] = body.slot[bearing::svx + c] >= 0 ? zdot[static_cast<std::size_t>(body.slot[bearing::svx + c])] : 0.0;
     s.force[c] = c < 3 ? net.force[c] : net.moment[c - 3];
   }
+  if (m.has_orbital_velocity(body)) {  // the states' rates are orbital: the file keeps the bearing frame
+    const Vec3 a = m.acceleration(b, z.data(), zdot.data());
+    for (int c = 0; c < 3; ++c) s.acceleration[c] = a[c];
+  }
   if (m.kind == scene::ModelKind::planar) {
     const auto k = m.planar_kinematics(b, t, z.data());
     s.position = Vec3(k.x, k.y, 0), s.velocity = Vec3(k.vx, k.vy, 0);

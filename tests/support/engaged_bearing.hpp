@@ -29,7 +29,8 @@ struct EngagedBearing {
   bearing::Equations eq;
   std::vector<double> start, engaged;
 
-  static scene::Scene make_scene(double theta) {
+  static scene::Scene make_scene(double theta,
+                                 scene::ElementVelocityFrame frame = scene::ElementVelocityFrame::bearing) {
     BallSceneOptions o;
     o.speed_rpm = 1000;
     const double fx = 300, fy = -1000;
@@ -40,10 +41,11 @@ struct EngagedBearing {
     scene::Scene s = deep_groove_scene(o);
     s.cage.guidance = scene::CageGuidance::outer_land;
     s.cage.land_clearance = 0.1e-3;
+    s.solver.element_velocity_frame = frame;
     return s;
   }
-  explicit EngagedBearing(double theta = 0.0)
-      : scene(make_scene(theta)), model(bearing::build_model(scene)), eq(model, executor) {
+  explicit EngagedBearing(double theta = 0.0, scene::ElementVelocityFrame frame = scene::ElementVelocityFrame::bearing)
+      : scene(make_scene(theta, frame)), model(bearing::build_model(scene)), eq(model, executor) {
     start = initial_state(model, 0.0, theta).state;
     engaged = start;
     const auto& cage = model.bodies[static_cast<std::size_t>(model.cage)];

@@ -34,11 +34,14 @@ TEST(PocketTolerance, OffByDefault) {
 }
 
 // The cage turned until ball 0 presses into a bar of its pocket: that ball's translational
-// velocities get the factor, its other states, the cage's, the other balls' and the rings' keep theirs; turned back to the pocket's middle,
-// nothing changes.
-TEST(PocketTolerance, TightensTheTouchingBallsVelocities) {
+// velocities get the factor (in the orbital frame its circumferential velocity v_theta alone), its
+// other states, the cage's, the other balls' and the rings' keep theirs; turned back to the pocket's
+// middle, nothing changes.
+void check_tightening(scene::ElementVelocityFrame frame) {
+  const bool orbital = frame == scene::ElementVelocityFrame::orbital;
   const double factor = 30;
-  const scene::Scene s = scene_with_factor(factor);
+  scene::Scene s = scene_with_factor(factor);
+  s.solver.element_velocity_frame = frame;
   const Model m = build_model(s);
   scheduler::SerialExecutor executor;
   Equations eq(m, executor);
@@ -88,17 +91,23 @@ TEST(PocketTolerance, TightensTheTouchingBallsVelocities) {
     for (const Body& b : m.bodies)
       if (static_cast<int>(i) >= b.offset && static_cast<int>(i) < b.offset + b.size) owner = &b;
     ASSERT_NE(owner, nullptr);
-    if (in_ball0 && velocity) {
+    const bool tightens = orbital ? static_cast<int>(i) == owner->slot[svy] : velocity;
+    if (in_ball0 && tightens) {
       EXPECT_EQ(w[i], factor) << "state " << i;
       ++tightened;
     } else if (w[i] != 1.0) {
       // Another ball the same turn brought to its bar (the pockets are evenly spaced) is allowed,
-      // and only its velocities, only with the factor.
+      // and only its velocities (orbital: v_theta), only with the factor.
       EXPECT_EQ(w[i], factor) << "state " << i;
-      EXPECT_TRUE(velocity && owner->kind == BodyKind::rolling_element) << "state " << i;
+      EXPECT_TRUE(tightens && owner->kind == BodyKind::rolling_element) << "state " << i;
     }
   }
-  EXPECT_EQ(tightened, b0.has(svz) ? 3 : 2);
+  EXPECT_EQ(tightened, orbital ? 1 : b0.has(svz) ? 3 : 2);
+}
+
+TEST(PocketTolerance, TightensTheTouchingBallsVelocities) { check_tightening(scene::ElementVelocityFrame::bearing); }
+TEST(PocketTolerance, TightensTheTouchingBallsOrbitalVelocityOnly) {
+  check_tightening(scene::ElementVelocityFrame::orbital);
 }
 
 }  // namespace

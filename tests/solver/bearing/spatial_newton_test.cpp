@@ -100,6 +100,22 @@ TEST(SpatialPhysics, JacobianMatchesFiniteDifferences) {
   EXPECT_LT(check_jacobian(b.eq, b.model, 0.0, b.engaged, "engaged cage"), 1e-3);
 }
 
+// The same three states with the balls' in-plane velocities in their orbital frame ([solver]
+// element_velocity_frame = "orbital", solver/bearing/orbital_frame.hpp): the positions' rows in
+// v_r, v_theta and in the balls' positions (the frame's angle), the frame's turning terms, the
+// contact forces turned into e_r, e_theta, and the contacts' dependence on v_r, v_theta.
+TEST(SpatialPhysics, JacobianMatchesFiniteDifferencesInOrbitalFrame) {
+  EngagedBearing b(0.0, scene::ElementVelocityFrame::orbital);
+  std::vector<double> later;
+  {
+    numerics::Integrator integrator(b.eq, b.scene.solver, 0.0, b.start);
+    integrator.advance_to(2e-3, later);
+  }
+  EXPECT_LT(check_jacobian(b.eq, b.model, 0.0, b.start, "orbital frame, start"), 1e-3);
+  EXPECT_LT(check_jacobian(b.eq, b.model, 2e-3, later, "orbital frame, t = 2 ms"), 1e-3);
+  EXPECT_LT(check_jacobian(b.eq, b.model, 0.0, b.engaged, "orbital frame, engaged cage"), 1e-3);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Dense and bordered Newton solves
 // ---------------------------------------------------------------------------------------------
