@@ -71,6 +71,25 @@ CANDIDATES = {
     "adams2_rtol3": {"method": '"adams"', "max_order": "2", "rtol_factor": 3},
     "adams2_rtol4": {"method": '"adams"', "max_order": "2", "rtol_factor": 4},
     "adams3": {"method": '"adams"', "max_order": "3"},
+    # The balls' in-plane velocities in their orbital frame (v_r, v_theta), at the scene's own
+    # settings, with v_r's tolerance loosened 1, 3 and 10 times.
+    "orbital": {"rtol_factor": "own", "element_velocity_frame": '"orbital"'},
+    "orbital_radial3": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                        "radial_velocity_tolerance_factor": "3"},
+    "orbital_radial10": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                         "radial_velocity_tolerance_factor": "10"},
+    "orbital_radial30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                         "radial_velocity_tolerance_factor": "30"},
+    # ... and the pocket factor (on v_theta alone in the orbital frame; on vx, vy, vz in the bearing's).
+    "shipped_pocket10": {"rtol_factor": "own", "pocket_tolerance_factor": "10"},
+    "shipped_pocket30": {"rtol_factor": "own", "pocket_tolerance_factor": "30"},
+    "orbital_pocket30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"', "pocket_tolerance_factor": "30"},
+    "orbital_radial3_pocket10": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                                 "radial_velocity_tolerance_factor": "3", "pocket_tolerance_factor": "10"},
+    "orbital_radial3_pocket30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                                 "radial_velocity_tolerance_factor": "3", "pocket_tolerance_factor": "30"},
+    "orbital_radial10_pocket30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                                  "radial_velocity_tolerance_factor": "10", "pocket_tolerance_factor": "30"},
 }
 
 
