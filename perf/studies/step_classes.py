@@ -178,7 +178,13 @@ def main():
     p.add_argument("--cache", default=os.path.join(tempfile.gettempdir(), "raceway_step_classes"))
     p.add_argument("--json", help="append one JSON line per (scene, candidate) to this file")
     p.add_argument("--label", default="", help="appended to the candidates' names in the output")
+    p.add_argument("--rtol-factors", nargs="+", type=float, default=RTOL_FACTORS,
+                   help="the work-precision points' rtol factors (more: steadier geometric means)")
+    p.add_argument("--window", nargs=2, type=float, metavar=("FROM", "TO"),
+                   help="the counts' window in seconds instead of SCENES' one revolution (the counts are then "
+                        "per revolution of the scene's window length)")
     args = p.parse_args()
+    RTOL_FACTORS[:] = args.rtol_factors
     for name in args.scenes:
         with tempfile.TemporaryDirectory(prefix="step_classes_") as workdir:
             refs = {}
@@ -189,7 +195,10 @@ def main():
                   f"counts over {SCENES[name]['window']} s; errors: geometric means)", flush=True)
             for cand in args.candidates:
                 keys = CANDIDATES[cand]
-                c = counts(args.binary, name, keys, SCENES[name]["window"], workdir)
+                c = counts(args.binary, name, keys, tuple(args.window or SCENES[name]["window"]), workdir)
+                if args.window and "failed" not in c:  # per revolution: the scene's window is one
+                    revolutions = (args.window[1] - args.window[0]) / (SCENES[name]["window"][1] - SCENES[name]["window"][0])
+                    c.update({k: round(c[k] / revolutions) for k in c if isinstance(c[k], int)})
                 e = points(args.binary, name, keys, refs, workdir) if "failed" not in c else {}
                 cand += args.label
                 row = {"scene": name, "candidate": cand, "keys": keys, **c, **e}

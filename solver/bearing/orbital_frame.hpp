@@ -18,7 +18,10 @@ namespace raceway::bearing {
 /// The orbital frame at the in-plane position (x, y): cos phi, sin phi and r.
 struct OrbitalFrame {
   double c = 1, s = 0, r = 0;
-  OrbitalFrame(double x, double y) : r(std::hypot(x, y)) { c = x / r, s = y / r; }
+  OrbitalFrame(double x, double y) : r(std::sqrt(x * x + y * y)) {  // (hypot: a few times dearer, and r is mm)
+    const double inverse = 1.0 / r;
+    c = x * inverse, s = y * inverse;
+  }
   /// (v_r, v_theta, v_z) -> the bearing frame's (vx, vy, vz).
   contact::Vec3 to_bearing(const contact::Vec3& v) const { return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()}; }
   /// The bearing frame's (vx, vy, vz) -> (v_r, v_theta, v_z).
