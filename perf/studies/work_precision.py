@@ -52,6 +52,8 @@ SCENES = {
     # QJ215: its cage starts at the kinematic speed and first touches the balls after about 0.2 s.
     "qj215_validation": {"end_time": "0.3 s", "output_interval": "0.1 ms"},  # 5 revolutions at 1000 rpm
     "default": {"end_time": "40 ms", "output_interval": "0.1 ms"},           # 1 revolution at 1500 rpm
+    "6309_R5": {"end_time": "20 ms", "output_interval": "20 us"},          # 1.9 revolutions at 5800 rpm
+    "6309_M24": {"end_time": "20 ms", "output_interval": "20 us"},         # 1 revolution at 3000 rpm
 }
 # Method variants: a name for the tables and charts -> the --method and further [solver] keys.
 # bdf2: BDF of order at most 2 (A-stable), what seed 002 ships; not in the default sweep.
@@ -332,7 +334,7 @@ def winners(name, rows, floor):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
-    p.add_argument("--scenes", nargs="+", default=[n for n in SCENES if n != "default"])
+    p.add_argument("--scenes", nargs="+", default=[n for n in SCENES if n not in ("default", "6309_R5", "6309_M24")])
     p.add_argument("--methods", nargs="+", default=[v for v in VARIANTS if v not in ("bdf2", "bdf_auto", "adams2")],
                    choices=list(VARIANTS) + list(SHIPPED_VARIANTS),
                    help="bdf_sld: bdf with CVODE's stability-limit detection; bdf2: bdf of order at most 2")
