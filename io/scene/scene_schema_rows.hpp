@@ -53,8 +53,8 @@ inline constexpr std::string_view kBallContact =
     "[contact.roller_cage] (and, spatial, [contact.roller_flange])";
 inline constexpr std::string_view kLineContact =
     "slices and crown_drop are for line contacts (roller bearings); a ball contact is a Hertz point contact";
-inline constexpr std::string_view kBallVelocityFrame =
-    "only for ball bearings: a roller's velocity states stay in the bearing frame";
+inline constexpr std::string_view kElementVelocityFrame =
+    "only for ball bearings and planar roller bearings: a spatial roller's velocity states stay in the bearing frame";
 inline constexpr std::string_view kBallRaceContact =
     "only for [contact.ball_race], the ball-groove point contacts: the other contacts' friction is a traction curve "
     "at the contact centre";

@@ -24,7 +24,7 @@ void segment_every_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
-/// The radial velocity tolerance exists only where the balls' velocities are orbital.
+/// The radial velocity tolerance exists only where the rolling elements' velocities are orbital.
 std::optional<std::string> orbital_velocity_frame(const Section&, const Bind& b) {
   if (b.scene.solver.element_velocity_frame == ElementVelocityFrame::orbital) return std::nullopt;
   return "only with element_velocity_frame = \"orbital\": in the bearing frame vx and vy each carry part of the "
@@ -283,17 +283,17 @@ constexpr Row kRows[] = {
                 "tolerances of its translational velocities are this many times tighter (a pocket contact's approach "
                 "velocity lies far below rtol times the element's orbital speed); 1: off"},
     {.section = "solver", .key = "element_velocity_frame", .kind = choice,
-     .field = FIELD(scene.solver.element_velocity_frame), .def = word("bearing"), .bearings = ball_bearings,
-     .elsewhere = kBallVelocityFrame, .options = kElementVelocityFrames,
-     .meaning = "the frame of the balls' in-plane velocity states: bearing (vx, vy) or orbital (v_r, v_theta at the "
-                "ball's own angle about the axis), whose radial and circumferential tolerances can differ "
-                "(docs/integration_methods.md)"},
+     .field = FIELD(scene.solver.element_velocity_frame), .def = word("bearing"),
+     .bearings = ball_bearings | planar_rollers, .elsewhere = kElementVelocityFrame, .options = kElementVelocityFrames,
+     .meaning = "the frame of the rolling elements' in-plane velocity states: bearing (vx, vy) or orbital (v_r, "
+                "v_theta at the element's own angle about the axis), whose radial and circumferential tolerances "
+                "can differ (docs/integration_methods.md)"},
     {.section = "solver", .key = "radial_velocity_tolerance_factor", .kind = number,
      .field = FIELD(scene.solver.radial_velocity_tolerance_factor), .dim = dim::none, .bounds = {.lo = 1e-3, .hi = 1e3},
-     .def = value(1), .bearings = ball_bearings, .elsewhere = kBallVelocityFrame, .when = orbital_velocity_frame,
-     .otherwise = 1,
-     .meaning = "orbital frame: the balls' radial velocity tolerance is this many times the velocity tolerance "
-                "(> 1 looser: the radial contact vibration; the circumferential velocity keeps its tolerance)"},
+     .def = value(1), .bearings = ball_bearings | planar_rollers, .elsewhere = kElementVelocityFrame,
+     .when = orbital_velocity_frame, .otherwise = 1,
+     .meaning = "orbital frame: the rolling elements' radial velocity tolerance is this many times the velocity "
+                "tolerance (> 1 looser: the radial contact vibration; the circumferential velocity keeps its tolerance)"},
     {.section = "solver", .key = "rtol", .kind = number, .field = FIELD(scene.solver.rtol), .dim = dim::none,
      .bounds = {.lo = 1e-14, .hi = 1e-2, .lo_open = true}, .def = value(1e-6), .meaning = "relative tolerance"},
     {.section = "solver", .key = "atol", .kind = table, .field = nullptr, .def = empty_table, .sub = "solver.atol",

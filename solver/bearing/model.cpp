@@ -234,6 +234,10 @@ contact::PlanarKinematics Model::planar_kinematics(int b, double t, const double
   auto state = [&](Coordinate c) { return body.slot[c] >= 0 ? z[body.slot[c]] : 0.0; };
   double omega = state(swz);
   if (body.ring && body.ring->motion == scene::RingMotion::driven) omega = body.ring->speed(t);
+  if (has_orbital_velocity(body)) {
+    const Vec3 v = OrbitalFrame(state(sx), state(sy)).to_bearing({state(svx), state(svy), 0.0});
+    return {state(sx), state(sy), state(saz), v.x(), v.y(), omega};
+  }
   return {state(sx), state(sy), state(saz), state(svx), state(svy), omega};
 }
 

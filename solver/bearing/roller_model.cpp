@@ -26,7 +26,11 @@ void add_planar_states(Model& m, Body& b, bool translation, bool angle, bool spi
   b.offset = m.state_size;
   if (translation) add_state(m, b, sx, VariableClass::position, "x"), add_state(m, b, sy, VariableClass::position, "y");
   if (angle) add_state(m, b, saz, VariableClass::angle, "theta");
-  if (translation) add_state(m, b, svx, VariableClass::velocity, "vx"), add_state(m, b, svy, VariableClass::velocity, "vy");
+  if (translation) {  // a rolling element's in the orbital frame (orbital_frame.hpp) where the model says so
+    const bool orbital = m.orbital_velocities && b.kind == BodyKind::rolling_element;
+    add_state(m, b, svx, VariableClass::velocity, orbital ? "v_r" : "vx");
+    add_state(m, b, svy, VariableClass::velocity, orbital ? "v_theta" : "vy");
+  }
   if (spin) add_state(m, b, swz, VariableClass::angular_velocity, "omega");
   b.size = m.state_size - b.offset;
 }
@@ -94,6 +98,7 @@ void add_rollers(Model& m, const scene::Scene& scene) {
   const auto& g = scene.bearing;
   const double rr = m.element_radius;
   const double roller_mass = scene.material(g.roller_material).density * pi * rr * rr * g.roller_length;
+  m.orbital_velocities = scene.solver.element_velocity_frame == scene::ElementVelocityFrame::orbital;
   add_rolling_elements(m, "roller", roller_mass, 0.5 * roller_mass * rr * rr, 0.0,
                        [](Model& model, Body& r) { add_planar_states(model, r, true, false, true); });
   scale_scattered_rollers(m, roller_mass, rr, rr, g.roller_length);

@@ -307,8 +307,7 @@ StartupReport seat_roller_bearing(const Model& m, double t0) {
     const PlanarKinematics r = s.roller_at(s.seat(k, centre[0], centre[1]), s.azimuth(k));
     rep.state[b.slot[sx]] = r.x;
     rep.state[b.slot[sy]] = r.y;
-    rep.state[b.slot[svx]] = r.vx;
-    rep.state[b.slot[svy]] = r.vy;
+    m.set_velocity(m.first_element + k, {r.vx, r.vy, 0.0}, rep.state.data());
     rep.state[b.slot[swz]] = r.omega;
   }
   // Cage: concentric with its guiding ring, pocket k centred on roller k, at the epicyclic speed.

@@ -22,6 +22,7 @@
 #include "solver/bearing/startup.hpp"
 #include "solver/numerics/integrator.hpp"
 #include "tests/support/engaged_bearing.hpp"
+#include "tests/support/solver_test_support.hpp"
 
 namespace raceway::bearing {
 namespace {
@@ -30,12 +31,20 @@ using contact::Vec3;
 using test::EngagedBearing;
 constexpr auto orbital = scene::ElementVelocityFrame::orbital;
 
+/// A body's velocity states (vz 0 where it is none).
+Vec3 state_velocity(const Body& body, const std::vector<double>& z) {
+  Vec3 v = Vec3::Zero();
+  for (int d = 0; d < 3; ++d)
+    if (body.slot[svx + d] >= 0) v[d] = z[static_cast<std::size_t>(body.slot[svx + d])];
+  return v;
+}
+
 /// The bearing model's state z as the orbital model's states (the balls' velocities turned).
 std::vector<double> as_orbital(const Model& orbital_model, const Model& bearing_model, const std::vector<double>& z) {
   std::vector<double> out = z;
   for (int k = 0; k < bearing_model.element_count; ++k) {
-    const int b = bearing_model.first_element + k;
-    orbital_model.set_velocity(b, bearing_model.kinematics(b, 0.0, z.data()).velocity, out.data());
+    const Body& body = bearing_model.bodies[static_cast<std::size_t>(bearing_model.first_element + k)];
+    orbital_model.set_velocity(body.index + bearing_model.first_element, state_velocity(body, z), out.data());
   }
   return out;
 }
@@ -43,9 +52,48 @@ std::vector<double> as_orbital(const Model& orbital_model, const Model& bearing_
 /// v_r and v_theta of ball b from the bearing frame's states, written out here.
 Vec3 orbital_velocity(const Body& ball, const std::vector<double>& z) {
   const double x = z[static_cast<std::size_t>(ball.slot[sx])], y = z[static_cast<std::size_t>(ball.slot[sy])];
-  const double vx = z[static_cast<std::size_t>(ball.slot[svx])], vy = z[static_cast<std::size_t>(ball.slot[svy])];
+  const Vec3 v = state_velocity(ball, z);
   const double r = std::sqrt(x * x + y * y);
-  return {(x * vx + y * vy) / r, (x * vy - y * vx) / r, z[static_cast<std::size_t>(ball.slot[svz])]};
+  return {(x * v.x() + y * v.y()) / r, (x * v.y() - y * v.x()) / r, v.z()};
+}
+
+/// At the same physical state zc (bearing model) and its orbital states: the energy, every rate but
+/// the rolling elements' velocity rates equal to round-off; those equal the time derivatives of
+/// v_r, v_theta along the bearing frame's motion, and Model::acceleration gives the bearing frame's.
+void check_rates(Equations& ce, const Model& mc, Equations& oe, const Model& mo, double t, const std::vector<double>& zc) {
+  const std::vector<double> zo = as_orbital(mo, mc, zc);
+  std::vector<double> fc(zc.size()), fo(zc.size());
+  ASSERT_EQ(ce.rhs(t, zc.data(), fc.data()), 0);
+  ASSERT_EQ(oe.rhs(t, zo.data(), fo.data()), 0);
+  EXPECT_NEAR(oe.energy(t, zo.data()), ce.energy(t, zc.data()), 1e-12 * std::abs(ce.energy(t, zc.data())));
+  double largest[4] = {0, 0, 0, 0};  // per class, for the round-off scale
+  for (std::size_t i = 0; i < fc.size(); ++i)
+    largest[static_cast<int>(mc.state_class[i])] = std::max(largest[static_cast<int>(mc.state_class[i])], std::abs(fc[i]));
+  const double a_scale = largest[static_cast<int>(VariableClass::velocity)];
+  for (std::size_t i = 0; i < fc.size(); ++i) {
+    const bool element_velocity = static_cast<int>(i) >= mc.border_size && mc.state_class[i] == VariableClass::velocity;
+    if (element_velocity) continue;  // below
+    // The positions' rates: the velocity itself; the rest: the same forces.
+    EXPECT_NEAR(fo[i], fc[i], 1e-9 * largest[static_cast<int>(mc.state_class[i])]) << mc.state_name[i];
+  }
+  // The velocity rates: d/dt of v_r, v_theta along the bearing frame's motion, by central
+  // differences over +-h along its rates (h: 1 ns, a few nm of the orbit).
+  const double h = 1e-9;
+  std::vector<double> ahead = zc, behind = zc;
+  for (std::size_t i = 0; i < zc.size(); ++i) ahead[i] += h * fc[i], behind[i] -= h * fc[i];
+  double worst = 0;
+  for (int k = 0; k < mc.element_count; ++k) {
+    const Body& element = mc.bodies[static_cast<std::size_t>(mc.first_element + k)];
+    const Vec3 expected = (orbital_velocity(element, ahead) - orbital_velocity(element, behind)) / (2 * h);
+    worst = std::max(worst, (state_velocity(element, fo) - expected).norm() / a_scale);
+    // The output's acceleration (bearing frame) from the orbital rates: the bearing frame's rates.
+    const Vec3 a = mo.acceleration(mc.first_element + k, zo.data(), fo.data());
+    EXPECT_LT((a - state_velocity(element, fc)).norm(), 1e-9 * a_scale) << "element " << k;
+  }
+  std::printf("[ orbital ] %s: velocity rates against d/dt (v_r, v_theta, vz): worst %.3g of the largest "
+              "acceleration (%.4g m/s^2)\n",
+              mc.params().scene_name.c_str(), worst, a_scale);
+  EXPECT_LT(worst, 1e-7);
 }
 
 // The start-up seats the balls and sets their rolling velocities in the frame of the states: the
@@ -67,44 +115,37 @@ TEST(OrbitalFrame, SameStartRatesAndEnergyAsTheBearingFrame) {
   for (int i = 0; i < mc.border_size; ++i)
     EXPECT_EQ(cart.start[static_cast<std::size_t>(i)], orb.start[static_cast<std::size_t>(i)]) << mc.state_name[i];
 
-  const std::vector<double>& zc = cart.engaged;
-  const std::vector<double> zo = as_orbital(mo, mc, zc);
-  std::vector<double> fc(zc.size()), fo(zc.size());
-  ASSERT_EQ(cart.eq.rhs(0.0, zc.data(), fc.data()), 0);
-  ASSERT_EQ(orb.eq.rhs(0.0, zo.data(), fo.data()), 0);
-  EXPECT_NEAR(orb.eq.energy(0.0, zo.data()), cart.eq.energy(0.0, zc.data()), 1e-12 * cart.eq.energy(0.0, zc.data()));
-  double largest[4] = {0, 0, 0, 0};  // per class, for the round-off scale
-  for (std::size_t i = 0; i < fc.size(); ++i)
-    largest[static_cast<int>(mc.state_class[i])] = std::max(largest[static_cast<int>(mc.state_class[i])], std::abs(fc[i]));
-  for (std::size_t i = 0; i < fc.size(); ++i) {
-    const bool ball_velocity = static_cast<int>(i) >= mc.border_size && mc.state_class[i] == VariableClass::velocity;
-    if (ball_velocity) continue;  // below
-    // The positions' rates: the velocity itself; the rest: the same forces.
-    EXPECT_NEAR(fo[i], fc[i], 1e-9 * largest[static_cast<int>(mc.state_class[i])]) << mc.state_name[i];
-  }
-  // The balls' velocity rates: d/dt of v_r, v_theta along the bearing frame's motion, by central
-  // differences over +-h along its rates (h: 1 ns, 5 nm of the orbit).
-  const double h = 1e-9;
-  std::vector<double> ahead = zc, behind = zc;
-  for (std::size_t i = 0; i < zc.size(); ++i) ahead[i] += h * fc[i], behind[i] -= h * fc[i];
-  double worst = 0;
-  for (int k = 0; k < mc.element_count; ++k) {
-    const Body& ball = mc.bodies[static_cast<std::size_t>(mc.first_element + k)];
-    const Vec3 expected = (orbital_velocity(ball, ahead) - orbital_velocity(ball, behind)) / (2 * h);
-    const Vec3 got(fo[static_cast<std::size_t>(ball.slot[svx])], fo[static_cast<std::size_t>(ball.slot[svy])],
-                   fo[static_cast<std::size_t>(ball.slot[svz])]);
-    worst = std::max(worst, (got - expected).norm() / largest[static_cast<int>(VariableClass::velocity)]);
-    // The output's acceleration (bearing frame) from the orbital rates: the bearing frame's rates.
-    const Vec3 a = mo.acceleration(mc.first_element + k, zo.data(), fo.data());
-    for (int d = 0; d < 3; ++d)
-      EXPECT_NEAR(a[d], fc[static_cast<std::size_t>(ball.slot[svx + d])], 1e-9 * largest[static_cast<int>(VariableClass::velocity)])
-          << "ball " << k << " acceleration " << d;
-  }
-  std::printf("[ orbital ] balls' velocity rates against d/dt (v_r, v_theta, vz): worst %.3g of the largest "
-              "acceleration (%.4g m/s^2)\n",
-              worst, largest[static_cast<int>(VariableClass::velocity)]);
-  EXPECT_LT(worst, 1e-7);
+  check_rates(cart.eq, mc, orb.eq, mo, 0.0, cart.engaged);
 }
+
+// The planar roller bearings: the start-up's rollers and, 10 ms into the bearing frame's run, the
+// rates; seed 002 at 40 Hz (rollers on the bars) and seed 003 on its planet carrier (the carrier
+// frame's Coriolis force takes the rollers' velocities in the bearing frame).
+class PlanarRollers : public ::testing::TestWithParam<const char*> {};
+TEST_P(PlanarRollers, SameStartAndRatesInTheOrbitalFrame) {
+  scene::Scene s = test::load_job_scene(GetParam());
+  const Model mc = build_model(s);
+  s.solver.element_velocity_frame = orbital;
+  const Model mo = build_model(s);
+  ASSERT_TRUE(mo.orbital_velocities);
+  scheduler::SerialExecutor ec, eo;
+  Equations ce(mc, ec), oe(mo, eo);
+  const std::vector<double> start_c = initial_state(mc, 0.0).state, start_o = initial_state(mo, 0.0).state;
+  for (int k = 0; k < mc.element_count; ++k) {
+    const auto kc = mc.planar_kinematics(mc.first_element + k, 0.0, start_c.data());
+    const auto ko = mo.planar_kinematics(mo.first_element + k, 0.0, start_o.data());
+    EXPECT_EQ(kc.x, ko.x);
+    EXPECT_EQ(kc.y, ko.y);
+    EXPECT_EQ(kc.omega, ko.omega);
+    EXPECT_NEAR(ko.vx, kc.vx, 1e-12 * std::hypot(kc.vx, kc.vy)) << "roller " << k;
+    EXPECT_NEAR(ko.vy, kc.vy, 1e-12 * std::hypot(kc.vx, kc.vy)) << "roller " << k;
+  }
+  numerics::Integrator integrator(ce, s.solver, 0.0, start_c);
+  std::vector<double> z;
+  integrator.advance_to(0.01, z);
+  check_rates(ce, mc, oe, mo, 0.01, z);
+}
+INSTANTIATE_TEST_SUITE_P(OrbitalFrame, PlanarRollers, ::testing::Values("seed002_40hz.toml", "seed003_planet_carrier.toml"));
 
 /// The run of EngagedBearing from its start to t_end at rtol: every ball's position and velocity
 /// (bearing frame) and the inner ring's centre at the end.
