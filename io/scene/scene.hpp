@@ -364,8 +364,8 @@ enum class IntegrationMethod { bdf, adams, erk, ark };
 /// Newton linear solver (solver/numerics/newton_backends.hpp). `automatic` picks block elimination or PETSc by
 /// the number of rolling elements (the measured crossover; README "Newton linear solvers").
 enum class LinearSolverKind { automatic, petsc_bordered, block_elimination, sundials_dense };
-/// The frame of a ball's in-plane velocity states: the bearing's (vx, vy), or its orbital frame
-/// (v_r, v_theta) at its own angular position about the bearing axis (solver/bearing/model.hpp).
+/// The frame of a rolling element's in-plane velocity states: the bearing's (vx, vy), or its orbital
+/// frame (v_r, v_theta) at its own angular position about the bearing axis (solver/bearing/orbital_frame.hpp).
 enum class ElementVelocityFrame { bearing, orbital };
 
 struct SolverSpec {
@@ -379,10 +379,10 @@ struct SolverSpec {
   /// Tolerances this many times tighter on a rolling element's translational velocities while the
   /// element touches its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).
   double pocket_tolerance_factor = 1;
-  /// Ball bearings: the frame of the balls' in-plane velocity states; with the orbital frame the
-  /// pocket factor tightens v_theta alone.
+  /// Ball and planar roller bearings: the frame of the rolling elements' in-plane velocity states;
+  /// with the orbital frame the pocket factor tightens v_theta alone.
   ElementVelocityFrame element_velocity_frame = ElementVelocityFrame::bearing;
-  /// Orbital frame: the balls' radial velocity tolerance is this many times the velocity tolerance.
+  /// Orbital frame: the rolling elements' radial velocity tolerance is this many times the velocity tolerance.
   double radial_velocity_tolerance_factor = 1;
   /// Absolute tolerances per variable class (SI).
   double atol_position = 0;          ///< m

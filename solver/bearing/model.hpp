@@ -179,8 +179,9 @@ struct Model {
   /// With a thermal network and a lubricant's data sheet: the viscosity the ball-groove contacts take.
   OilViscosity oil_viscosity;
 
-  /// [solver] element_velocity_frame = "orbital" (ball bearings): a rolling element's svx, svy hold
-  /// (v_r, v_theta) in its orbital frame (orbital_frame.hpp); kinematics() gives the bearing frame's.
+  /// [solver] element_velocity_frame = "orbital" (ball and planar roller bearings): a rolling element's
+  /// svx, svy hold (v_r, v_theta) in its orbital frame (orbital_frame.hpp); kinematics() and
+  /// planar_kinematics() give the bearing frame's.
   bool orbital_velocities = false;
   bool has_orbital_velocity(const Body& b) const { return orbital_velocities && b.kind == BodyKind::rolling_element; }
   /// Sets body b's centre velocity, given in the bearing frame, in z (in the frame of its states).

@@ -1,8 +1,9 @@
-// A ball's in-plane velocity in its orbital frame ([solver] element_velocity_frame = "orbital"):
-// the states svx, svy of a rolling element hold (v_r, v_theta), its velocity along e_r = (cos phi,
-// sin phi, 0) and e_theta = (-sin phi, cos phi, 0) at its own angular position phi = atan2(y, x)
-// about the bearing axis; svz stays vz and the positions stay Cartesian. The frame turns with the
-// ball, r phi' = v_theta, so the velocity states' rates carry the frame's turning terms:
+// A rolling element's in-plane velocity in its orbital frame ([solver] element_velocity_frame =
+// "orbital"; balls and planar rollers): the states svx, svy of a rolling element hold (v_r, v_theta),
+// its velocity along e_r = (cos phi, sin phi, 0) and e_theta = (-sin phi, cos phi, 0) at its own
+// angular position phi = atan2(y, x) about the bearing axis; svz stays vz and the positions stay
+// Cartesian. The frame turns with the element, r phi' = v_theta, so the velocity states' rates carry
+// the frame's turning terms:
 //   v_r' = a_r + v_theta^2 / r,   v_theta' = a_theta - v_r v_theta / r   (r = sqrt(x^2 + y^2)).
 // Why: CVODE's error weights are per state; in this frame the radial contact vibration and the
 // orbital velocity (which the cage speed needs) have tolerances of their own
