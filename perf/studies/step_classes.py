@@ -185,8 +185,12 @@ def main():
     p.add_argument("--window", nargs=2, type=float, metavar=("FROM", "TO"),
                    help="the counts' window in seconds instead of SCENES' one revolution (the counts are then "
                         "per revolution of the scene's window length)")
+    p.add_argument("--extra", nargs="*", default=[], metavar="KEY=VALUE",
+                   help="[solver] keys added to every candidate (another realization: jacobian_perturbation=8e-8)")
     args = p.parse_args()
     RTOL_FACTORS[:] = args.rtol_factors
+    for name in CANDIDATES:
+        CANDIDATES[name] = {**CANDIDATES[name], **dict(kv.split("=", 1) for kv in args.extra)}
     for name in args.scenes:
         with tempfile.TemporaryDirectory(prefix="step_classes_") as workdir:
             refs = {}
