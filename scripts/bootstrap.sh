@@ -74,21 +74,24 @@ fi
 # SUNDIALS built with optimisation. Debian's libsundials is compiled without any -O (its rules pass
 # CMAKE_C_FLAGS=-fcommon, which replaces dpkg's CFLAGS), so CVODE's own work costs about 2.8 times
 # the instructions of an -O2 build of the same source, whose results are bitwise the same
-# (perf/studies/results/sundials_o2.md). Built once from Debian's own source package of the
+# (perf/studies/results/sundials_o2.md). -O3 vectorises the serial vectors' element loops (two
+# doubles per SSE2 instruction; the sums of the norms stay in order, no FMA at the baseline ISA):
+# CVODE's own work another 26 % fewer instructions, the results bitwise the same again
+# (perf/studies/results/revolution_instructions.md, "SUNDIALS at -O3"). Built once from Debian's own source package of the
 # installed version, only the modules raceway links (CVODE, ARKODE and the serial vectors, dense
 # matrices and solvers they carry), into RACEWAY_DEPS (default /opt/raceway-deps), outside the
-# clone: sundials-VERSION-O2, with the link `sundials` to it that CMake looks in first
+# clone: sundials-VERSION-O3, with the link `sundials` to it that CMake looks in first
 # (CMakeLists.txt). Skipped when already there; when the source cannot be fetched raceway builds
 # against Debian's library as before (slower, the same results).
 deps_root="${RACEWAY_DEPS:-/opt/raceway-deps}"
 build_optimised_sundials() {
   local version prefix work
   version=$(dpkg-query -W -f='${Version}' libsundials-dev)
-  prefix="$deps_root/sundials-$version-O2"
+  prefix="$deps_root/sundials-$version-O3"
   if [[ -f "$prefix/.complete" ]]; then
-    echo "bootstrap: SUNDIALS $version -O2 present in $prefix"
+    echo "bootstrap: SUNDIALS $version -O3 present in $prefix"
   else
-    echo "bootstrap: building SUNDIALS $version with -O2 into $prefix (once)"
+    echo "bootstrap: building SUNDIALS $version with -O3 into $prefix (once)"
     if ! apt-cache showsrc "sundials=$version" 2>/dev/null | grep -q '^Package: sundials'; then
       # Debian's source packages: a deb-src entry of bookworm beside the binary ones, and its index.
       local list=/etc/apt/sources.list.d/raceway-deb-src.sources
@@ -106,9 +109,9 @@ build_optimised_sundials() {
       { cat "$work/source.log" >&2; return 1; }
     local src
     src=$(find "$work" -mindepth 1 -maxdepth 1 -type d -name 'sundials-*' | head -1)
-    # Debian's configuration (MPI on, 64-bit indices, double precision, -fcommon) with -O2, the
+    # Debian's configuration (MPI on, 64-bit indices, double precision, -fcommon) with -O3, the
     # other solvers, the examples and the static libraries left out.
-    cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=None -DCMAKE_C_FLAGS="-O2 -fcommon" \
+    cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=None -DCMAKE_C_FLAGS="-O3 -fcommon" \
       -DCMAKE_INSTALL_PREFIX="$prefix" -DBUILD_SHARED_LIBS=ON -DBUILD_STATIC_LIBS=OFF -DENABLE_MPI=ON \
       -DSUNDIALS_INDEX_SIZE=64 -DBUILD_CVODE=ON -DBUILD_ARKODE=ON -DBUILD_CVODES=OFF -DBUILD_IDA=OFF \
       -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_ENABLE_CXX=OFF \

@@ -136,6 +136,15 @@ def first_present(f, paths):
     return None
 
 
+def last_segment_row_is_last_sample(f):
+    """Whether /segments' last row holds the last output sample (docs/output_layout.md, "Segment
+    diagnostics at a coarser sampling": row r is sample r N)."""
+    segments = f["segments"]
+    if int(segments.attrs.get("sample_stride", 1)) == 1:
+        return True
+    return "time" in segments and segments["time"].shape[0] > 0 and segments["time"][-1] == f["time"][-1]
+
+
 def quantities(summary, output):
     """Every chosen quantity of a run: {name: (value, class)}; a value is a float or a list."""
     found = {}
@@ -153,10 +162,11 @@ def quantities(summary, output):
             found["last." + name] = (row.tolist(), cls)
         segments = f.get("segments")
         for kind in sorted(segments.keys()) if segments is not None else []:
-            # Groups only (/segments/time is a dataset); the last row is the last sample's only when
-            # every sample stores the segments ([output] segment_every = 1, every shipped scene).
+            # Groups only (/segments/time is a dataset); the last row is the last sample's when every
+            # sample stores the segments ([output] segment_every = 1), or, at a stride, when the
+            # last sample is one of the stored ones (/segments/time ends at /time's end).
             if isinstance(segments[kind], h5py.Group) and "normal_force" in segments[kind] \
-                    and int(segments.attrs.get("sample_stride", 1)) == 1:
+                    and last_segment_row_is_last_sample(f):
                 forces = np.abs(np.asarray(segments[kind]["normal_force"][-1], dtype=float))
                 found[f"last.{kind}.max_normal_force"] = (float(forces.max()), "force")
     return found

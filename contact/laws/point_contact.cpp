@@ -247,26 +247,27 @@ namespace {
 /// a pair of materials, and a ball-groove contact's Rx changes only with its contact angle (not in
 /// a Jacobian's velocity columns, nor between the film and the rolling resistance of one
 /// evaluation). A hit returns the bits a fresh evaluation gives (the same calls on the same
-/// arguments). The rolling resistance's factors are made when it first asks for them (a contact
-/// without rolling resistance never does).
+/// arguments). The minimum film's and the rolling resistance's factors are made when they are
+/// first asked for (a ball-groove contact takes the central film alone; one without rolling
+/// resistance never asks for its factors).
 struct EhlFactors {
   double g = std::numeric_limits<double>::quiet_NaN(), g_central = 0, g_minimum = 0, g_rolling = 0;
   double rx = std::numeric_limits<double>::quiet_NaN(), ry = rx, k = 0, central_shape = 0, minimum_shape = 0,
          k_rolling = 0;
-  bool has_g_rolling = false, has_k_rolling = false;
+  bool has_g_minimum = false, has_g_rolling = false, has_k_minimum = false, has_k_rolling = false;
 };
 
 EhlFactors& ehl_factors(double g, double rx, double ry) {
   thread_local EhlFactors f;
   if (!same_bits(g, f.g)) {
     f.g = g;
-    f.g_central = std::pow(g, 0.53), f.g_minimum = std::pow(g, 0.49), f.has_g_rolling = false;
+    f.g_central = std::pow(g, 0.53), f.has_g_minimum = false, f.has_g_rolling = false;
   }
   if (!same_bits(rx, f.rx) || !same_bits(ry, f.ry)) {
     f.rx = rx, f.ry = ry;
     f.k = hamrock_brewe_ellipticity(rx, ry);
-    f.central_shape = 1 - 0.61 * std::exp(-0.73 * f.k), f.minimum_shape = 1 - std::exp(-0.68 * f.k);
-    f.has_k_rolling = false;
+    f.central_shape = 1 - 0.61 * std::exp(-0.73 * f.k);
+    f.has_k_minimum = false, f.has_k_rolling = false;
   }
   return f;
 }
@@ -285,21 +286,38 @@ const EhlLogs& ehl_logs(double u, double w) {
 
 }  // namespace
 
-FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
-                                  double reduced_modulus, const PointLubricant& lubricant) {
+namespace {
+/// The fits' films; the minimum film only when `minimum` (its two factors and exponential cost a
+/// third of the call, and a ball-groove contact does not read it).
+FilmThickness hamrock_dowson(double entrainment_speed, double load, double rx, double ry, double reduced_modulus,
+                             const PointLubricant& lubricant, bool minimum) {
   FilmThickness film;
   if (!(entrainment_speed > 0) || !(load > 0) || !(lubricant.viscosity > 0)) return film;
   const double e_prime = 2 * reduced_modulus;
   const double u = lubricant.viscosity * entrainment_speed / (e_prime * rx);
   const double g = lubricant.pressure_viscosity * e_prime;
   const double w = load / (e_prime * rx * rx);
-  const EhlFactors& f = ehl_factors(g, rx, ry);
+  EhlFactors& f = ehl_factors(g, rx, ry);
   // u^a w^b as exp(a ln u + b ln w) (about 1e-15 relative: the rounding of a ln u, |ln u| ~ 25).
   const EhlLogs& logs = ehl_logs(u, w);
   const double log_u = logs.log_u, log_w = logs.log_w;
   film.central = 2.69 * std::exp(0.67 * log_u - 0.067 * log_w) * f.g_central * f.central_shape * rx;
+  if (!minimum) return film;
+  if (!f.has_g_minimum) f.g_minimum = std::pow(g, 0.49), f.has_g_minimum = true;
+  if (!f.has_k_minimum) f.minimum_shape = 1 - std::exp(-0.68 * f.k), f.has_k_minimum = true;
   film.minimum = 3.63 * std::exp(0.68 * log_u - 0.073 * log_w) * f.g_minimum * f.minimum_shape * rx;
   return film;
+}
+}  // namespace
+
+FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
+                                  double reduced_modulus, const PointLubricant& lubricant) {
+  return hamrock_dowson(entrainment_speed, load, rx, ry, reduced_modulus, lubricant, true);
+}
+
+double hamrock_dowson_central_film(double entrainment_speed, double load, double rx, double ry,
+                                   double reduced_modulus, const PointLubricant& lubricant) {
+  return hamrock_dowson(entrainment_speed, load, rx, ry, reduced_modulus, lubricant, false).central;
 }
 
 namespace {

@@ -108,6 +108,9 @@ struct FilmThickness {
 };
 FilmThickness hamrock_dowson_film(double entrainment_speed, double load, double rx, double ry,
                                   double reduced_modulus, const PointLubricant& lubricant);
+/// The central film h_c of hamrock_dowson_film alone (the same bits), without the minimum film's work.
+double hamrock_dowson_central_film(double entrainment_speed, double load, double rx, double ry,
+                                   double reduced_modulus, const PointLubricant& lubricant);
 
 /// Hamrock and Dowson's starved point contact (Hamrock, Fundamentals of Fluid Film Lubrication, the
 /// chapter on starvation; docs/lubrication.md says what was checked): the inlet meniscus at m

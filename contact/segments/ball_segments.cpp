@@ -206,7 +206,11 @@ GrooveContact groove_contact(const BallGrooveSegment& s, const SpatialKinematics
   const double u_ball = u_ring + slide_x;
   g.entrainment = 0.5 * std::abs(u_ring + u_ball);
 
-  g.film = hamrock_dowson_film(g.entrainment, g.q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
+  // The contact reads the central film alone (its minimum film is no diagnostic of it).
+  if (s.lubricant.inlet_meniscus > 0)
+    g.film = hamrock_dowson_film(g.entrainment, g.q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
+  else
+    g.film.central = hamrock_dowson_central_film(g.entrainment, g.q, g.rx, g.ry, s.normal.reduced_modulus, s.lubricant);
   const double cbrt_q = std::cbrt(g.q);
   g.a = hertz.a_coefficient * cbrt_q, g.b = hertz.b_coefficient * cbrt_q;
   g.ax = hertz.a_along_x ? g.a : g.b, g.ay = hertz.a_along_x ? g.b : g.a;

@@ -332,8 +332,10 @@ def main():
         scene = os.path.join(work, "scene.toml")
         open(scene, "w", encoding="utf-8").write(re.sub(r"(?m)^end_time = .*$", f'end_time = "{end}"', text) + extra)
         out = os.path.join(work, "out.h5")
-        run = subprocess.run([raceway, "run", scene, "-o", out, "--scheduler-log"], capture_output=True, text=True,
-                             timeout=300)
+        # The segment diagnostics at every sample, the tables' [T x S] (6309 R3 ships them at every
+        # 5th; that layout: run.segment_every_rows).
+        run = subprocess.run([raceway, "run", scene, "-o", out, "--scheduler-log", "--set", "output.segment_every=1"],
+                             capture_output=True, text=True, timeout=300)
         check(run.returncode == 0, f"raceway run exit {run.returncode}: {run.stderr[-500:]}")
         if run.returncode == 0:
             check_file(out, sections, doc)
