@@ -121,6 +121,7 @@ std::string applies_text(const Row& row) {
     case planar_rollers: return "planar roller";
     case spatial_rollers: return "spatial roller";
     case spatial_bearings: return "spatial";
+    case ball_bearings | planar_rollers: return "ball, planar roller";
     default: return "all";
   }
 }
