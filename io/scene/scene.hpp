@@ -379,6 +379,10 @@ struct SolverSpec {
   /// Tolerances this many times tighter on a rolling element's translational velocities while the
   /// element touches its pocket (or nearly); 1: off (solver/bearing/equations.hpp, adjust_error_weights).
   double pocket_tolerance_factor = 1;
+  /// With the pocket factor: the cage's rotation rate is tightened by it too while any element
+  /// touches its pocket (a pocket's approach rate is the difference of the element's orbital rate
+  /// and the cage's, both large).
+  bool pocket_tolerance_cage = false;
   /// Ball and planar roller bearings: the frame of the rolling elements' in-plane velocity states;
   /// with the orbital frame the pocket factor tightens v_theta alone.
   ElementVelocityFrame element_velocity_frame = ElementVelocityFrame::bearing;

@@ -24,6 +24,12 @@ void segment_every_within_run(const Row&, const Section& s, Bind& b) {
   });
 }
 
+/// The cage's share of the pocket tolerance exists only where the pocket factor tightens something.
+std::optional<std::string> pocket_factor_given(const Section&, const Bind& b) {
+  if (b.scene.solver.pocket_tolerance_factor > 1) return std::nullopt;
+  return "only with pocket_tolerance_factor > 1: it tightens the cage's rotation rate by that factor";
+}
+
 /// The radial velocity tolerance exists only where the rolling elements' velocities are orbital.
 std::optional<std::string> orbital_velocity_frame(const Section&, const Bind& b) {
   if (b.scene.solver.element_velocity_frame == ElementVelocityFrame::orbital) return std::nullopt;
@@ -282,6 +288,11 @@ constexpr Row kRows[] = {
      .meaning = "while a rolling element touches its cage pocket (or is within 1e-4 of its radius of it), the "
                 "tolerances of its translational velocities are this many times tighter (a pocket contact's approach "
                 "velocity lies far below rtol times the element's orbital speed); 1: off"},
+    {.section = "solver", .key = "pocket_tolerance_cage", .kind = boolean,
+     .field = FIELD(scene.solver.pocket_tolerance_cage), .def = value(0), .when = pocket_factor_given, .otherwise = 0,
+     .meaning = "with pocket_tolerance_factor: while any rolling element touches its pocket, the cage's rotation "
+                "rate is that many times tighter as well (the pocket's approach rate is the small difference of the "
+                "element's orbital rate and the cage's; docs/integration_methods.md)"},
     {.section = "solver", .key = "element_velocity_frame", .kind = choice,
      .field = FIELD(scene.solver.element_velocity_frame), .def = word("bearing"),
      .bearings = ball_bearings | planar_rollers, .elsewhere = kElementVelocityFrame, .options = kElementVelocityFrames,

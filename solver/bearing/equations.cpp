@@ -103,6 +103,7 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
       pocket_segments_.push_back(static_cast<int>(s));
   }
   pocket_weight_factor_ = model.params().solver.pocket_tolerance_factor;
+  pocket_cage_rate_ = model.params().solver.pocket_tolerance_cage;
   pocket_margin_ = 1e-4 * model.element_radius;
 }
 
@@ -114,16 +115,23 @@ void Equations::adjust_error_weights(double t, const double* z, double* ewt) con
     std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
                model_.laws[static_cast<std::size_t>(seg.law)]);
     if (!(rec[SegmentRecord::diagnostics + approach_field] > -pocket_margin_)) continue;
-    for (const int b : {seg.body_a, seg.body_b})
-      if (model_.bodies[static_cast<std::size_t>(b)].kind == BodyKind::rolling_element)
+    for (const int b : {seg.body_a, seg.body_b}) {
+      const BodyKind kind = model_.bodies[static_cast<std::size_t>(b)].kind;
+      if (kind == BodyKind::rolling_element || (pocket_cage_rate_ && kind == BodyKind::cage))
         pocket_touched_[static_cast<std::size_t>(b)] = 1;
+    }
   }
   // Only the element's translational velocities: the relative tolerance on its orbital velocity is
   // far looser than the approach velocities of a pocket contact (docs/integration_methods.md). In
-  // the orbital frame only v_theta, along which the pocket pushes (not the radial vibration).
+  // the orbital frame only v_theta, along which the pocket pushes (not the radial vibration). The
+  // cage (pocket_tolerance_cage): its rotation rate, once however many elements touch it.
   for (std::size_t b = 0; b < model_.bodies.size(); ++b) {
     if (!pocket_touched_[b]) continue;
     const Body& body = model_.bodies[b];
+    if (body.kind == BodyKind::cage) {
+      if (body.has(swz)) ewt[body.slot[swz]] *= pocket_weight_factor_;
+      continue;
+    }
     if (model_.has_orbital_velocity(body)) {
       ewt[body.slot[svy]] *= pocket_weight_factor_;
       continue;

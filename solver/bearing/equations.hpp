@@ -42,7 +42,8 @@ class Equations final : public numerics::DynamicSystem {
   std::vector<double> absolute_tolerance() const override { return model_.absolute_tolerance(); }
   bool adjusts_error_weights() const override { return pocket_weight_factor_ > 1 && !pocket_segments_.empty(); }
   /// While a rolling element touches its pocket, or is within pocket_margin_ of it, the error
-  /// weights of its translational velocities are multiplied by pocket_weight_factor_.
+  /// weights of its translational velocities are multiplied by pocket_weight_factor_ (with
+  /// pocket_tolerance_cage the cage's rotation rate's as well).
   void adjust_error_weights(double t, const double* z, double* ewt) const override;
   /// f(t, z). Returns 0, or 1 (recoverable) when a contact law left its valid range.
   int rhs(double t, const double* z, double* zdot) override;
@@ -130,6 +131,7 @@ class Equations final : public numerics::DynamicSystem {
   // bodies touched (scratch of adjust_error_weights, on the integrating thread).
   std::vector<int> pocket_segments_;
   double pocket_weight_factor_ = 1, pocket_margin_ = 0;
+  bool pocket_cage_rate_ = false;  // [solver] pocket_tolerance_cage
   mutable std::vector<char> pocket_touched_;
   // Segments cut into sub-tasks (a ball-groove contact whose traction grid has several blocks):
   std::vector<int> parts_;       ///< per segment: its tasks (1: one task, as a whole)

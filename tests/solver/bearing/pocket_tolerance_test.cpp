@@ -36,12 +36,13 @@ TEST(PocketTolerance, OffByDefault) {
 // The cage turned until ball 0 presses into a bar of its pocket: that ball's translational
 // velocities get the factor (in the orbital frame its circumferential velocity v_theta alone), its
 // other states, the cage's, the other balls' and the rings' keep theirs; turned back to the pocket's
-// middle, nothing changes.
-void check_tightening(scene::ElementVelocityFrame frame) {
+// middle, nothing changes. With pocket_tolerance_cage the cage's rotation rate gets the factor too.
+void check_tightening(scene::ElementVelocityFrame frame, bool cage_rate = false) {
   const bool orbital = frame == scene::ElementVelocityFrame::orbital;
   const double factor = 30;
   scene::Scene s = scene_with_factor(factor);
   s.solver.element_velocity_frame = frame;
+  s.solver.pocket_tolerance_cage = cage_rate;
   const Model m = build_model(s);
   scheduler::SerialExecutor executor;
   Equations eq(m, executor);
@@ -92,7 +93,10 @@ void check_tightening(scene::ElementVelocityFrame frame) {
       if (static_cast<int>(i) >= b.offset && static_cast<int>(i) < b.offset + b.size) owner = &b;
     ASSERT_NE(owner, nullptr);
     const bool tightens = orbital ? static_cast<int>(i) == owner->slot[svy] : velocity;
-    if (in_ball0 && tightens) {
+    if (owner->kind == BodyKind::cage && static_cast<int>(i) == owner->slot[swz] && cage_rate) {
+      EXPECT_EQ(w[i], factor) << "the cage's rotation rate, once";
+      ++tightened;
+    } else if (in_ball0 && tightens) {
       EXPECT_EQ(w[i], factor) << "state " << i;
       ++tightened;
     } else if (w[i] != 1.0) {
@@ -102,12 +106,16 @@ void check_tightening(scene::ElementVelocityFrame frame) {
       EXPECT_TRUE(tightens && owner->kind == BodyKind::rolling_element) << "state " << i;
     }
   }
-  EXPECT_EQ(tightened, orbital ? 1 : b0.has(svz) ? 3 : 2);
+  EXPECT_EQ(tightened, (orbital ? 1 : b0.has(svz) ? 3 : 2) + (cage_rate ? 1 : 0));
 }
 
 TEST(PocketTolerance, TightensTheTouchingBallsVelocities) { check_tightening(scene::ElementVelocityFrame::bearing); }
 TEST(PocketTolerance, TightensTheTouchingBallsOrbitalVelocityOnly) {
   check_tightening(scene::ElementVelocityFrame::orbital);
+}
+TEST(PocketTolerance, TightensTheCagesRotationRateOnRequest) {
+  check_tightening(scene::ElementVelocityFrame::orbital, true);
+  check_tightening(scene::ElementVelocityFrame::bearing, true);
 }
 
 }  // namespace
