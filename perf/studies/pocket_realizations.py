@@ -3,7 +3,7 @@
 Jacobian increments (the same equations and tolerances, other last bits), summarized per candidate.
 
   perf/studies/pocket_realizations.py run [--binary build/raceway] --scene NAME --end-time TIME
-                                          [--extra SECTION.KEY=VALUE,...] [--slack S] --out TSV
+                                          [--extra SECTION.KEY=VALUE,...] [--slack S] [--candidates NAME...] --out TSV
   perf/studies/pocket_realizations.py summary TSV...
 
 Why: a single run's step count and its per-impact errors are lotteries on some scenes. QJ215 with
@@ -47,7 +47,8 @@ INCREMENTS = ["1e-7", "8e-8", "1.25e-7"]
 
 def run(args):
     candidates = []
-    for name, keys in CANDIDATES.items():
+    for name in args.candidates:
+        keys = CANDIDATES[name]
         for jp in INCREMENTS:
             all_keys = [k for k in (keys, f"solver.jacobian_perturbation={jp}", args.extra) if k]
             candidates.append(f"{name}@{jp}:" + ",".join(all_keys))
@@ -103,6 +104,8 @@ def main():
     r.add_argument("--extra", default="", help="keys added to every candidate, e.g. solver.max_order=2")
     r.add_argument("--slack", default="1e-4", help="pocket_convergence.py's pairing slack, s")
     r.add_argument("--out", required=True)
+    r.add_argument("--candidates", nargs="+", default=list(CANDIDATES), choices=list(CANDIDATES),
+                   help="the candidates to run (default: all); base alone: the scene as shipped over realizations")
     s = sub.add_parser("summary")
     s.add_argument("tsv", nargs="+")
     args = p.parse_args()

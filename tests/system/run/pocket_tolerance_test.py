@@ -6,17 +6,25 @@ one case per ctest:
     pocket_tolerance_test.py CASE RACEWAY MPIEXEC SOURCE_DIR
 
   converges: the pocket impulse and peak of the summary's step-resolved totals, at the shipped
-    tolerances (Adams, rtol 1e-6) with pocket_tolerance_factor = 30, within 1 % of a tight run
-    (rtol 1e-9), where the shipped tolerances without it are more than 2 % off the impulse
-    (measured: -5.1 % without; -0.41 % in impulse, -0.76 % in peak with; perf/studies/results/pocket_convergence.md).
+    tolerances (Adams, rtol 1e-6) with pocket_tolerance_factor = 30, against a tight run (rtol 1e-9):
+    the peak within 1 % and less than half the shipped tolerances' peak error, the impulse within
+    3.5 %. What holds over realizations (three Jacobian increments, the same equations and
+    tolerances; perf/studies/results/pocket_realizations_qj215.tsv): factor 30 misses the peak by
+    0.20-0.48 % where the shipped tolerances miss it by 2.3-8.0 %, and the impulse by 0.02-2.6 %
+    (shipped: 0.03-5.7 %: the impulse of QJ215's pushes is a lottery of the last bits either way,
+    perf/studies/results/pocket_convergence.md), so no single run's impulse is held to 1 %.
   impacts: 6309 R3 over 21 ms, the first impacts on the leading side of pockets 0 and 1 (near
     20 ms, over by 20.2 ms; the window's only contacts on those two pocket sides): each one's
-    impulse and peak at the scene's shipped tolerances (Adams of order at most 2, rtol 2e-6) within
-    2 % of a tight run (BDF, rtol 1e-9; Adams at 1e-9 agrees within 0.15 %), and with
-    pocket_tolerance_factor = 10 within 1 % (measured: impulses -0.5 / +0.5 %, peaks -1.5 / +0.1 %
-    shipped; within 0.25 % with the factor). The impacts come after 20 ms of rattling, so a run that
-    drifts apart before them (BDF at rtol 1e-6 does: -8 % and -25 % with the factor, a different
-    approach) measures the drift, not the impact's resolution.
+    impulse and peak at the scene as shipped (Adams of order at most 2, rtol 2e-6, the balls' orbital
+    frame with v_r 3 times looser and the pocket factor 10 on v_theta) within 1 % of a tight run (BDF,
+    rtol 1e-9, in the bearing frame; Adams at 1e-9 agrees within 0.2 %). Measured over three
+    realizations (jacobian_perturbation 1e-7, the default, 8e-8 and 1.25e-7): impulses 0.04-0.81 %,
+    peaks 0.12-0.87 %. The same tolerances in the bearing frame without the factors (as the scene
+    shipped before) are no such bound: 0.06-2.8 % in two realizations and 8-27 % in the third, whose
+    run drifts apart before the impacts (so is BDF at rtol 1e-6: -8 % and -25 % with the factor): the
+    impacts come after 20 ms of rattling, and a run that drifts measures the drift, not the impact's
+    resolution. Over the 40 ms window (perf/studies/results/pocket_convergence.md) the shipped settings
+    hold every paired impact within 0.6 % in impulse and 0.5 % in peak in every realization.
   ranks: the factor-30 run at np = 2 against np = 1: every dataset and the summary bitwise
     (tests/system/parallel/compare_outputs.py), so the weights are the same whatever the ranks.
 
@@ -64,21 +72,31 @@ def cells(path, cells):
     return [(float(impulse[:, p, s].sum()), float(peak[:, p, s].max())) for p, s in cells]
 
 
+def in_bearing_frame(scene, copy):
+    """A copy of the scene without its velocity frame's keys (the radial factor is no key of the bearing
+    frame, so --set cannot take them back): the bearing frame, the pocket factor off (the tight runs)."""
+    keys = ("element_velocity_frame", "radial_velocity_tolerance_factor", "pocket_tolerance_factor")
+    with open(scene) as f, open(copy, "w") as g:
+        g.writelines(line for line in f if not line.split("=")[0].strip() in keys)
+    return copy
+
+
 def check_impacts(raceway, source, out):
-    scene = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    shipped = os.path.join(source, "jobs", "scenes", "6309_R3.toml")
+    bearing = in_bearing_frame(shipped, out("bearing_scene")[:-3] + ".toml")
     impacts = [(0, 0), (1, 0)]
     ends = {"end_time": "21 ms"}
     results = {}
     bdf = ("--set", 'solver.method="bdf"', "--set", "solver.max_order=5")
-    for name, extra in (("tight", bdf + ("--set", "solver.rtol=1e-9")), ("tight_adams", ("--set", "solver.rtol=1e-9")),
-                        ("shipped", ()), ("factor", ("--set", "solver.pocket_tolerance_factor=10"))):
+    for name, scene, extra in (("tight", bearing, bdf + ("--set", "solver.rtol=1e-9")),
+                               ("tight_adams", bearing, ("--set", "solver.rtol=1e-9")), ("shipped", shipped, ())):
         run(raceway, scene, out(name), extra, **ends)
         results[name] = cells(out(name), impacts)
     tight = results["tight"]
     check(all(j > 0 and f > 0 for j, f in tight), f"the tight run has both impacts: {tight}")
     err = lambda name, k, q: abs(results[name][k][q] / tight[k][q] - 1)
     print(f"(impulse N s, peak N) per impact: {results}", file=sys.stderr)
-    for name, limit in (("tight_adams", 0.002), ("shipped", 0.02), ("factor", 0.01)):
+    for name, limit in (("tight_adams", 0.002), ("shipped", 0.01)):
         for k, (p, s) in enumerate(impacts):
             for q, what in ((0, "impulse"), (1, "peak")):
                 check(err(name, k, q) < limit,
@@ -97,9 +115,11 @@ def main():
             tightened = run(raceway, scene, out("factor"), factor)
             err = lambda r, k: abs(r[k] / tight[k] - 1)
             print(f"impulse N s / peak N: tight {tight}, shipped {shipped}, factor 30 {tightened}", file=sys.stderr)
-            check(err(shipped, 0) > 0.02, f"the shipped tolerances miss the impulse by more than 2 % ({100 * err(shipped, 0):.2f} %)")
-            check(err(tightened, 0) < 0.01, f"factor 30: impulse within 1 % ({100 * err(tightened, 0):.2f} %)")
             check(err(tightened, 1) < 0.01, f"factor 30: peak within 1 % ({100 * err(tightened, 1):.2f} %)")
+            check(err(tightened, 1) < 0.5 * err(shipped, 1),
+                  f"factor 30: peak error under half the shipped tolerances' ({100 * err(tightened, 1):.2f} % against "
+                  f"{100 * err(shipped, 1):.2f} %)")
+            check(err(tightened, 0) < 0.035, f"factor 30: impulse within 3.5 % ({100 * err(tightened, 0):.2f} %)")
         elif case == "impacts":
             check_impacts(raceway, source, out)
         elif case == "ranks":
