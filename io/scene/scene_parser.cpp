@@ -245,9 +245,26 @@ void read_value(const Row& row, const Section& s, Bind& b) {
   }
 }
 
+/// Whether a key that does not apply under the scene's other settings (its row's `when`) is given at
+/// the value it then takes (`otherwise`: a factor of 1, a switch off): that changes nothing, so it is
+/// accepted, and a --set can take a scene back to the neutral setting (a shipped scene's factor of 3
+/// to 1 with its frame). Keys of another kind of bearing or contact are refused whatever their value.
+bool given_at_its_neutral_value(const Row& row, const Section& s, Bind& b) {
+  if (!row.otherwise || !row.when || !takes(row, b) || !s.has(row.key)) return false;
+  if (row.kind != ValueKind::number && row.kind != ValueKind::boolean) return false;
+  read_value(row, s, b);
+  bool neutral = false;
+  with_target(row.field(b), [&](auto& target) {
+    using T = std::remove_reference_t<decltype(target)>;
+    if constexpr (std::is_same_v<T, double>) neutral = target == *row.otherwise;
+    if constexpr (std::is_same_v<T, bool>) neutral = target == (*row.otherwise != 0);
+  });
+  return neutral;
+}
+
 void read_row(const Row& row, const Section& s, Bind& b) {
   if (const std::optional<std::string> why = not_applicable(row, s, b)) {
-    s.reject(row.key, *why);
+    if (!given_at_its_neutral_value(row, s, b)) s.reject(row.key, *why);
     if (row.otherwise) store_otherwise(row.field(b), *row.otherwise);
     return;
   }

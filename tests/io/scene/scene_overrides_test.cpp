@@ -94,6 +94,21 @@ TEST(SceneOverrides, ErrorsNameTheOverride) {
   EXPECT_EQ(other.file(), "default.toml") << other.what();
 }
 
+// A key that does not apply under the scene's other settings is accepted at the value it then takes
+// (a factor of 1, a switch off: nothing changes), so a --set can take a scene back to the neutral
+// setting; any other value is refused with the reason.
+TEST(SceneOverrides, NeutralValueOfAKeyThatDoesNotApply) {
+  for (const char* neutral : {"solver.radial_velocity_tolerance_factor=1", "solver.pocket_tolerance_cage=false"}) {
+    const Scene scene = parse_scene(default_scene_text(), "default.toml", std::vector<std::string>{neutral});
+    EXPECT_EQ(scene.solver.radial_velocity_tolerance_factor, 1.0) << neutral;
+    EXPECT_FALSE(scene.solver.pocket_tolerance_cage) << neutral;
+  }
+  EXPECT_NE(error_of("solver.radial_velocity_tolerance_factor=3").reason().find("only with element_velocity_frame"),
+            std::string::npos);
+  EXPECT_NE(error_of("solver.pocket_tolerance_cage=true").reason().find("only with pocket_tolerance_factor > 1"),
+            std::string::npos);
+}
+
 // A value that carries more TOML after a line break is refused naming the key, never cut to its
 // first value; one value over several lines (an array) is still one value.
 TEST(SceneOverrides, OneValuePerOverride) {
