@@ -259,18 +259,24 @@ Eigen::MatrixXd forward_difference_jacobian(Equations& eq, const Model& m, doubl
 // the spatial model below, against forward differences of the whole right-hand side with the
 // model's own steps (a wrong row, column, mass or sign fails); the central differences are printed
 // (and the sparsity checked) by check_state. The differences' accuracy is judged at the start.
+// The assembled Jacobian's worst column against forward differences of the whole right-hand side
+// with the model's own steps, at (t, z); `where` names it.
+double forward_difference_error(Seed002& s, double t, const std::vector<double>& z, std::string& where) {
+  std::vector<double> f(z.size());
+  EXPECT_EQ(s.eq.rhs(t, z.data(), f.data()), 0);
+  numerics::BorderedMatrix jac(s.model.border_size, s.model.element_count,
+                               (s.model.state_size - s.model.border_size) / s.model.element_count);
+  EXPECT_EQ(s.eq.jacobian(t, z.data(), jac), 0);
+  return spatial_roller_column_error(s.model, jac.to_dense(), forward_difference_jacobian(s.eq, s.model, t, z), 1e-6,
+                                     where);
+}
+
 TEST(Jacobian, AssemblyMatchesForwardDifferencesAfterShortRun) {
   Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation);
   const auto z = state_after(s, short_run);
   check_state(s.eq, s.model, short_run, z, 0, "t = 20 ms, central differences (not judged)");
-  std::vector<double> f(z.size());
-  ASSERT_EQ(s.eq.rhs(short_run, z.data(), f.data()), 0);
-  numerics::BorderedMatrix jac(s.model.border_size, s.model.element_count,
-                               (s.model.state_size - s.model.border_size) / s.model.element_count);
-  ASSERT_EQ(s.eq.jacobian(short_run, z.data(), jac), 0);
   std::string where;
-  const double e = spatial_roller_column_error(s.model, jac.to_dense(), forward_difference_jacobian(s.eq, s.model, short_run, z),
-                                               1e-6, where);
+  const double e = forward_difference_error(s, short_run, z, where);
   std::printf("[ jacobian ] t = 20 ms: worst column against forward differences %.3g (%s); closed %s\n", e,
               where.c_str(), closed_contacts(s.model, s.eq).c_str());
   EXPECT_LT(e, 1e-5) << where;
@@ -296,14 +302,8 @@ TEST(Jacobian, OrbitalFrameMatchesFiniteDifferences) {
   const auto later = state_after(s, short_run);
   for (const double t : {0.0, short_run}) {
     const std::vector<double>& z = t == 0.0 ? s.start.state : later;
-    std::vector<double> f(z.size());
-    ASSERT_EQ(s.eq.rhs(t, z.data(), f.data()), 0);
-    numerics::BorderedMatrix jac(s.model.border_size, s.model.element_count,
-                                 (s.model.state_size - s.model.border_size) / s.model.element_count);
-    ASSERT_EQ(s.eq.jacobian(t, z.data(), jac), 0);
     std::string where;
-    const double e = spatial_roller_column_error(s.model, jac.to_dense(), forward_difference_jacobian(s.eq, s.model, t, z),
-                                                 1e-6, where);
+    const double e = forward_difference_error(s, t, z, where);
     std::printf("[ jacobian ] orbital frame, t = %g ms: worst column against forward differences %.3g (%s)\n", 1e3 * t,
                 e, where.c_str());
     EXPECT_LT(e, 1e-5) << where;
