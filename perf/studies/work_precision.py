@@ -71,12 +71,13 @@ DEFAULT_ORDER = {"bdf": "5", "adams": "12", "erk": "5", "ark": "4"}
 # Variants on the scene as shipped: its own method, orders and absolute tolerances, with these
 # [solver] keys added (rtol is the sweep's). "shipped" is the scene's own point; the others are the
 # candidates of perf/studies/step_classes.py (fewer steps per revolution on the ball scenes).
-# "bearing_frame": the scene as shipped less its rolling elements' velocity-frame keys (None removes a
-# key): the bearing frame without the radial and pocket factors, as 6309 R3 and M24 shipped before
-# they took the orbital frame (docs/integration_methods.md); for other scenes the same as "shipped".
-SHIPPED_VARIANTS = {"shipped": {}, "bearing_frame": {"element_velocity_frame": None,
-                                                    "radial_velocity_tolerance_factor": None,
-                                                    "pocket_tolerance_factor": None}}
+# "bearing_frame": the scene as shipped with its rolling elements' velocity-frame keys at their
+# defaults (the radial factor 1 is accepted in the bearing frame: a key at its neutral value): the
+# bearing frame without the radial and pocket factors, as 6309 R3 and M24 shipped before they took
+# the orbital frame (docs/integration_methods.md); for other scenes the same as "shipped".
+SHIPPED_VARIANTS = {"shipped": {}, "bearing_frame": {"element_velocity_frame": '"bearing"',
+                                                    "radial_velocity_tolerance_factor": "1",
+                                                    "pocket_tolerance_factor": "1"}}
 
 MEASURES = ["trajectory", "cage_speed", "max_load", "pocket_impulse"]
 MEASURE_TITLES = {"trajectory": "body trajectories (RMS, physical scales)", "cage_speed": "mean cage speed",
@@ -84,22 +85,16 @@ MEASURE_TITLES = {"trajectory": "body trajectories (RMS, physical scales)", "cag
 
 
 def set_key(text, section, key, value):
-    """The scene text with `key = value` in [section] (replacing the key's line, or added under the header);
-    value None: the key's line removed (the key's default)."""
+    """The scene text with `key = value` in [section] (replacing the key's line, or added under the header)."""
     lines = text.splitlines()
     header = next((i for i, l in enumerate(lines) if l.strip().startswith(f"[{section}]")), None)
     if header is None:
-        return text if value is None else text + f"\n[{section}]\n{key} = {value}\n"
+        return text + f"\n[{section}]\n{key} = {value}\n"
     end = next((i for i in range(header + 1, len(lines)) if lines[i].strip().startswith("[")), len(lines))
     for i in range(header + 1, end):
         if re.match(rf"\s*{re.escape(key)}\s*=", lines[i]):
-            if value is None:
-                del lines[i]
-            else:
-                lines[i] = f"{key} = {value}"
+            lines[i] = f"{key} = {value}"
             return "\n".join(lines) + "\n"
-    if value is None:
-        return text
     lines.insert(header + 1, f"{key} = {value}")
     return "\n".join(lines) + "\n"
 
