@@ -161,7 +161,9 @@ def kill_after_checkpoint(cmd, out):
 
 
 def case_resume(raceway, mpiexec, scene, source, work):
-    every = ("--set", "output.checkpoint_interval=1.62 ms")  # 81 samples of 20 us
+    # 81 samples of 20 us; 20 ms, so that a kill after the first checkpoint lands before the end
+    # (a 5 ms run of the shipped scene can end within milliseconds of its first checkpoint).
+    every = ("--set", "output.checkpoint_interval=1.62 ms", "--set", "scene.end_time=20 ms")
     whole = run(command(raceway, scene, os.path.join(work, "whole.h5"), 5, every))
     out = os.path.join(work, "killed.h5")
     check(kill_after_checkpoint(command(raceway, scene, out, 5, every), out),
