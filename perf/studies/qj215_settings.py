@@ -99,7 +99,34 @@ def row(label, jp, kind, end, s, keys, m=None):
     return r
 
 
+def summary(paths):
+    """Per candidate: mean steps and right-hand sides of the window and of the full runs (and in % of base's),
+    per impact errors of each realization, and whether all three meet the 2 % target."""
+    import csv
+    import statistics
+    rows = [r for path in paths for r in csv.DictReader(open(path), delimiter="\t")]
+    by = {}
+    for r in rows:
+        by.setdefault(r["label"], {"window": [], "full": []})[r["run"]].append(r)
+    mean = lambda rs, k: statistics.mean(int(r[k]) for r in rs) if rs and all(r[k].isdigit() for r in rs) else float("nan")
+    base = by.get("base")
+    print("| candidate | window steps | full steps | full rhs | per impact impulse % | per impact peak % | paired | 2 % |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, d in by.items():
+        w, f = d["window"], d["full"]
+        rel = lambda rs, brs, k: (f"{mean(rs, k):,.0f}" + (f" ({100 * (mean(rs, k) / mean(brs, k) - 1):+.0f} %)"
+                                                          if base and label != "base" else ""))
+        ok = all(r["paired"] and r["paired"].split("/")[0] == r["paired"].split("/")[-1] and r["impulse_err_pct"]
+                 and float(r["impulse_err_pct"]) <= 2 and float(r["peak_err_pct"]) <= 2 for r in w)
+        print(f"| {label} | {rel(w, base and base['window'], 'steps')} | {rel(f, base and base['full'], 'steps')} | "
+              f"{rel(f, base and base['full'], 'rhs')} | {' / '.join(r['impulse_err_pct'] or '-' for r in w)} | "
+              f"{' / '.join(r['peak_err_pct'] or '-' for r in w)} | {' '.join(r['paired'] for r in w)} | "
+              f"{'yes' if ok and w else 'no'} |")
+
+
 def main():
+    if sys.argv[1:2] == ["--summary"]:
+        return summary(sys.argv[2:])
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--binary", default=os.path.join(ROOT, "build", "raceway"))
     p.add_argument("--window", default="0.3 s")
