@@ -132,6 +132,7 @@ def main():
     p.add_argument("--window", default="0.3 s")
     p.add_argument("--slack", type=float, default=2e-3, help="s, the pairing slack (QJ215's runs drift 0.1-0.3 ms)")
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--increments", nargs="+", default=INCREMENTS, help="the realizations' jacobian_perturbation")
     p.add_argument("--no-full", action="store_true", help="the window runs only")
     p.add_argument("--out", required=True)
     p.add_argument("candidates", nargs="+", help="LABEL:SECTION.KEY=VALUE[,...] (base: the scene as shipped)")
@@ -148,7 +149,7 @@ def main():
         with concurrent.futures.ProcessPoolExecutor(args.jobs) as pool:
             for c in args.candidates:
                 label, _, text = c.partition(":")
-                for i, jp in enumerate(INCREMENTS):
+                for i, jp in enumerate(args.increments):
                     keys = {**parse_keys(text), "solver.jacobian_perturbation": jp}
                     tag = f"{label}_{i}"
                     jobs.append((pool.submit(window_job, binary, keys, args.window, workdir, tag, ref_events,

@@ -92,6 +92,12 @@ CANDIDATES = {
                                  "radial_velocity_tolerance_factor": "3", "pocket_tolerance_factor": "30"},
     "orbital_radial10_pocket30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
                                   "radial_velocity_tolerance_factor": "10", "pocket_tolerance_factor": "30"},
+    # QJ215 (perf/studies/qj215_settings.py): the trapezoidal rule with the pocket factor on the touching
+    # ball's velocities and the cage's rotation rate, at rtol 1e-6 x the factor.
+    **{f"adams2_rtol{f:g}_pocket{k}_cage": {"method": '"adams"', "max_order": "2", "rtol_factor": f,
+                                            "pocket_tolerance_factor": str(k), "pocket_tolerance_cage": "true"}
+       for f, k in [(1, 300), (1, 500), (2, 1000), (0.5, 300), (0.3, 100), (0.2, 100), (0.1, 30), (0.1, 100)]},
+    "shipped_pocket30_cage": {"rtol_factor": "own", "pocket_tolerance_factor": "30", "pocket_tolerance_cage": "true"},
 }
 
 

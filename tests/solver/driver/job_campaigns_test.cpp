@@ -112,5 +112,35 @@ TEST(JobScenes, QJ215LubricatedCampaignsCarryTheTestGreasesBaseOil) {
   }
 }
 
+// The validation scene ships the trapezoidal rule with the pocket factor on the touching ball and the
+// cage (perf/studies/results/pocket_convergence.md); every campaign over it keeps the solver its stored
+// results were made with: Adams of unlimited order, no pocket factor, rtol 1e-6 unless it sweeps or
+// sets another. The scene itself must differ, or the pins would be untested.
+TEST(JobScenes, QJ215CampaignsKeepTheSolverOfTheirStoredResults) {
+  const scene::Scene reference = scene::load_scene((kSourceDir / "jobs" / "scenes" / "qj215_validation.toml").string());
+  ASSERT_EQ(reference.solver.max_order, 2);
+  ASSERT_GT(reference.solver.pocket_tolerance_factor, 1.0);
+  std::size_t campaigns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir / "jobs" / "campaigns")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("qj215_", 0) != 0 || entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(name);
+    ++campaigns;
+    const auto campaign = load_campaign(entry.path().string());
+    for (const auto& point : campaign.scenes) {
+      const scene::Scene s = campaign_scene(campaign, point);
+      EXPECT_EQ(s.solver.method, scene::IntegrationMethod::adams);
+      EXPECT_EQ(s.solver.max_order, 12);
+      EXPECT_EQ(s.solver.pocket_tolerance_factor, 1.0);
+      EXPECT_FALSE(s.solver.pocket_tolerance_cage);
+      EXPECT_EQ(s.solver.element_velocity_frame, scene::ElementVelocityFrame::bearing);
+      if (name.find("rtol") == std::string::npos) {
+        EXPECT_EQ(s.solver.rtol, 1e-6);
+      }
+    }
+  }
+  EXPECT_GE(campaigns, 16U);
+}
+
 }  // namespace
 }  // namespace raceway::driver
