@@ -32,6 +32,7 @@ except ImportError as err:
 CASE, RACEWAY, SOURCE = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
 sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_certify as ac  # noqa: E402
+import atlas_file  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
 from atlas_test_support import STANDIN_ATLAS, boundary_error  # noqa: E402
@@ -435,6 +436,12 @@ def case_shipped_files():
     for name in files:
         p = subprocess.run([RACEWAY, "atlas", os.path.join(folder, name), "--check"], capture_output=True, text=True)
         check(p.returncode == 0, f"{name}: --check exit {p.returncode}: {(p.stdout + p.stderr)[-400:]}")
+    # The QJ215 atlases keep the solver their stored points were made with: the validation scene ships
+    # Adams of order 2 with the pocket factor since (perf/studies/results/pocket_convergence.md).
+    pins = {"solver.max_order": 12, "solver.pocket_tolerance_factor": 1, "solver.pocket_tolerance_cage": False}
+    for name in (f for f in files if f.startswith("qj215_")):
+        sets = atlas_file.read_atlas_file(os.path.join(folder, name))["set"]
+        check(all(sets.get(k) == v for k, v in pins.items()), f"{name}: the solver is not pinned: {sets}")
 
 
 CASES = {"windows": case_windows,
