@@ -108,7 +108,8 @@ def summary(paths):
     per impact errors of each realization, and whether all three meet the 2 % target."""
     import csv
     import statistics
-    rows = [r for path in paths for r in csv.DictReader(open(path), delimiter="\t")]
+    rows = [r for path in paths for r in csv.DictReader((line for line in open(path) if not line.startswith("#")),
+                                                        delimiter="\t")]
     by = {}
     for r in rows:
         by.setdefault(r["label"], {"window": [], "full": []})[r["run"]].append(r)
