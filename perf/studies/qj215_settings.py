@@ -24,8 +24,10 @@ Needs h5py, numpy (Debian's python3-*: /usr/bin/python3).
 """
 import argparse
 import concurrent.futures
+import csv
 import json
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -104,23 +106,28 @@ def row(label, jp, kind, end, s, keys, m=None):
 
 
 def summary(paths):
-    """Per candidate: mean steps and right-hand sides of the window and of the full runs (and in % of base's),
+    """Per candidate: mean steps and right-hand sides of the window and of the full runs (and in % of those of
+    "before", the scene's former settings, or else "base"),
     per impact errors of each realization, and whether all three meet the 2 % target."""
-    import csv
-    import statistics
-    rows = [r for path in paths for r in csv.DictReader((line for line in open(path) if not line.startswith("#")),
-                                                        delimiter="\t")]
+    lines = lambda path: (line for line in open(path) if not line.startswith("#"))
+    rows = [r for path in paths for r in csv.DictReader(lines(path), delimiter="\t")]
     by = {}
     for r in rows:
         by.setdefault(r["label"], {"window": [], "full": []})[r["run"]].append(r)
-    mean = lambda rs, k: statistics.mean(int(r[k]) for r in rs) if rs and all(r[k].isdigit() for r in rs) else float("nan")
-    base = by.get("base")
-    print("| candidate | window steps | full steps | full rhs | per impact impulse % | per impact peak % | paired | 2 % |")
+    mean = lambda rs, k: (statistics.mean(int(r[k]) for r in rs) if rs and all(r[k].isdigit() for r in rs)
+                          else float("nan"))
+    base_label = "before" if "before" in by else "base"
+    base = by.get(base_label)
+    print("| candidate | window steps | full steps | full rhs | per impact impulse % | per impact peak % | paired "
+          "| 2 % |")
     print("|---|---|---|---|---|---|---|---|")
     for label, d in by.items():
         w, f = d["window"], d["full"]
-        rel = lambda rs, brs, k: (f"{mean(rs, k):,.0f}" + (f" ({100 * (mean(rs, k) / mean(brs, k) - 1):+.0f} %)"
-                                                          if base and label != "base" else ""))
+        # Against the base's runs of the same realizations.
+        same = lambda rs, brs: [b for b in brs
+                                if b["jacobian_perturbation"] in {r["jacobian_perturbation"] for r in rs}]
+        pct = lambda rs, brs, k: f" ({100 * (mean(rs, k) / mean(same(rs, brs), k) - 1):+.0f} %)"
+        rel = lambda rs, brs, k: f"{mean(rs, k):,.0f}" + (pct(rs, brs, k) if base and label != base_label else "")
         ok = all(r["paired"] and r["paired"].split("/")[0] == r["paired"].split("/")[-1] and r["impulse_err_pct"]
                  and float(r["impulse_err_pct"]) <= 2 and float(r["peak_err_pct"]) <= 2 for r in w)
         print(f"| {label} | {rel(w, base and base['window'], 'steps')} | {rel(f, base and base['full'], 'steps')} | "

@@ -130,8 +130,8 @@ def main():
             with_cage = run(raceway, scene, out("cage"), BEFORE[:2] + ("--set", "solver.pocket_tolerance_factor=30"))
             print(f"unlimited order, factor 30 and the cage's rotation rate: {with_cage}", file=sys.stderr)
             for k, what in ((0, "impulse"), (1, "peak")):
-                check(err(with_cage, k) < 0.01,
-                      f"unlimited order, factor 30 with the cage's rate: {what} within 1 % ({100 * err(with_cage, k):.2f} %)")
+                check(err(with_cage, k) < 0.01, f"unlimited order, factor 30 with the cage's rate: {what} within 1 % "
+                                                f"({100 * err(with_cage, k):.2f} %)")
         elif case == "impacts":
             check_impacts(raceway, source, out)
         elif case == "ranks":
