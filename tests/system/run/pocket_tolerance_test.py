@@ -11,8 +11,8 @@ one case per ctest:
     factor): the impulse within 1.5 %, the peak within 1 %, each error under half that of the same
     settings without the factor. Measured over seven realizations (Jacobian increments 1e-7, 8e-8,
     1.25e-7, 9e-8, 1.1e-7, 1.5e-7, 6e-8: the same equations and tolerances, other last bits;
-    perf/studies/results/qj215_settings.tsv): impulse -0.75 to -1.27 %, peak +0.31 to +0.39 %; without
-    the factor 3.5-5.9 % and 3.0-8.5 %. And the factor 30 with the cage's rotation rate on the settings
+    perf/studies/results/pocket_convergence.md, "QJ215's settings"): impulse -0.75 to -1.27 %, peak
+    +0.31 to +0.39 %; without the factor 3.5-5.9 % and 3.0-8.5 %. And the factor 30 with the cage's rotation rate on the settings
     the scene shipped before (Adams of unlimited order): both within 1 % (over three realizations:
     +0.01 to +0.05 % in impulse, -0.22 to -0.46 % in peak; perf/studies/results/pocket_cage_rate_qj215.tsv).
   impacts: 6309 R3 over 21 ms, the first impacts on the leading side of pockets 0 and 1 (near
