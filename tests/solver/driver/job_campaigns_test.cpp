@@ -112,5 +112,24 @@ TEST(JobScenes, QJ215LubricatedCampaignsCarryTheTestGreasesBaseOil) {
   }
 }
 
+// The validation scene stores its segment diagnostics at every 5th sample; every campaign over it
+// stores them at every sample, as its recorded tables were taken (their metrics read every series at
+// the segment rows: a stride would change them).
+TEST(JobScenes, QJ215CampaignsStoreTheSegmentsAtEverySample) {
+  const scene::Scene reference = scene::load_scene((kSourceDir / "jobs" / "scenes" / "qj215_validation.toml").string());
+  EXPECT_EQ(reference.output.segment_every, 5);
+  int campaigns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir / "jobs" / "campaigns")) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("qj215_") || entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(name);
+    ++campaigns;
+    const auto campaign = load_campaign(entry.path().string());
+    ASSERT_FALSE(campaign.scenes.empty());
+    for (const auto& point : campaign.scenes) EXPECT_EQ(campaign_scene(campaign, point).output.segment_every, 1);
+  }
+  EXPECT_EQ(campaigns, 16);
+}
+
 }  // namespace
 }  // namespace raceway::driver
