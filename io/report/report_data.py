@@ -82,13 +82,31 @@ def _need(out, path):
 POCKET_STEP_QUANTITIES = ("onsets", "peak_force", "impulse", "contact_time")
 
 
+def coarse_intervals(values, stride, rows, peak):
+    """Per-interval statistics [T x ...] (row i: the output interval ending at sample i) onto the
+    intervals between every stride-th sample: row j covers samples (j - 1) stride + 1 .. j stride
+    (row 0 is sample 0's), `rows` rows; the largest value of them if `peak`, else their sum."""
+    values = np.asarray(values, dtype=float)[:(rows - 1) * stride + 1]
+    starts = np.concatenate([[0], 1 + stride * np.arange(rows - 1)]).astype(int)
+    return (np.maximum if peak else np.add).reduceat(values, starts, axis=0)
+
+
+def _step_rows(out, q):
+    """One pocket statistic at the rows the report reads: at the segment rows (a file read there) the
+    sum or largest value of the intervals between them, so that no step's contact is left out."""
+    if not out.at_segment_rows:
+        return _need(out, f"cage/pocket_step_{q}")
+    every = np.asarray(out.dataset(f"cage/pocket_step_{q}")[:out.rows], dtype=float)
+    return coarse_intervals(every, out.segment_stride, out.segment_rows, q == "peak_force")
+
+
 def _pocket_steps(out, run):
     """/cage/pocket_step_* [T x n x 2] (side 0: the bar ahead in +z) onto the report's front and rear
     bars (front: ahead in the cage's sense of rotation)."""
     if not all(f"cage/pocket_step_{q}" in out for q in POCKET_STEP_QUANTITIES):
         return
     front, rear = (0, 1) if run.direction > 0 else (1, 0)
-    data = {q: _need(out, f"cage/pocket_step_{q}") for q in POCKET_STEP_QUANTITIES}
+    data = {q: _step_rows(out, q) for q in POCKET_STEP_QUANTITIES}
     run.pocket_steps = {bar: {q: v[:, :, side] for q, v in data.items()} for bar, side in (("front", front),
                                                                                          ("rear", rear))}
 

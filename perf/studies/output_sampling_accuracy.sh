@@ -4,7 +4,8 @@
 # values with the same step sequence ([solver] initial_step fixed: CVODE otherwise scales its first
 # step by the first output time, see docs/output_layout.md), one rank pinned to core 0 with
 # --output-thread off (full load: no core for the output), then `raceway report` reads the pocket
-# contacts from the samples. One TSV line per run: the output's share of the wall time, and the
+# contacts from the samples (the segment diagnostics at every sample: 6309 R3 and QJ215 store them at
+# every 5th). One TSV line per run: the output's share of the wall time, and the
 # report's contact events (runs of samples above the threshold), peak bar forces, impulses, mean
 # contact duration and the cage speed. perf/studies/results/output_notes.md ("Sampling against accuracy")
 # reads it.
@@ -25,7 +26,8 @@ for scene in 6309_R3 qj215_validation; do
     iv=${interval/_/ }
     load=$(cut -d' ' -f1 /proc/loadavg)
     taskset -c 0 "$raceway" run "$scenes/$scene.toml" -o "$out/run.h5" --output-thread off --summary-json "$out/run.json" \
-      --set "scene.output_interval=\"$iv\"" --set 'solver.initial_step="1 us"' >"$out/log" 2>&1
+      --set "scene.output_interval=\"$iv\"" --set 'solver.initial_step="1 us"' --set output.segment_every=1 \
+      >"$out/log" 2>&1
     "$raceway" report "$out/run.h5" -o "$out/report" --no-plots >>"$out/log" 2>&1
     /usr/bin/python3 - "$out/run.json" "$out/report/summary.json" "$scene" "$iv" "$load" <<'PY'
 import json, sys

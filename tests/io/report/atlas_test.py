@@ -22,6 +22,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 
 try:
     import numpy as np
@@ -32,7 +33,6 @@ except ImportError as err:
 CASE, RACEWAY, SOURCE = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
 sys.path.insert(0, os.path.join(SOURCE, "io", "report"))
 import atlas_certify as ac  # noqa: E402
-import atlas_file  # noqa: E402
 import atlas_search as search  # noqa: E402
 import cage_motion as cm  # noqa: E402
 from atlas_test_support import STANDIN_ATLAS, boundary_error  # noqa: E402
@@ -427,21 +427,36 @@ def case_run_6205():
         print("; ".join(f"{q['id']} {q['class']} CDI {q['metric']:.3g}" for q in pts))
 
 
+# The solver of the QJ215 atlases' stored points (their base scene's before it took the trapezoidal rule).
+QJ215_SOLVER = {"solver.max_order": 12, "solver.pocket_tolerance_factor": 1, "solver.pocket_tolerance_cage": False}
+
+
 def case_shipped_files():
     """Every atlas file the project ships passes `raceway atlas FILE --check` (its keys, and its base
-    scene at every corner of the ranges, each realisation and the convergence rtol) and creates nothing."""
+    scene at every corner of the ranges, each realisation and the convergence rtol) and creates nothing;
+    one over a scene that stores its segment diagnostics at a stride sets them back to every sample, and
+    the QJ215 ones pin the solver of their stored points."""
     folder = os.path.join(SOURCE, "jobs", "atlas")
     files = sorted(f for f in os.listdir(folder) if f.endswith(".toml"))
     check("qj215_speed_radial.toml" in files and "6205_speed_unbalance.toml" in files, f"shipped atlases {files}")
     for name in files:
         p = subprocess.run([RACEWAY, "atlas", os.path.join(folder, name), "--check"], capture_output=True, text=True)
         check(p.returncode == 0, f"{name}: --check exit {p.returncode}: {(p.stdout + p.stderr)[-400:]}")
-    # The QJ215 atlases keep the solver their stored points were made with: the validation scene ships
-    # Adams of order 2 with the pocket factor since (perf/studies/results/pocket_convergence.md).
-    pins = {"solver.max_order": 12, "solver.pocket_tolerance_factor": 1, "solver.pocket_tolerance_cage": False}
-    for name in (f for f in files if f.startswith("qj215_")):
-        sets = atlas_file.read_atlas_file(os.path.join(folder, name))["set"]
-        check(all(sets.get(k) == v for k, v in pins.items()), f"{name}: the solver is not pinned: {sets}")
+        # A base scene that stores its segment diagnostics at a stride (qj215_validation: every 5th
+        # sample) is run with them at every sample: the metric reads every series at the segment rows,
+        # and the recorded atlases (docs/atlas/) were taken so.
+        with open(os.path.join(folder, name), "rb") as f:
+            atlas = tomllib.load(f)["atlas"]
+        with open(os.path.normpath(os.path.join(folder, atlas["scene"])), "rb") as f:
+            stride = tomllib.load(f).get("output", {}).get("segment_every", 1)
+        if stride > 1:
+            check(atlas.get("set", {}).get("output.segment_every") == 1,
+                  f"{name}: its scene stores the segments every {stride} samples; the atlas must set output.segment_every = 1")
+        # The QJ215 atlases keep the solver their stored points were made with: the validation scene
+        # ships Adams of order 2 with the pocket factor since (perf/studies/results/pocket_convergence.md).
+        if name.startswith("qj215_"):
+            sets = atlas.get("set", {})
+            check(all(sets.get(k) == v for k, v in QJ215_SOLVER.items()), f"{name}: the solver is not pinned: {sets}")
 
 
 CASES = {"windows": case_windows,

@@ -11,7 +11,8 @@ mass, rising then falling with it), scaling (Z and m_c enter as m_c / Z only; mu
 at rest; the speed's factor), atlas_columns (the atlas's table carries the columns; a point beyond
 the criterion gets a reason, not another class), run_inputs (a short real run of the 6205: the
 pocket's Hertz constant from the output against the Hertz formula for a ball in its spherical
-pocket, the masses, the run's traction slope against the law's), traction_slope (the run's
+pocket, the masses, the run's traction slope against the law's; the same run with its segment
+diagnostics at every 5th sample gives the evidence of those samples), traction_slope (the run's
 slope recovered from synthetic balls with a known one).
 """
 import math
@@ -240,6 +241,31 @@ def case_run_inputs():
             json.dumps(cf.atlas_evidence(out, 0.02, cage_mass=mass), allow_nan=True)
         except TypeError as err:
             check(False, f"the atlas's evidence is not JSON: {err}")
+        strided_inputs(args, out, tmp, mass)
+
+
+def strided_inputs(args, full, tmp, mass):
+    """The same run with the segment diagnostics at every 5th sample ([output] segment_every): the
+    criterion reads every series at the segment rows, so its evidence is the every-sample run's
+    computed from samples 0, 5, 10, ... alone (the integration is the same, bit for bit)."""
+    out = os.path.join(tmp, "strided.h5")
+    done = subprocess.run(args[:4] + [out] + args[5:] + ["--set", "output.segment_every=5"], capture_output=True,
+                          text=True, check=False)
+    check(done.returncode == 0, f"the strided run failed: {done.stderr[-300:]}")
+    if done.returncode:
+        return
+    _, ev = cf.run_inputs(out, 0.02, cage_mass=mass)
+    from raceway import RacewayOutput
+    with RacewayOutput(full) as f:
+        every = {name: np.asarray(f[name])[::5] for name in
+                 ("time", "balls/position", "balls/velocity", "balls/acceleration",
+                  "segments/ball_pocket/circumferential_force", "segments/ball_pocket/normal_force")}
+    window = every["time"] >= 0.02
+    load = float(np.mean(every["segments/ball_pocket/normal_force"][window]))
+    check(ev.get("mean_pocket_load_n") == load, f"strided: mean pocket load {ev.get('mean_pocket_load_n')} against {load}")
+    slope = cf.measured_traction_damping(every, window, ev.get("ball_mass_kg", math.nan))
+    check(ev.get("traction_damping_run_n_s_m") == slope,
+          f"strided: the run's traction slope {ev.get('traction_damping_run_n_s_m')} against {slope} at the same samples")
 
 
 if __name__ == "__main__":

@@ -112,6 +112,34 @@ TEST(JobScenes, QJ215LubricatedCampaignsCarryTheTestGreasesBaseOil) {
   }
 }
 
+// Every scene of every campaign file over the validation scene (jobs/campaigns/qj215_*.toml), given to
+// `check` with its campaign's file name; returns the number of campaign files.
+template <class Check>
+int for_each_qj215_campaign_scene(Check check) {
+  int campaigns = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir / "jobs" / "campaigns")) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("qj215_") || entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(name);
+    ++campaigns;
+    const auto campaign = load_campaign(entry.path().string());
+    EXPECT_FALSE(campaign.scenes.empty());
+    for (const auto& point : campaign.scenes) check(name, campaign_scene(campaign, point));
+  }
+  return campaigns;
+}
+
+// The validation scene stores its segment diagnostics at every 5th sample; every campaign over it
+// stores them at every sample, as its recorded tables were taken (their metrics read every series at
+// the segment rows: a stride would change them).
+TEST(JobScenes, QJ215CampaignsStoreTheSegmentsAtEverySample) {
+  const scene::Scene reference = scene::load_scene((kSourceDir / "jobs" / "scenes" / "qj215_validation.toml").string());
+  EXPECT_EQ(reference.output.segment_every, 5);
+  const int campaigns = for_each_qj215_campaign_scene(
+      [](const std::string&, const scene::Scene& s) { EXPECT_EQ(s.output.segment_every, 1); });
+  EXPECT_EQ(campaigns, 16);
+}
+
 // The validation scene ships the trapezoidal rule with the pocket factor on the touching ball and the
 // cage (perf/studies/results/pocket_convergence.md); every campaign over it keeps the solver its stored
 // results were made with: Adams of unlimited order, no pocket factor, rtol 1e-6 unless it sweeps or
@@ -120,26 +148,17 @@ TEST(JobScenes, QJ215CampaignsKeepTheSolverOfTheirStoredResults) {
   const scene::Scene reference = scene::load_scene((kSourceDir / "jobs" / "scenes" / "qj215_validation.toml").string());
   ASSERT_EQ(reference.solver.max_order, 2);
   ASSERT_GT(reference.solver.pocket_tolerance_factor, 1.0);
-  std::size_t campaigns = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir / "jobs" / "campaigns")) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("qj215_", 0) != 0 || entry.path().extension() != ".toml") continue;
-    SCOPED_TRACE(name);
-    ++campaigns;
-    const auto campaign = load_campaign(entry.path().string());
-    for (const auto& point : campaign.scenes) {
-      const scene::Scene s = campaign_scene(campaign, point);
-      EXPECT_EQ(s.solver.method, scene::IntegrationMethod::adams);
-      EXPECT_EQ(s.solver.max_order, 12);
-      EXPECT_EQ(s.solver.pocket_tolerance_factor, 1.0);
-      EXPECT_FALSE(s.solver.pocket_tolerance_cage);
-      EXPECT_EQ(s.solver.element_velocity_frame, scene::ElementVelocityFrame::bearing);
-      if (name.find("rtol") == std::string::npos) {
-        EXPECT_EQ(s.solver.rtol, 1e-6);
-      }
+  const int campaigns = for_each_qj215_campaign_scene([](const std::string& name, const scene::Scene& s) {
+    EXPECT_EQ(s.solver.method, scene::IntegrationMethod::adams);
+    EXPECT_EQ(s.solver.max_order, 12);
+    EXPECT_EQ(s.solver.pocket_tolerance_factor, 1.0);
+    EXPECT_FALSE(s.solver.pocket_tolerance_cage);
+    EXPECT_EQ(s.solver.element_velocity_frame, scene::ElementVelocityFrame::bearing);
+    if (name.find("rtol") == std::string::npos) {
+      EXPECT_EQ(s.solver.rtol, 1e-6);
     }
-  }
-  EXPECT_GE(campaigns, 16U);
+  });
+  EXPECT_EQ(campaigns, 16);
 }
 
 }  // namespace

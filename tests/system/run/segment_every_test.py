@@ -12,6 +12,10 @@ runs of 6309 R3 (jobs/scenes/6309_R3.toml, output every 20 us), one case per cte
     package reads it (at the segment rows: the N = 1 values there; a table of both samplings
     refused), `raceway report` reads it at the segment rows and says so, and the ParaView export's
     frames are at segment rows with the N = 1 ball loads.
+  pocket_steps: 20 ms at N = 1 and 5: `raceway report` of the N = 5 file takes the step-resolved pocket
+    statistics (/cage/pocket_step_*) of every output interval, summed (their largest, for the peak)
+    over the intervals between its rows: the same events, peaks, impulses and contact times as the
+    N = 1 report over the same window.
   ranks: the N = 5 run at np = 2, and at np = 2 with --parallel-output (the workers write their
     segments' cells at rows of every 5th sample): the np = 1 file's bits (tests/system/parallel/
     compare_outputs.py: every dataset and stored chunk).
@@ -40,8 +44,8 @@ def check(cond, what):
         failures.append(what)
 
 
-def command(raceway, scene, out, every, extra=(), np_ranks=1, mpiexec=None):
-    cmd = [raceway, "run", scene, "-o", out, "--set", "scene.end_time=5 ms", "--set",
+def command(raceway, scene, out, every, extra=(), np_ranks=1, mpiexec=None, end="5 ms"):
+    cmd = [raceway, "run", scene, "-o", out, "--set", f"scene.end_time={end}", "--set",
            f"output.segment_every={every}", *extra]
     if np_ranks > 1:
         cmd = [mpiexec, "--oversubscribe", "-np", str(np_ranks)] + cmd
@@ -179,6 +183,35 @@ def case_resume(raceway, mpiexec, scene, source, work):
               f"uninterrupted run's bits: {'' if ok else text}")
 
 
+def case_pocket_steps(raceway, scene, work):
+    """The report of a file read at the segment rows takes the step-resolved pocket statistics of every
+    output interval: 20 ms of 6309 R3 (its first ball-bar impacts), the second half (samples 501-1000,
+    rows 101-200 at N = 5: the same intervals) reported at N = 1 and N = 5."""
+    from report_data import coarse_intervals
+    summaries = {}
+    for every in (1, 5):
+        out = run(command(raceway, scene, os.path.join(work, f"p{every}.h5"), every, end="20 ms"))
+        report = os.path.join(work, f"report{every}")
+        run([raceway, "report", out, "--no-plots", "-o", report])
+        with open(os.path.join(report, "summary.json"), encoding="utf-8") as f:
+            summaries[every] = json.load(f)["pocket_forces"]
+    for bar in ("front", "rear"):
+        a, b = summaries[1][bar], summaries[5][bar]
+        check(a["events"] > 0 and a["events"] == b["events"], f"{bar}: {b['events']} events at N = 5, {a['events']} at 1")
+        check(a["peak_n"] == b["peak_n"], f"{bar}: peak {b['peak_n']} N at N = 5, {a['peak_n']} at 1")
+        for q in ("impulse_n_s", "contact_time_s"):
+            check(abs(a[q] - b[q]) <= 1e-12 * abs(a[q]), f"{bar}: {q} {b[q]} at N = 5, {a[q]} at 1")
+    # The intervals' rows against a plain loop over each block of samples.
+    with h5py.File(os.path.join(work, "p1.h5"), "r") as f:
+        impulse, peak = f["cage/pocket_step_impulse"][()], f["cage/pocket_step_peak_force"][()]
+    rows = math.ceil(len(impulse) / 5)
+    blocks = [slice(0, 1)] + [slice(5 * j - 4, 5 * j + 1) for j in range(1, rows)]
+    check(np.allclose(coarse_intervals(impulse, 5, rows, False), [impulse[s].sum(axis=0) for s in blocks],
+                      rtol=1e-12, atol=0) and
+          np.array_equal(coarse_intervals(peak, 5, rows, True), [peak[s].max(axis=0) for s in blocks]),
+          "the intervals between every 5th sample: sums and largest values")
+
+
 def main():
     if len(sys.argv) != 5:
         print(__doc__, file=sys.stderr)
@@ -189,6 +222,8 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         if case == "rows":
             case_rows(raceway, scene, work)
+        elif case == "pocket_steps":
+            case_pocket_steps(raceway, scene, work)
         elif case == "ranks":
             case_ranks(raceway, mpiexec, scene, source, work)
         else:
