@@ -60,7 +60,7 @@ def run(args):
     custom = dict(c.split(":", 1) for c in args.custom)
     for name in args.candidates + list(custom):
         keys = custom.get(name, CANDIDATES.get(name))
-        for jp in INCREMENTS:
+        for jp in args.increments:
             all_keys = [k for k in (keys, f"solver.jacobian_perturbation={jp}", args.extra) if k]
             candidates.append(f"{name}@{jp}:" + ",".join(all_keys))
     cmd = [sys.executable, os.path.join(HERE, "pocket_convergence.py"), "--binary", args.binary, "--scenes", args.scene,
@@ -93,7 +93,7 @@ def summary(paths):
             continue
         base_steps = statistics.mean(by["base"]["steps"].values())
         base_rhs = statistics.mean(by["base"]["rhs"].values())
-        print(f"== {path}: {rows[0]['scene']} {rows[0]['end_time']}, {len(INCREMENTS)} realizations per candidate")
+        print(f"== {path}: {rows[0]['scene']} {rows[0]['end_time']}, {len(by['base']['steps'])} realizations per candidate")
         print("| candidate | steps (vs base) | rhs (vs base) | per impact impulse % median / max | peak % median / max | "
               "paired | window totals impulse % | peak % |")
         print("|---|---|---|---|---|---|---|---|")
@@ -121,6 +121,8 @@ def main():
     r.add_argument("--out", required=True)
     r.add_argument("--candidates", nargs="+", default=list(CANDIDATES), choices=list(CANDIDATES),
                    help="the candidates to run (default: all); base alone: the scene as shipped over realizations")
+    r.add_argument("--increments", nargs="+", default=INCREMENTS,
+                   help="the realizations' Jacobian increments (more: a steadier judgement of a lottery)")
     r.add_argument("--custom", nargs="*", default=[], metavar="LABEL:SECTION.KEY=VALUE,...",
                    help="further candidates with their own keys (e.g. r3_rtol2e-5:solver.rtol=2e-5,...)")
     s = sub.add_parser("summary")
