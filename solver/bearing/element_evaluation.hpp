@@ -5,9 +5,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
-#include <cmath>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
