@@ -1,7 +1,9 @@
 #include "contact/segments/roller_segments.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace raceway::contact {
 namespace {
@@ -149,10 +151,26 @@ SegmentResult evaluate(const RollerRaceSegment& s, const PlanarKinematics& ring,
   return contact_at(s.law, s.traction, ring, roller, point, normal_on_roller, approach, perp(n));
 }
 
+namespace {
+/// The unit vector at `angle`. A pocket's two bars are evaluated one after the other at the same
+/// angle: the second takes the first's cosine and sine (the same argument's bits, so the same
+/// values), which halves the bars' trigonometry.
+Vec2 unit_at(double angle) {
+  struct Last {
+    std::uint64_t key = 0;
+    Vec2 unit{1, 0};
+    bool filled = false;
+  };
+  thread_local Last last;
+  const auto key = std::bit_cast<std::uint64_t>(angle);
+  if (!last.filled || last.key != key) last = {key, Vec2{std::cos(angle), std::sin(angle)}, true};
+  return last.unit;
+}
+}  // namespace
+
 SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& roller) {
-  const double angle = cage.theta + s.pocket_angle;
-  const Vec2 radial{std::cos(angle), std::sin(angle)};
+  const Vec2 radial = unit_at(cage.theta + s.pocket_angle);
   const Vec2 tangential = perp(radial);
   const Vec2 pocket_centre = position(cage) + s.pitch_radius * radial;
   const double offset = dot(position(roller) - pocket_centre, tangential);

@@ -38,6 +38,7 @@ python3-*). Runs sequentially; cpu_s is the child's user + system time.
 import argparse
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -180,7 +181,7 @@ def main():
                     ("check", {**tight, "solver.method": f'"{CHECK[method]}"', "solver.max_order": order(CHECK[method])})]
             for c in args.candidate:
                 label, keys = c.split(":", 1)
-                runs.append((label, dict(kv.split("=", 1) for kv in keys.split(",") if kv)))
+                runs.append((label, dict(kv.split("=", 1) for kv in re.split(r",(?=[a-z_]+\.[a-z_.]+=)", keys) if kv)))
             ref, ref_events, default = {}, [], None
             for tag, keys in runs:
                 s = run_one(args.binary, name, keys, ends.get(name), workdir, tag)

@@ -92,6 +92,12 @@ CANDIDATES = {
                                  "radial_velocity_tolerance_factor": "3", "pocket_tolerance_factor": "30"},
     "orbital_radial10_pocket30": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
                                   "radial_velocity_tolerance_factor": "10", "pocket_tolerance_factor": "30"},
+    # ... with the cage's rotation rate as well (pocket_tolerance_cage): seed 002's pocket impacts
+    # converge with these (perf/studies/results/pocket_convergence.md).
+    "orbital_pocket30_cage": {"rtol_factor": "own", "element_velocity_frame": '"orbital"',
+                              "pocket_tolerance_factor": "30", "pocket_tolerance_cage": "true"},
+    "orbital_pocket10_cage_rtol2": {"rtol_factor": 2, "element_velocity_frame": '"orbital"',
+                                    "pocket_tolerance_factor": "10", "pocket_tolerance_cage": "true"},
     # QJ215 (perf/studies/qj215_settings.py): the trapezoidal rule with the pocket factor on the touching
     # ball's velocities and the cage's rotation rate, at rtol 1e-6 x the factor.
     **{f"adams2_rtol{f:g}_pocket{k}_cage": {"method": '"adams"', "max_order": "2", "rtol_factor": f,

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "solver/bearing/body_dynamics.hpp"
@@ -74,6 +76,28 @@ contact::SegmentResult evaluate_planar(const Model& m, const Law& law, const Seg
   if (const MarkerKind* k = kind_of(m.markers[static_cast<std::size_t>(seg.marker_a)])) k->to_reference(p.point_a, r.on_a);
   if (const MarkerKind* k = kind_of(m.markers[static_cast<std::size_t>(seg.marker_b)])) k->to_reference(p.point_b, r.on_b);
   return r;
+}
+
+/// A dry roller-cage bar between two body centres that stands clear of its roller by more than the
+/// columns' position and angle steps can close (an angle's step moves the bar by at most twice the
+/// pitch radius times it): every column's difference is then exactly zero, and the columns are
+/// written as zeros without evaluating the law (bitwise what the differences give). The bars of a
+/// pocket are clear of their roller most of the time.
+template <class Law>
+bool bar_stays_clear(const Model& m, const FiniteDifferenceSteps& step, const Law& law, const ElementShape& shape,
+                     const double* z, double approach) {
+  if constexpr (std::is_same_v<Law, contact::CageBarSegment>) {
+    if (law.film || shape.coupled || shape.shift_a + shape.shift_b > 0 || !(approach < 0)) return false;
+    double reach = 0;
+    for (const SegmentColumn& c : shape.columns) {
+      const VariableClass k = m.state_class[static_cast<std::size_t>(c.state)];
+      if (k == VariableClass::position) reach += std::abs(step(c.state, z));
+      if (k == VariableClass::angle) reach += 2.0 * law.pitch_radius * std::abs(step(c.state, z));
+    }
+    return approach < -2.0 * reach;
+  } else {
+    return false;
+  }
 }
 
 }  // namespace element_detail
@@ -143,7 +167,13 @@ void write_element_jacobian(const Model& m, const FiniteDifferenceSteps& step, c
     const PlanarPair at_z = planar_pair(m, seg, t, z, nullptr, nullptr);
     const contact::SegmentResult base = evaluate_planar(m, law, seg, at_z);
     ok = base.valid;
+    // A bar clear of its roller: every difference is zero (bar_stays_clear).
+    const bool clear = bar_stays_clear(m, step, law, shape, z, base.diagnostics.approach);
     for (const SegmentColumn& c : shape.columns) {
+      if (clear) {
+        out = std::fill_n(out, SegmentRecord::wrench_rows, 0.0);
+        continue;
+      }
       const auto j = static_cast<std::size_t>(c.state);
       const double h = step(c.state, z);
       zp[j] = z[j] + h;

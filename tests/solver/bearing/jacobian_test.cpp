@@ -14,6 +14,7 @@
 #include "contact/segments/roller_segments.hpp"
 #include "scheduler/executor.hpp"
 #include "solver/numerics/bordered_matrix.hpp"
+#include "solver/bearing/element_evaluation.hpp"
 #include "solver/bearing/equations.hpp"
 #include "solver/numerics/integrator.hpp"
 #include "solver/bearing/model.hpp"
@@ -280,6 +281,47 @@ TEST(Jacobian, AssemblyMatchesForwardDifferencesAfterShortRun) {
   std::printf("[ jacobian ] t = 20 ms: worst column against forward differences %.3g (%s); closed %s\n", e,
               where.c_str(), closed_contacts(s.model, s.eq).c_str());
   EXPECT_LT(e, 1e-5) << where;
+}
+
+// A dry cage bar clear of its roller by more than its columns' steps can close writes zero columns
+// without evaluating its law (bar_stays_clear, solver/bearing/element_evaluation.hpp). At the start
+// and 20 ms later, every bar so judged has exactly zero differences in every column (the law evaluated
+// at each column's step), and both kinds occur: bars judged clear, and bars in contact or within reach.
+TEST(Jacobian, ClearCageBarsHaveExactlyZeroColumns) {
+  Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation);
+  const FiniteDifferenceSteps step(s.model);
+  int clear = 0, evaluated = 0;
+  for (const std::vector<double>& z : {s.start.state, state_after(s, short_run)}) {
+    for (const Segment& seg : s.model.segments) {
+      if (seg.kind != SegmentKind::cage_bar_front && seg.kind != SegmentKind::cage_bar_rear) continue;
+      const auto& law = s.model.law<contact::CageBarSegment>(seg);
+      const ElementShape shape = element_shape(s.model, seg);
+      const auto at = [&](const std::vector<double>& y) {
+        const element_detail::PlanarPair p = element_detail::planar_pair(s.model, seg, short_run, y.data(), nullptr, nullptr);
+        return contact::evaluate(law, p.a, p.b);
+      };
+      const contact::SegmentResult base = at(z);
+      if (!element_detail::bar_stays_clear(s.model, step, law, shape, z.data(), base.diagnostics.approach)) {
+        ++evaluated;
+        continue;
+      }
+      ++clear;
+      for (const SegmentColumn& c : shape.columns) {
+        std::vector<double> y = z;
+        y[static_cast<std::size_t>(c.state)] += step(c.state, z.data());
+        const contact::SegmentResult r = at(y);
+        EXPECT_EQ(r.on_a.fx, 0.0) << seg.name;
+        EXPECT_EQ(r.on_a.fy, 0.0) << seg.name;
+        EXPECT_EQ(r.on_a.mz, 0.0) << seg.name;
+        EXPECT_EQ(r.on_b.fx, 0.0) << seg.name;
+        EXPECT_EQ(r.on_b.fy, 0.0) << seg.name;
+        EXPECT_EQ(r.on_b.mz, 0.0) << seg.name;
+      }
+    }
+  }
+  std::printf("[ jacobian ] cage bars judged clear %d, evaluated %d\n", clear, evaluated);
+  EXPECT_GT(clear, 0);
+  EXPECT_GT(evaluated, 0);
 }
 
 // The rollers' velocities in their orbital frame ([solver] element_velocity_frame = "orbital"): the
