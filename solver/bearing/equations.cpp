@@ -107,14 +107,30 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
   pocket_margin_ = 1e-4 * model.element_radius;
 }
 
-void Equations::adjust_error_weights(double t, const double* z, double* ewt) const {
+namespace {
+
+/// The approach of pocket element seg at (t, z): a ball's pocket on two body centres by its gap
+/// alone (contact::pocket_approach, the bits of its full evaluation), any other element evaluated.
+double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z) {
+  const SegmentLaw& law = m.laws[static_cast<std::size_t>(seg.law)];
+  const auto* pocket = std::get_if<contact::BallPocketSegment>(&law);
+  const auto* cage = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_a)]);
+  const auto* ball = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_b)]);
+  if (pocket && cage && ball)
+    return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), m.kinematics(ball->body, t, z).position);
   std::array<double, SegmentRecord::size> rec{};
+  std::visit([&](const auto& l) { write_element_result(m, l, seg, t, z, rec); }, law);
+  return rec[SegmentRecord::diagnostics + approach_field];
+}
+
+}  // namespace
+
+void Equations::adjust_error_weights(double t, const double* z, double* ewt) const {
+  const KinematicsMemo memo(model_, t, z);  // the cage's kinematics once for all its pockets
   pocket_touched_.assign(model_.bodies.size(), 0);
   for (const int s : pocket_segments_) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-    std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
-               model_.laws[static_cast<std::size_t>(seg.law)]);
-    if (!(rec[SegmentRecord::diagnostics + approach_field] > -pocket_margin_)) continue;
+    if (!(pocket_element_approach(model_, seg, t, z) > -pocket_margin_)) continue;
     for (const int b : {seg.body_a, seg.body_b}) {
       const BodyKind kind = model_.bodies[static_cast<std::size_t>(b)].kind;
       if (kind == BodyKind::rolling_element || (pocket_cage_rate_ && kind == BodyKind::cage))
@@ -243,7 +259,11 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
-  executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
+  {
+    // Each body's kinematics once, however many elements this rank evaluates touch it.
+    const KinematicsMemo memo(model_, t, context_.data() + 1);
+    executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
+  }
   if (cut_) combine_rhs_parts(records_);
   // Sum in the canonical (element) order: bitwise identical for any schedule.
   contact_.clear();
@@ -325,8 +345,11 @@ int Equations::jacobian(double t, const double* z, numerics::BorderedMatrix& jac
   context_[0] = t;
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
-  executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record_, jacobian_task_,
-                cut_ ? jac_task_records_ : jac_records_);
+  {
+    const KinematicsMemo memo(model_, t, context_.data() + 1);  // at z: the unperturbed bodies' once
+    executor_.run(scheduler::Phase::jacobian, context_, ntask, jacobian_record_, jacobian_task_,
+                  cut_ ? jac_task_records_ : jac_records_);
+  }
   if (cut_) combine_jacobian_parts(z);
   jac.set_zero();
   int status = 0;
