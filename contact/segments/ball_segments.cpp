@@ -3,7 +3,10 @@
 #include "contact/segments/land_film.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -372,10 +375,26 @@ struct PocketOffset {
   double len;         ///< |d|
   double approach;    ///< len - clearance / 2
 };
+/// (cos a, sin a, 0), the radial axis of the pocket at cage-frame angle a. A pocket's angle is a
+/// constant of its law, so this thread keeps the axes of the angles last asked for, by their bits
+/// (direct-mapped): a hit returns the bits the evaluation would.
+Vec3 pocket_axis(double angle) {
+  struct Entry {
+    std::uint64_t key = 0;
+    double c = 0, s = 0;
+    bool filled = false;
+  };
+  thread_local std::array<Entry, 64> memo{};
+  const auto key = std::bit_cast<std::uint64_t>(angle);
+  Entry& e = memo[(key * 0x9E3779B97F4A7C15ull) >> 58];
+  if (!e.filled || e.key != key) e = {key, std::cos(angle), std::sin(angle), true};
+  return {e.c, e.s, 0.0};
+}
+
 PocketOffset pocket_offset(const BallPocketSegment& s, const SpatialKinematics& cage, const Vec3& ball_position) {
   PocketOffset o;
   const Vec3 p = cage.rotation.transpose() * (ball_position - cage.position);  // cage frame
-  o.axis = Vec3(std::cos(s.pocket_angle), std::sin(s.pocket_angle), 0.0);
+  o.axis = pocket_axis(s.pocket_angle);
   o.d = p - s.pitch_radius * o.axis;
   if (s.shape == PocketShape::cylindrical) o.d -= o.d.dot(o.axis) * o.axis;
   o.len = o.d.norm();
