@@ -109,6 +109,14 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
 
 namespace {
 
+/// Body b's centre at (t, z), kinematics(b, t, z).position: straight from its states where it has
+/// all three (a ball), without the rest of its kinematics.
+contact::Vec3 body_centre(const Model& m, int b, double t, const double* z) {
+  const Body& body = m.bodies[static_cast<std::size_t>(b)];
+  if (body.ring || body.slot[sx] < 0 || body.slot[sy] < 0 || body.slot[sz] < 0) return m.kinematics(b, t, z).position;
+  return {z[body.slot[sx]], z[body.slot[sy]], z[body.slot[sz]]};
+}
+
 /// The approach of pocket element seg at (t, z): a ball's pocket on two body centres by its gap
 /// alone (contact::pocket_approach, the bits of its full evaluation), any other element evaluated.
 double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z) {
@@ -117,7 +125,7 @@ double pocket_element_approach(const Model& m, const Segment& seg, double t, con
   const auto* cage = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_a)]);
   const auto* ball = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_b)]);
   if (pocket && cage && ball)
-    return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), m.kinematics(ball->body, t, z).position);
+    return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), body_centre(m, ball->body, t, z));
   std::array<double, SegmentRecord::size> rec{};
   std::visit([&](const auto& l) { write_element_result(m, l, seg, t, z, rec); }, law);
   return rec[SegmentRecord::diagnostics + approach_field];
