@@ -109,6 +109,14 @@ Equations::Equations(const Model& model, scheduler::Executor& executor)
 
 namespace {
 
+/// Element seg's record at (t, z): the one place this file instantiates every law's evaluation (a
+/// second set, in the pocket weights, made GCC stop inlining the records' writing into the
+/// right-hand side's: +0.7 % instructions on seed 002).
+void write_element(const Model& m, const Segment& seg, double t, const double* z, std::span<double> rec) {
+  std::visit([&](const auto& law) { write_element_result(m, law, seg, t, z, rec); },
+             m.laws[static_cast<std::size_t>(seg.law)]);
+}
+
 /// Body b's centre at (t, z), kinematics(b, t, z).position: straight from its states where it has
 /// all three (a ball), without the rest of its kinematics.
 contact::Vec3 body_centre(const Model& m, int b, double t, const double* z) {
@@ -127,7 +135,7 @@ double pocket_element_approach(const Model& m, const Segment& seg, double t, con
   if (pocket && cage && ball)
     return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), body_centre(m, ball->body, t, z));
   std::array<double, SegmentRecord::size> rec{};
-  std::visit([&](const auto& l) { write_element_result(m, l, seg, t, z, rec); }, law);
+  write_element(m, seg, t, z, rec);
   return rec[SegmentRecord::diagnostics + approach_field];
 }
 
@@ -173,8 +181,7 @@ void Equations::rhs_task(std::span<const double> context, int task, std::span<do
   const double* z = context.data() + 1;
   if (context.back() != 0.0) return rest_task(s, t, z, rec);
   const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-  std::visit([&](const auto& law) { write_element_result(model_, law, seg, t, z, rec); },
-             model_.laws[static_cast<std::size_t>(seg.law)]);
+  write_element(model_, seg, t, z, rec);
 }
 
 std::pair<contact::SpatialKinematics, contact::SpatialKinematics> groove_kinematics_at_rest(const Model& m,
