@@ -3,7 +3,10 @@
 #include "contact/segments/land_film.hpp"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -364,16 +367,55 @@ void add_pocket_film(const BallPocketSegment& s, const SpatialKinematics& cage, 
 }
 }  // namespace
 
+namespace {
+/// The ball centre off the pocket centre (cylindrical: off its axis) in the cage frame.
+struct PocketOffset {
+  Vec3 axis;          ///< the radial pocket axis, cage frame
+  Vec3 d;             ///< the offset
+  double len;         ///< |d|
+  double approach;    ///< len - clearance / 2
+};
+/// (cos a, sin a, 0), the radial axis of the pocket at cage-frame angle a. A pocket's angle is a
+/// constant of its law, so this thread keeps the axes of the angles last asked for, by their bits
+/// (direct-mapped): a hit returns the bits the evaluation would.
+Vec3 pocket_axis(double angle) {
+  struct Entry {
+    std::uint64_t key = 0;
+    double c = 0, s = 0;
+    bool filled = false;
+  };
+  thread_local std::array<Entry, 64> memo{};
+  const auto key = std::bit_cast<std::uint64_t>(angle);
+  Entry& e = memo[(key * 0x9E3779B97F4A7C15ull) >> 58];
+  if (!e.filled || e.key != key) e = {key, std::cos(angle), std::sin(angle), true};
+  return {e.c, e.s, 0.0};
+}
+
+PocketOffset pocket_offset(const BallPocketSegment& s, const SpatialKinematics& cage, const Vec3& ball_position) {
+  PocketOffset o;
+  const Vec3 p = cage.rotation.transpose() * (ball_position - cage.position);  // cage frame
+  o.axis = pocket_axis(s.pocket_angle);
+  o.d = p - s.pitch_radius * o.axis;
+  if (s.shape == PocketShape::cylindrical) o.d -= o.d.dot(o.axis) * o.axis;
+  o.len = o.d.norm();
+  o.approach = o.len - 0.5 * s.clearance;
+  return o;
+}
+}  // namespace
+
+double pocket_approach(const BallPocketSegment& s, const SpatialKinematics& cage, const Vec3& ball_position) {
+  return pocket_offset(s, cage, ball_position).approach;
+}
+
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ball) {
   SpatialSegmentResult r;
   const Mat3& rot = cage.rotation;
-  const Vec3 p = rot.transpose() * (ball.position - cage.position);  // cage frame
-  const Vec3 axis(std::cos(s.pocket_angle), std::sin(s.pocket_angle), 0.0);  // radial pocket axis
-  Vec3 d = p - s.pitch_radius * axis;
-  if (s.shape == PocketShape::cylindrical) d -= d.dot(axis) * axis;
-  const double len = d.norm();
-  const double approach = len - 0.5 * s.clearance;
+  const PocketOffset o = pocket_offset(s, cage, ball.position);
+  const Vec3& axis = o.axis;
+  const Vec3& d = o.d;
+  const double len = o.len;
+  const double approach = o.approach;
   r.diagnostics.approach = approach;
   if (!std::isfinite(approach)) return invalid_result(approach);
   if (s.film) add_pocket_film(s, cage, ball, axis, d, r);

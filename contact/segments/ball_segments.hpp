@@ -221,6 +221,9 @@ struct BallPocketSegment {
 };
 SpatialSegmentResult evaluate(const BallPocketSegment& s, const SpatialKinematics& cage,
                               const SpatialKinematics& ball);
+/// evaluate(s, cage, ball).diagnostics.approach alone, the same bits: of the cage's kinematics it
+/// reads the position and rotation, of the ball's the position.
+double pocket_approach(const BallPocketSegment& s, const SpatialKinematics& cage, const Vec3& ball_position);
 
 /// Cage guided on a ring land. A = cage, B = ring. The guiding surfaces are coaxial cylinders in
 /// their bodies' frames (the cage's bore on an inner-ring land, or the cage's outside in an outer-

@@ -247,7 +247,52 @@ double Model::ring_spin(int b, double t, const double* z) const {
   return body.ring && body.ring->motion == scene::RingMotion::driven ? body.ring->speed(t) : 0.0;
 }
 
+namespace {
+
+// Model::kinematics' memo on this thread (KinematicsMemo): the model, t and z of the scope that
+// lives, the scope's generation (an entry of another scope is stale) and per body its kinematics.
+struct KinematicsEntry {
+  std::uint64_t generation = 0;
+  contact::SpatialKinematics k;
+};
+struct KinematicsMemoState {
+  const Model* model = nullptr;
+  const double* z = nullptr;
+  double t = 0;
+  std::uint64_t generation = 0;
+  std::vector<KinematicsEntry> entries;
+};
+thread_local KinematicsMemoState kinematics_memo;
+
+}  // namespace
+
+KinematicsMemo::KinematicsMemo(const Model& model, double t, const double* z)
+    : previous_model_(kinematics_memo.model), previous_z_(kinematics_memo.z), previous_t_(kinematics_memo.t) {
+  KinematicsMemoState& memo = kinematics_memo;
+  memo.model = &model, memo.z = z, memo.t = t;
+  ++memo.generation;
+  if (memo.entries.size() < model.bodies.size()) memo.entries.resize(model.bodies.size());
+}
+
+KinematicsMemo::~KinematicsMemo() {
+  KinematicsMemoState& memo = kinematics_memo;
+  memo.model = previous_model_, memo.z = previous_z_, memo.t = previous_t_;
+  ++memo.generation;  // the outer scope's entries may have been overwritten
+}
+
 contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) const {
+  KinematicsMemoState& memo = kinematics_memo;
+  if (memo.model != this || memo.z != z || std::bit_cast<std::uint64_t>(memo.t) != std::bit_cast<std::uint64_t>(t))
+    return body_kinematics(b, t, z);
+  KinematicsEntry& entry = memo.entries[static_cast<std::size_t>(b)];
+  if (entry.generation != memo.generation) {
+    entry.k = body_kinematics(b, t, z);
+    entry.generation = memo.generation;
+  }
+  return entry.k;
+}
+
+contact::SpatialKinematics Model::body_kinematics(int b, double t, const double* z) const {
   const Body& body = bodies[static_cast<std::size_t>(b)];
   double v[coordinate_count] = {};
   for (int c = 0; c < coordinate_count; ++c)

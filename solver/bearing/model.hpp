@@ -220,6 +220,28 @@ struct Model {
   /// The model explained: bodies, states, segments, laws and the reasons (raceway check).
   std::string describe() const;
   std::string (*describer)(const Model&) = nullptr;  ///< its builder's description
+
+  /// kinematics() computed (KinematicsMemo keeps what it returns).
+  contact::SpatialKinematics body_kinematics(int b, double t, const double* z) const;
+};
+
+/// While one lives on a thread, Model::kinematics of its model on that thread at its t and its z
+/// (the same pointer) computes each body's kinematics once and returns them again: a right-hand
+/// side asks for a body's kinematics once per element it touches (a ring's and the cage's once per
+/// rolling element, a ball's once per contact), all at one (t, z). The values z points to and the
+/// model must not change while one lives. A hit returns the bits the call would. Each starts empty
+/// (a nested one too, and the outer one is empty again after it).
+class KinematicsMemo {
+ public:
+  KinematicsMemo(const Model& model, double t, const double* z);
+  ~KinematicsMemo();
+  KinematicsMemo(const KinematicsMemo&) = delete;
+  KinematicsMemo& operator=(const KinematicsMemo&) = delete;
+
+ private:
+  const Model* previous_model_;
+  const double* previous_z_;
+  double previous_t_;
 };
 
 /// A column of an element's Jacobian: a state marker A's kinematics depend on, then marker B's (a

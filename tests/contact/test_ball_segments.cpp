@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -330,6 +332,34 @@ TEST(BallPocket, FrictionBrakesSpinningBall) {
       EXPECT_NEAR(r.diagnostics.power_loss, f * std::abs(sliding), 1e-9 * f * std::abs(sliding));
     }
   }
+}
+
+// The pocket tolerance's gap alone (pocket_approach) is the full evaluation's approach bit for bit,
+// apart and in contact, both shapes, the cage turned and moved; and it is the approach placed. Then
+// pockets at nine angles in turn, twice: the axis kept per angle is each pocket's own.
+TEST(BallPocket, ApproachAloneIsTheEvaluatedOne) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  for (const PocketShape shape : {PocketShape::cylindrical, PocketShape::spherical}) {
+    const BallPocketSegment law = std::get<BallPocketSegment>(make_segment(pocket_case(shape)));
+    for (const double approach : {-0.5 * pocket_clearance, -1e-5, 2e-6, 3e-5})
+      for (const double dir : directions) {
+        const Placement p = placed(pocket_case(shape), approach, dir, motions()[1]);
+        const double alone = pocket_approach(law, p.a, p.b.position);
+        EXPECT_EQ(bits(alone), bits(evaluate(law, p.a, p.b).diagnostics.approach));
+        EXPECT_NEAR(alone, approach, 1e-12);
+      }
+  }
+  BallPocketSegment law = std::get<BallPocketSegment>(make_segment(pocket_case(PocketShape::cylindrical)));
+  for (int round = 0; round < 2; ++round)
+    for (int k = 0; k < 9; ++k) {
+      law.pocket_angle = 2 * pi * k / 9;
+      SpatialKinematics cage, ball;
+      const double off = (k + 1) * 1e-5;  // off the pocket's middle along e_theta
+      ball.position = pitch_radius * radial(law.pocket_angle) + off * tangential(law.pocket_angle);
+      const double alone = pocket_approach(law, cage, ball.position);
+      EXPECT_NEAR(alone, off - 0.5 * pocket_clearance, 1e-15);
+      EXPECT_EQ(bits(alone), bits(evaluate(law, cage, ball).diagnostics.approach));
+    }
 }
 
 // ---- cage / land ------------------------------------------------------------------------------
