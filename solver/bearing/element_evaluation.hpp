@@ -100,6 +100,36 @@ bool bar_stays_clear(const Model& m, const FiniteDifferenceSteps& step, const La
   }
 }
 
+/// A dry ball pocket between two body centres whose ball stands clear of the pocket by more than the
+/// columns' steps can close: a position step moves the ball's centre off the pocket by at most the
+/// step, a step of one of the Cardan angles turns the cage frame by that angle and so moves the
+/// ball's centre in it by at most the angle times their distance (`cage`, `ball`: the markers at z).
+/// Every column's wrench is then zero like the base's, the difference exactly zero, and the columns
+/// are written as zeros without evaluating the law (bitwise what the differences give). A pocket is
+/// clear of its ball most of the time.
+template <class Law, class Result>
+bool pocket_stays_clear(const Model& m, const FiniteDifferenceSteps& step, const Law& law, const Segment& seg,
+                        const ElementShape& shape, const double* z, const contact::SpatialKinematics& cage,
+                        const contact::SpatialKinematics& ball, const Result& base) {
+  if constexpr (std::is_same_v<Law, contact::BallPocketSegment>) {
+    const double approach = base.diagnostics.approach;
+    if (law.film || shape.coupled || shape.shift_a + shape.shift_b > 0 || !(approach < 0)) return false;
+    if (!std::holds_alternative<BodyCentre>(m.markers[static_cast<std::size_t>(seg.marker_a)]) ||
+        !std::holds_alternative<BodyCentre>(m.markers[static_cast<std::size_t>(seg.marker_b)]))
+      return false;
+    const double arm = (ball.position - cage.position).norm();
+    double reach = 0;
+    for (const SegmentColumn& c : shape.columns) {
+      const VariableClass k = m.state_class[static_cast<std::size_t>(c.state)];
+      if (k == VariableClass::position) reach += std::abs(step(c.state, z));
+      if (k == VariableClass::angle) reach += arm * std::abs(step(c.state, z));
+    }
+    return approach < -2.0 * reach;
+  } else {
+    return false;
+  }
+}
+
 }  // namespace element_detail
 
 /// The law at the thermal network's oil temperature: a ball-groove contact's lubricant viscosity
@@ -214,7 +244,12 @@ void write_element_jacobian(const Model& m, const FiniteDifferenceSteps& step, c
     const auto ka = spatial_at(m, ma, t, z), kb = spatial_at(m, mb, t, z);
     const auto base = contact::evaluate(law, ka, kb);
     ok = base.valid;
+    const bool clear = pocket_stays_clear(m, step, law, seg, shape, z, ka, kb, base);  // every difference zero
     for (const SegmentColumn& c : shape.columns) {
+      if (clear) {
+        out = std::fill_n(out, SegmentRecord::wrench_rows, 0.0);
+        continue;
+      }
       const auto j = static_cast<std::size_t>(c.state);
       const double h = step(c.state, z);
       zp[j] = z[j] + h;
