@@ -113,16 +113,24 @@ bool compressible(Quantity q) {
   return q != Quantity::position && q != Quantity::velocity && q != Quantity::acceleration;
 }
 
-double component(const BodySample& s, Quantity q, int c) {
+/// The sampled quantity's components, by its component index.
+const double* components_of(const BodySample& s, Quantity q) {
   switch (q) {
-    case Quantity::position: return s.position[c];
-    case Quantity::velocity: return s.velocity[c];
-    case Quantity::angles: return s.angles[c];
-    case Quantity::angular_velocity: return s.angular_velocity[c];
-    case Quantity::acceleration: return s.acceleration[c];
-    case Quantity::force: return s.force[c];
+    case Quantity::position: return s.position.data();
+    case Quantity::velocity: return s.velocity.data();
+    case Quantity::angles: return s.angles.data();
+    case Quantity::angular_velocity: return s.angular_velocity.data();
+    case Quantity::acceleration: return s.acceleration;
+    case Quantity::force: return s.force;
   }
-  return 0;
+  return nullptr;
+}
+
+/// Appends the series' components of the sample to `row` from `at` on; returns the end.
+double* put_components(const BodySeries& series, const BodySample& s, double* at) {
+  const double* values = components_of(s, series.quantity);
+  for (const int c : series.components) *at++ = values[c];
+  return at;
 }
 
 
@@ -524,8 +532,8 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
   for (int bi = 0; bi < m_.first_element; ++bi) {
     const BodySample s = sample_body(m_, bi, t, z, zdot, loads[static_cast<std::size_t>(bi)]);
     for (const BodySeries& series : border_series(m_.kind)) {
-      row_.clear();
-      for (int c : series.components) row_.push_back(component(s, series.quantity, c));
+      row_.resize(series.components.size());
+      put_components(series, s, row_.data());
       file_.append(*id++, row_);
     }
   }
@@ -534,15 +542,15 @@ void OutputWriter::append_bodies(double t, const std::vector<double>& z, const s
   const double rolling = rolling_cage_speed(m_, eq, t);
   file_.append(rolling_, std::span<const double>(&rolling, 1));
   const auto& all = element_series(m_);
-  std::vector<BodySample> samples;
+  samples_.resize(static_cast<std::size_t>(m_.element_count));
   for (int k = 0; k < m_.element_count; ++k) {
     const int b = m_.first_element + k;
-    samples.push_back(sample_body(m_, b, t, z, zdot, loads[static_cast<std::size_t>(b)]));
+    samples_[static_cast<std::size_t>(k)] = sample_body(m_, b, t, z, zdot, loads[static_cast<std::size_t>(b)]);
   }
   for (std::size_t i = 0; i < all.size(); ++i) {
-    row_.clear();
-    for (const BodySample& s : samples)
-      for (int c : all[i].components) row_.push_back(component(s, all[i].quantity, c));
+    row_.resize(samples_.size() * all[i].components.size());
+    double* at = row_.data();
+    for (const BodySample& s : samples_) at = put_components(all[i], s, at);
     file_.append(element_ids_[i], row_);
   }
 }

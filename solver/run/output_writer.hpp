@@ -117,6 +117,7 @@ class OutputWriter {
   std::size_t pocket_cells_ = 0;  ///< doubles of the pocket statistics in a step row (the sensor's follow)
   std::vector<h5::H5SeriesWriter::SeriesId> diagnostic_ids_[bearing::segment_kind_count];
   std::vector<double> row_;  ///< reused row buffer
+  std::vector<BodySample> samples_;  ///< the rolling elements' samples, reused
   std::vector<int> index_[bearing::segment_kind_count];  ///< segments of each kind, in column order
   bool line_family_[bearing::segment_kind_count] = {};    ///< the kind's diagnostics: line (else point) field table
 };
