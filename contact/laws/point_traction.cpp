@@ -249,110 +249,157 @@ double film_weight(double film_thickness, const PointLubricant& lubricant) {
   return x * x * (3 - 2 * x);
 }
 
+namespace {
+int block_count(const TractionGrid& grid) {
+  return static_cast<int>(std::clamp<std::size_t>(grid.cells() / traction_block_cells, 1, max_traction_blocks));
+}
+}  // namespace
+
 int traction_block_count(const PointTraction& traction) {
   if (traction.grid_x < 1 || traction.grid_y < 1) return 1;
-  const auto cells = traction_grid(traction.grid_x, traction.grid_y).cells();
-  return static_cast<int>(std::clamp<std::size_t>(cells / traction_block_cells, 1, max_traction_blocks));
+  return block_count(traction_grid(traction.grid_x, traction.grid_y));
 }
 
-TractionResult integrate_traction_block(const PointTraction& traction, const PointLubricant& lubricant,
-                                        double normal_force, double ax, double ay, double film_thickness,
-                                        const ContactSliding& sliding, int block) {
-  TractionResult out;
-  if (traction.model == TractionModel::none || !(normal_force > 0) || !(ax > 0) || !(ay > 0)) return out;
-  if (traction.grid_x < 1 || traction.grid_y < 1)
-    throw std::invalid_argument("integrate_traction: grid_x and grid_y must be >= 1");
-  const bool limiting =
-      traction.model == TractionModel::limiting_shear && film_thickness > 0 && lubricant.viscosity > 0;
-  // Below the boundary film the film's shear (weight w) and the curve (1 - w) share the traction.
-  const double film_share = limiting ? film_weight(film_thickness, lubricant) : 0.0;
-  const bool blended = limiting && film_share < 1;
-  if (!limiting && traction.friction_coefficient == 0) return out;
+namespace {
 
-  const TractionGrid& grid = traction_grid(traction.grid_x, traction.grid_y);
-  const auto blocks = static_cast<std::size_t>(traction_block_count(traction));
-  const auto b = static_cast<std::size_t>(block);
-  if (block < 0 || b >= blocks) throw std::invalid_argument("integrate_traction_block: no such block");
-  // Block b: cells [n b / blocks, n (b + 1) / blocks) in grid order (rows along x).
-  const std::size_t first = grid.cells() * b / blocks, last = grid.cells() * (b + 1) / blocks;
-  const double area_scale = ax * ay;                                                // unit disk -> ellipse
-  const double pressure_scale = normal_force / (area_scale * grid.shape_integral);  // ~ p_max
-  const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
-  const double inverse_scale = 1 / traction.slip_velocity_scale;
-  const double inverse_h = limiting ? 1 / film_thickness : 0;
-  // Where the exponent reaches the cap (most of a loaded contact) the viscosity is one number,
-  // evaluated once per block: std::min(exponent, cap) is the cap exactly when cap < exponent.
-  const double cap = lubricant.viscosity_exponent_cap;
-  double capped_viscosity = std::numeric_limits<double>::quiet_NaN();
-  bool has_capped = false;
-  auto viscosity_at = [&](double p) {
-    const double exponent = lubricant.roelands_index > 0
-                                ? roelands_exponent(lubricant.viscosity, lubricant.roelands_index, p)
-                                : lubricant.pressure_viscosity * p;
-    if (!(cap < exponent)) return lubricant.viscosity * std::exp(std::min(exponent, cap));
-    if (!has_capped) capped_viscosity = lubricant.viscosity * std::exp(cap), has_capped = true;
-    return capped_viscosity;
-  };
+/// What the blocks of one contact's traction share: the checks, the grid, the scales and each
+/// distinct shape's film shear (its viscosity's exponential), made once for all the blocks a caller
+/// integrates (integrate_traction: both blocks of a 5 x 5 grid) and the same operations on the same
+/// arguments whichever blocks follow, so every block has the bits it has alone.
+class TractionCells {
+ public:
+  TractionCells(const PointTraction& traction, const PointLubricant& lubricant, double normal_force, double ax,
+                double ay, double film_thickness, const ContactSliding& sliding)
+      : lubricant_(lubricant), ax_(ax), ay_(ay), sliding_(sliding) {
+    if (traction.model == TractionModel::none || !(normal_force > 0) || !(ax > 0) || !(ay > 0)) return;
+    if (traction.grid_x < 1 || traction.grid_y < 1)
+      throw std::invalid_argument("integrate_traction: grid_x and grid_y must be >= 1");
+    limiting_ = traction.model == TractionModel::limiting_shear && film_thickness > 0 && lubricant.viscosity > 0;
+    // Below the boundary film the film's shear (weight w) and the curve (1 - w) share the traction.
+    const double film_share = limiting_ ? film_weight(film_thickness, lubricant) : 0.0;
+    blended_ = limiting_ && film_share < 1;
+    if (!limiting_ && traction.friction_coefficient == 0) return;
+    active_ = true;
+    grid_ = &traction_grid(traction.grid_x, traction.grid_y);
+    area_scale_ = ax * ay;                                                      // unit disk -> ellipse
+    pressure_scale_ = normal_force / (area_scale_ * grid_->shape_integral);  // ~ p_max
+    const double mu_over_scale = traction.friction_coefficient / traction.slip_velocity_scale;
+    inverse_scale_ = 1 / traction.slip_velocity_scale;
+    inverse_h_ = limiting_ ? 1 / film_thickness : 0;
+    curve_factor_ = mu_over_scale * normal_force;
+    curve_ = CurveBlend{blended_, film_share, mu_over_scale * normal_force * (1 - film_share), inverse_scale_};
+    shapes_ = limiting_ ? std::min(grid_->shapes.size(), max_distinct_shapes) : 0;
+    for (std::size_t k = 0; k < shapes_; ++k) {
+      const ShapeShear sh = shape_shear(grid_->shapes[k]);
+      rate_[k] = sh.rate, slope_[k] = sh.slope;
+    }
+    tabulated_ = shapes_ == grid_->shapes.size();
+  }
+
+  /// Whether there is any traction to integrate (else every block is zero).
+  [[nodiscard]] bool active() const { return active_; }
+  [[nodiscard]] std::size_t cells() const { return grid_->cells(); }
+  /// traction_block_count of the traction.
+  [[nodiscard]] int blocks() const { return block_count(*grid_); }
+
+  /// The sums over cells [first, last) in grid order (rows along x).
+  TractionResult sum(std::size_t first, std::size_t last) {
+    CellChunk c;  // NOLINT: filled for the first cells of each chunk
+    double fx = 0, fy = 0, mz = 0, power = 0;
+    const TractionGrid& grid = *grid_;
+    for (std::size_t begin = first; begin < last; begin += chunk_cells) {
+      const std::size_t n = std::min(chunk_cells, last - begin), pairs = n + n % 2;
+      const double* area = grid.area.data() + begin;
+      const int* index = grid.shape_index.data() + begin;
+      if (!limiting_) {
+        for (std::size_t k = 0; k < n; ++k) c.a[k] = curve_factor_ * grid.load[begin + k], c.b[k] = inverse_scale_;
+      } else if (tabulated_) {
+        for (std::size_t k = 0; k < n; ++k) {
+          const auto si = static_cast<std::size_t>(index[k]);
+          c.a[k] = rate_[si] * (area[k] * area_scale_), c.b[k] = slope_[si];
+        }
+      } else {
+        for (std::size_t k = 0; k < n; ++k) {
+          const auto si = static_cast<std::size_t>(index[k]);
+          const ShapeShear sh = si < shapes_ ? ShapeShear{rate_[si], slope_[si]} : shape_shear(grid.shape[begin + k]);
+          c.a[k] = sh.rate * (area[k] * area_scale_), c.b[k] = sh.slope;
+        }
+      }
+      if (pairs > n) c.a[n] = c.b[n] = 0;
+      const ChunkCells in{grid.x.data() + begin, grid.y.data() + begin, grid.load.data() + begin, ax_, ay_, sliding_};
+      chunk_forces(c, pairs, in.x, in.y, ax_, ay_, sliding_);
+      if (blended_)
+        for (std::size_t k = 0; k < n; ++k) finish_cell(c, k, in, curve_);
+      for (std::size_t k = 0; k < n; ++k) {  // cell by cell in grid order: the sums' bits
+        if (!(c.arg2[k] <= 1) && !blended_) finish_cell(c, k, in, curve_);
+        fx += c.fx[k];
+        fy += c.fy[k];
+        mz += c.mz[k];
+        power += c.power[k];
+      }
+    }
+    TractionResult out;
+    out.force_x = fx;
+    out.force_y = fy;
+    out.spin_moment = mz;
+    out.power_loss = power;
+    return out;
+  }
+
+ private:
   // Per distinct shape (the first max_distinct_shapes, evaluated up front; a cell beyond them
   // evaluates its own): the film's shear rate factor eta / h and the tanh's argument per unit
   // sliding speed eta / (h tau_L), so that a cell takes g = area eta / h tanh_over_x(s eta / (h tau_L)).
   struct ShapeShear {
     double rate, slope;
   };
-  auto shape_shear = [&](double shape) {
-    const double p = pressure_scale * shape;
-    const double tau_limit = lubricant.limiting_shear_coefficient * p;
+  ShapeShear shape_shear(double shape) {
+    const double p = pressure_scale_ * shape;
+    const double tau_limit = lubricant_.limiting_shear_coefficient * p;
     if (!(tau_limit > 0)) return ShapeShear{0, 0};
-    const double rate = viscosity_at(p) * inverse_h;
+    const double rate = viscosity_at(p) * inverse_h_;
     return ShapeShear{rate, rate / tau_limit};
-  };
-  std::array<double, max_distinct_shapes> rate, slope;  // NOLINT: the first `shapes` are set below
-  const std::size_t shapes = limiting ? std::min(grid.shapes.size(), max_distinct_shapes) : 0;
-  for (std::size_t k = 0; k < shapes; ++k) {
-    const ShapeShear sh = shape_shear(grid.shapes[k]);
-    rate[k] = sh.rate, slope[k] = sh.slope;
   }
-  const bool tabulated = shapes == grid.shapes.size();
-  const double curve_factor = mu_over_scale * normal_force;
-  const CurveBlend curve{blended, film_share, mu_over_scale * normal_force * (1 - film_share), inverse_scale};
-  CellChunk c;  // NOLINT: filled for the first cells of each chunk
-  double fx = 0, fy = 0, mz = 0, power = 0;
-  for (std::size_t begin = first; begin < last; begin += chunk_cells) {
-    const std::size_t n = std::min(chunk_cells, last - begin), pairs = n + n % 2;
-    const double* area = grid.area.data() + begin;
-    const int* index = grid.shape_index.data() + begin;
-    if (!limiting) {
-      for (std::size_t k = 0; k < n; ++k) c.a[k] = curve_factor * grid.load[begin + k], c.b[k] = inverse_scale;
-    } else if (tabulated) {
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto si = static_cast<std::size_t>(index[k]);
-        c.a[k] = rate[si] * (area[k] * area_scale), c.b[k] = slope[si];
-      }
-    } else {
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto si = static_cast<std::size_t>(index[k]);
-        const ShapeShear sh = si < shapes ? ShapeShear{rate[si], slope[si]} : shape_shear(grid.shape[begin + k]);
-        c.a[k] = sh.rate * (area[k] * area_scale), c.b[k] = sh.slope;
-      }
-    }
-    if (pairs > n) c.a[n] = c.b[n] = 0;
-    const ChunkCells in{grid.x.data() + begin, grid.y.data() + begin, grid.load.data() + begin, ax, ay, sliding};
-    chunk_forces(c, pairs, in.x, in.y, ax, ay, sliding);
-    if (blended)
-      for (std::size_t k = 0; k < n; ++k) finish_cell(c, k, in, curve);
-    for (std::size_t k = 0; k < n; ++k) {  // cell by cell in grid order: the sums' bits
-      if (!(c.arg2[k] <= 1) && !blended) finish_cell(c, k, in, curve);
-      fx += c.fx[k];
-      fy += c.fy[k];
-      mz += c.mz[k];
-      power += c.power[k];
-    }
+  // Where the exponent reaches the cap (most of a loaded contact) the viscosity is one number,
+  // evaluated once: std::min(exponent, cap) is the cap exactly when cap < exponent.
+  double viscosity_at(double p) {
+    const double cap = lubricant_.viscosity_exponent_cap;
+    const double exponent = lubricant_.roelands_index > 0
+                                ? roelands_exponent(lubricant_.viscosity, lubricant_.roelands_index, p)
+                                : lubricant_.pressure_viscosity * p;
+    if (!(cap < exponent)) return lubricant_.viscosity * std::exp(std::min(exponent, cap));
+    if (!has_capped_) capped_viscosity_ = lubricant_.viscosity * std::exp(cap), has_capped_ = true;
+    return capped_viscosity_;
   }
-  out.force_x = fx;
-  out.force_y = fy;
-  out.spin_moment = mz;
-  out.power_loss = power;
-  return out;
+
+  const PointLubricant& lubricant_;
+  double ax_, ay_;
+  ContactSliding sliding_;
+  bool active_ = false, limiting_ = false, blended_ = false, tabulated_ = false, has_capped_ = false;
+  const TractionGrid* grid_ = nullptr;
+  double area_scale_ = 0, pressure_scale_ = 0, inverse_scale_ = 0, inverse_h_ = 0, curve_factor_ = 0;
+  double capped_viscosity_ = std::numeric_limits<double>::quiet_NaN();
+  CurveBlend curve_;
+  std::size_t shapes_ = 0;
+  std::array<double, max_distinct_shapes> rate_, slope_;  // NOLINT: the first shapes_ are set
+};
+
+/// Block b of `blocks`: cells [n b / blocks, n (b + 1) / blocks) in grid order (rows along x).
+TractionResult block_sum(TractionCells& cells, std::size_t b, std::size_t blocks) {
+  return cells.sum(cells.cells() * b / blocks, cells.cells() * (b + 1) / blocks);
+}
+
+}  // namespace
+
+TractionResult integrate_traction_block(const PointTraction& traction, const PointLubricant& lubricant,
+                                        double normal_force, double ax, double ay, double film_thickness,
+                                        const ContactSliding& sliding, int block) {
+  TractionCells cells(traction, lubricant, normal_force, ax, ay, film_thickness, sliding);
+  if (!cells.active()) return {};
+  const auto blocks = static_cast<std::size_t>(cells.blocks());
+  const auto b = static_cast<std::size_t>(block);
+  if (block < 0 || b >= blocks) throw std::invalid_argument("integrate_traction_block: no such block");
+  return block_sum(cells, b, blocks);
 }
 
 TractionResult sum_traction_blocks(std::span<const TractionResult> blocks) {
@@ -370,14 +417,16 @@ TractionResult sum_traction_blocks(std::span<const TractionResult> blocks) {
 TractionResult integrate_traction(const PointTraction& traction, const PointLubricant& lubricant,
                                   double normal_force, double ax, double ay, double film_thickness,
                                   const ContactSliding& sliding) {
-  const int blocks = traction_block_count(traction);
-  if (blocks == 1)
-    return integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, 0);
+  // The blocks' shared part once (TractionCells), then each block's sums as integrate_traction_block
+  // forms them, added in block order: the bits of the blocks evaluated as tasks of their own.
+  TractionCells cells(traction, lubricant, normal_force, ax, ay, film_thickness, sliding);
+  if (!cells.active()) return {};
+  const int blocks = cells.blocks();
+  if (blocks == 1) return block_sum(cells, 0, 1);
   std::array<TractionResult, max_traction_blocks> partial{};
   const int n = std::min(blocks, max_traction_blocks);
   for (int b = 0; b < n; ++b)
-    partial[static_cast<std::size_t>(b)] =
-        integrate_traction_block(traction, lubricant, normal_force, ax, ay, film_thickness, sliding, b);
+    partial[static_cast<std::size_t>(b)] = block_sum(cells, static_cast<std::size_t>(b), static_cast<std::size_t>(blocks));
   return sum_traction_blocks(std::span<const TractionResult>(partial.data(), static_cast<std::size_t>(n)));
 }
 
