@@ -14,10 +14,10 @@ class EigenBordered final : public MatrixContent {
   explicit EigenBordered(const BorderedLayout& l) : m(l.border, l.blocks, l.block_size) {}
   std::unique_ptr<MatrixContent> clone() const override { return std::make_unique<EigenBordered>(*this); }
   void zero() override { m.set_zero(); }
-  void copy_to(MatrixContent& to) const override { static_cast<EigenBordered&>(to).m = m; }
+  void copy_to(MatrixContent& to) const override { static_cast<EigenBordered&>(to).m.copy_values(m); }
   void scale_add_identity(double c) override { m.scale_add_identity(c); }
   void multiply(const double* x, double* y) const override { m.multiply(x, y); }
-  void load(const BorderedMatrix& j) override { m = j; }
+  void load(const BorderedMatrix& j) override { m.copy_values(j); }
   BorderedMatrix m;
 };
 

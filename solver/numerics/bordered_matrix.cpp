@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace raceway::numerics {
@@ -56,6 +57,24 @@ void BorderedMatrix::scale_add_identity(double c) {
     block_to_border[k] *= c;
     block[k] *= c;
     block[k].diagonal().array() += 1.0;
+  }
+}
+
+void BorderedMatrix::copy_values(const BorderedMatrix& from) {
+  if (border_size_ != from.border_size_ || block_count_ != from.block_count_ || block_size_ != from.block_size_ ||
+      border.size() != from.border.size()) {
+    *this = from;
+    return;
+  }
+  // memcpy's wide moves: a quarter of the instructions of the matrices' element-wise assignment.
+  const auto copy = [](const Eigen::MatrixXd& a, Eigen::MatrixXd& b) {
+    std::memcpy(b.data(), a.data(), static_cast<std::size_t>(a.size()) * sizeof(double));
+  };
+  copy(from.border, border);
+  for (int k = 0; k < block_count_; ++k) {
+    copy(from.border_to_block[k], border_to_block[k]);
+    copy(from.block_to_border[k], block_to_border[k]);
+    copy(from.block[k], block[k]);
   }
 }
 

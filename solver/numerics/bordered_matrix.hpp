@@ -43,6 +43,9 @@ class BorderedMatrix {
   double get(int row, int col) const;
   /// this = c * this + I
   void scale_add_identity(double c);
+  /// this = from: the values copied straight into this matrix's storage where the two have one
+  /// layout (CVODE copies the saved Jacobian at every linear setup), assigned otherwise.
+  void copy_values(const BorderedMatrix& from);
   /// y = this * x
   void multiply(const double* x, double* y) const;
   Eigen::MatrixXd to_dense() const;

@@ -141,5 +141,22 @@ TEST(BorderedMatrix, FactorReportsSingularBlock) {
   }
 }
 
+// copy_values: every value of the source, in a matrix of the same layout (copied in place, its
+// storage kept) and in one of another layout or a default one (assigned).
+TEST(BorderedMatrix, CopyValuesCopiesEveryValue) {
+  std::mt19937 rng(99u);
+  const BorderedMatrix from = random_bordered(6, 5, 9, rng);
+  BorderedMatrix same = random_bordered(6, 5, 9, rng), other(2, 3, 5), empty;
+  const double* storage = same.block[4].data();
+  for (BorderedMatrix* to : {&same, &other, &empty}) {
+    to->copy_values(from);
+    ASSERT_EQ(to->size(), from.size());
+    EXPECT_EQ(to->border_size(), 6);
+    EXPECT_EQ(to->block_count(), 5);
+    EXPECT_EQ(to->to_dense(), from.to_dense());
+  }
+  EXPECT_EQ(same.block[4].data(), storage);
+}
+
 }  // namespace
 }  // namespace raceway::numerics
