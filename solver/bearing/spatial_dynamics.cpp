@@ -139,7 +139,7 @@ class SpatialDynamics final : public BodyDynamics {
     const Support s = support_of(body);
     p.support_loss = s.c_radial * (v.x() * v.x() + v.y() * v.y()) + s.c_axial * v.z() * v.z();
     if (body.kind == BodyKind::cage && s.c_tilt > 0) {  // the damper on the spin across the axis (external_wrench)
-      const Mat3 r = cardan_rotation(state(sax), state(say), state(saz));
+      const Mat3 r = memo_rotation(2 * static_cast<std::size_t>(b), state(sax), state(say), state(saz));
       const Vec3 axis = r.col(2);
       const Vec3 w_fixed = r * Vec3(state(swx), state(swy), state(swz));
       p.support_loss += s.c_tilt * (w_fixed - w_fixed.dot(axis) * axis).squaredNorm();
@@ -210,7 +210,9 @@ class SpatialDynamics final : public BodyDynamics {
         // angle. (A damper on the body-frame rates wx, wy, which turn with the cage, rotates its
         // moment by the cage angle and pumps energy in for half of every cage revolution: the tilt
         // whirl that jammed the balls in 6309 case A12.)
-        const Mat3 r = cardan_rotation(state(sax), state(say), state(saz));
+        // The cage's kinematics keep this rotation in its slot (the same bits): a right-hand side's
+        // elements asked for it at these angles.
+        const Mat3 r = memo_rotation(2 * static_cast<std::size_t>(b), state(sax), state(say), state(saz));
         const Vec3 axis = r.col(2);
         const Vec3 w_fixed = r * Vec3(state(swx), state(swy), state(swz));
         w.moment += s.k_tilt * axis.cross(Vec3::UnitZ()) - s.c_tilt * (w_fixed - w_fixed.dot(axis) * axis);
