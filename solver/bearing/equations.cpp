@@ -275,8 +275,9 @@ int Equations::rhs(double t, const double* z, double* zdot) {
   std::copy(z, z + model_.state_size, context_.begin() + 1);
   const int ntask = static_cast<int>(task_segment_.size());
   {
-    // Each body's kinematics once, however many elements this rank evaluates touch it.
-    const KinematicsMemo memo(model_, t, context_.data() + 1);
+    // Each body's kinematics once, however many elements this rank evaluates touch it (at the
+    // context's copy of z, or at z itself: an output sample's rows ask there after).
+    const KinematicsMemo memo(model_, t, context_.data() + 1, z);
     executor_.run(scheduler::Phase::rhs, context_, ntask, SegmentRecord::size, rhs_task_, cut_ ? task_records_ : records_);
   }
   if (cut_) combine_rhs_parts(records_);

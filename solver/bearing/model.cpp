@@ -258,6 +258,7 @@ struct KinematicsEntry {
 struct KinematicsMemoState {
   const Model* model = nullptr;
   const double* z = nullptr;
+  const double* copy_of = nullptr;  // a second pointer to the same values, or null
   double t = 0;
   std::uint64_t generation = 0;
   std::vector<KinematicsEntry> entries;
@@ -266,23 +267,30 @@ thread_local KinematicsMemoState kinematics_memo;
 
 }  // namespace
 
-KinematicsMemo::KinematicsMemo(const Model& model, double t, const double* z)
-    : previous_model_(kinematics_memo.model), previous_z_(kinematics_memo.z), previous_t_(kinematics_memo.t) {
+KinematicsMemo::KinematicsMemo(const Model& model, double t, const double* z, const double* copy_of)
+    : previous_model_(kinematics_memo.model),
+      previous_z_(kinematics_memo.z),
+      previous_copy_of_(kinematics_memo.copy_of),
+      previous_t_(kinematics_memo.t) {
   KinematicsMemoState& memo = kinematics_memo;
-  memo.model = &model, memo.z = z, memo.t = t;
-  ++memo.generation;
+  // Within a scope at the values z copies (the same model and t): the same kinematics, kept on.
+  continues_ = copy_of != nullptr && memo.model == &model && memo.z == copy_of && memo.copy_of == nullptr &&
+               std::bit_cast<std::uint64_t>(memo.t) == std::bit_cast<std::uint64_t>(t);
+  memo.model = &model, memo.z = z, memo.copy_of = copy_of, memo.t = t;
+  if (!continues_) ++memo.generation;
   if (memo.entries.size() < model.bodies.size()) memo.entries.resize(model.bodies.size());
 }
 
 KinematicsMemo::~KinematicsMemo() {
   KinematicsMemoState& memo = kinematics_memo;
-  memo.model = previous_model_, memo.z = previous_z_, memo.t = previous_t_;
-  ++memo.generation;  // the outer scope's entries may have been overwritten
+  memo.model = previous_model_, memo.z = previous_z_, memo.copy_of = previous_copy_of_, memo.t = previous_t_;
+  if (!continues_) ++memo.generation;  // the outer scope's entries may have been overwritten
 }
 
 contact::SpatialKinematics Model::kinematics(int b, double t, const double* z) const {
   KinematicsMemoState& memo = kinematics_memo;
-  if (memo.model != this || memo.z != z || std::bit_cast<std::uint64_t>(memo.t) != std::bit_cast<std::uint64_t>(t))
+  if (memo.model != this || (memo.z != z && (memo.copy_of != z || z == nullptr)) ||
+      std::bit_cast<std::uint64_t>(memo.t) != std::bit_cast<std::uint64_t>(t))
     return body_kinematics(b, t, z);
   KinematicsEntry& entry = memo.entries[static_cast<std::size_t>(b)];
   if (entry.generation != memo.generation) {

@@ -230,10 +230,14 @@ struct Model {
 /// side asks for a body's kinematics once per element it touches (a ring's and the cage's once per
 /// rolling element, a ball's once per contact), all at one (t, z). The values z points to and the
 /// model must not change while one lives. A hit returns the bits the call would. Each starts empty
-/// (a nested one too, and the outer one is empty again after it).
+/// (a nested one too, and the outer one is empty again after it), except a scope opened with a
+/// `copy_of`: z then holds a copy of the values copy_of points to (Equations::rhs' context), and
+/// the scope answers at either pointer; nested in a scope of the same model and t at copy_of itself
+/// (the output's sample: its right-hand side, then its rows at the caller's z), it continues that
+/// scope's entries and leaves them to it.
 class KinematicsMemo {
  public:
-  KinematicsMemo(const Model& model, double t, const double* z);
+  KinematicsMemo(const Model& model, double t, const double* z, const double* copy_of = nullptr);
   ~KinematicsMemo();
   KinematicsMemo(const KinematicsMemo&) = delete;
   KinematicsMemo& operator=(const KinematicsMemo&) = delete;
@@ -241,7 +245,9 @@ class KinematicsMemo {
  private:
   const Model* previous_model_;
   const double* previous_z_;
+  const double* previous_copy_of_;
   double previous_t_;
+  bool continues_;
 };
 
 /// A column of an element's Jacobian: a state marker A's kinematics depend on, then marker B's (a

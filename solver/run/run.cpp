@@ -279,6 +279,8 @@ class RunLoop {
 
 double RunLoop::write_sample(bearing::Equations& eq, double t, long sample, const std::vector<double>& z,
                              std::vector<double>& zdot, const std::vector<double>& pocket_row) {
+  // Each body's kinematics once for the sample: its right-hand side's, kept for its rows.
+  const bearing::KinematicsMemo memo(eq.model(), t, z.data());
   const double before = wall();
   eq.rhs(t, z.data(), zdot.data());
   const double rhs_seconds = wall() - before;

@@ -96,5 +96,43 @@ TEST(KinematicsMemo, NothingOutlivesItsScope) {
   }
 }
 
+// A scope at a copy of z (Equations::rhs' context, `copy_of` the caller's z) answers at both
+// pointers; nested in a scope at z of the same time it continues that scope's entries (the output's
+// sample: its right-hand side, then its rows), which hold the bits computed at z. Nested at another
+// time, or at values of its own, it starts empty and leaves the outer scope empty.
+TEST(KinematicsMemo, ACopyOfTheStateContinuesTheScopeAtTheState) {
+  Seated s = seated();
+  const double t = 1.25e-3;
+  std::vector<contact::SpatialKinematics> plain;
+  for (std::size_t b = 0; b < s.m.bodies.size(); ++b) plain.push_back(s.m.kinematics(static_cast<int>(b), t, s.z.data()));
+  const KinematicsMemo outer(s.m, t, s.z.data());
+  {
+    const std::vector<double> copy = s.z;
+    const KinematicsMemo inner(s.m, t, copy.data(), s.z.data());
+    for (std::size_t b = 0; b < s.m.bodies.size(); ++b) {
+      EXPECT_TRUE(same_bits(s.m.kinematics(static_cast<int>(b), t, copy.data()), plain[b])) << "body " << b;
+      EXPECT_TRUE(same_bits(s.m.kinematics(static_cast<int>(b), t, s.z.data()), plain[b])) << "body " << b;
+    }
+  }
+  for (std::size_t b = 0; b < s.m.bodies.size(); ++b)
+    EXPECT_TRUE(same_bits(s.m.kinematics(static_cast<int>(b), t, s.z.data()), plain[b])) << "body " << b;
+  // Another time: the driven inner ring's angle there, and the outer scope's own again after it.
+  const double later = t + 1e-3;
+  {
+    const std::vector<double> copy = s.z;
+    const KinematicsMemo inner(s.m, later, copy.data(), s.z.data());
+    EXPECT_TRUE(same_bits(s.m.kinematics(s.inner, later, copy.data()), s.m.body_kinematics(s.inner, later, s.z.data())));
+  }
+  EXPECT_TRUE(same_bits(s.m.kinematics(s.inner, t, s.z.data()), plain[static_cast<std::size_t>(s.inner)]));
+  // A copy of other values (the cage moved), declared a copy of another vector: its own bits.
+  std::vector<double> moved = s.z, other = s.z;
+  moved[static_cast<std::size_t>(s.m.bodies[static_cast<std::size_t>(s.cage)].slot[sx])] += 2e-6;
+  {
+    const KinematicsMemo inner(s.m, t, moved.data(), other.data());
+    EXPECT_TRUE(same_bits(s.m.kinematics(s.cage, t, moved.data()), s.m.body_kinematics(s.cage, t, moved.data())));
+  }
+  EXPECT_TRUE(same_bits(s.m.kinematics(s.cage, t, s.z.data()), plain[static_cast<std::size_t>(s.cage)]));
+}
+
 }  // namespace
 }  // namespace raceway::bearing
