@@ -137,10 +137,21 @@ std::pair<double, double> planar_centre(const Model& m, int b, double t, const d
   return {z[body.slot[sx]], z[body.slot[sy]]};
 }
 
+/// The planar cage's kinematics at the pocket weights' (t, z), computed for its first bar and kept
+/// for the others (a spatial cage's are in the KinematicsMemo scope).
+struct PlanarCage {
+  int body = -1;
+  contact::PlanarKinematics k;
+  const contact::PlanarKinematics& of(const Model& m, int b, double t, const double* z) {
+    if (body != b) body = b, k = m.planar_kinematics(b, t, z);
+    return k;
+  }
+};
+
 /// The approach of pocket element seg at (t, z): a ball's pocket and a planar roller's cage bar on
 /// two body centres by their gap alone (contact::pocket_approach, contact::bar_approach: the bits of
 /// their full evaluation), any other element (a bar on a flexible bridge) evaluated.
-double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z) {
+double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z, PlanarCage& planar_cage) {
   const SegmentLaw& law = m.laws[static_cast<std::size_t>(seg.law)];
   const auto* cage = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_a)]);
   const auto* element = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_b)]);
@@ -149,7 +160,7 @@ double pocket_element_approach(const Model& m, const Segment& seg, double t, con
       return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), body_centre(m, element->body, t, z));
     if (const auto* bar = std::get_if<contact::CageBarSegment>(&law)) {
       const auto [x, y] = planar_centre(m, element->body, t, z);
-      return contact::bar_approach(*bar, m.planar_kinematics(cage->body, t, z), x, y);
+      return contact::bar_approach(*bar, planar_cage.of(m, cage->body, t, z), x, y);
     }
   }
   std::array<double, SegmentRecord::size> rec{};
@@ -161,10 +172,11 @@ double pocket_element_approach(const Model& m, const Segment& seg, double t, con
 
 void Equations::adjust_error_weights(double t, const double* z, double* ewt) const {
   const KinematicsMemo memo(model_, t, z);  // the cage's kinematics once for all its pockets
+  PlanarCage planar_cage;
   pocket_touched_.assign(model_.bodies.size(), 0);
   for (const int s : pocket_segments_) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-    if (!(pocket_element_approach(model_, seg, t, z) > -pocket_margin_)) continue;
+    if (!(pocket_element_approach(model_, seg, t, z, planar_cage) > -pocket_margin_)) continue;
     for (const int b : {seg.body_a, seg.body_b}) {
       const BodyKind kind = model_.bodies[static_cast<std::size_t>(b)].kind;
       if (kind == BodyKind::rolling_element || (pocket_cage_rate_ && kind == BodyKind::cage))
