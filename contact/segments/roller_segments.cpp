@@ -167,28 +167,24 @@ Vec2 unit_at(double angle) {
   return last.unit;
 }
 
-/// Where a roller stands against its bar: the pocket's radial and tangential directions and the
-/// approach, from the cage's position and angle and the roller's centre alone.
-struct BarGap {
-  Vec2 radial, tangential;
-  double approach;
-};
-BarGap bar_gap(const CageBarSegment& s, const PlanarKinematics& cage, Vec2 roller_centre) {
-  const Vec2 radial = unit_at(cage.theta + s.pocket_angle);
-  const Vec2 tangential = perp(radial);
+/// The approach of a roller centred at `centre` to bar s of a cage at `cage` whose pocket points
+/// along `radial`: what evaluate(CageBarSegment) and bar_approach share.
+inline double bar_gap(const CageBarSegment& s, const PlanarKinematics& cage, Vec2 radial, Vec2 centre) {
   const Vec2 pocket_centre = position(cage) + s.pitch_radius * radial;
-  const double offset = dot(roller_centre - pocket_centre, tangential);
-  return {radial, tangential, s.side * offset - s.half_clearance};
+  const double offset = dot(centre - pocket_centre, perp(radial));
+  return s.side * offset - s.half_clearance;
 }
 }  // namespace
 
 double bar_approach(const CageBarSegment& s, const PlanarKinematics& cage, double roller_x, double roller_y) {
-  return bar_gap(s, cage, Vec2{roller_x, roller_y}).approach;
+  return bar_gap(s, cage, unit_at(cage.theta + s.pocket_angle), Vec2{roller_x, roller_y});
 }
 
 SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& roller) {
-  const auto [radial, tangential, approach] = bar_gap(s, cage, position(roller));
+  const Vec2 radial = unit_at(cage.theta + s.pocket_angle);
+  const Vec2 tangential = perp(radial);
+  const double approach = bar_gap(s, cage, radial, position(roller));
   const Vec2 outward = static_cast<double>(s.side) * tangential;  // from roller centre to the bar
   const Vec2 point = position(roller) + (s.roller_radius - 0.5 * approach) * outward;
   if (s.film)  // the contact point moves with the roller along the bar
