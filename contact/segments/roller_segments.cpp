@@ -166,15 +166,25 @@ Vec2 unit_at(double angle) {
   if (!last.filled || last.key != key) last = {key, Vec2{std::cos(angle), std::sin(angle)}, true};
   return last.unit;
 }
+
+/// The approach of a roller centred at `centre` to bar s of a cage at `cage` whose pocket points
+/// along `radial`: what evaluate(CageBarSegment) and bar_approach share.
+inline double bar_gap(const CageBarSegment& s, const PlanarKinematics& cage, Vec2 radial, Vec2 centre) {
+  const Vec2 pocket_centre = position(cage) + s.pitch_radius * radial;
+  const double offset = dot(centre - pocket_centre, perp(radial));
+  return s.side * offset - s.half_clearance;
+}
 }  // namespace
+
+double bar_approach(const CageBarSegment& s, const PlanarKinematics& cage, double roller_x, double roller_y) {
+  return bar_gap(s, cage, unit_at(cage.theta + s.pocket_angle), Vec2{roller_x, roller_y});
+}
 
 SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& roller) {
   const Vec2 radial = unit_at(cage.theta + s.pocket_angle);
   const Vec2 tangential = perp(radial);
-  const Vec2 pocket_centre = position(cage) + s.pitch_radius * radial;
-  const double offset = dot(position(roller) - pocket_centre, tangential);
-  const double approach = s.side * offset - s.half_clearance;
+  const double approach = bar_gap(s, cage, radial, position(roller));
   const Vec2 outward = static_cast<double>(s.side) * tangential;  // from roller centre to the bar
   const Vec2 point = position(roller) + (s.roller_radius - 0.5 * approach) * outward;
   if (s.film)  // the contact point moves with the roller along the bar

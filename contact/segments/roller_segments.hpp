@@ -87,6 +87,10 @@ struct CageBarSegment {
 };
 SegmentResult evaluate(const CageBarSegment& s, const PlanarKinematics& cage,
                        const PlanarKinematics& roller);
+/// evaluate(s, cage, roller).diagnostics.approach alone, the same bits (the pocket tolerance asks it
+/// at every step): of the cage's kinematics it reads the position and angle, of the roller's the
+/// centre (roller_x, roller_y).
+double bar_approach(const CageBarSegment& s, const PlanarKinematics& cage, double roller_x, double roller_y);
 
 /// Cage guided on a ring land. A = cage, B = ring. Contact when the centres' eccentricity exceeds
 /// the land clearance. Inner-land guidance: the cage bore rides on the ring's land (land_radius is the

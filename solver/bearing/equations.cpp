@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 
 #include "solver/bearing/element_evaluation.hpp"
 #include "solver/bearing/race_defects.hpp"
@@ -125,15 +126,43 @@ contact::Vec3 body_centre(const Model& m, int b, double t, const double* z) {
   return {z[body.slot[sx]], z[body.slot[sy]], z[body.slot[sz]]};
 }
 
-/// The approach of pocket element seg at (t, z): a ball's pocket on two body centres by its gap
-/// alone (contact::pocket_approach, the bits of its full evaluation), any other element evaluated.
-double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z) {
+/// Body b's centre in the plane at (t, z), planar_kinematics(b, t, z)'s x and y: straight from its
+/// states where it has both (a roller), without its velocities (in the orbital frame, a conversion).
+std::pair<double, double> planar_centre(const Model& m, int b, double t, const double* z) {
+  const Body& body = m.bodies[static_cast<std::size_t>(b)];
+  if (body.ring || body.slot[sx] < 0 || body.slot[sy] < 0) {
+    const contact::PlanarKinematics k = m.planar_kinematics(b, t, z);
+    return {k.x, k.y};
+  }
+  return {z[body.slot[sx]], z[body.slot[sy]]};
+}
+
+/// The planar cage's kinematics at the pocket weights' (t, z), computed for its first bar and kept
+/// for the others (a spatial cage's are in the KinematicsMemo scope).
+struct PlanarCage {
+  int body = -1;
+  contact::PlanarKinematics k;
+  const contact::PlanarKinematics& of(const Model& m, int b, double t, const double* z) {
+    if (body != b) body = b, k = m.planar_kinematics(b, t, z);
+    return k;
+  }
+};
+
+/// The approach of pocket element seg at (t, z): a ball's pocket and a planar roller's cage bar on
+/// two body centres by their gap alone (contact::pocket_approach, contact::bar_approach: the bits of
+/// their full evaluation), any other element (a bar on a flexible bridge) evaluated.
+double pocket_element_approach(const Model& m, const Segment& seg, double t, const double* z, PlanarCage& planar_cage) {
   const SegmentLaw& law = m.laws[static_cast<std::size_t>(seg.law)];
-  const auto* pocket = std::get_if<contact::BallPocketSegment>(&law);
   const auto* cage = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_a)]);
-  const auto* ball = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_b)]);
-  if (pocket && cage && ball)
-    return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), body_centre(m, ball->body, t, z));
+  const auto* element = std::get_if<BodyCentre>(&m.markers[static_cast<std::size_t>(seg.marker_b)]);
+  if (cage && element) {
+    if (const auto* pocket = std::get_if<contact::BallPocketSegment>(&law))
+      return contact::pocket_approach(*pocket, m.kinematics(cage->body, t, z), body_centre(m, element->body, t, z));
+    if (const auto* bar = std::get_if<contact::CageBarSegment>(&law)) {
+      const auto [x, y] = planar_centre(m, element->body, t, z);
+      return contact::bar_approach(*bar, planar_cage.of(m, cage->body, t, z), x, y);
+    }
+  }
   std::array<double, SegmentRecord::size> rec{};
   write_element(m, seg, t, z, rec);
   return rec[SegmentRecord::diagnostics + approach_field];
@@ -143,10 +172,11 @@ double pocket_element_approach(const Model& m, const Segment& seg, double t, con
 
 void Equations::adjust_error_weights(double t, const double* z, double* ewt) const {
   const KinematicsMemo memo(model_, t, z);  // the cage's kinematics once for all its pockets
+  PlanarCage planar_cage;
   pocket_touched_.assign(model_.bodies.size(), 0);
   for (const int s : pocket_segments_) {
     const Segment& seg = model_.segments[static_cast<std::size_t>(s)];
-    if (!(pocket_element_approach(model_, seg, t, z) > -pocket_margin_)) continue;
+    if (!(pocket_element_approach(model_, seg, t, z, planar_cage) > -pocket_margin_)) continue;
     for (const int b : {seg.body_a, seg.body_b}) {
       const BodyKind kind = model_.bodies[static_cast<std::size_t>(b)].kind;
       if (kind == BodyKind::rolling_element || (pocket_cage_rate_ && kind == BodyKind::cage))

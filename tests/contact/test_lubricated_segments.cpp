@@ -6,7 +6,9 @@
 // the segment's forward-difference Jacobian (as the equations form it) against central differences.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "contact/laws/lubricated_line_contact.hpp"
@@ -145,6 +147,24 @@ TEST(LubricatedSegments, SqueezeForceOfARollerHittingABar) {
     ASSERT_EQ(window, 1.0);
     EXPECT_NEAR(r.diagnostics.normal_force, closed, 1e-9 * closed) << "gap " << gap;
     std::printf("[ squeeze ] gap %5.1f um at %.1f m/s: %.4g N\n", gap * 1e6, speed, r.diagnostics.normal_force);
+  }
+}
+
+// A lubricated bar's gap alone (bar_approach, what the pocket tolerance asks) is its evaluation's
+// approach bit for bit, in the film and in dry contact, approaching and receding.
+TEST(LubricatedSegments, BarApproachAloneIsTheEvaluatedOne) {
+  for (const int side : {+1, -1}) {
+    const SegmentCase c = case_of(Kind::bar, false, side);
+    const AnySegment seg = film_bar(c);
+    const CageBarSegment& law = std::get<CageBarSegment>(seg);
+    for (const double approach : {-30e-6, -2e-6, 1e-7, 5e-6})
+      for (const double speed : {-0.3, 0.3}) {
+        Placement p = place(c, seg, moving(0.01, 0, 40), moving(0, 0, -300), approach, -1.9, 1e-4);
+        p.b.vx = speed * p.normal_on_b.x(), p.b.vy = speed * p.normal_on_b.y();
+        const double alone = bar_approach(law, p.a, p.b.x, p.b.y);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(alone),
+                  std::bit_cast<std::uint64_t>(evaluate(law, p.a, p.b).diagnostics.approach));
+      }
   }
 }
 

@@ -3,7 +3,10 @@
 // curve and the signed traction diagnostics, friction acting at the surfaces, and the physical sense
 // of each segment stated in the bearing's own terms (which way a race, a bar, a land pushes; which way
 // friction drives the cage). The checks every segment kind shares are in test_segment_conformance.cpp.
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -302,6 +305,44 @@ TEST(PhysicalSense, FasterLandDrivesCageForward) {
       EXPECT_GT(r.on_a.mz, 0.9 * m_sat) << name;
     }
   }
+}
+
+// The pocket tolerance's gap alone (bar_approach) is the full evaluation's approach bit for bit: both
+// bars, apart and in contact, off the pocket's middle radially, the cage turned and moved; and it is
+// the approach placed. Then the 13 pockets in turn, each bar's gap asked before its evaluation and
+// after another pocket's, twice: the pocket's direction kept per angle is each pocket's own.
+TEST(CageBar, ApproachAloneIsTheEvaluatedOne) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  PlanarKinematics cage = moving(0.02, -0.01, 42);
+  cage.x = 1.3e-4, cage.y = -2.1e-4;
+  for (const char* name : {"CageBarFront", "CageBarRear"}) {
+    const SegmentCase& c = find_case(name);
+    const CageBarSegment law = std::get<CageBarSegment>(make_segment(c));
+    for (const double approach : {-2.0 * law.half_clearance, -1e-5, 2e-6, 3e-5})
+      for (const double phi : angles)
+        for (const double shift : {0.0, 3e-4}) {
+          const Placement p = place(c, law, cage, moving(0.4, -0.3, -200), approach, phi, shift);
+          const double alone = bar_approach(law, p.a, p.b.x, p.b.y);
+          EXPECT_EQ(bits(alone), bits(evaluate(law, p.a, p.b).diagnostics.approach)) << name << " phi " << phi;
+          EXPECT_NEAR(alone, approach, 1e-15) << name;
+        }
+  }
+  CageBarSegment law = std::get<CageBarSegment>(make_segment(find_case("CageBarFront")));
+  for (int round = 0; round < 2; ++round)
+    for (int k = 0; k < 13; ++k) {
+      law.pocket_angle = 2 * std::numbers::pi * k / 13;
+      law.side = k % 2 == 0 ? +1 : -1;
+      PlanarKinematics roller;
+      const double off = law.side * (k + 1) * 1e-5;  // off the pocket's middle along its tangent
+      const Vec r = unit(cage.theta + law.pocket_angle), t = perp(r);
+      roller.x = cage.x + seed002::pitch_radius * r[0] + off * t[0];
+      roller.y = cage.y + seed002::pitch_radius * r[1] + off * t[1];
+      const double alone = bar_approach(law, cage, roller.x, roller.y);
+      EXPECT_NEAR(alone, std::abs(off) - law.half_clearance, 1e-15);
+      EXPECT_EQ(bits(alone), bits(evaluate(law, cage, roller).diagnostics.approach)) << k;
+      law.side = -law.side;  // the pocket's other bar, after its partner's evaluation
+      EXPECT_EQ(bits(bar_approach(law, cage, roller.x, roller.y)), bits(evaluate(law, cage, roller).diagnostics.approach));
+    }
 }
 
 }  // namespace

@@ -34,6 +34,25 @@ inline scene::Scene load_job_scene(const std::string& name) {
   return scene::load_scene(std::string(RACEWAY_SOURCE_DIR) + "/jobs/scenes/" + name);
 }
 
+/// jobs/scenes/seed002_40hz.toml's text with the solver it had before it took its converged pocket
+/// settings: the rollers' velocities in the bearing frame, no pocket factor, rtol 1e-5. The tests that
+/// read its states in the bearing frame, or whose bounds were measured at those settings, run it so;
+/// a spatial copy needs it (the orbital frame is the planar rollers' and the balls' only). Throws if
+/// the scene's [solver] lines are no longer the ones replaced here.
+inline std::string seed002_former_solver_text() {
+  std::string text = load_job_scene("seed002_40hz.toml").text;
+  const std::string shipped =
+      "rtol = 2e-5\nelement_velocity_frame = \"orbital\"\npocket_tolerance_factor = 10\npocket_tolerance_cage = true\n";
+  const std::size_t at = text.find(shipped);
+  if (at == std::string::npos) throw std::runtime_error("seed002_40hz.toml: its [solver] lines changed");
+  return text.replace(at, shipped.size(), "rtol = 1e-5\n");
+}
+
+/// Seed 002 at 40 Hz with its former solver (seed002_former_solver_text).
+inline scene::Scene load_seed002_former_solver() {
+  return scene::parse_scene(seed002_former_solver_text(), "seed002_40hz.toml (former solver)");
+}
+
 /// A directory under the system temp dir, removed with everything in it on destruction.
 class TempDir {
  public:

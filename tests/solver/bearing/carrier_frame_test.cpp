@@ -31,7 +31,7 @@ constexpr double w0 = 100.0;     // rad/s
 constexpr double ramp = 2.0e4;   // rad/s^2: 100 -> 300 rad/s in 10 ms
 
 scene::Scene planetary_seed002() {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.gravity = false;
   s.carrier.present = true;
   s.carrier.radius = carrier_radius;
@@ -121,7 +121,7 @@ TEST(CarrierFrame, FreeRollerMatchesTheInertialFrame) {
 // the one without must equal the same difference of central differences of the right-hand side
 // (the contact parts, identical in both, cancel).
 TEST(CarrierFrame, JacobianTermsMatchCentralDifferences) {
-  scene::Scene inertial = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene inertial = test::load_seed002_former_solver();
   inertial.gravity = false;
   const scene::Scene rotating = planetary_seed002();
   const Model mi = build_model(inertial), mr = build_model(rotating);
@@ -155,7 +155,7 @@ TEST(CarrierFrame, JacobianTermsMatchCentralDifferences) {
 // Without [carrier] the scene's carrier is absent and the frame adds nothing: the rates of a
 // bearing are those of the inertial equations, bit for bit (the reference runs check whole runs).
 TEST(CarrierFrame, AbsentCarrierChangesNothing) {
-  const scene::Scene scene = test::load_job_scene("seed002_40hz.toml");
+  const scene::Scene scene = test::load_seed002_former_solver();
   EXPECT_FALSE(scene.carrier.present);
   EXPECT_FALSE(carrier_frame(scene.carrier, 0.0).has_value());
   scene::Scene zero_speed = scene;  // a carrier at rest at any radius: the same rates

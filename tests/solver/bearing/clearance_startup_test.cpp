@@ -42,7 +42,7 @@ run::RunSummary run_briefly(const scene::Scene& scene) {
 // ---- cylindrical roller bearing ---------------------------------------------------------------
 
 scene::Scene roller_scene(double clearance, double load, double load_angle, double shaft_hz) {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.inner_ring.speed = scene::TimeFunction::constant(2 * pi * shaft_hz);
   s.bearing.radial_clearance = clearance;
   s.inner_ring.load.fx = scene::TimeFunction::constant(load * std::cos(load_angle));

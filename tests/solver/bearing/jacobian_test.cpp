@@ -139,7 +139,7 @@ struct Seed002 {
       : scene(with_perturbation(perturbation, frame)), model(build_model(scene)), eq(model, executor),
         start(initial_state(model, 0.0)) {}
   static scene::Scene with_perturbation(double p, scene::ElementVelocityFrame frame) {
-    scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+    scene::Scene s = test::load_seed002_former_solver();
     s.solver.jacobian_perturbation = p;
     s.solver.element_velocity_frame = frame;
     return s;
@@ -190,7 +190,7 @@ TEST(Jacobian, AssemblyMatchesCentralDifferencesAtConsistentStart) {
 }
 
 TEST(Jacobian, DefaultIncrementMatchesCentralDifferencesAtConsistentStart) {
-  Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation);
+  Seed002 s(test::load_seed002_former_solver().solver.jacobian_perturbation);
   check_state(s.eq, s.model, 0.0, s.start.state, tolerance, "start, default increment");
 }
 
@@ -273,7 +273,7 @@ double forward_difference_error(Seed002& s, double t, const std::vector<double>&
 }
 
 TEST(Jacobian, AssemblyMatchesForwardDifferencesAfterShortRun) {
-  Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation);
+  Seed002 s(test::load_seed002_former_solver().solver.jacobian_perturbation);
   const auto z = state_after(s, short_run);
   check_state(s.eq, s.model, short_run, z, 0, "t = 20 ms, central differences (not judged)");
   std::string where;
@@ -288,7 +288,7 @@ TEST(Jacobian, AssemblyMatchesForwardDifferencesAfterShortRun) {
 // and 20 ms later, every bar so judged has exactly zero differences in every column (the law evaluated
 // at each column's step), and both kinds occur: bars judged clear, and bars in contact or within reach.
 TEST(Jacobian, ClearCageBarsHaveExactlyZeroColumns) {
-  Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation);
+  Seed002 s(test::load_seed002_former_solver().solver.jacobian_perturbation);
   const FiniteDifferenceSteps step(s.model);
   int clear = 0, evaluated = 0;
   for (const std::vector<double>& z : {s.start.state, state_after(s, short_run)}) {
@@ -339,7 +339,7 @@ TEST(Jacobian, OrbitalFrameMatchesFiniteDifferences) {
     best = std::min(best, check_state(at.eq, at.model, 0.0, at.start.state, 0, "orbital frame, start, increment " + increment_name(r)));
   }
   EXPECT_LT(best, 3e-3);
-  Seed002 s(test::load_job_scene("seed002_40hz.toml").solver.jacobian_perturbation, scene::ElementVelocityFrame::orbital);
+  Seed002 s(test::load_seed002_former_solver().solver.jacobian_perturbation, scene::ElementVelocityFrame::orbital);
   ASSERT_TRUE(s.model.orbital_velocities);
   const auto later = state_after(s, short_run);
   for (const double t : {0.0, short_run}) {
@@ -353,7 +353,7 @@ TEST(Jacobian, OrbitalFrameMatchesFiniteDifferences) {
 }
 
 TEST(Jacobian, SpatialRollerAssemblyMatchesFiniteDifferences) {
-  scene::Scene scene = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene scene = test::load_seed002_former_solver();
   std::string text = scene.text;
   const std::string planar = "model = \"planar\"";
   text.replace(text.find(planar), planar.size(), "model = \"spatial\"");

@@ -1,10 +1,12 @@
-// [solver] pocket_tolerance_factor (Equations::adjust_error_weights): while a ball touches its pocket,
+// [solver] pocket_tolerance_factor (Equations::adjust_error_weights): while a ball (a roller) touches its pocket,
 // or is within 1e-4 of its radius of it, the error weights of its translational velocities are
 // multiplied by the factor; every other weight is left as it was, and a factor of 1 leaves
 // SUNDIALS' own weights in place (no weight function at all).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <string>
 #include <vector>
 
 #include "io/scene/scene_parser.hpp"
@@ -119,5 +121,56 @@ TEST(PocketTolerance, TightensTheCagesRotationRateOnRequest) {
   check_tightening(scene::ElementVelocityFrame::bearing, true);
 }
 
+// Seed 002 as shipped (the orbital frame, K = 10 with the cage's rate; its bars judged by their gap
+// alone): with the cage turned through its pocket clearance both ways in steps of 0.23 um at the
+// pitch radius, the weights tighten exactly the rollers one of whose bars has its evaluated approach
+// (the right-hand side's record) within 1e-4 of the roller radius, their v_theta alone, and the cage's
+// rate when any does: each roller crosses that line within a step.
+TEST(PocketTolerance, PlanarRollersByTheirBarsEvaluatedApproach) {
+  const scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  const double factor = s.solver.pocket_tolerance_factor;
+  ASSERT_GT(factor, 1.0);
+  ASSERT_TRUE(s.solver.pocket_tolerance_cage);
+  const Model m = build_model(s);
+  scheduler::SerialExecutor executor;
+  Equations eq(m, executor);
+  executor.attach(eq.task_catalogue());
+  const std::vector<double> z = initial_state(m, 0.0).state;
+  std::vector<double> zdot(z.size()), w(z.size());
+  const Body& cage = m.bodies[static_cast<std::size_t>(m.cage)];
+  const double margin = 1e-4 * m.element_radius;
+  int touching = 0, clear = 0, wrong = 0;
+  std::string first_wrong;
+  for (int k = -1200; k <= 1200; ++k) {
+    std::vector<double> state = z;
+    state[static_cast<std::size_t>(cage.slot[saz])] += 1e-5 * k;  // the half clearance: 0.1 mm / 22.87 mm
+    eq.rhs(0.0, state.data(), zdot.data());
+    std::vector<int> touches(m.bodies.size(), 0);
+    for (std::size_t g = 0; g < m.segments.size(); ++g) {
+      const SegmentKind kind = m.segments[g].kind;
+      if ((kind == SegmentKind::cage_bar_front || kind == SegmentKind::cage_bar_rear) &&
+          eq.diagnostic(g, approach_field) > -margin)
+        touches[static_cast<std::size_t>(m.segments[g].body_b)] = 1;
+    }
+    std::fill(w.begin(), w.end(), 1.0);
+    eq.adjust_error_weights(0.0, state.data(), w.data());
+    bool any = false;
+    const auto expect = [&](int i, bool tight, const Body& body) {
+      if (w[static_cast<std::size_t>(i)] == (tight ? factor : 1.0)) return;
+      if (wrong++ == 0) first_wrong = "turn " + std::to_string(k) + ", body " + std::to_string(&body - m.bodies.data());
+    };
+    for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+      const Body& body = m.bodies[b];
+      if (body.kind != BodyKind::rolling_element) continue;
+      any = any || touches[b];
+      (touches[b] ? touching : clear) += 1;
+      for (int i = body.offset; i < body.offset + body.size; ++i) expect(i, touches[b] && i == body.slot[svy], body);
+    }
+    for (int i = cage.offset; i < cage.offset + cage.size; ++i) expect(i, any && i == cage.slot[swz], cage);
+  }
+  EXPECT_EQ(wrong, 0) << "first: " << first_wrong;
+  EXPECT_GT(touching, 13 * 200);  // the turns bring every roller to a bar
+  EXPECT_GT(clear, 13 * 200);
+}
 }  // namespace
 }  // namespace raceway::bearing

@@ -16,8 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -32,13 +30,6 @@
 
 namespace raceway::bearing {
 namespace {
-
-std::string file_text(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 struct Window {
   std::vector<std::vector<double>> loads;  ///< per sample, per roller: inner-race normal force [N]
@@ -113,7 +104,7 @@ Agreement compare(const std::string& text, double end, const char* label) {
 }
 
 TEST(SpatialRollerRestriction, Seed002AgreesWithThePlanarModel) {
-  const Agreement a = compare(file_text(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml"), 15e-3, "seed002");
+  const Agreement a = compare(test::seed002_former_solver_text(), 15e-3, "seed002");
   EXPECT_GT(a.largest, 250.0);  // the load zone is there (Fr 1 kN on 13 rollers: about 310 N at its middle)
   EXPECT_LT(a.worst_mean, 5e-3);
   EXPECT_LT(a.worst_peak, 5e-3);
@@ -124,7 +115,7 @@ TEST(SpatialRollerRestriction, Seed002AgreesWithThePlanarModel) {
 // every race contact, planar line contacts against spatial slices, in a gearbox oil (40 mPa s,
 // 20 1/GPa). The cage's pocket bars and land stay dry in both. Window 5 to 10 ms.
 TEST(SpatialRollerRestriction, Seed002WithEhdFilmsAgreesWithThePlanarModel) {
-  std::string text = file_text(RACEWAY_SOURCE_DIR "/jobs/scenes/seed002_40hz.toml");
+  std::string text = test::seed002_former_solver_text();
   const std::string dry = "[contact.roller_race]\nnormal = \"palmgren\"\n";
   const std::size_t at = text.find(dry);
   ASSERT_NE(at, std::string::npos);

@@ -96,7 +96,7 @@ void check_start(const scene::Scene& scene_in, double radial_tolerance) {
 }
 
 scene::Scene seed002(bool gravity, bool damping_and_traction) {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.gravity = gravity;
   if (!damping_and_traction) {
     for (scene::ContactSpec* c : {&s.roller_race, &s.roller_cage, &s.cage_land}) {

@@ -171,7 +171,7 @@ const ModelBuilder& toy_builder() {
 /// Seed 002's bearing with its inner ring's centre held (the sleeve carries the contacts), dry,
 /// undamped and frictionless where `conservative`.
 scene::Scene toy_scene(bool conservative) {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.inner_ring.translation_free = false;
   s.inner_ring.load.fy = scene::TimeFunction::constant(0.0);
   s.gravity = false;

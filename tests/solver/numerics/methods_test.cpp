@@ -197,7 +197,8 @@ struct Bearing {
   bearing::Equations eq;
   std::vector<double> start, scale;
   explicit Bearing(const std::string& file)
-      : scene(tolerances_follow_rtol(test::load_job_scene(file))), model(bearing::build_model(scene)), eq(model, executor),
+      : scene(tolerances_follow_rtol(file == "seed002_40hz.toml" ? test::load_seed002_former_solver()
+                                                                  : test::load_job_scene(file))), model(bearing::build_model(scene)), eq(model, executor),
         start(initial_state(model, 0.0).state) {
     // The physical scale of each state: its absolute tolerance over the relative one.
     const auto atol = model.absolute_tolerance();

@@ -26,7 +26,7 @@ void switch_off(scene::ContactSpec& c, bool damping, bool traction) {
 }
 
 scene::Scene seed002(double end_time, bool damping_off) {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.scene.end_time = end_time;
   s.solver.rtol = 1e-8;
   // The tolerances below were measured with BDF up to order 5 and absolute tolerances following

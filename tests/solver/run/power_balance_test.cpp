@@ -66,7 +66,7 @@ TEST(PowerBalance, ClosesOnARollerBearing) {
   // Seed 002 at 40 Hz with rtol 1e-7, 10 to 20 ms, where the cage's impacts on its bars take most
   // of the drive (measured residual 2.8e-4). The scene ships rtol 1e-5, where BDF's own damping of
   // the rollers' resolved contact oscillations leaves 5-12 % of the inputs unaccounted (1e-6: 0.2-1.5 %).
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.solver.rtol = 1e-7;
   const Window w = run_window(s, 20e-3, 10e-3);
   EXPECT_GT(w.drive, 0.0);

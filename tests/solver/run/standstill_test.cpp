@@ -74,7 +74,7 @@ TEST(Standstill, LubricatedBallBearingHeldAtRest) {
 }
 
 TEST(Standstill, RollerBearingWithClearanceHeldAtRest) {
-  scene::Scene scene = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene scene = test::load_seed002_former_solver();
   scene.inner_ring.speed = scene::TimeFunction::constant(0.0);
   scene.bearing.radial_clearance = 20e-6;
   scene.scene.end_time = 0.01;

@@ -21,7 +21,7 @@ struct Outcome {
 };
 
 Outcome run(double fx, double fy) {
-  scene::Scene s = test::load_job_scene("seed002_40hz.toml");
+  scene::Scene s = test::load_seed002_former_solver();
   s.scene.end_time = 0.1;  // 4 shaft revolutions
   s.gravity = false;
   s.inner_ring.load.fx = scene::TimeFunction::constant(fx);

@@ -65,9 +65,11 @@ sed -e 's/^end_time = .*/end_time = "2 ms"/' "$source_dir/jobs/scenes/6309_R3_fi
 # The spatial roller bearing: seed 002 in space (its race contacts in slices, one task each), its
 # rollers' diameters scattered and a spall on roller 0 (every roller's angle about its axis a state),
 # 10 degrees ahead of its outer race contact at the start (it strikes it at about 0.3 ms), and a
-# checkpoint every 1 ms (the kill and resume below).
+# checkpoint every 1 ms (the kill and resume below). It keeps the planar scene's former solver (rtol
+# 1e-5, no pocket factor): the orbital frame is the planar rollers' and the balls'.
 sed -e 's/^end_time = .*/end_time = "2 ms"/' -e 's/^model = "planar"/model = "spatial"/' \
   -e 's/^\[bearing\]$/[bearing]\nroller_diameter_scatter = "1 um"\nscatter_seed = 5/' \
+  -e 's/^rtol = 2e-5$/rtol = 1e-5/' -e '/^element_velocity_frame = /d' -e '/^pocket_tolerance_/d' \
   "$source_dir/jobs/scenes/seed002_40hz.toml" >"$work/spatial_roller.toml"
 printf '[output]\ncheckpoint_interval = "1 ms"\n[rolling_element]\nspall = { element = 0, angle = "-80 deg", %s\n' \
   'length = "0.5 mm", width = "4 mm", depth = "0.1 mm" }' >>"$work/spatial_roller.toml"
