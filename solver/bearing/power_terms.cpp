@@ -69,7 +69,9 @@ void PowerTerms::evaluate(const Equations& eq, double t, const double* z, double
 }
 
 double PowerTerms::stored_energy(const Equations& eq, double t, const double* z, double energy) {
-  for (std::size_t b = 0; b < eq.model().bodies.size(); ++b) energy -= eq.dynamics().load_potential(static_cast<int>(b), t, z);
+  // A body without a ring's load has no load potential (0.0, and energy - 0.0 is energy's bits).
+  for (std::size_t b = 0; b < eq.model().bodies.size(); ++b)
+    if (eq.model().bodies[b].ring) energy -= eq.dynamics().load_potential(static_cast<int>(b), t, z);
   return energy;
 }
 

@@ -127,6 +127,9 @@ class SpatialDynamics final : public BodyDynamics {
 
   ExternalPower external_power(int b, double t, const double* z) const override {
     const Body& body = m_.bodies[static_cast<std::size_t>(b)];
+    // Neither a loaded, supported ring nor the cage (a rolling element): every term below is +0,
+    // and the sums of PowerTerms::evaluate start at +0, so leaving it out changes no bit.
+    if (!body.ring && body.kind != BodyKind::cage) return {};
     const auto& sl = body.slot;
     auto state = [&](int c) { return sl[c] >= 0 ? z[sl[c]] : 0.0; };
     const Vec3 v(state(svx), state(svy), state(svz));
