@@ -115,8 +115,8 @@ bool usable(const Lu& lu) {
 }
 
 // The indices of the rows (columns = false) or columns of `a` that hold a nonzero (a NaN counts:
-// it is != 0), in one pass over its storage; `used` is scratch.
-void nonzero_lines(const Eigen::MatrixXd& a, bool columns, std::vector<char>& used, std::vector<int>& out) {
+// it is != 0), each line read up to its first nonzero (a row across the column-major storage).
+void nonzero_lines(const Eigen::MatrixXd& a, bool columns, std::vector<int>& out) {
   out.clear();
   const Eigen::Index rows = a.rows(), cols = a.cols();
   const double* v = a.data();
@@ -125,11 +125,14 @@ void nonzero_lines(const Eigen::MatrixXd& a, bool columns, std::vector<char>& us
       if (std::any_of(v, v + rows, [](double x) { return x != 0.0; })) out.push_back(static_cast<int>(c));
     return;
   }
-  used.assign(static_cast<std::size_t>(rows), 0);
-  for (Eigen::Index c = 0; c < cols; ++c, v += rows)
-    for (Eigen::Index r = 0; r < rows; ++r) used[static_cast<std::size_t>(r)] |= static_cast<char>(v[r] != 0.0);
-  for (std::size_t i = 0; i < used.size(); ++i)
-    if (used[i] != 0) out.push_back(static_cast<int>(i));
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const double* x = v + r;
+    for (Eigen::Index c = 0; c < cols; ++c, x += rows)
+      if (*x != 0.0) {
+        out.push_back(static_cast<int>(r));
+        break;
+      }
+  }
 }
 
 // x = A^-1 b from A's partial-pivoting LU (P A = L U, L unit lower): x = U^-1 L^-1 P b by
@@ -205,8 +208,8 @@ bool SparseFixedBlocks<Bs, KeepInverse>::factor(const BorderedMatrix& m, Eigen::
     } else {
       e.factors = lu;
     }
-    nonzero_lines(m.border_to_block[k], false, used, e.rows);
-    nonzero_lines(m.block_to_border[k], true, used, e.cols);
+    nonzero_lines(m.border_to_block[k], false, e.rows);
+    nonzero_lines(m.block_to_border[k], true, e.cols);
     const auto r = static_cast<Eigen::Index>(e.rows.size()), c = static_cast<Eigen::Index>(e.cols.size());
     e.border_rows.resize(r, Bs);
     for (Eigen::Index i = 0; i < r; ++i) e.border_rows.row(i) = m.border_to_block[k].row(e.rows[static_cast<std::size_t>(i)]);

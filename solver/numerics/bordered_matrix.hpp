@@ -104,7 +104,6 @@ struct SparseFixedBlocks {
 
   std::vector<Element> elements;
   Eigen::PartialPivLU<Block> lu;       ///< of the block being factored
-  std::vector<char> used;              ///< a border row's mark while finding them
   BlockVector gathered, permuted;      ///< scratch
 };
 
