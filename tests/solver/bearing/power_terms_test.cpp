@@ -127,5 +127,28 @@ TEST(PowerTerms, RacesWithEhdFilmsLeaveAResidual) {
   EXPECT_GT(b.stored_rate - (b.inputs - b.losses), 0.01 * b.losses);
 }
 
+TEST(PowerTerms, OnlyTheRingsHaveALoadPotential) {
+  // stored_energy asks only the bodies with a ring's load for their potential: every other body's
+  // must be exactly 0.0, and the sum the bits of subtracting every body's (a ball and a roller model).
+  for (const char* name : {"6205_first_scene.toml", "seed002_100hz.toml"}) {
+    const Model model = build_model(test::load_job_scene(name));
+    scheduler::SerialExecutor executor;
+    Equations eq(model, executor);
+    executor.attach(eq.task_catalogue());
+    std::vector<double> z = initial_state(model, 0.0).state;
+    for (std::size_t i = 0; i < z.size(); ++i) z[i] += 1e-6 * (1.0 + static_cast<double>(i % 7));  // every state moved
+    const double t = 1e-3, energy = 1.25;
+    double every = energy, rings = 0;
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      const double v = eq.dynamics().load_potential(static_cast<int>(b), t, z.data());
+      every -= v;
+      if (model.bodies[b].ring) rings += std::abs(v);
+      else EXPECT_EQ(v, 0.0) << name << ": body " << b;
+    }
+    EXPECT_GT(rings, 0.0) << name << ": a loaded ring has a potential";
+    EXPECT_EQ(PowerTerms::stored_energy(eq, t, z.data(), energy), every) << name;
+  }
+}
+
 }  // namespace
 }  // namespace raceway::bearing
